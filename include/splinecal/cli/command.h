@@ -1,0 +1,52 @@
+// The command-line front end: one binary, `splinecal`, with subcommands (docs/conventions.md,
+// "Command line").
+//
+// Every subcommand is a Command: a name, a one-line summary, a usage line, the flags it accepts
+// and a function that runs it once those flags are set. Flags are gflags flags (DEFINE_* in the
+// command's own file, or in common_flags.cc when several commands share one); the front end
+// parses argv itself so that every bad flag or value exits 2 with one clear line instead of
+// gflags' exit 1, and so that `splinecal SUB --help` lists only SUB's flags.
+//
+// Flag spelling: `--imu-rate 200`, `--imu-rate=200` and `--imu_rate=200` are the same flag
+// (dashes become underscores); booleans take `--flag`, `--noflag`, `--flag=true|false`.
+#ifndef SPLINECAL_CLI_COMMAND_H_
+#define SPLINECAL_CLI_COMMAND_H_
+
+#include <string>
+#include <vector>
+
+namespace splinecal {
+namespace cli {
+
+struct FlagDoc {
+  // The gflags name, with underscores (`imu_rate`); shown with dashes unless it is a Kalibr key.
+  std::string name;
+  // Help text for this command; empty means the flag's gflags description. Give the unit.
+  std::string help;
+};
+
+struct Command {
+  std::string name;
+  std::string summary;              // one line, for `splinecal help`
+  std::string usage;                // e.g. "splinecal fit --imu FILE --poses FILE --out DIR"
+  std::string description;          // a paragraph for `splinecal SUB --help`
+  std::vector<FlagDoc> flags;       // every flag the command accepts
+  // Runs the command after its flags were set. Throws splinecal::Error for bad input (the front
+  // end prints it on one line and exits 2). Returns the exit code.
+  int (*run)();
+};
+
+// Every command, in the order `splinecal help` lists them (src/cli/commands.cc).
+const std::vector<Command>& AllCommands();
+
+// The whole front end: dispatch, flag parsing, error reporting. Returns the process exit code.
+int Main(int argc, char** argv);
+
+// Progress for long work goes to stderr through this, and nowhere when --quiet is set.
+void Progress(const std::string& line);
+bool Quiet();
+
+}  // namespace cli
+}  // namespace splinecal
+
+#endif  // SPLINECAL_CLI_COMMAND_H_

@@ -1,0 +1,13 @@
+// One factory per subcommand, each in src/cli/<name>_command.cc.
+#ifndef SPLINECAL_CLI_COMMANDS_H_
+#define SPLINECAL_CLI_COMMANDS_H_
+
+#include "splinecal/cli/command.h"
+
+namespace splinecal {
+namespace cli {
+
+}  // namespace cli
+}  // namespace splinecal
+
+#endif  // SPLINECAL_CLI_COMMANDS_H_

@@ -1,0 +1,53 @@
+// Checks shared by the table readers of io/ (internal: not part of the public API).
+#ifndef SPLINECAL_IO_ROW_CHECKS_H_
+#define SPLINECAL_IO_ROW_CHECKS_H_
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "splinecal/io/text_file.h"
+
+namespace splinecal {
+namespace internal {
+
+// A first data row whose first field is not a number is a header written without '#'
+// (some tools do that); it is skipped. Anywhere else it is data and fails to parse.
+bool IsHeaderRow(const TextFileReader& reader, const std::vector<std::string_view>& fields);
+
+// Throws "expected N columns (format), found M".
+void CheckColumnCount(const TextFileReader& reader,
+                      const std::vector<std::string_view>& fields,
+                      size_t expected,
+                      const std::string& format);
+
+// Builds a unit quaternion; throws when its norm differs from 1 by more than 1e-3 (a file in
+// another order or not a quaternion at all), else normalises it.
+Eigen::Quaterniond CheckedUnitQuaternion(const TextFileReader& reader,
+                                         std::string_view first_field,
+                                         double w,
+                                         double x,
+                                         double y,
+                                         double z);
+
+// Timestamps must increase strictly; gaps are measured against the median period.
+class TimestampChecker {
+ public:
+  explicit TimestampChecker(const TextFileReader* reader) : reader_(reader) {}
+  void Add(int64_t t_ns, std::string_view field);
+  // Throws when a gap exceeds max_periods median periods (naming the line after the gap).
+  void CheckGaps(double max_periods) const;
+
+ private:
+  const TextFileReader* reader_;
+  std::vector<int64_t> times_;
+  std::vector<int64_t> lines_;
+};
+
+}  // namespace internal
+}  // namespace splinecal
+
+#endif  // SPLINECAL_IO_ROW_CHECKS_H_

@@ -1,0 +1,78 @@
+// The one input layer's base: a streaming reader of text data files, field splitting and number
+// parsing that report errors as "path:line:column: what was expected".
+//
+// Every reader of splinecal (EuRoC, TUM, spline.csv, plain columns, observations) is built on
+// this file, so every file format accepts the same things (docs/conventions.md, "File formats"):
+// CRLF line ends, blank lines, '#' comment lines, spaces after commas.
+#ifndef SPLINECAL_IO_TEXT_FILE_H_
+#define SPLINECAL_IO_TEXT_FILE_H_
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace splinecal {
+
+// Reads a text file one data line at a time without loading it whole (files of 10^8 rows stream
+// through a fixed 4 MiB buffer).
+class TextFileReader {
+ public:
+  // Throws Error(path, 0, ...) when the file is missing, a directory or unreadable.
+  explicit TextFileReader(const std::string& path);
+  ~TextFileReader();
+  TextFileReader(const TextFileReader&) = delete;
+  TextFileReader& operator=(const TextFileReader&) = delete;
+
+  // Advances to the next data line: blank lines and lines whose first non-blank character is '#'
+  // are skipped, a trailing CR is removed. Returns false at the end of the file.
+  bool NextLine();
+
+  std::string_view line() const { return line_; }
+  int64_t line_number() const { return line_number_; }
+  const std::string& path() const { return path_; }
+  // Data lines returned so far.
+  int64_t data_lines() const { return data_lines_; }
+
+  // Throws Error for the current line. `field` (a view into line()) gives the column.
+  [[noreturn]] void Fail(const std::string& message) const;
+  [[noreturn]] void Fail(const std::string& message, std::string_view field) const;
+
+ private:
+  bool ReadRawLine();
+
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  std::vector<char> buffer_;
+  size_t begin_ = 0;  // unread bytes of buffer_ are [begin_, end_)
+  size_t end_ = 0;
+  bool eof_ = false;
+  std::string long_line_;  // a line that straddles buffer refills
+  std::string_view line_;
+  int64_t line_number_ = 0;
+  int64_t data_lines_ = 0;
+};
+
+// Splits a data line into fields: at commas (surrounding spaces trimmed) when the line has a
+// comma, else at runs of spaces and tabs. `fields` views into `line`.
+void SplitFields(std::string_view line, std::vector<std::string_view>* fields);
+
+// True when the field reads as a number (used to tell a header row without '#' from data).
+bool LooksNumeric(std::string_view field);
+
+// Parses a finite double; throws "path:line:column: <what>: expected a number, got 'x'" or
+// "...: value is not finite". `what` names the field (e.g. "gyro x").
+double ParseFiniteDouble(std::string_view field, const TextFileReader& at, const std::string& what);
+// Parses a decimal int64 without going through floating point.
+int64_t ParseInt64(std::string_view field, const TextFileReader& at, const std::string& what);
+// Parses seconds written as decimal text ("1403715273.262142976") into int64 nanoseconds
+// exactly, digit by digit (never through a double); more than 9 decimals are rounded.
+int64_t ParseSecondsToNs(std::string_view field, const TextFileReader& at, const std::string& what);
+
+// Reads a whole small file (YAML) into a string; throws Error(path, 0, ...) when unreadable.
+std::string ReadWholeFile(const std::string& path);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_IO_TEXT_FILE_H_

@@ -1,0 +1,14 @@
+// The list of subcommands, in the order `splinecal help` shows them.
+#include "splinecal/cli/command.h"
+#include "splinecal/cli/commands.h"
+
+namespace splinecal {
+namespace cli {
+
+const std::vector<Command>& AllCommands() {
+  static const std::vector<Command> commands = {};
+  return commands;
+}
+
+}  // namespace cli
+}  // namespace splinecal

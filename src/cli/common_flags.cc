@@ -1,0 +1,60 @@
+#include "splinecal/cli/common_flags.h"
+
+#include <cmath>
+
+#include "splinecal/error.h"
+
+DEFINE_string(out, "", "Output folder [path], created if missing; results appear whole or not at all");
+DEFINE_bool(quiet, false, "Silence progress output on stderr");
+DEFINE_string(imu, "", "IMU data, EuRoC imu0/data.csv [path]");
+DEFINE_string(imu_yaml, "", "IMU noise, Kalibr imu.yaml [path]");
+DEFINE_string(poses, "", "Pose source, EuRoC ground truth or TUM trajectory [path]");
+DEFINE_double(gravity, 9.81, "Gravity magnitude g [m/s^2]; g_w = (0, 0, -g)");
+DEFINE_int32(seed, 1, "Random seed; the same seed gives byte-identical output");
+DEFINE_int32(threads, 1, "Worker threads");
+DEFINE_double(knot_spacing, 0.0, "Spline knot spacing dt [s]; 0 chooses the command's default");
+DEFINE_string(accel_unit, "m/s^2", "Unit of the accelerometer columns: m/s^2 or g");
+DEFINE_string(gyro_unit, "rad/s", "Unit of the gyroscope columns: rad/s or deg/s");
+
+namespace splinecal {
+namespace cli {
+
+double PositiveFlag(const std::string& name, double value) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw Error("--" + name + ": must be a positive number, got " + std::to_string(value));
+  }
+  return value;
+}
+
+double NonNegativeFlag(const std::string& name, double value) {
+  if (!std::isfinite(value) || value < 0.0) {
+    throw Error("--" + name + ": must be zero or positive, got " + std::to_string(value));
+  }
+  return value;
+}
+
+const std::string& RequiredFlag(const std::string& name, const std::string& value) {
+  if (value.empty()) throw Error("--" + name + " is required");
+  return value;
+}
+
+ImuReadOptions ImuReadOptionsFromFlags() {
+  constexpr double kStandardGravity = 9.80665;  // the g of "units of g" [m/s^2]
+  constexpr double kPi = 3.14159265358979323846;
+  ImuReadOptions options;
+  if (FLAGS_accel_unit == "g") {
+    options.accel_scale = kStandardGravity;
+    options.check_accel_units = false;
+  } else if (FLAGS_accel_unit != "m/s^2") {
+    throw Error("--accel-unit: expected m/s^2 or g, got '" + FLAGS_accel_unit + "'");
+  }
+  if (FLAGS_gyro_unit == "deg/s") {
+    options.gyro_scale = kPi / 180.0;
+  } else if (FLAGS_gyro_unit != "rad/s") {
+    throw Error("--gyro-unit: expected rad/s or deg/s, got '" + FLAGS_gyro_unit + "'");
+  }
+  return options;
+}
+
+}  // namespace cli
+}  // namespace splinecal

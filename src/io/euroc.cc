@@ -1,0 +1,126 @@
+#include "splinecal/io/euroc.h"
+
+#include <algorithm>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+
+#include "splinecal/error.h"
+#include "splinecal/io/row_checks.h"
+#include "splinecal/io/text_file.h"
+
+namespace splinecal {
+
+std::string FormatDouble(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", value);
+  return text;
+}
+
+std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOptions& options) {
+  static const char* const kNames[] = {"timestamp", "gyro x", "gyro y", "gyro z",
+                                       "accel x",   "accel y", "accel z"};
+  TextFileReader reader(path);
+  std::vector<std::string_view> fields;
+  std::vector<ImuSample> samples;
+  internal::TimestampChecker timestamps(&reader);
+  while (reader.NextLine()) {
+    SplitFields(reader.line(), &fields);
+    if (internal::IsHeaderRow(reader, fields)) continue;
+    internal::CheckColumnCount(reader, fields, 7, "EuRoC IMU (t_ns, gyro xyz, accel xyz)");
+    ImuSample sample;
+    sample.t_ns = ParseInt64(fields[0], reader, kNames[0]);
+    for (int i = 0; i < 3; ++i) {
+      sample.gyro[i] = options.gyro_scale * ParseFiniteDouble(fields[1 + i], reader, kNames[1 + i]);
+      sample.accel[i] =
+          options.accel_scale * ParseFiniteDouble(fields[4 + i], reader, kNames[4 + i]);
+    }
+    timestamps.Add(sample.t_ns, fields[0]);
+    samples.push_back(sample);
+  }
+  if (samples.size() < 2) {
+    throw Error(path, 0, "needs at least 2 IMU samples, found " + std::to_string(samples.size()));
+  }
+  timestamps.CheckGaps(options.max_gap_periods);
+  if (options.check_accel_units) {
+    std::vector<double> norms(samples.size());
+    for (size_t i = 0; i < samples.size(); ++i) norms[i] = samples[i].accel.norm();
+    std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
+    const double median = norms[norms.size() / 2];
+    if (median > 0.5 && median < 1.5) {
+      char message[200];
+      std::snprintf(message, sizeof(message),
+                    "accelerometer magnitude is about %.2f: the data looks like units of g, "
+                    "expected m/s^2 (pass --accel-unit g)",
+                    median);
+      throw Error(path, 0, message);
+    }
+  }
+  return samples;
+}
+
+void WriteEurocImu(const std::vector<ImuSample>& samples, std::ostream* out) {
+  *out << "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+          "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n";
+  char line[512];
+  for (const ImuSample& s : samples) {
+    std::snprintf(line, sizeof(line),
+                  "%" PRId64 ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                  s.t_ns, s.gyro.x(), s.gyro.y(), s.gyro.z(), s.accel.x(), s.accel.y(),
+                  s.accel.z());
+    *out << line;
+  }
+}
+
+std::vector<GroundTruthState> ReadEurocGroundTruth(const std::string& path) {
+  static const char* const kNames[] = {
+      "timestamp", "p x", "p y", "p z", "q w", "q x", "q y", "q z", "v x",
+      "v y", "v z", "gyro bias x", "gyro bias y", "gyro bias z", "accel bias x",
+      "accel bias y", "accel bias z"};
+  TextFileReader reader(path);
+  std::vector<std::string_view> fields;
+  std::vector<GroundTruthState> states;
+  internal::TimestampChecker timestamps(&reader);
+  while (reader.NextLine()) {
+    SplitFields(reader.line(), &fields);
+    if (internal::IsHeaderRow(reader, fields)) continue;
+    internal::CheckColumnCount(reader, fields, 17,
+                               "EuRoC ground truth (t_ns, p xyz, q wxyz, v xyz, bg xyz, ba xyz)");
+    double v[17];
+    GroundTruthState state;
+    state.t_ns = ParseInt64(fields[0], reader, kNames[0]);
+    for (int i = 1; i < 17; ++i) v[i] = ParseFiniteDouble(fields[i], reader, kNames[i]);
+    state.p_w_s = Eigen::Vector3d(v[1], v[2], v[3]);
+    state.q_w_s = internal::CheckedUnitQuaternion(reader, fields[4], v[4], v[5], v[6], v[7]);
+    state.v_w = Eigen::Vector3d(v[8], v[9], v[10]);
+    state.gyro_bias = Eigen::Vector3d(v[11], v[12], v[13]);
+    state.accel_bias = Eigen::Vector3d(v[14], v[15], v[16]);
+    timestamps.Add(state.t_ns, fields[0]);
+    states.push_back(state);
+  }
+  if (states.size() < 2) {
+    throw Error(path, 0, "needs at least 2 ground-truth rows, found " + std::to_string(states.size()));
+  }
+  return states;
+}
+
+void WriteEurocGroundTruth(const std::vector<GroundTruthState>& states, std::ostream* out) {
+  *out << "#timestamp [ns],p_RS_R_x [m],p_RS_R_y [m],p_RS_R_z [m],q_RS_w [],q_RS_x [],q_RS_y [],"
+          "q_RS_z [],v_RS_R_x [m s^-1],v_RS_R_y [m s^-1],v_RS_R_z [m s^-1],"
+          "b_w_RS_S_x [rad s^-1],b_w_RS_S_y [rad s^-1],b_w_RS_S_z [rad s^-1],"
+          "b_a_RS_S_x [m s^-2],b_a_RS_S_y [m s^-2],b_a_RS_S_z [m s^-2]\n";
+  char line[1024];
+  for (const GroundTruthState& s : states) {
+    std::snprintf(line, sizeof(line),
+                  "%" PRId64
+                  ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                  "%.17g,%.17g,%.17g\n",
+                  s.t_ns, s.p_w_s.x(), s.p_w_s.y(), s.p_w_s.z(), s.q_w_s.w(), s.q_w_s.x(),
+                  s.q_w_s.y(), s.q_w_s.z(), s.v_w.x(), s.v_w.y(), s.v_w.z(), s.gyro_bias.x(),
+                  s.gyro_bias.y(), s.gyro_bias.z(), s.accel_bias.x(), s.accel_bias.y(),
+                  s.accel_bias.z());
+    *out << line;
+  }
+}
+
+}  // namespace splinecal

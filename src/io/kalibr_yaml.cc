@@ -1,0 +1,39 @@
+#include "splinecal/io/kalibr_yaml.h"
+
+#include "splinecal/io/euroc.h"
+#include "splinecal/io/yaml_document.h"
+
+namespace splinecal {
+
+ImuNoise ReadImuYaml(const std::string& path) {
+  const YamlDocument yaml(path);
+  ImuNoise noise;
+  noise.accelerometer_noise_density = yaml.PositiveNumber("accelerometer_noise_density");
+  noise.accelerometer_random_walk = yaml.PositiveNumber("accelerometer_random_walk");
+  noise.gyroscope_noise_density = yaml.PositiveNumber("gyroscope_noise_density");
+  noise.gyroscope_random_walk = yaml.PositiveNumber("gyroscope_random_walk");
+  if (yaml.Has("update_rate")) {
+    noise.update_rate_hz = yaml.PositiveNumber("update_rate");
+  } else if (yaml.Has("rate_hz")) {
+    noise.update_rate_hz = yaml.PositiveNumber("rate_hz");
+  }
+  return noise;
+}
+
+std::string ImuYamlText(const ImuNoise& noise) {
+  std::string text;
+  text += "# IMU noise in Kalibr's continuous-time densities (written by splinecal)\n";
+  text += "accelerometer_noise_density: " + FormatDouble(noise.accelerometer_noise_density) +
+          "  # [m/s^2/sqrt(Hz)]\n";
+  text += "accelerometer_random_walk: " + FormatDouble(noise.accelerometer_random_walk) +
+          "  # [m/s^3/sqrt(Hz)]\n";
+  text += "gyroscope_noise_density: " + FormatDouble(noise.gyroscope_noise_density) +
+          "  # [rad/s/sqrt(Hz)]\n";
+  text += "gyroscope_random_walk: " + FormatDouble(noise.gyroscope_random_walk) +
+          "  # [rad/s^2/sqrt(Hz)]\n";
+  text += "rostopic: /imu0\n";
+  text += "update_rate: " + FormatDouble(noise.update_rate_hz) + "  # [Hz]\n";
+  return text;
+}
+
+}  // namespace splinecal

@@ -1,0 +1,92 @@
+#include "splinecal/io/poses.h"
+
+#include <cinttypes>
+#include <cstdio>
+
+#include "splinecal/error.h"
+#include "splinecal/io/row_checks.h"
+#include "splinecal/io/text_file.h"
+
+namespace splinecal {
+namespace {
+
+enum class PoseFormat { kTum, kEurocGroundTruth };
+
+StampedPose ParseRow(const TextFileReader& reader,
+                     const std::vector<std::string_view>& fields,
+                     PoseFormat format) {
+  StampedPose pose;
+  double v[8];
+  if (format == PoseFormat::kTum) {
+    static const char* const kNames[] = {"time", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
+    internal::CheckColumnCount(reader, fields, 8, "TUM: t_s tx ty tz qx qy qz qw");
+    pose.t_ns = ParseSecondsToNs(fields[0], reader, kNames[0]);
+    for (int i = 1; i < 8; ++i) v[i] = ParseFiniteDouble(fields[i], reader, kNames[i]);
+    pose.p = Eigen::Vector3d(v[1], v[2], v[3]);
+    pose.q = internal::CheckedUnitQuaternion(reader, fields[4], v[7], v[4], v[5], v[6]);
+  } else {
+    static const char* const kNames[] = {"timestamp", "p x", "p y", "p z",
+                                         "q w",       "q x", "q y", "q z"};
+    if (fields.size() < 8) {
+      reader.Fail("expected at least 8 columns (EuRoC ground truth: t_ns, p xyz, q wxyz, ...), "
+                  "found " + std::to_string(fields.size()));
+    }
+    pose.t_ns = ParseInt64(fields[0], reader, kNames[0]);
+    for (int i = 1; i < 8; ++i) v[i] = ParseFiniteDouble(fields[i], reader, kNames[i]);
+    pose.p = Eigen::Vector3d(v[1], v[2], v[3]);
+    pose.q = internal::CheckedUnitQuaternion(reader, fields[4], v[4], v[5], v[6], v[7]);
+  }
+  return pose;
+}
+
+std::vector<StampedPose> Read(const std::string& path, const PoseFormat* forced_format) {
+  TextFileReader reader(path);
+  std::vector<std::string_view> fields;
+  std::vector<StampedPose> poses;
+  internal::TimestampChecker timestamps(&reader);
+  bool have_format = forced_format != nullptr;
+  PoseFormat format = have_format ? *forced_format : PoseFormat::kTum;
+  while (reader.NextLine()) {
+    SplitFields(reader.line(), &fields);
+    if (internal::IsHeaderRow(reader, fields)) continue;
+    if (!have_format) {
+      format = reader.line().find(',') != std::string_view::npos ? PoseFormat::kEurocGroundTruth
+                                                                  : PoseFormat::kTum;
+      have_format = true;
+    }
+    const StampedPose pose = ParseRow(reader, fields, format);
+    timestamps.Add(pose.t_ns, fields[0]);
+    poses.push_back(pose);
+  }
+  if (poses.size() < 2) {
+    throw Error(path, 0, "needs at least 2 poses, found " + std::to_string(poses.size()));
+  }
+  return poses;
+}
+
+}  // namespace
+
+std::vector<StampedPose> ReadTumTrajectory(const std::string& path) {
+  const PoseFormat format = PoseFormat::kTum;
+  return Read(path, &format);
+}
+
+std::vector<StampedPose> ReadPoses(const std::string& path) { return Read(path, nullptr); }
+
+void WriteTumTrajectory(const std::vector<StampedPose>& poses, std::ostream* out) {
+  *out << "# t_s tx ty tz qx qy qz qw\n";
+  char line[512];
+  for (const StampedPose& pose : poses) {
+    // Seconds printed from the integer nanoseconds, digit-exact.
+    const int64_t t = pose.t_ns;
+    const char* sign = t < 0 ? "-" : "";
+    const int64_t magnitude = t < 0 ? -t : t;
+    std::snprintf(line, sizeof(line),
+                  "%s%" PRId64 ".%09" PRId64 " %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", sign,
+                  magnitude / 1'000'000'000, magnitude % 1'000'000'000, pose.p.x(), pose.p.y(),
+                  pose.p.z(), pose.q.x(), pose.q.y(), pose.q.z(), pose.q.w());
+    *out << line;
+  }
+}
+
+}  // namespace splinecal

@@ -1,0 +1,77 @@
+#include "splinecal/io/row_checks.h"
+
+#include <algorithm>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+
+#include "splinecal/error.h"
+
+namespace splinecal {
+namespace internal {
+
+bool IsHeaderRow(const TextFileReader& reader, const std::vector<std::string_view>& fields) {
+  return reader.data_lines() == 1 && !fields.empty() && !LooksNumeric(fields[0]);
+}
+
+void CheckColumnCount(const TextFileReader& reader,
+                      const std::vector<std::string_view>& fields,
+                      size_t expected,
+                      const std::string& format) {
+  if (fields.size() == expected) return;
+  reader.Fail("expected " + std::to_string(expected) + " columns (" + format + "), found " +
+              std::to_string(fields.size()));
+}
+
+Eigen::Quaterniond CheckedUnitQuaternion(const TextFileReader& reader,
+                                         std::string_view first_field,
+                                         double w,
+                                         double x,
+                                         double y,
+                                         double z) {
+  // Files carry 6 to 17 significant digits; 1e-3 admits all of them and refuses anything that
+  // is not a quaternion (positions or a wrong column order).
+  constexpr double kNormTolerance = 1e-3;
+  const Eigen::Quaterniond q(w, x, y, z);
+  const double norm = q.norm();
+  if (std::abs(norm - 1.0) > kNormTolerance) {
+    char message[160];
+    std::snprintf(message, sizeof(message),
+                  "quaternion has norm %.6g, expected 1 (columns in the wrong order?)", norm);
+    reader.Fail(message, first_field);
+  }
+  return Eigen::Quaterniond(q.coeffs() / norm);
+}
+
+void TimestampChecker::Add(int64_t t_ns, std::string_view field) {
+  if (!times_.empty() && t_ns <= times_.back()) {
+    reader_->Fail(std::string("timestamps not increasing: ") + std::to_string(t_ns) +
+                      (t_ns == times_.back() ? " repeats the previous row"
+                                             : " is before the previous row's " +
+                                                   std::to_string(times_.back())),
+                  field);
+  }
+  times_.push_back(t_ns);
+  lines_.push_back(reader_->line_number());
+}
+
+void TimestampChecker::CheckGaps(double max_periods) const {
+  if (times_.size() < 3) return;
+  std::vector<int64_t> periods(times_.size() - 1);
+  for (size_t i = 1; i < times_.size(); ++i) periods[i - 1] = times_[i] - times_[i - 1];
+  std::vector<int64_t> sorted = periods;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median = static_cast<double>(sorted[sorted.size() / 2]);
+  for (size_t i = 0; i < periods.size(); ++i) {
+    if (periods[i] > max_periods * median) {
+      char message[200];
+      std::snprintf(message, sizeof(message),
+                    "gap of %.6g s before this row (%.4g times the median period of %.6g s)",
+                    periods[i] * 1e-9, periods[i] / median, median * 1e-9);
+      throw Error(reader_->path(), lines_[i + 1], message);
+    }
+  }
+}
+
+}  // namespace internal
+}  // namespace splinecal

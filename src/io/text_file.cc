@@ -1,0 +1,241 @@
+#include "splinecal/io/text_file.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "splinecal/error.h"
+
+namespace splinecal {
+namespace {
+
+constexpr size_t kBufferBytes = size_t{4} << 20;
+// A single line longer than this is not a data line of any format we read; refusing it bounds
+// memory on a file without newlines.
+constexpr size_t kMaxLineBytes = size_t{1} << 20;
+
+std::string_view Trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+std::string Quote(std::string_view field) {
+  constexpr size_t kShown = 40;
+  std::string shown(field.substr(0, kShown));
+  for (char& c : shown) {
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+  }
+  if (field.size() > kShown) shown += "...";
+  return "'" + shown + "'";
+}
+
+void CheckIsReadableFile(const std::string& path) {
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0) {
+    throw Error(path, 0, std::string("cannot open: ") + std::strerror(errno));
+  }
+  if (S_ISDIR(info.st_mode)) throw Error(path, 0, "is a directory, expected a file");
+}
+
+}  // namespace
+
+TextFileReader::TextFileReader(const std::string& path) : path_(path) {
+  CheckIsReadableFile(path);
+  file_ = std::fopen(path.c_str(), "rb");
+  if (file_ == nullptr) throw Error(path, 0, std::string("cannot open: ") + std::strerror(errno));
+  buffer_.resize(kBufferBytes);
+}
+
+TextFileReader::~TextFileReader() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+bool TextFileReader::ReadRawLine() {
+  long_line_.clear();
+  bool straddles = false;
+  while (true) {
+    if (begin_ == end_) {
+      if (eof_) {
+        if (!straddles) return false;
+        line_ = long_line_;
+        ++line_number_;
+        return true;
+      }
+      end_ = std::fread(buffer_.data(), 1, buffer_.size(), file_);
+      begin_ = 0;
+      if (end_ < buffer_.size()) {
+        if (std::ferror(file_)) Fail(std::string("read error: ") + std::strerror(errno));
+        eof_ = true;
+      }
+      continue;
+    }
+    const char* start = buffer_.data() + begin_;
+    const void* newline = std::memchr(start, '\n', end_ - begin_);
+    if (newline == nullptr) {
+      long_line_.append(start, end_ - begin_);
+      begin_ = end_;
+      straddles = true;
+      if (long_line_.size() > kMaxLineBytes) {
+        ++line_number_;
+        Fail("line longer than 1 MiB: not a text data file");
+      }
+      continue;
+    }
+    const size_t length = static_cast<const char*>(newline) - start;
+    begin_ += length + 1;
+    ++line_number_;
+    if (straddles) {
+      long_line_.append(start, length);
+      line_ = long_line_;
+    } else {
+      line_ = std::string_view(start, length);
+    }
+    return true;
+  }
+}
+
+bool TextFileReader::NextLine() {
+  while (ReadRawLine()) {
+    if (!line_.empty() && line_.back() == '\r') line_.remove_suffix(1);
+    const std::string_view content = Trim(line_);
+    if (content.empty() || content.front() == '#') continue;
+    ++data_lines_;
+    return true;
+  }
+  line_ = std::string_view();
+  return false;
+}
+
+void TextFileReader::Fail(const std::string& message) const {
+  throw Error(path_, line_number_, message);
+}
+
+void TextFileReader::Fail(const std::string& message, std::string_view field) const {
+  int column = 0;
+  if (field.data() >= line_.data() && field.data() <= line_.data() + line_.size()) {
+    column = static_cast<int>(field.data() - line_.data()) + 1;
+  }
+  throw Error(path_, line_number_, message, column);
+}
+
+void SplitFields(std::string_view line, std::vector<std::string_view>* fields) {
+  fields->clear();
+  if (line.find(',') != std::string_view::npos) {
+    size_t start = 0;
+    while (true) {
+      const size_t comma = line.find(',', start);
+      const size_t stop = comma == std::string_view::npos ? line.size() : comma;
+      fields->push_back(Trim(line.substr(start, stop - start)));
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+    return;
+  }
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    const size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    if (i > start) fields->push_back(line.substr(start, i - start));
+  }
+}
+
+bool LooksNumeric(std::string_view field) {
+  if (!field.empty() && field.front() == '+') field.remove_prefix(1);
+  double value = 0.0;
+  const auto result = std::from_chars(field.data(), field.data() + field.size(), value);
+  return result.ec == std::errc() && result.ptr == field.data() + field.size() && !field.empty();
+}
+
+double ParseFiniteDouble(std::string_view field, const TextFileReader& at, const std::string& what) {
+  std::string_view digits = field;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0.0;
+  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (digits.empty() || result.ptr != digits.data() + digits.size() ||
+      (result.ec != std::errc() && result.ec != std::errc::result_out_of_range)) {
+    at.Fail(what + ": expected a number, got " + Quote(field), field);
+  }
+  if (result.ec == std::errc::result_out_of_range || !std::isfinite(value)) {
+    at.Fail(what + ": value " + Quote(field) + " is not a finite number", field);
+  }
+  return value;
+}
+
+int64_t ParseInt64(std::string_view field, const TextFileReader& at, const std::string& what) {
+  std::string_view digits = field;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  int64_t value = 0;
+  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (result.ec == std::errc::result_out_of_range) {
+    at.Fail(what + ": integer " + Quote(field) + " is out of range", field);
+  }
+  if (digits.empty() || result.ec != std::errc() || result.ptr != digits.data() + digits.size()) {
+    at.Fail(what + ": expected an integer, got " + Quote(field), field);
+  }
+  return value;
+}
+
+int64_t ParseSecondsToNs(std::string_view field, const TextFileReader& at, const std::string& what) {
+  std::string_view text = field;
+  bool negative = false;
+  if (!text.empty() && (text.front() == '+' || text.front() == '-')) {
+    negative = text.front() == '-';
+    text.remove_prefix(1);
+  }
+  const size_t dot = text.find('.');
+  const std::string_view whole = text.substr(0, dot);
+  const std::string_view fraction =
+      dot == std::string_view::npos ? std::string_view() : text.substr(dot + 1);
+  auto all_digits = [](std::string_view s) {
+    for (char c : s) {
+      if (c < '0' || c > '9') return false;
+    }
+    return true;
+  };
+  if ((whole.empty() && fraction.empty()) || !all_digits(whole) || !all_digits(fraction)) {
+    // Exponent notation or junk: accept a plain double when it is one (seconds then lose
+    // sub-microsecond precision, which such files never had).
+    const double seconds = ParseFiniteDouble(field, at, what);
+    if (std::abs(seconds) > 9.0e9) at.Fail(what + ": time " + Quote(field) + " out of range", field);
+    return static_cast<int64_t>(std::llround(seconds * 1e9));
+  }
+  constexpr int64_t kMaxSeconds = 9'000'000'000;  // int64 ns holds +-9.2e9 s
+  int64_t seconds = 0;
+  for (char c : whole) {
+    seconds = seconds * 10 + (c - '0');
+    if (seconds > kMaxSeconds) at.Fail(what + ": time " + Quote(field) + " out of range", field);
+  }
+  int64_t nanos = 0;
+  for (size_t i = 0; i < 9; ++i) nanos = nanos * 10 + (i < fraction.size() ? fraction[i] - '0' : 0);
+  if (fraction.size() > 9 && fraction[9] >= '5') ++nanos;  // round half up on the 10th digit
+  const int64_t total = seconds * 1'000'000'000 + nanos;
+  return negative ? -total : total;
+}
+
+std::string ReadWholeFile(const std::string& path) {
+  CheckIsReadableFile(path);
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) throw Error(path, 0, std::string("cannot open: ") + std::strerror(errno));
+  std::string contents;
+  char chunk[65536];
+  size_t n = 0;
+  while ((n = std::fread(chunk, 1, sizeof(chunk), file)) > 0) {
+    contents.append(chunk, n);
+    if (contents.size() > (size_t{64} << 20)) {
+      std::fclose(file);
+      throw Error(path, 0, "larger than 64 MiB: not a configuration file");
+    }
+  }
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed) throw Error(path, 0, "read error");
+  return contents;
+}
+
+}  // namespace splinecal
