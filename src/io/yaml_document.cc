@@ -21,7 +21,10 @@ struct YamlDocument::Impl {
 
   // Walks "a/b/c"; on a missing key throws naming the deepest map that exists.
   YAML::Node Find(const std::string& key_path, bool required) const {
-    YAML::Node node = root;
+    // yaml-cpp: Node::operator= writes through to the referenced node and non-const operator[]
+    // inserts missing keys, so walk with reset() on const views.
+    YAML::Node node;
+    node.reset(root);
     std::stringstream keys(key_path);
     std::string key;
     while (std::getline(keys, key, '/')) {
@@ -29,12 +32,13 @@ struct YamlDocument::Impl {
         if (!required) return YAML::Node(YAML::NodeType::Undefined);
         throw Error(path, LineOf(node), "expected a map holding '" + key + "'");
       }
-      YAML::Node child = node[key];
+      const YAML::Node& const_node = node;
+      const YAML::Node child = const_node[key];
       if (!child.IsDefined() || child.IsNull()) {
         if (!required) return YAML::Node(YAML::NodeType::Undefined);
         throw Error(path, LineOf(node), "missing key '" + key_path + "'");
       }
-      node = child;
+      node.reset(child);
     }
     return node;
   }

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs splinecal's build dependencies from Debian's packages, and nothing when all are there.
+set -euo pipefail
+
+packages=(build-essential cmake libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev)
+if [[ "${1:-}" == "--fuzz" ]]; then packages+=(clang libclang-rt-14-dev); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+
+sudo=()
+if [[ $(id -u) -ne 0 ]]; then sudo=(sudo); fi
+echo "install-deps: installing ${missing[*]}" >&2
+"${sudo[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
+  "${missing[@]}" >/dev/null

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds splinecal and runs the whole test suite with ctest.
+#   scripts/test.sh              Release build in build/, every test (slow Monte-Carlo included)
+#   scripts/test.sh --sanitize   ASan + UBSan build in build-sanitize/, slow tests left out
+#   scripts/test.sh --fast       leaves out the tests labelled slow
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build_dir=build
+cmake_args=(-DCMAKE_BUILD_TYPE=Release)
+ctest_args=()
+for arg in "$@"; do
+  case "$arg" in
+    --sanitize)
+      build_dir=build-sanitize
+      cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPLINECAL_SANITIZE=ON -DSPLINECAL_BUILD_BENCH=OFF)
+      ctest_args+=(-LE slow)
+      export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+      export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+      ;;
+    --fast) ctest_args+=(-LE slow) ;;
+    *) echo "usage: scripts/test.sh [--sanitize] [--fast]" >&2; exit 2 ;;
+  esac
+done
+
+scripts/install-deps.sh
+jobs=$(nproc)
+cmake -S . -B "$build_dir" "${cmake_args[@]}" >/dev/null
+cmake --build "$build_dir" -j "$jobs"
+ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" "${ctest_args[@]}"

@@ -1,0 +1,136 @@
+#include "splinecal/io/text_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "splinecal/error.h"
+#include "testing/temp_dir.h"
+
+namespace splinecal {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::TempDir;
+
+std::vector<std::string> DataLines(const std::string& path) {
+  TextFileReader reader(path);
+  std::vector<std::string> lines;
+  while (reader.NextLine()) lines.emplace_back(reader.line());
+  return lines;
+}
+
+TEST(TextFileReader, SkipsCommentsBlankLinesAndCarriageReturns) {
+  TempDir dir;
+  const std::string path = dir.Write("a.csv", "# header\r\n\r\n1,2\r\n   \n  # indented comment\n3,4");
+  EXPECT_THAT(DataLines(path), ::testing::ElementsAre("1,2", "3,4"));
+}
+
+TEST(TextFileReader, LineNumbersCountEveryLine) {
+  TempDir dir;
+  const std::string path = dir.Write("a.csv", "#h\n\n1\n2\n");
+  TextFileReader reader(path);
+  ASSERT_TRUE(reader.NextLine());
+  EXPECT_EQ(reader.line_number(), 3);
+  ASSERT_TRUE(reader.NextLine());
+  EXPECT_EQ(reader.line_number(), 4);
+  EXPECT_FALSE(reader.NextLine());
+}
+
+TEST(TextFileReader, LinesStraddlingTheBufferAreWhole) {
+  // More than the 4 MiB buffer, with lines of varying length, so that some cross a refill.
+  TempDir dir;
+  std::string text;
+  std::vector<std::string> expected;
+  for (int i = 0; i < 300000; ++i) {
+    expected.push_back(std::to_string(i) + "," + std::string(i % 17, 'x'));
+    text += expected.back() + "\n";
+  }
+  EXPECT_EQ(DataLines(dir.Write("big.csv", text)), expected);
+}
+
+TEST(TextFileReader, MissingFileAndDirectoryAreClearErrors) {
+  TempDir dir;
+  try {
+    TextFileReader reader(dir.File("nope.csv"));
+    FAIL() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("nope.csv: cannot open"));
+  }
+  try {
+    TextFileReader reader(dir.path());
+    FAIL() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("is a directory"));
+  }
+}
+
+TEST(SplitFields, CommasWithSpacesAndWhitespace) {
+  std::vector<std::string_view> fields;
+  SplitFields("1, 2 ,3,,", &fields);
+  EXPECT_THAT(fields, ::testing::ElementsAre("1", "2", "3", "", ""));
+  SplitFields("  1 \t2   3 ", &fields);
+  EXPECT_THAT(fields, ::testing::ElementsAre("1", "2", "3"));
+}
+
+TEST(ParseFiniteDouble, ReportsFileLineColumnAndField) {
+  TempDir dir;
+  const std::string path = dir.Write("a.csv", "#h\n1,2.5,abc\n");
+  TextFileReader reader(path);
+  ASSERT_TRUE(reader.NextLine());
+  std::vector<std::string_view> fields;
+  SplitFields(reader.line(), &fields);
+  EXPECT_DOUBLE_EQ(ParseFiniteDouble(fields[1], reader, "x"), 2.5);
+  try {
+    ParseFiniteDouble(fields[2], reader, "gyro z");
+    FAIL() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":2:7: gyro z: expected a number, got 'abc'");
+  }
+}
+
+TEST(ParseFiniteDouble, RefusesNanInfAndOverflow) {
+  TempDir dir;
+  const std::string path = dir.Write("a.csv", "nan,inf,-inf,1e400,+3\n");
+  TextFileReader reader(path);
+  ASSERT_TRUE(reader.NextLine());
+  std::vector<std::string_view> fields;
+  SplitFields(reader.line(), &fields);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_THROW(ParseFiniteDouble(fields[i], reader, "v"), Error) << fields[i];
+  }
+  EXPECT_EQ(ParseFiniteDouble(fields[4], reader, "v"), 3.0);
+}
+
+TEST(ParseInt64, ExactAndRangeChecked) {
+  TempDir dir;
+  const std::string path =
+      dir.Write("a.csv", "1403715273262142976,99999999999999999999,1.5,-7\n");
+  TextFileReader reader(path);
+  ASSERT_TRUE(reader.NextLine());
+  std::vector<std::string_view> fields;
+  SplitFields(reader.line(), &fields);
+  EXPECT_EQ(ParseInt64(fields[0], reader, "t"), 1403715273262142976LL);
+  EXPECT_THROW(ParseInt64(fields[1], reader, "t"), Error);
+  EXPECT_THROW(ParseInt64(fields[2], reader, "t"), Error);
+  EXPECT_EQ(ParseInt64(fields[3], reader, "t"), -7);
+}
+
+TEST(ParseSecondsToNs, DigitExactWithoutFloatingPoint) {
+  TempDir dir;
+  const std::string path =
+      dir.Write("a.txt", "1403715273.262142976 1403715273.2621429765 12 0.5 -1.25 1.5e3 x1\n");
+  TextFileReader reader(path);
+  ASSERT_TRUE(reader.NextLine());
+  std::vector<std::string_view> fields;
+  SplitFields(reader.line(), &fields);
+  EXPECT_EQ(ParseSecondsToNs(fields[0], reader, "t"), 1403715273262142976LL);
+  EXPECT_EQ(ParseSecondsToNs(fields[1], reader, "t"), 1403715273262142977LL);  // rounded
+  EXPECT_EQ(ParseSecondsToNs(fields[2], reader, "t"), 12000000000LL);
+  EXPECT_EQ(ParseSecondsToNs(fields[3], reader, "t"), 500000000LL);
+  EXPECT_EQ(ParseSecondsToNs(fields[4], reader, "t"), -1250000000LL);
+  EXPECT_EQ(ParseSecondsToNs(fields[5], reader, "t"), 1500000000000LL);
+  EXPECT_THROW(ParseSecondsToNs(fields[6], reader, "t"), Error);
+}
+
+}  // namespace
+}  // namespace splinecal

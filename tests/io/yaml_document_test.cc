@@ -1,0 +1,91 @@
+#include "splinecal/io/yaml_document.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "splinecal/error.h"
+#include "splinecal/io/kalibr_yaml.h"
+#include "testing/temp_dir.h"
+
+namespace splinecal {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::TempDir;
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(YamlDocument, OpenCvHeaderMatricesAndRows) {
+  TempDir dir;
+  const std::string path = dir.Write("s.yaml",
+                                     "%YAML:1.0\n"
+                                     "T_BS:\n  cols: 2\n  rows: 2\n  data: [1, 2,\n         3, 4]\n"
+                                     "cam0:\n  T_cam_imu:\n  - [1, 0]\n  - [0, 1]\n"
+                                     "  intrinsics: [400, 401, 320, 240]\n");
+  const YamlDocument yaml(path);
+  EXPECT_THAT(yaml.Rows("T_BS"), ::testing::ElementsAre(std::vector<double>{1, 2},
+                                                        std::vector<double>{3, 4}));
+  EXPECT_THAT(yaml.Rows("cam0/T_cam_imu")[1], ::testing::ElementsAre(0.0, 1.0));
+  EXPECT_THAT(yaml.Numbers("cam0/intrinsics"), ::testing::ElementsAre(400, 401, 320, 240));
+  EXPECT_FALSE(yaml.Has("cam1"));
+  EXPECT_THAT(yaml.TopLevelKeys(), ::testing::ElementsAre("T_BS", "cam0"));
+}
+
+TEST(YamlDocument, ErrorsNameTheLine) {
+  TempDir dir;
+  const std::string path = dir.Write("a.yaml", "a: 1\nb: abc\nc:\n  d: [1, x]\n");
+  const YamlDocument yaml(path);
+  EXPECT_THAT(ErrorOf([&] { yaml.Number("b"); }), HasSubstr("a.yaml:2: 'b' must be a number, got 'abc'"));
+  EXPECT_THAT(ErrorOf([&] { yaml.Numbers("c/d"); }), HasSubstr("a.yaml:4: 'c/d' must be a number"));
+  EXPECT_THAT(ErrorOf([&] { yaml.Number("zz"); }), HasSubstr("missing key 'zz'"));
+  EXPECT_THAT(ErrorOf([&] { YamlDocument bad(dir.Write("b.yaml", "a: [1, 2\nb: 3\n")); }),
+              HasSubstr("b.yaml:"));
+  EXPECT_THAT(ErrorOf([&] { YamlDocument bad(dir.Write("c.yaml", "- 1\n- 2\n")); }),
+              HasSubstr("expected a YAML map"));
+}
+
+TEST(ReadImuYaml, EurocSensorFileWithOpenCvHeader) {
+  const std::string path =
+      std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/sensor.yaml";
+  if (!std::ifstream(path)) GTEST_SKIP() << "shared data absent: " << path;
+  const ImuNoise noise = ReadImuYaml(path);
+  EXPECT_DOUBLE_EQ(noise.gyroscope_noise_density, 1.6968e-4);
+  EXPECT_DOUBLE_EQ(noise.gyroscope_random_walk, 1.9393e-5);
+  EXPECT_DOUBLE_EQ(noise.accelerometer_noise_density, 2.0e-3);
+  EXPECT_DOUBLE_EQ(noise.accelerometer_random_walk, 3.0e-3);
+  EXPECT_DOUBLE_EQ(noise.update_rate_hz, 200.0);
+}
+
+TEST(ReadImuYaml, WrittenTextReadsBack) {
+  TempDir dir;
+  ImuNoise noise;
+  noise.gyroscope_noise_density = 1.0 / 3.0;
+  noise.update_rate_hz = 400;
+  const ImuNoise read = ReadImuYaml(dir.Write("imu.yaml", ImuYamlText(noise)));
+  EXPECT_EQ(read.gyroscope_noise_density, noise.gyroscope_noise_density);
+  EXPECT_EQ(read.accelerometer_random_walk, noise.accelerometer_random_walk);
+  EXPECT_EQ(read.update_rate_hz, 400);
+}
+
+TEST(ReadImuYaml, NegativeOrMissingDensityIsRefused) {
+  TempDir dir;
+  EXPECT_THAT(ErrorOf([&] {
+                ReadImuYaml(dir.Write("a.yaml",
+                                      "accelerometer_noise_density: -1\n"
+                                      "accelerometer_random_walk: 1\n"
+                                      "gyroscope_noise_density: 1\ngyroscope_random_walk: 1\n"));
+              }),
+              HasSubstr("a.yaml:1: 'accelerometer_noise_density' must be positive"));
+  EXPECT_THAT(ErrorOf([&] { ReadImuYaml(dir.Write("b.yaml", "update_rate: 200\n")); }),
+              HasSubstr("missing key 'accelerometer_noise_density'"));
+}
+
+}  // namespace
+}  // namespace splinecal
