@@ -65,8 +65,7 @@ double GaussianSampler::NextSlow(int layer, double u) {
     // Strip i >= 1 beyond its inner rectangle: x in [x[i+1], x[i]); accept when a uniform height
     // between f(x[i]) and f(x[i+1]) falls under the curve.
     const double x = u * tables_.x[layer];
-    const double y =
-        tables_.f[layer] + NextUniform() * (tables_.f[layer + 1] - tables_.f[layer]);
+    const double y = tables_.f[layer] + NextUniform() * (tables_.f[layer + 1] - tables_.f[layer]);
     if (y < std::exp(-0.5 * x * x)) return x;
     // Rejected: a whole new draw (the fast path again, written out here).
     const uint64_t bits = engine_();
@@ -102,12 +101,11 @@ ImuNoiseGenerator::ImuNoiseGenerator(const ImuNoise& noise,
   }
   // [Kalibr]: white noise std sigma * sqrt(f); random-walk step std sigma_rw / sqrt(f).
   const double sqrt_f = std::sqrt(f);
-  gyro_white_std_ = CheckedDensity(noise.gyroscope_noise_density, "gyroscope_noise_density") *
-                    sqrt_f;
+  gyro_white_std_ =
+      CheckedDensity(noise.gyroscope_noise_density, "gyroscope_noise_density") * sqrt_f;
   accel_white_std_ =
       CheckedDensity(noise.accelerometer_noise_density, "accelerometer_noise_density") * sqrt_f;
-  gyro_step_std_ =
-      CheckedDensity(noise.gyroscope_random_walk, "gyroscope_random_walk") / sqrt_f;
+  gyro_step_std_ = CheckedDensity(noise.gyroscope_random_walk, "gyroscope_random_walk") / sqrt_f;
   accel_step_std_ =
       CheckedDensity(noise.accelerometer_random_walk, "accelerometer_random_walk") / sqrt_f;
 }

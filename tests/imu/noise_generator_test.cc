@@ -1,10 +1,10 @@
 #include "splinecal/imu/noise_generator.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "splinecal/error.h"
 
@@ -30,7 +30,8 @@ TEST(GaussianSampler, ZigguratTableClosesAtTheTop) {
   // The last strip must reach f(0) = 1: f(x[255]) + v / x[255] == 1 up to rounding.
   const internal::ZigguratTables& t = internal::GetZigguratTables();
   const double r = t.r;
-  const double v = r * std::exp(-0.5 * r * r) + std::sqrt(M_PI / 2.0) * std::erfc(r / std::sqrt(2.0));
+  const double v =
+      r * std::exp(-0.5 * r * r) + std::sqrt(M_PI / 2.0) * std::erfc(r / std::sqrt(2.0));
   EXPECT_NEAR(t.f[255] + v / t.x[255], 1.0, 1e-12);
   for (int i = 0; i < internal::ZigguratTables::kLayers; ++i) {
     ASSERT_GT(t.x[i], t.x[i + 1]) << "strip " << i;

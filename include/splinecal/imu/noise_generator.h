@@ -19,12 +19,11 @@
 #ifndef SPLINECAL_IMU_NOISE_GENERATOR_H_
 #define SPLINECAL_IMU_NOISE_GENERATOR_H_
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <random>
-
-#include <Eigen/Core>
 
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
@@ -42,7 +41,7 @@ namespace internal {
 struct ZigguratTables {
   static constexpr int kLayers = 256;
   std::array<double, kLayers + 1> x;
-  std::array<double, kLayers + 1> f;       // f(x[i])
+  std::array<double, kLayers + 1> f;  // f(x[i])
   std::array<double, kLayers> ratio;
   double r;
 };
@@ -66,9 +65,7 @@ class GaussianSampler {
   }
 
   // A uniform draw in (0, 1] with 53 random bits (never 0, so log() is finite).
-  double NextUniform() {
-    return static_cast<double>((engine_() >> 11) + 1) * 0x1.0p-53;
-  }
+  double NextUniform() { return static_cast<double>((engine_() >> 11) + 1) * 0x1.0p-53; }
 
   std::mt19937_64& engine() { return engine_; }
 
