@@ -13,7 +13,7 @@
 namespace splinecal {
 namespace {
 
-constexpr size_t kBufferBytes = size_t{4} << 20;
+constexpr size_t kBufferBytes = size_t{256} << 10;
 // A single line longer than this is not a data line of any format we read; refusing it bounds
 // memory on a file without newlines.
 constexpr size_t kMaxLineBytes = size_t{1} << 20;

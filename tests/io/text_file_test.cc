@@ -37,7 +37,7 @@ TEST(TextFileReader, LineNumbersCountEveryLine) {
 }
 
 TEST(TextFileReader, LinesStraddlingTheBufferAreWhole) {
-  // More than the 4 MiB buffer, with lines of varying length, so that some cross a refill.
+  // Many times the 256 KiB buffer, with lines of varying length, so that some cross a refill.
   TempDir dir;
   std::string text;
   std::vector<std::string> expected;

@@ -16,7 +16,7 @@
 namespace splinecal {
 
 // Reads a text file one data line at a time without loading it whole (files of 10^8 rows stream
-// through a fixed 4 MiB buffer).
+// through a fixed 256 KiB buffer).
 class TextFileReader {
  public:
   // Throws Error(path, 0, ...) when the file is missing, a directory or unreadable.
