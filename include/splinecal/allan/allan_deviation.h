@@ -1,0 +1,100 @@
+// Overlapping Allan deviation of a uniformly sampled rate signal (one gyro or accelerometer axis).
+//
+// With samples y_0 .. y_{N-1} at rate f (tau_0 = 1 / f), the integrated signal (angle or velocity)
+// is theta_k = tau_0 * sum_{i<k} y_i, k = 0 .. N. For a cluster of m samples (averaging time
+// tau = m tau_0) the overlapping Allan variance is [IEEE952, annex C], [Riley08, "overlapping
+// Allan variance"]
+//
+//     AVAR(tau) = 1 / (2 tau^2 (N - 2m + 1)) * sum_{k=0}^{N-2m} (theta_{k+2m} - 2 theta_{k+m} + theta_k)^2
+//
+// i.e. half the mean squared difference of the averages of adjacent clusters, taken at every
+// start sample. The deviation ADEV = sqrt(AVAR) is in the unit of y (rad/s, m/s^2).
+//
+// Cost: theta is built once (O(N)); each averaging time is then one pass over theta, O(N), for
+// any m. theta is accumulated in long double after removing the mean of y (a constant adds
+// nothing to the second difference, and removing it keeps |theta| small), then stored as double:
+// 8 bytes per sample (theta_0 = 0 is implicit, so N doubles hold theta_1 .. theta_N).
+//
+// Error bar: the relative 1-sigma uncertainty of ADEV estimated from K = floor(N / m)
+// independent clusters is 1 / sqrt(2 (K - 1)) [IEEE952, annex C], [ElSheimy08]; it is
+// conservative for the overlapping estimator, which uses more (correlated) differences.
+//
+// References: [IEEE952] IEEE Std 952-1997, IEEE Standard Specification Format Guide and Test
+// Procedure for Single-Axis Interferometric Fiber Optic Gyros, annex C; [Riley08] W. J. Riley,
+// "Handbook of Frequency Stability Analysis", NIST SP 1065, 2008; [ElSheimy08] N. El-Sheimy,
+// H. Hou, X. Niu, "Analysis and Modeling of Inertial Sensors Using Allan Variance", IEEE Trans.
+// Instrum. Meas. 57(1), 2008.
+#ifndef SPLINECAL_ALLAN_ALLAN_DEVIATION_H_
+#define SPLINECAL_ALLAN_ALLAN_DEVIATION_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace splinecal {
+
+// One Allan deviation curve, one entry per averaging time (increasing).
+struct AllanCurve {
+  double rate_hz = 0.0;                // sample rate f [Hz]
+  int64_t num_samples = 0;             // N
+  std::vector<int64_t> cluster_sizes;  // m
+  std::vector<double> tau_s;           // tau = m / f [s]
+  std::vector<double> adev;            // overlapping Allan deviation [unit of y]
+  std::vector<double> adev_error;      // 1-sigma error of adev [unit of y]
+};
+
+// Log-spaced cluster sizes m = round(10^(j / taus_per_decade)), j = 0, 1, ..., de-duplicated, up
+// to max_tau_fraction * num_samples (and never above num_samples / 2, so K >= 2). Throws
+// splinecal::Error when taus_per_decade is not in [1, 1000] or max_tau_fraction not in (0, 0.5].
+// May return an empty list when num_samples is too small.
+std::vector<int64_t> AllanClusterSizes(int64_t num_samples,
+                                       int taus_per_decade,
+                                       double max_tau_fraction);
+
+// The integrated, mean-removed signal theta of a sample series (see the file comment), built in
+// place so that a series of N samples needs N doubles in total. The unit of theta is that of
+// y times seconds.
+class IntegratedSignal {
+ public:
+  // Consumes `samples` (their storage becomes theta). Throws splinecal::Error naming `name`
+  // ("gyro x") and the sample index when a sample is not finite, when rate_hz is not positive and
+  // finite, when there are fewer than 2 samples, or when all samples are equal (a constant
+  // signal has no noise to identify).
+  IntegratedSignal(std::vector<double>&& samples, double rate_hz, const std::string& name);
+
+  int64_t num_samples() const { return static_cast<int64_t>(sums_.size()); }
+  double rate_hz() const { return rate_hz_; }
+  double mean() const { return mean_; }  // of the samples [unit of y]
+
+  // Overlapping Allan variance [unit of y squared] for a cluster of m samples, 1 <= m <= N / 2.
+  // One O(N) pass.
+  double AllanVariance(int64_t m) const;
+
+  // The curve at the given cluster sizes (each in [1, N / 2]).
+  AllanCurve Deviation(const std::vector<int64_t>& cluster_sizes) const;
+
+ private:
+  void CheckClusterSize(int64_t m) const;
+  // AVAR(m) from sum_{k>=1} of the squared second differences (adds the k = 0 term).
+  double Normalise(int64_t m, long double sum_of_k_at_least_1) const;
+
+  // sums_[k - 1] = theta_k / tau_0 = sum_{i<k} (y_i - mean), k = 1 .. N [unit of y]; theta_0 = 0.
+  std::vector<double> sums_;
+  double rate_hz_;
+  double mean_;
+};
+
+// Convenience: the overlapping Allan deviation of `samples` at `cluster_sizes` (copies the
+// samples; see IntegratedSignal for the errors thrown).
+AllanCurve OverlappingAllanDeviation(const std::vector<double>& samples,
+                                     double rate_hz,
+                                     const std::vector<int64_t>& cluster_sizes,
+                                     const std::string& name = "signal");
+
+// Relative 1-sigma error of an Allan deviation from num_samples / m independent clusters:
+// 1 / sqrt(2 (K - 1)) [ElSheimy08]. Requires 2 <= K.
+double AllanRelativeError(int64_t num_samples, int64_t m);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_ALLAN_ALLAN_DEVIATION_H_

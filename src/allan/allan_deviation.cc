@@ -1,0 +1,231 @@
+#include "splinecal/allan/allan_deviation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "splinecal/error.h"
+
+namespace splinecal {
+namespace {
+
+// The kernel: squared second differences of the stored sums a (sums_ of IntegratedSignal),
+//   sum_{j in block} (a[j + 2m] - 2 a[j + m] + a[j])^2,
+// summed over blocks of at most kBlock terms in double, in kLanes interleaved accumulators
+// (independent add chains the compiler keeps in vector registers, so the loop is limited by loads,
+// not by the latency of one accumulator). The terms are >= 0, so a block's relative rounding
+// error is below (kBlock / kLanes + kLanes) * 2^-53 ~ 3e-14; block sums are added in long double.
+// The lanes make the result independent of the vector width, so every clone below computes the
+// same bits.
+constexpr int kLanes = 16;
+constexpr int64_t kBlock = 4096;
+
+// Memory traffic, not arithmetic, limits a pass over 10^7 samples, so the passes are organised
+// around the cache (a 10^7-sample axis is 80 MB):
+//  - "near" cluster sizes (2m <= kNearSpan) are processed together, block by block: all of them
+//    read a[j .. j + kBlock + kNearSpan), which stays in the L2 cache (~1 MB) while every near
+//    m is summed, so the data comes from memory once for all of them;
+//  - "far" cluster sizes are traversed as a comb: for a chunk of start indices [r, r + kChunk),
+//    the chunks at r, r + m, r + 2m, r + 3m, ... in turn; the second difference at chunk i reads
+//    chunks i, i + 1, i + 2, so each chunk comes from memory once and is reused twice from cache.
+constexpr int64_t kNearSpan = 131072;
+constexpr int64_t kChunk = 8192;
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// One portable build, two code paths chosen when the program loads (GCC function
+// multi-versioning): AVX2 where the CPU has it, SSE2 otherwise. Same results (see kLanes).
+#define SPLINECAL_ALLAN_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SPLINECAL_ALLAN_CLONES
+#endif
+
+SPLINECAL_ALLAN_CLONES
+double BlockSum(const double* a0, const double* a1, const double* a2, int64_t length) {
+  double acc[kLanes] = {};
+  int64_t j = 0;
+  for (; j + kLanes <= length; j += kLanes) {
+    for (int lane = 0; lane < kLanes; ++lane) {
+      const double d = a2[j + lane] - 2.0 * a1[j + lane] + a0[j + lane];
+      acc[lane] += d * d;
+    }
+  }
+  for (; j < length; ++j) {
+    const double d = a2[j] - 2.0 * a1[j] + a0[j];
+    acc[j % kLanes] += d * d;
+  }
+  // Pairwise reduction of the lanes.
+  for (int width = kLanes / 2; width >= 1; width /= 2) {
+    for (int lane = 0; lane < width; ++lane) acc[lane] += acc[lane + width];
+  }
+  return acc[0];
+}
+
+// sum_{j=0}^{count-1} (a[j + 2m] - 2 a[j + m] + a[j])^2 for one far m (comb traversal).
+long double FarSum(const double* a, int64_t m, int64_t count) {
+  long double total = 0.0L;
+  for (int64_t r = 0; r < std::min(m, count); r += kChunk) {
+    const int64_t width = std::min(kChunk, m - r);
+    for (int64_t base = r; base < count; base += m) {
+      const int64_t length = std::min(width, count - base);
+      total += BlockSum(a + base, a + base + m, a + base + 2 * m, length);
+    }
+  }
+  return total;
+}
+
+// The same sums for several near m at once (block by block), added to totals[i].
+void NearSums(const double* a,
+              int64_t n,
+              const std::vector<int64_t>& sizes,
+              std::vector<long double>* totals) {
+  int64_t longest = 0;
+  for (const int64_t m : sizes) longest = std::max(longest, n - 2 * m);
+  for (int64_t begin = 0; begin < longest; begin += kBlock) {
+    for (size_t i = 0; i < sizes.size(); ++i) {
+      const int64_t m = sizes[i];
+      const int64_t count = n - 2 * m;
+      if (begin >= count) continue;
+      const int64_t length = std::min(kBlock, count - begin);
+      (*totals)[i] += BlockSum(a + begin, a + begin + m, a + begin + 2 * m, length);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<int64_t> AllanClusterSizes(int64_t num_samples,
+                                       int taus_per_decade,
+                                       double max_tau_fraction) {
+  if (taus_per_decade < 1 || taus_per_decade > 1000) {
+    throw Error("taus per decade must be in [1, 1000], got " + std::to_string(taus_per_decade));
+  }
+  if (!(max_tau_fraction > 0.0 && max_tau_fraction <= 0.5)) {
+    throw Error("max tau fraction must be in (0, 0.5], got " + std::to_string(max_tau_fraction));
+  }
+  // K = N / m >= 2 independent clusters at the longest averaging time.
+  const int64_t largest = std::min<int64_t>(
+      static_cast<int64_t>(std::floor(max_tau_fraction * static_cast<double>(num_samples))),
+      num_samples / 2);
+  std::vector<int64_t> sizes;
+  for (int j = 0;; ++j) {
+    const double exact = std::pow(10.0, static_cast<double>(j) / taus_per_decade);
+    const int64_t m = std::llround(exact);
+    if (m > largest) break;
+    if (sizes.empty() || m != sizes.back()) sizes.push_back(m);
+  }
+  return sizes;
+}
+
+double AllanRelativeError(int64_t num_samples, int64_t m) {
+  const int64_t clusters = num_samples / m;
+  if (clusters < 2) return std::numeric_limits<double>::infinity();
+  return 1.0 / std::sqrt(2.0 * static_cast<double>(clusters - 1));
+}
+
+IntegratedSignal::IntegratedSignal(std::vector<double>&& samples,
+                                   double rate_hz,
+                                   const std::string& name)
+    : sums_(std::move(samples)), rate_hz_(rate_hz), mean_(0.0) {
+  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
+    throw Error(name + ": sample rate must be positive and finite, got " + std::to_string(rate_hz));
+  }
+  const int64_t n = static_cast<int64_t>(sums_.size());
+  if (n < 2) throw Error(name + ": needs at least 2 samples, got " + std::to_string(n));
+  long double sum = 0.0L;
+  bool constant = true;
+  for (int64_t i = 0; i < n; ++i) {
+    const double y = sums_[i];
+    if (!std::isfinite(y)) {
+      throw Error(name + ": sample " + std::to_string(i) + " is not finite");
+    }
+    constant = constant && y == sums_[0];
+    sum += y;
+  }
+  if (constant) {
+    throw Error(name + ": all " + std::to_string(n) + " samples are equal (" +
+                std::to_string(sums_[0]) + "): a constant signal has no noise to identify");
+  }
+  const long double mean = sum / static_cast<long double>(n);
+  mean_ = static_cast<double>(mean);
+  // In place: sums_[k - 1] = sum_{i<k} (y_i - mean). Element k - 1 is read before it is written.
+  long double running = 0.0L;
+  for (int64_t i = 0; i < n; ++i) {
+    running += static_cast<long double>(sums_[i]) - mean;
+    sums_[i] = static_cast<double>(running);
+  }
+}
+
+void IntegratedSignal::CheckClusterSize(int64_t m) const {
+  const int64_t n = num_samples();
+  if (m < 1 || 2 * m > n) {
+    throw Error("cluster size " + std::to_string(m) + " outside [1, N/2] for N = " +
+                std::to_string(n) + " samples");
+  }
+}
+
+double IntegratedSignal::AllanVariance(int64_t m) const {
+  CheckClusterSize(m);
+  const int64_t n = num_samples();
+  // With S_k = sum_{i<k} (y_i - mean) and theta_k = tau_0 S_k, tau = m tau_0:
+  // AVAR = sum_{k=0}^{N-2m} (S_{k+2m} - 2 S_{k+m} + S_k)^2 / (2 m^2 (N - 2m + 1)).
+  // S_0 = 0 is not stored (sums_[k - 1] = S_k): the k = 0 term first, then k = 1 .. N - 2m.
+  // The k >= 1 terms are the kernel's j = k - 1.
+  std::vector<long double> rest(1, 0.0L);
+  if (2 * m <= kNearSpan) {
+    NearSums(sums_.data(), n, {m}, &rest);
+  } else {
+    rest[0] = FarSum(sums_.data(), m, n - 2 * m);
+  }
+  return Normalise(m, rest[0]);
+}
+
+double IntegratedSignal::Normalise(int64_t m, long double sum_of_k_at_least_1) const {
+  const int64_t n = num_samples();
+  const double* s = sums_.data();
+  const double first = s[2 * m - 1] - 2.0 * s[m - 1];
+  const long double total = static_cast<long double>(first) * first + sum_of_k_at_least_1;
+  const long double terms = static_cast<long double>(n - 2 * m + 1);
+  const long double m_ld = static_cast<long double>(m);
+  return static_cast<double>(total / (2.0L * m_ld * m_ld * terms));
+}
+
+AllanCurve IntegratedSignal::Deviation(const std::vector<int64_t>& cluster_sizes) const {
+  AllanCurve curve;
+  curve.rate_hz = rate_hz_;
+  curve.num_samples = num_samples();
+  curve.cluster_sizes = cluster_sizes;
+  const int64_t n = num_samples();
+  std::vector<int64_t> near;
+  for (const int64_t m : cluster_sizes) {
+    CheckClusterSize(m);
+    if (2 * m <= kNearSpan) near.push_back(m);
+  }
+  std::vector<long double> near_totals(near.size(), 0.0L);
+  NearSums(sums_.data(), n, near, &near_totals);
+  size_t next_near = 0;
+  for (const int64_t m : cluster_sizes) {
+    long double rest = 0.0L;
+    if (2 * m <= kNearSpan) {
+      rest = near_totals[next_near++];
+    } else {
+      rest = FarSum(sums_.data(), m, n - 2 * m);
+    }
+    const double adev = std::sqrt(Normalise(m, rest));
+    curve.tau_s.push_back(static_cast<double>(m) / rate_hz_);
+    curve.adev.push_back(adev);
+    curve.adev_error.push_back(adev * AllanRelativeError(num_samples(), m));
+  }
+  return curve;
+}
+
+AllanCurve OverlappingAllanDeviation(const std::vector<double>& samples,
+                                     double rate_hz,
+                                     const std::vector<int64_t>& cluster_sizes,
+                                     const std::string& name) {
+  std::vector<double> copy = samples;
+  return IntegratedSignal(std::move(copy), rate_hz, name).Deviation(cluster_sizes);
+}
+
+}  // namespace splinecal
