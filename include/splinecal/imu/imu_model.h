@@ -45,18 +45,18 @@ void PredictImu(const SegmentKnots<T>& knots,
                 const Vector3<T>& g_w,
                 const Vector3<T>& b_g,
                 const Vector3<T>& b_a,
-                Vector3<T>* gyro,
-                Vector3<T>* accel) {
+                internal::NonDeducedT<Vector3<T>>* gyro,
+                internal::NonDeducedT<Vector3<T>>* accel) {
   Vector3<T> w_s;
   Vector3<T> a_s;
   Matrix3<T> R_w_s;
   internal::EvaluateSegmentBody(knots,
                                 segment,
-                                static_cast<SE3<T>*>(nullptr),
+                                nullptr,
                                 accel != nullptr ? &R_w_s : nullptr,
                                 gyro != nullptr ? &w_s : nullptr,
-                                static_cast<Vector3<T>*>(nullptr),
-                                static_cast<Vector3<T>*>(nullptr),
+                                nullptr,
+                                nullptr,
                                 accel != nullptr ? &a_s : nullptr);
   if (gyro != nullptr) *gyro = w_s + b_g;
   if (accel != nullptr) *accel = a_s - R_w_s.transpose() * g_w + b_a;
@@ -68,8 +68,8 @@ void PredictImu(const SE3Spline<T>& spline,
                 const Vector3<T>& g_w,
                 const Vector3<T>& b_g,
                 const Vector3<T>& b_a,
-                Vector3<T>* gyro,
-                Vector3<T>* accel) {
+                internal::NonDeducedT<Vector3<T>>* gyro,
+                internal::NonDeducedT<Vector3<T>>* accel) {
   PredictImu(spline.Knots(segment), segment, g_w, b_g, b_a, gyro, accel);
 }
 

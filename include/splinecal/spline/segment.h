@@ -71,6 +71,17 @@
 
 namespace splinecal {
 
+namespace internal {
+// Puts T in a non-deduced context, so that output pointers accept a plain nullptr
+// (std::type_identity_t before C++20).
+template <typename T>
+struct NonDeduced {
+  using type = T;
+};
+template <typename T>
+using NonDeducedT = typename NonDeduced<T>::type;
+}  // namespace internal
+
 // Where a time falls in the spline: the segment index i (t in [t_i, t_{i+1}], control poses
 // i-1 .. i+2), u = (t - t_i) / dt in [0, 1], and the cumulative blending coefficients with
 // their TIME derivatives. Entry 0 of each vector belongs to Bt_0 = 1; entries 1..3 blend
@@ -405,12 +416,12 @@ SE3<T> SegmentPose(const SegmentKnots<T>& knots, const SegmentTrace<T>& trace) {
 template <typename T>
 void EvaluateSegmentBody(const SegmentKnots<T>& knots,
                          const Segment<T>& segment,
-                         SE3<T>* T_w_s,
-                         Matrix3<T>* R_w_s,
-                         Vector3<T>* w_s,
-                         Vector3<T>* w_dot_s,
-                         Vector3<T>* v_s,
-                         Vector3<T>* a_s) {
+                         NonDeducedT<SE3<T>>* T_w_s,
+                         NonDeducedT<Matrix3<T>>* R_w_s,
+                         NonDeducedT<Vector3<T>>* w_s,
+                         NonDeducedT<Vector3<T>>* w_dot_s,
+                         NonDeducedT<Vector3<T>>* v_s,
+                         NonDeducedT<Vector3<T>>* a_s) {
   TraceRequest request;
   request.translation = T_w_s != nullptr;
   request.linear = v_s != nullptr || a_s != nullptr;
@@ -439,11 +450,11 @@ void EvaluateSegmentBody(const SegmentKnots<T>& knots,
 template <typename T>
 void EvaluateSegment(const SegmentKnots<T>& knots,
                      const Segment<T>& segment,
-                     SE3<T>* T_w_s,
-                     Vector3<T>* w_s = nullptr,
-                     Vector3<T>* w_dot_s = nullptr,
-                     Vector3<T>* v_w = nullptr,
-                     Vector3<T>* a_w = nullptr) {
+                     internal::NonDeducedT<SE3<T>>* T_w_s,
+                     internal::NonDeducedT<Vector3<T>>* w_s = nullptr,
+                     internal::NonDeducedT<Vector3<T>>* w_dot_s = nullptr,
+                     internal::NonDeducedT<Vector3<T>>* v_w = nullptr,
+                     internal::NonDeducedT<Vector3<T>>* a_w = nullptr) {
   const bool linear = v_w != nullptr || a_w != nullptr;
   Matrix3<T> R_w_s;
   Vector3<T> v_s;
