@@ -6,7 +6,9 @@ namespace splinecal {
 namespace cli {
 
 const std::vector<Command>& AllCommands() {
-  static const std::vector<Command> commands = {};
+  static const std::vector<Command> commands = {
+      EvaluateCommand(),
+  };
   return commands;
 }
 

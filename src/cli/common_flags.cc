@@ -1,6 +1,8 @@
 #include "splinecal/cli/common_flags.h"
 
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 
 #include "splinecal/error.h"
 
@@ -14,6 +16,8 @@ DEFINE_int32(seed, 1, "Random seed; the same seed gives byte-identical output");
 DEFINE_int32(threads, 1, "Worker threads");
 DEFINE_double(knot_spacing, 0.0, "Spline knot spacing dt [s]; 0 chooses the command's default");
 DEFINE_string(accel_unit, "m/s^2", "Unit of the accelerometer columns: m/s^2 or g");
+DEFINE_string(gyro_bias, "0,0,0", "Gyro bias b_g, x,y,z [rad/s]");
+DEFINE_string(accel_bias, "0,0,0", "Accelerometer bias b_a, x,y,z [m/s^2]");
 DEFINE_string(gyro_unit, "rad/s", "Unit of the gyroscope columns: rad/s or deg/s");
 
 namespace splinecal {
@@ -36,6 +40,23 @@ double NonNegativeFlag(const std::string& name, double value) {
 const std::string& RequiredFlag(const std::string& name, const std::string& value) {
   if (value.empty()) throw Error("--" + name + " is required");
   return value;
+}
+
+Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text) {
+  Eigen::Vector3d v;
+  std::stringstream stream(text);
+  std::string item;
+  int i = 0;
+  while (std::getline(stream, item, ',')) {
+    char* end = nullptr;
+    const double value = std::strtod(item.c_str(), &end);
+    if (i >= 3 || item.empty() || *end != '\0' || !std::isfinite(value)) {
+      throw Error("--" + name + ": expected three finite numbers x,y,z, got '" + text + "'");
+    }
+    v[i++] = value;
+  }
+  if (i != 3) throw Error("--" + name + ": expected three numbers x,y,z, got '" + text + "'");
+  return v;
 }
 
 ImuReadOptions ImuReadOptionsFromFlags() {

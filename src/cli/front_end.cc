@@ -1,5 +1,6 @@
 // splinecal's command-line front end: dispatch, flag parsing, help and the one error report.
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <new>
@@ -79,6 +80,10 @@ void PrintCommandHelp(const Command& command, std::FILE* out) {
     std::string default_text;
     if (info.type == "string") {
       default_text = info.default_value.empty() ? "" : " (default: " + info.default_value + ")";
+    } else if (info.type == "double") {
+      char shown[32];  // gflags prints 17 digits (9.8100000000000005); show the value as typed
+      std::snprintf(shown, sizeof(shown), "%.10g", std::strtod(info.default_value.c_str(), nullptr));
+      default_text = std::string(" (default: ") + shown + ")";
     } else {
       default_text = " (default: " + info.default_value + ")";
     }

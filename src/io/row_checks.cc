@@ -4,6 +4,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "splinecal/error.h"
 
@@ -40,6 +41,10 @@ Eigen::Quaterniond CheckedUnitQuaternion(const TextFileReader& reader,
                   "quaternion has norm %.6g, expected 1 (columns in the wrong order?)", norm);
     reader.Fail(message, first_field);
   }
+  // Leave a quaternion that is unit to rounding untouched, so that files we wrote read back
+  // bit-exactly; renormalise anything further off.
+  constexpr double kUnitToRounding = 8 * std::numeric_limits<double>::epsilon();
+  if (std::abs(norm - 1.0) <= kUnitToRounding) return q;
   return Eigen::Quaterniond(q.coeffs() / norm);
 }
 

@@ -7,6 +7,8 @@
 namespace splinecal {
 namespace cli {
 
+Command EvaluateCommand();
+
 }  // namespace cli
 }  // namespace splinecal
 

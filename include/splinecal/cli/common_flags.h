@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include <Eigen/Core>
 #include <gflags/gflags.h>
 
 #include "splinecal/io/euroc.h"
@@ -20,6 +21,8 @@ DECLARE_int32(threads);
 DECLARE_double(knot_spacing);
 DECLARE_string(accel_unit);
 DECLARE_string(gyro_unit);
+DECLARE_string(gyro_bias);
+DECLARE_string(accel_bias);
 
 namespace splinecal {
 namespace cli {
@@ -29,6 +32,9 @@ double PositiveFlag(const std::string& name, double value);
 double NonNegativeFlag(const std::string& name, double value);
 // A required path flag: refused when empty.
 const std::string& RequiredFlag(const std::string& name, const std::string& value);
+
+// "x,y,z" -> a finite 3-vector; throws Error("--name: ...") otherwise.
+Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text);
 
 // IMU reading options from --accel-unit (m/s^2 | g) and --gyro-unit (rad/s | deg/s).
 ImuReadOptions ImuReadOptionsFromFlags();

@@ -1,0 +1,187 @@
+// `splinecal align`: visual-inertial alignment (calib/align.h). Camera poses known up to scale
+// plus IMU readings give the metric scale, gravity in the first camera frame, velocities and the
+// gyro bias; writes result.yaml and the IMU poses in a gravity-aligned world (aligned_poses.csv,
+// EuRoC ground-truth format) for `fit --poses` or as the initial guess of `calibrate`.
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gflags/gflags.h>
+
+#include "splinecal/calib/align.h"
+#include "splinecal/cli/command.h"
+#include "splinecal/cli/common_flags.h"
+#include "splinecal/error.h"
+#include "splinecal/io/euroc.h"
+#include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/io/output_dir.h"
+#include "splinecal/io/poses.h"
+#include "splinecal/io/yaml_document.h"
+#include "splinecal/io/yaml_writer.h"
+
+DEFINE_string(camera_poses,
+              "",
+              "Camera poses T_c0_c up to scale: TUM trajectory (t tx ty tz qx qy qz qw) or EuRoC "
+              "ground-truth format [path]");
+DEFINE_string(camchain,
+              "",
+              "Kalibr camchain.yaml; cam0's T_cam_imu (and timeshift_cam_imu if present) are used "
+              "[path]; without it T_cam_imu is the identity");
+DEFINE_bool(estimate_rotation_extrinsic,
+            false,
+            "Estimate the camera-IMU rotation by hand-eye (needs rotation about 2 axes or more); "
+            "the translation of T_cam_imu is kept");
+
+namespace splinecal {
+namespace cli {
+namespace {
+
+// A rotation block this far from orthonormal (max |R^T R - I|) is not a rotation: the file has
+// another layout (e.g. T_imu_cam with a typo) rather than rounding in its digits.
+constexpr double kMaxOrthonormalityError = 1e-6;
+
+struct Camchain {
+  SE3d T_cam_imu;
+  double timeshift_cam_imu_s = 0.0;
+};
+
+Camchain ReadCamchain(const std::string& path) {
+  Camchain camchain;
+  const YamlDocument yaml(path);
+  if (yaml.Has("cam0/T_cam_imu")) {
+    const std::vector<std::vector<double>> rows = yaml.Rows("cam0/T_cam_imu");
+    if (rows.size() != 4 || rows[0].size() != 4) {
+      throw Error(path, 0, "cam0/T_cam_imu: expected a 4x4 matrix (4 rows of 4 numbers)");
+    }
+    Eigen::Matrix4d T;
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) T(r, c) = rows[r][c];
+    }
+    const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+    if (std::abs(T(3, 0)) + std::abs(T(3, 1)) + std::abs(T(3, 2)) + std::abs(T(3, 3) - 1.0) >
+            kMaxOrthonormalityError ||
+        (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() >
+            kMaxOrthonormalityError ||
+        R.determinant() < 0.0) {
+      throw Error(path, 0,
+                  "cam0/T_cam_imu: not a rigid transform (the rotation block must be orthonormal "
+                  "with determinant +1 and the last row 0 0 0 1)");
+    }
+    camchain.T_cam_imu = SE3d(SO3d::FromMatrix(R), T.topRightCorner<3, 1>());
+  }
+  if (yaml.Has("cam0/timeshift_cam_imu")) {
+    camchain.timeshift_cam_imu_s = yaml.Number("cam0/timeshift_cam_imu");
+  }
+  return camchain;
+}
+
+Eigen::VectorXd QuaternionWxyz(const SO3d& R) {
+  const Eigen::Quaterniond& q = R.quaternion();
+  Eigen::VectorXd v(4);
+  v << q.w(), q.x(), q.y(), q.z();
+  if (v(0) < 0.0) v = -v;  // one representative of q and -q
+  return v;
+}
+
+int RunAlign() {
+  const std::string& imu_path = RequiredFlag("imu", FLAGS_imu);
+  const std::string& poses_path = RequiredFlag("camera-poses", FLAGS_camera_poses);
+  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
+  AlignOptions options;
+  options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
+  options.estimate_rotation_extrinsic = FLAGS_estimate_rotation_extrinsic;
+  if (!FLAGS_imu_yaml.empty()) options.noise = ReadImuYaml(FLAGS_imu_yaml);
+  if (!FLAGS_camchain.empty()) {
+    const Camchain camchain = ReadCamchain(FLAGS_camchain);
+    options.T_cam_imu = camchain.T_cam_imu;
+    options.timeshift_cam_imu_s = camchain.timeshift_cam_imu_s;
+  }
+  const std::vector<ImuSample> imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  const std::vector<StampedPose> poses = ReadPoses(poses_path);
+  OutputDir output(out_dir);
+
+  Progress("align: " + std::to_string(poses.size()) + " camera poses, " +
+           std::to_string(imu.size()) + " IMU samples");
+  const AlignResult result = Align(imu, poses, options);
+  if (!result.success) throw Error("alignment refused: " + result.message);
+
+  char line[512];
+  std::snprintf(line, sizeof(line),
+                "align: gyro bias [%.6g %.6g %.6g] rad/s (%d iterations), free gravity %.6g m/s^2, "
+                "refined in %d iterations, condition number %.3g",
+                result.gyro_bias.x(), result.gyro_bias.y(), result.gyro_bias.z(),
+                result.gyro_bias_iterations, result.free_gravity_c0.norm(), result.iterations,
+                result.condition_number);
+  Progress(line);
+
+  YamlWriter yaml;
+  yaml.Comment("splinecal align: metric = scale * input camera positions; gravity_c0 in the first "
+               "camera frame [m/s^2]; quaternions w x y z");
+  yaml.Scalar("success", true);
+  yaml.Scalar("message", result.message);
+  yaml.Scalar("scale", result.scale);
+  yaml.Vector("gravity_c0", result.gravity_c0);
+  yaml.Vector("gyro_bias", result.gyro_bias);
+  yaml.Vector("R_w_c0", QuaternionWxyz(result.R_w_c0));
+  if (result.rotation_extrinsic_estimated) {
+    yaml.Vector("R_cam_imu", QuaternionWxyz(result.R_cam_imu));
+  }
+  yaml.Scalar("iterations", result.iterations);
+  yaml.Scalar("condition_number", result.condition_number);
+  yaml.Scalar("gyro_bias_iterations", result.gyro_bias_iterations);
+  yaml.Scalar("rms_rotation_residual_rad", result.rms_rotation_residual_rad);
+  yaml.Vector("free_gravity_c0", result.free_gravity_c0);
+  yaml.Scalar("free_scale", result.free_scale);
+  yaml.Scalar("free_condition_number", result.free_condition_number);
+  yaml.Scalar("gravity_m_s2", options.gravity_m_s2);
+  yaml.Vector("accel_bias_assumed", options.accel_bias);
+  yaml.Scalar("num_frames", static_cast<int64_t>(result.states_w.size()));
+  yaml.Scalar("num_ignored_frames", result.num_ignored_frames);
+  output.WriteFile("result.yaml", yaml.str());
+  std::ostringstream csv;
+  WriteEurocGroundTruth(result.states_w, &csv);
+  output.WriteFile("aligned_poses.csv", csv.str());
+  output.Commit();
+
+  const Eigen::Vector3d g_w = result.R_w_c0 * result.gravity_c0;
+  std::printf("scale %.9g\ngravity_c0 [%.9f %.9f %.9f] m/s^2 (world: [%.3g %.3g %.6f])\n"
+              "gyro_bias [%.9f %.9f %.9f] rad/s\nwrote %s/result.yaml and aligned_poses.csv "
+              "(%d frames)\n",
+              result.scale, result.gravity_c0.x(), result.gravity_c0.y(), result.gravity_c0.z(),
+              g_w.x(), g_w.y(), g_w.z(), result.gyro_bias.x(), result.gyro_bias.y(),
+              result.gyro_bias.z(), out_dir.c_str(), static_cast<int>(result.states_w.size()));
+  return 0;
+}
+
+}  // namespace
+
+Command AlignCommand() {
+  return {"align",
+          "visual-inertial alignment: scale, gravity, gyro bias from up-to-scale camera poses",
+          "splinecal align --imu FILE --camera-poses FILE [--camchain FILE] [--imu-yaml FILE] "
+          "[--estimate-rotation-extrinsic] [--gravity M_S2] --out DIR",
+          "Aligns camera poses T_c0_c known only up to scale (monocular SLAM, SfM) with IMU\n"
+          "readings: preintegrates the IMU between camera frames, estimates the gyro bias from\n"
+          "the relative rotations (and the camera-IMU rotation by hand-eye when asked), solves\n"
+          "for velocities, gravity and scale, and refines gravity on the sphere of its known\n"
+          "norm. Refuses (exit 2, no output) when the motion does not determine them. Writes\n"
+          "result.yaml and aligned_poses.csv: the IMU poses T_w_s in a gravity-aligned world\n"
+          "(z up, yaw of c0 kept), metric, with velocities and the gyro bias (EuRoC\n"
+          "ground-truth format). Without --imu-yaml the EuRoC ADIS16448 densities weight the\n"
+          "system. See docs/align.md.",
+          {{"imu", ""},
+           {"camera_poses", ""},
+           {"camchain", ""},
+           {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; weights the system"},
+           {"estimate_rotation_extrinsic", ""},
+           {"gravity", ""},
+           {"accel_unit", ""},
+           {"gyro_unit", ""},
+           {"out", ""}},
+          &RunAlign};
+}
+
+}  // namespace cli
+}  // namespace splinecal

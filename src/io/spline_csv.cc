@@ -1,0 +1,68 @@
+#include "splinecal/io/spline_csv.h"
+
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+
+#include "splinecal/error.h"
+#include "splinecal/io/row_checks.h"
+#include "splinecal/io/text_file.h"
+
+namespace splinecal {
+
+SE3Splined ReadSplineCsv(const std::string& path) {
+  static const char* const kNames[] = {"t_ns", "px", "py", "pz", "qw", "qx", "qy", "qz"};
+  // A spacing written from a non-integer number of nanoseconds may round by one.
+  constexpr int64_t kSpacingToleranceNs = 1;
+  TextFileReader reader(path);
+  std::vector<std::string_view> fields;
+  std::vector<SE3d> poses;
+  int64_t t0_ns = 0;
+  int64_t previous_ns = 0;
+  int64_t dt_ns = 0;
+  while (reader.NextLine()) {
+    SplitFields(reader.line(), &fields);
+    if (internal::IsHeaderRow(reader, fields)) continue;
+    internal::CheckColumnCount(reader, fields, 8, "spline.csv: t_ns,px,py,pz,qw,qx,qy,qz");
+    const int64_t t_ns = ParseInt64(fields[0], reader, kNames[0]);
+    double v[8];
+    for (int i = 1; i < 8; ++i) v[i] = ParseFiniteDouble(fields[i], reader, kNames[i]);
+    const Eigen::Quaterniond q =
+        internal::CheckedUnitQuaternion(reader, fields[4], v[4], v[5], v[6], v[7]);
+    if (poses.empty()) {
+      t0_ns = t_ns;
+    } else if (poses.size() == 1) {
+      dt_ns = t_ns - previous_ns;
+      if (dt_ns <= 0) reader.Fail("knot times must increase", fields[0]);
+    } else {
+      const int64_t expected = t0_ns + static_cast<int64_t>(poses.size()) * dt_ns;
+      if (std::llabs(t_ns - expected) > kSpacingToleranceNs) {
+        reader.Fail("knot spacing is not uniform: expected t_ns " + std::to_string(expected) +
+                        " (t0 + i*dt, dt = " + std::to_string(dt_ns) + " ns)",
+                    fields[0]);
+      }
+    }
+    previous_ns = t_ns;
+    poses.emplace_back(SO3d(q), Eigen::Vector3d(v[1], v[2], v[3]));
+  }
+  if (poses.size() < 4) {
+    throw Error(path, 0, "a spline needs at least 4 control poses, found " +
+                             std::to_string(poses.size()));
+  }
+  return SE3Splined(std::move(poses), t0_ns, dt_ns);
+}
+
+void WriteSplineCsv(const SE3Splined& spline, std::ostream* out) {
+  *out << "#t_ns,px,py,pz,qw,qx,qy,qz\n";
+  char line[512];
+  for (int i = 0; i < spline.num_control_poses(); ++i) {
+    const SE3d& T = spline.control_pose(i);
+    const Eigen::Quaterniond& q = T.so3().quaternion();
+    const Eigen::Vector3d& p = T.translation();
+    std::snprintf(line, sizeof(line), "%" PRId64 ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                  spline.knot_time_ns(i), p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z());
+    *out << line;
+  }
+}
+
+}  // namespace splinecal
