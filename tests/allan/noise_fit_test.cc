@@ -1,0 +1,205 @@
+#include "splinecal/allan/noise_fit.h"
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "allan/static_series.h"
+#include "splinecal/error.h"
+
+namespace splinecal {
+namespace {
+
+using ::testing::HasSubstr;
+
+// EuRoC ADIS16448 (its sensor.yaml): gyro N, K; accel N, K.
+constexpr double kGyroNoiseDensity = 1.6968e-4;   // [rad/s/sqrt(Hz)]
+constexpr double kGyroRandomWalk = 1.9393e-5;     // [rad/s^2/sqrt(Hz)]
+constexpr double kAccelNoiseDensity = 2.0e-3;     // [m/s^2/sqrt(Hz)]
+constexpr double kAccelRandomWalk = 3.0e-3;       // [m/s^3/sqrt(Hz)]
+constexpr double kRateHz = 200.0;
+
+// The bars for one run of >= 4 h: N within 3%, K within 35%.
+constexpr double kNoiseDensityTolerance = 0.03;
+constexpr double kRandomWalkTolerance = 0.35;
+// Scaling the signal scales every estimate; only rounding differs between scales.
+constexpr double kScaleInvarianceTolerance = 1e-9;
+
+// An Allan curve that is exactly a model's, with error bars as for N samples.
+AllanCurve ModelCurve(const NoiseModel& model, double rate_hz, int64_t num_samples) {
+  AllanCurve curve;
+  curve.rate_hz = rate_hz;
+  curve.num_samples = num_samples;
+  curve.cluster_sizes = AllanClusterSizes(num_samples, 10, 0.1);
+  for (const int64_t m : curve.cluster_sizes) {
+    const double tau = m / rate_hz;
+    curve.tau_s.push_back(tau);
+    curve.adev.push_back(std::sqrt(model.AllanVariance(tau)));
+    curve.adev_error.push_back(curve.adev.back() * AllanRelativeError(num_samples, m));
+  }
+  return curve;
+}
+
+TEST(NonNegativeLeastSquares, RecoversExactNonNegativeSolution) {
+  std::mt19937_64 engine(11);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  Eigen::MatrixXd A(30, 5);
+  for (int r = 0; r < 30; ++r) {
+    for (int c = 0; c < 5; ++c) A(r, c) = uniform(engine) * std::pow(10.0, 3 * c);
+  }
+  Eigen::VectorXd x_true(5);
+  x_true << 1.0, 0.0, 2e-6, 0.0, 3e-12;
+  const Eigen::VectorXd x = NonNegativeLeastSquares(A, A * x_true);
+  for (int c = 0; c < 5; ++c) {
+    EXPECT_NEAR(x[c], x_true[c], 1e-9 * std::pow(10.0, -3 * c)) << "column " << c;
+  }
+}
+
+// When the unconstrained solution has negative entries, the NNLS solution satisfies the
+// Karush-Kuhn-Tucker conditions: x >= 0, gradient w = A^T (b - A x) <= 0 where x = 0 and
+// w = 0 where x > 0.
+TEST(NonNegativeLeastSquares, SatisfiesOptimalityConditions) {
+  std::mt19937_64 engine(12);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::MatrixXd A(12, 5);
+    Eigen::VectorXd b(12);
+    for (int r = 0; r < 12; ++r) {
+      for (int c = 0; c < 5; ++c) A(r, c) = normal(engine);
+      b[r] = normal(engine);
+    }
+    const Eigen::VectorXd x = NonNegativeLeastSquares(A, b);
+    const Eigen::VectorXd w = A.transpose() * (b - A * x);
+    constexpr double kKktTolerance = 1e-9;
+    for (int c = 0; c < 5; ++c) {
+      EXPECT_GE(x[c], 0.0);
+      if (x[c] > 0.0) {
+        EXPECT_NEAR(w[c], 0.0, kKktTolerance) << "trial " << trial;
+      } else {
+        EXPECT_LE(w[c], kKktTolerance) << "trial " << trial;
+      }
+    }
+  }
+}
+
+TEST(FitNoise, ExactModelCurveGivesItsTerms) {
+  NoiseModel truth;
+  truth[NoiseTerm::kQuantization] = 2e-6;
+  truth[NoiseTerm::kWhite] = 1e-4;
+  truth[NoiseTerm::kBiasInstability] = 3e-5;
+  truth[NoiseTerm::kRandomWalk] = 1e-6;
+  truth[NoiseTerm::kRateRamp] = 1e-8;
+  const AllanCurve curve = ModelCurve(truth, 1000.0, 500'000'000);
+  const AxisNoiseFit fit = FitNoise(curve);
+  constexpr double kExactTolerance = 1e-6;  // the NNLS reproduces exact data
+  for (int j = 0; j < kNumNoiseTerms; ++j) {
+    EXPECT_NEAR(fit.model.value[j] / truth.value[j], 1.0, kExactTolerance)
+        << NoiseTermKey(static_cast<NoiseTerm>(j));
+  }
+  EXPECT_LT(fit.model_rms_log_error, 1e-9);
+  // The bias-instability floor sits above 0.664 B by the other terms' share at the minimum.
+  ASSERT_TRUE(fit.bias_instability.identified) << fit.bias_instability.reason;
+  EXPECT_GT(fit.bias_instability.value, truth[NoiseTerm::kBiasInstability]);
+  EXPECT_LT(fit.bias_instability.value, 1.15 * truth[NoiseTerm::kBiasInstability]);
+  ASSERT_TRUE(fit.noise_density.identified) << fit.noise_density.reason;
+  EXPECT_NEAR(fit.noise_density.value / truth[NoiseTerm::kWhite], 1.0, 0.03);
+}
+
+struct RoundTrip {
+  AxisNoiseFit gyro;
+  AxisNoiseFit accel;
+};
+
+RoundTrip RunRoundTrip(const testing::UnitDraws& gyro_draws,
+                       const testing::UnitDraws& accel_draws,
+                       double scale) {
+  const int64_t n = static_cast<int64_t>(gyro_draws.white.size());
+  const std::vector<int64_t> sizes = AllanClusterSizes(n, 10, 0.1);
+  std::vector<double> gyro = testing::StaticAxis(
+      gyro_draws, kRateHz, scale * kGyroNoiseDensity, scale * kGyroRandomWalk, 0.01);
+  std::vector<double> accel = testing::StaticAxis(
+      accel_draws, kRateHz, scale * kAccelNoiseDensity, scale * kAccelRandomWalk, 9.81);
+  RoundTrip result;
+  result.gyro = FitNoise(IntegratedSignal(std::move(gyro), kRateHz, "gyro x").Deviation(sizes));
+  result.accel =
+      FitNoise(IntegratedSignal(std::move(accel), kRateHz, "accel z").Deviation(sizes));
+  return result;
+}
+
+// The seed's experiment [seed000 (1)]: simulate the ADIS16448 at 200 Hz for 4 hours, with the
+// noise scaled 1x, 10x, 100x and 1000x, and recover it.
+TEST(FitNoise, RoundTripAdis16448AtFourScales) {
+  constexpr int64_t kSamples = static_cast<int64_t>(4 * 3600 * kRateHz);
+  const testing::UnitDraws gyro_draws = testing::MakeUnitDraws(kSamples, 2024);
+  const testing::UnitDraws accel_draws = testing::MakeUnitDraws(kSamples, 2025);
+  const RoundTrip base = RunRoundTrip(gyro_draws, accel_draws, 1.0);
+  for (const double scale : {1.0, 10.0, 100.0, 1000.0}) {
+    SCOPED_TRACE("scale " + std::to_string(scale));
+    const RoundTrip run = scale == 1.0 ? base : RunRoundTrip(gyro_draws, accel_draws, scale);
+    ASSERT_TRUE(run.gyro.noise_density.identified) << run.gyro.noise_density.reason;
+    ASSERT_TRUE(run.gyro.random_walk.identified) << run.gyro.random_walk.reason;
+    ASSERT_TRUE(run.accel.noise_density.identified) << run.accel.noise_density.reason;
+    ASSERT_TRUE(run.accel.random_walk.identified) << run.accel.random_walk.reason;
+    const double gyro_n = run.gyro.noise_density.value / (scale * kGyroNoiseDensity);
+    const double gyro_k = run.gyro.random_walk.value / (scale * kGyroRandomWalk);
+    const double accel_n = run.accel.noise_density.value / (scale * kAccelNoiseDensity);
+    const double accel_k = run.accel.random_walk.value / (scale * kAccelRandomWalk);
+    EXPECT_NEAR(gyro_n, 1.0, kNoiseDensityTolerance);
+    EXPECT_NEAR(gyro_k, 1.0, kRandomWalkTolerance);
+    EXPECT_NEAR(accel_n, 1.0, kNoiseDensityTolerance);
+    EXPECT_NEAR(accel_k, 1.0, kRandomWalkTolerance);
+    // Scale invariance: the same ratios at every scale.
+    EXPECT_NEAR(gyro_n, base.gyro.noise_density.value / kGyroNoiseDensity,
+                kScaleInvarianceTolerance * gyro_n);
+    EXPECT_NEAR(gyro_k, base.gyro.random_walk.value / kGyroRandomWalk,
+                kScaleInvarianceTolerance * gyro_k);
+    EXPECT_NEAR(accel_n, base.accel.noise_density.value / kAccelNoiseDensity,
+                kScaleInvarianceTolerance * accel_n);
+    EXPECT_NEAR(accel_k, base.accel.random_walk.value / kAccelRandomWalk,
+                kScaleInvarianceTolerance * accel_k);
+    for (int j = 0; j < kNumNoiseTerms; ++j) {
+      EXPECT_NEAR(run.gyro.model.value[j] / scale, base.gyro.model.value[j],
+                  kScaleInvarianceTolerance * base.gyro.model.value[j])
+          << NoiseTermKey(static_cast<NoiseTerm>(j));
+      EXPECT_EQ(run.gyro.model_terms[j].identified, base.gyro.model_terms[j].identified);
+    }
+    // White noise and random walk only: the full model agrees with the slope lines.
+    EXPECT_NEAR(run.gyro.model[NoiseTerm::kWhite] / (scale * kGyroNoiseDensity), 1.0,
+                kNoiseDensityTolerance);
+    EXPECT_NEAR(run.accel.model[NoiseTerm::kRandomWalk] / (scale * kAccelRandomWalk), 1.0,
+                kRandomWalkTolerance);
+  }
+}
+
+// Two minutes of gyro data: the +1/2 slope never shows (it would start near 50 s and the curve
+// ends at 12 s). Say so, and give the upper bound instead.
+TEST(FitNoise, ShortRecordLeavesGyroRandomWalkUnidentified) {
+  constexpr int64_t kSamples = static_cast<int64_t>(120 * kRateHz);
+  const testing::UnitDraws draws = testing::MakeUnitDraws(kSamples, 99);
+  std::vector<double> gyro =
+      testing::StaticAxis(draws, kRateHz, kGyroNoiseDensity, kGyroRandomWalk, 0.0);
+  const AllanCurve curve = IntegratedSignal(std::move(gyro), kRateHz, "gyro x")
+                               .Deviation(AllanClusterSizes(kSamples, 10, 0.1));
+  const AxisNoiseFit fit = FitNoise(curve);
+  EXPECT_TRUE(fit.noise_density.identified);
+  EXPECT_NEAR(fit.noise_density.value / kGyroNoiseDensity, 1.0, 0.05);
+  EXPECT_FALSE(fit.random_walk.identified);
+  EXPECT_THAT(fit.random_walk.reason, HasSubstr("no region of its slope"));
+  EXPECT_FALSE(fit.bias_instability.identified);
+  EXPECT_GT(fit.random_walk_upper_bound, kGyroRandomWalk);
+  EXPECT_GT(fit.noise_density_upper_bound, kGyroNoiseDensity);
+}
+
+TEST(FitNoise, NeedsTwoPositivePoints) {
+  AllanCurve curve;
+  curve.tau_s = {0.1, 1.0};
+  curve.adev = {0.0, 1.0};
+  curve.adev_error = {0.0, 0.1};
+  EXPECT_THROW(FitNoise(curve), Error);
+}
+
+}  // namespace
+}  // namespace splinecal
