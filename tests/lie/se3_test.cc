@@ -252,6 +252,36 @@ TEST(SE3, QBlockSeriesIsContinuous) {
             kContinuityTolerance);
 }
 
+TEST(SE3, JacobianCoefficientSeriesMatchHighPrecisionValues) {
+  // Below |phi| = 0.1 the coefficients come from series. References: the closed forms evaluated
+  // with 50-digit arithmetic (Python mpmath, mp.dps = 50) at t = the double nearest to the
+  // listed value, rounded to 20 digits. (Long double is not enough: the closed forms lose
+  // eps * 2 / t^4 to cancellation, 6e-13 at t = 0.02.)
+  struct Reference {
+    double t, a, b, c, c2, c3;
+  };
+  // clang-format off
+  const Reference references[] = {
+      {0.02, 0.49998333355555396826, 0.16666333336507918871, 0.083333888894179947091,
+       0.041666111115079347443, 0.008333174604497348084},
+      {0.05, 0.49989584201350137484, 0.16664583457336964108, 0.083336805762248368045,
+       0.041663194599450059329, 0.0083323413215096776607},
+      {0.0999, 0.49958430455951569548, 0.16658351967595140654, 0.08334719775282593383,
+       0.041652808011645729766, 0.0083293738352228166096},
+  };
+  // clang-format on
+  // A polynomial of degree 4 in t^2 with O(1) coefficients: a few eps.
+  constexpr double kSeriesTolerance = 1e-16;
+  for (const Reference& r : references) {
+    const auto k = internal::ComputeSE3JacobianCoefficients(r.t * r.t);
+    EXPECT_NEAR(k.a, r.a, kSeriesTolerance) << r.t;
+    EXPECT_NEAR(k.b, r.b, kSeriesTolerance) << r.t;
+    EXPECT_NEAR(k.c, r.c, kSeriesTolerance) << r.t;
+    EXPECT_NEAR(k.c2, r.c2, kSeriesTolerance) << r.t;
+    EXPECT_NEAR(k.c3, r.c3, kSeriesTolerance) << r.t;
+  }
+}
+
 // --- Typed tests over the scalar. ---
 
 template <typename T>

@@ -36,40 +36,51 @@ namespace splinecal {
 
 namespace internal {
 
-// Below this squared angle [rad^2] (angle < 0.1 rad) the coefficients of Barfoot's Q block use
-// their Taylor series, kept to t^8 (first dropped term O(t^10) <= 1e-10 times a coefficient
-// below 1/6e9, i.e. < 1e-19). The threshold is larger than for SO(3) because the closed forms
-// of c1, c3 lose about eps / t^2 relative accuracy to cancellation and Q multiplies them by only
-// t or t^3 (not t^2 or t^4): at t = 0.1 the closed form is still good to ~1e-15.
+// Below this squared angle [rad^2] (angle < 0.1 rad) the coefficients of the SE(3) Jacobians
+// use their Taylor series, kept to t^8 (first dropped term O(t^10) <= 1e-10 times a coefficient
+// below 1/4e8, i.e. < 1e-18). The threshold is larger than for SO(3) alone because the closed
+// forms of c1 and c3 lose about eps / t^2 relative accuracy to cancellation, and Q multiplies
+// them by only t or t^3 (not t^2 or t^4): at t = 0.1 the closed forms are still good to ~1e-15.
 inline constexpr double kSE3QSmallAngleSq = 1e-2;
 
-// Coefficients of Q(rho, phi) (see LeftJacobianSE3), t = |phi|:
-//   c1 = (t - sin t) / t^3          = 1/6  - t^2/120  + t^4/5040   - t^6/362880  + t^8/39916800
+// All coefficients of the SE(3) left Jacobian and its inverse, from one sin/cos of t/2
+// (t = |phi|). With P = Hat(phi):
+//   Jl(phi)    = I + a P + b P^2,     Jl^-1(phi) = I - 1/2 P + c P^2        (lie/so3.h)
+//   Q(rho, phi): c1 = b, c2, c3 (see SE3QBlock)
+//   a  = (1 - cos t) / t^2          = 1/2  - t^2/24   + t^4/720    - t^6/40320   + t^8/3628800
+//   b  = (t - sin t) / t^3          = 1/6  - t^2/120  + t^4/5040   - t^6/362880  + t^8/39916800
+//   c  = 1/t^2 - cot(t/2) / (2t)    = 1/12 + t^2/720  + t^4/30240  + t^6/1209600 + t^8/47900160
 //   c2 = (t^2 + 2 cos t - 2)/(2t^4) = 1/24 - t^2/720  + t^4/40320  - t^6/3628800 + t^8/479001600
 //   c3 = (2t - 3 sin t + t cos t)/(2t^5)
 //                                   = 1/120 - t^2/2520 + t^4/120960 - t^6/9979200
 //                                     + t^8/1245404160
-// c2 is evaluated as (1/2 - a) / t^2 with a = 2 sin^2(t/2) / t^2 (see so3.h), which avoids the
-// cancellation in t^2 + 2 cos t - 2.
+// Closed forms: a = 2 sin^2(t/2) / t^2 (no cancellation in 1 - cos t); c2 = (1/2 - a) / t^2
+// (avoids the cancellation in t^2 + 2 cos t - 2); sin t = 2 sin(t/2) cos(t/2) and
+// cos t = 1 - 2 sin^2(t/2).
 template <typename T>
-struct SE3QCoefficients {
-  T c1;
+struct SE3JacobianCoefficients {
+  T a;
+  T b;
+  T c;
   T c2;
   T c3;
 };
 
 template <typename T>
-SE3QCoefficients<T> ComputeSE3QCoefficients(const T& theta_sq) {
+SE3JacobianCoefficients<T> ComputeSE3JacobianCoefficients(const T& theta_sq) {
   using std::cos;
   using std::sin;
   using std::sqrt;
-  SE3QCoefficients<T> k;
+  SE3JacobianCoefficients<T> k;
   if (theta_sq < T(kSE3QSmallAngleSq)) {
     const T t2 = theta_sq;
     const T t4 = t2 * t2;
     const T t6 = t4 * t2;
     const T t8 = t4 * t4;
-    k.c1 = T(1.0 / 6.0) - t2 / T(120.0) + t4 / T(5040.0) - t6 / T(362880.0) + t8 / T(39916800.0);
+    k.a = T(0.5) - t2 / T(24.0) + t4 / T(720.0) - t6 / T(40320.0) + t8 / T(3628800.0);
+    k.b = T(1.0 / 6.0) - t2 / T(120.0) + t4 / T(5040.0) - t6 / T(362880.0) + t8 / T(39916800.0);
+    k.c = T(1.0 / 12.0) + t2 / T(720.0) + t4 / T(30240.0) + t6 / T(1209600.0) +
+          t8 / T(47900160.0);
     k.c2 = T(1.0 / 24.0) - t2 / T(720.0) + t4 / T(40320.0) - t6 / T(3628800.0) +
            t8 / T(479001600.0);
     k.c3 = T(1.0 / 120.0) - t2 / T(2520.0) + t4 / T(120960.0) - t6 / T(9979200.0) +
@@ -77,12 +88,15 @@ SE3QCoefficients<T> ComputeSE3QCoefficients(const T& theta_sq) {
     return k;
   }
   const T theta = sqrt(theta_sq);
-  const T sin_t = sin(theta);
-  const T cos_t = cos(theta);
-  const T sin_half = sin(T(0.5) * theta);
-  const T a = T(2.0) * sin_half * sin_half / theta_sq;
-  k.c1 = (theta - sin_t) / (theta_sq * theta);
-  k.c2 = (T(0.5) - a) / theta_sq;
+  const T half = T(0.5) * theta;
+  const T sin_half = sin(half);
+  const T cos_half = cos(half);
+  const T sin_t = T(2.0) * sin_half * cos_half;
+  const T cos_t = T(1.0) - T(2.0) * sin_half * sin_half;
+  k.a = T(2.0) * sin_half * sin_half / theta_sq;
+  k.b = (theta - sin_t) / (theta_sq * theta);
+  k.c = T(1.0) / theta_sq - cos_half / (T(2.0) * theta * sin_half);
+  k.c2 = (T(0.5) - k.a) / theta_sq;
   k.c3 = (T(2.0) * theta - T(3.0) * sin_t + theta * cos_t) / (T(2.0) * theta_sq * theta_sq * theta);
   return k;
 }
@@ -91,10 +105,12 @@ SE3QCoefficients<T> ComputeSE3QCoefficients(const T& theta_sq) {
 // P = Hat(phi), Rh = Hat(rho):
 //   Q = 1/2 Rh + c1 (P Rh + Rh P + P Rh P) + c2 (P P Rh + Rh P P - 3 P Rh P)
 //              + c3 (P Rh P P + P P Rh P)
+// `p` = Hat(phi) and `k` = ComputeSE3JacobianCoefficients(|phi|^2) are passed in (shared with
+// the Jl blocks).
 template <typename T>
-Matrix3<T> SE3QBlock(const Vector3<T>& rho, const Vector3<T>& phi) {
-  const auto k = ComputeSE3QCoefficients(phi.squaredNorm());
-  const Matrix3<T> p = Hat(phi);
+Matrix3<T> SE3QBlock(const Vector3<T>& rho,
+                     const Matrix3<T>& p,
+                     const SE3JacobianCoefficients<T>& k) {
   const Matrix3<T> r = Hat(rho);
   const Matrix3<T> pr = p * r;
   const Matrix3<T> rp = r * p;
@@ -103,7 +119,7 @@ Matrix3<T> SE3QBlock(const Vector3<T>& rho, const Vector3<T>& phi) {
   const Matrix3<T> rpp = rp * p;
   const Matrix3<T> prpp = prp * p;
   const Matrix3<T> pprp = p * prp;
-  return T(0.5) * r + k.c1 * (pr + rp + prp) + k.c2 * (ppr + rpp - T(3.0) * prp) +
+  return T(0.5) * r + k.b * (pr + rp + prp) + k.c2 * (ppr + rpp - T(3.0) * prp) +
          k.c3 * (prpp + pprp);
 }
 
@@ -236,16 +252,19 @@ class SE3 {
 
 // Left Jacobian of SE(3): Exp(xi + d) ~ Exp(Jl(xi) d) Exp(xi).
 //   Jl([rho; phi]) = [[Jl(phi), Q(rho, phi)], [0, Jl(phi)]]       ([Barfoot17], SE(3) left
-// Jacobian with the Q block; see internal::SE3QBlock for Q and its series.)
+// Jacobian with the Q block; see internal::SE3QBlock for Q and
+// internal::ComputeSE3JacobianCoefficients for the coefficients and their series.)
 template <typename Derived>
 Matrix6<typename Derived::Scalar> LeftJacobianSE3(const Eigen::MatrixBase<Derived>& xi) {
   using T = typename Derived::Scalar;
   const Vector3<T> rho = xi.template head<3>();
   const Vector3<T> phi = xi.template tail<3>();
-  const Matrix3<T> jl = LeftJacobianSO3(phi);
+  const auto k = internal::ComputeSE3JacobianCoefficients(phi.squaredNorm());
+  const Matrix3<T> p = Hat(phi);
+  const Matrix3<T> jl = Matrix3<T>::Identity() + k.a * p + k.b * (p * p);
   Matrix6<T> j;
   j.template topLeftCorner<3, 3>() = jl;
-  j.template topRightCorner<3, 3>() = internal::SE3QBlock(rho, phi);
+  j.template topRightCorner<3, 3>() = internal::SE3QBlock(rho, p, k);
   j.template bottomLeftCorner<3, 3>().setZero();
   j.template bottomRightCorner<3, 3>() = jl;
   return j;
@@ -259,10 +278,12 @@ Matrix6<typename Derived::Scalar> LeftJacobianInverseSE3(const Eigen::MatrixBase
   using T = typename Derived::Scalar;
   const Vector3<T> rho = xi.template head<3>();
   const Vector3<T> phi = xi.template tail<3>();
-  const Matrix3<T> jl_inv = LeftJacobianInverseSO3(phi);
+  const auto k = internal::ComputeSE3JacobianCoefficients(phi.squaredNorm());
+  const Matrix3<T> p = Hat(phi);
+  const Matrix3<T> jl_inv = Matrix3<T>::Identity() - T(0.5) * p + k.c * (p * p);
   Matrix6<T> j;
   j.template topLeftCorner<3, 3>() = jl_inv;
-  j.template topRightCorner<3, 3>() = -jl_inv * internal::SE3QBlock(rho, phi) * jl_inv;
+  j.template topRightCorner<3, 3>() = -jl_inv * internal::SE3QBlock(rho, p, k) * jl_inv;
   j.template bottomLeftCorner<3, 3>().setZero();
   j.template bottomRightCorner<3, 3>() = jl_inv;
   return j;
