@@ -50,7 +50,8 @@ AlignmentProblem::AlignmentProblem(const std::vector<ImuSample>& imu,
                                    const SE3d& T_cam_imu,
                                    const Eigen::Vector3d& gyro_bias,
                                    const Eigen::Vector3d& accel_bias,
-                                   const ImuNoise& noise)
+                                   const ImuNoise& noise,
+                                   const CameraNoise& camera_noise)
     : frames_(std::move(frames)), T_cam_imu_(T_cam_imu) {
   if (frames_.size() < 3) {
     throw Error("alignment needs at least 3 camera frames, got " + std::to_string(frames_.size()));
@@ -61,8 +62,16 @@ AlignmentProblem::AlignmentProblem(const std::vector<ImuSample>& imu,
     preintegrations_.push_back(Preintegrate(imu, frames_[k].t_ns, frames_[k + 1].t_ns, gyro_bias,
                                             accel_bias, &noise));
     // Weight = inverse covariance of (dp, dv) (calib/preintegration.h).
-    const Eigen::Matrix<double, 6, 6> covariance =
-        preintegrations_.back().covariance.topLeftCorner<6, 6>();
+    const ImuPreintegration& pre = preintegrations_.back();
+    Eigen::Matrix<double, 6, 6> covariance = pre.covariance.topLeftCorner<6, 6>();
+    // Camera noise: positions n_k (metric) enter r_p as R^T (n_k+1 - n_k); a rotation error
+    // R_c0_sk Exp(e) turns R^T x into R^T x + [R^T x]x e with R^T x = dp (p rows), dv (v rows).
+    const double var_p = camera_noise.position_std_m * camera_noise.position_std_m;
+    const double var_r = camera_noise.rotation_std_rad * camera_noise.rotation_std_rad;
+    Eigen::Matrix<double, 6, 3> E;
+    E << Hat(pre.delta_p), Hat(pre.delta_v);
+    covariance += var_r * E * E.transpose();
+    covariance.topLeftCorner<3, 3>().diagonal().array() += 2.0 * var_p;
     const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(covariance);
     if (llt.info() != Eigen::Success) {
       throw Error("alignment: the preintegration covariance is not positive definite (are the "
@@ -73,11 +82,11 @@ AlignmentProblem::AlignmentProblem(const std::vector<ImuSample>& imu,
 }
 
 NormalEquations AlignmentProblem::Build(
-    const Eigen::Vector3d& gravity_offset,
+    const Eigen::Vector3d& gravity_per_u,
     const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>& gravity_basis) const {
   const int n = num_frames();
   const int m_g = static_cast<int>(gravity_basis.cols());
-  const int m = m_g + 1;  // gravity coordinates, then the scale
+  const int m = m_g + 1;  // gravity coordinates, then u = 1 / s
   NormalEquations eq;
   eq.m = m;
   eq.D.assign(n, Eigen::Matrix3d::Zero());
@@ -100,19 +109,23 @@ NormalEquations AlignmentProblem::Build(
     const Eigen::Vector3d delta_lever = f1.R_c0_c * t_c_s - f0.R_c0_c * t_c_s;
     const Eigen::Vector3d delta_p_bar = f1.p_c0_c - f0.p_c0_c;
 
-    // Residual r = J x - b, x = (v_k, v_k+1, y_g, s) (align.h, step 3, with
-    // g = gravity_offset + gravity_basis y_g):
-    //   r_p = Rt (s dp_bar + dl - v_k T - g T^2/2) - dp,   r_v = Rt (v_k+1 - v_k - g T) - dv
+    // Residual r = J x - b in camera units, x = (v'_k, v'_k+1, y_g, u) (align.h, step 3), with
+    // g' = gravity_per_u u + gravity_basis y_g:
+    //   r_p = Rt (v'_k T + g' T^2/2 - u dl) + u dp - Rt dp_bar
+    //   r_v = Rt (v'_k+1 - v'_k - g' T) - u dv
+    const Eigen::Vector3d g_u_rot = Rt * gravity_per_u;
+    const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3> basis_rot = Rt * gravity_basis;
     Jacobian J = Jacobian::Zero(6, 6 + m);
-    J.block<3, 3>(0, 0) = -T * Rt;
-    J.block(0, 6, 3, m_g) = (-0.5 * T * T) * Rt * gravity_basis;
-    J.block<3, 1>(0, 6 + m_g) = Rt * delta_p_bar;
+    J.block<3, 3>(0, 0) = T * Rt;
+    J.block(0, 6, 3, m_g) = (0.5 * T * T) * basis_rot;
+    J.block<3, 1>(0, 6 + m_g) = 0.5 * T * T * g_u_rot - Rt * delta_lever + pre.delta_p;
     J.block<3, 3>(3, 0) = -Rt;
     J.block<3, 3>(3, 3) = Rt;
-    J.block(3, 6, 3, m_g) = -T * Rt * gravity_basis;
+    J.block(3, 6, 3, m_g) = -T * basis_rot;
+    J.block<3, 1>(3, 6 + m_g) = -T * g_u_rot - pre.delta_v;
     Eigen::Matrix<double, 6, 1> b;
-    b.head<3>() = pre.delta_p - Rt * (delta_lever - 0.5 * T * T * gravity_offset);
-    b.tail<3>() = pre.delta_v + T * Rt * gravity_offset;
+    b.head<3>() = Rt * delta_p_bar;
+    b.tail<3>().setZero();
 
     const Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 10, 6> JtW = J.transpose() * information_[k];
     const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 10, 10> H = JtW * J;
@@ -198,38 +211,51 @@ double NormalEquations::Solve(std::vector<Eigen::Vector3d>* v, VectorY* y) const
 AlignmentSolution AlignmentProblem::SolveFreeGravity() const {
   AlignmentSolution solution;
   const NormalEquations eq = Build(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());
+  std::vector<Eigen::Vector3d> v_prime;
   NormalEquations::VectorY y;
-  solution.condition_number = eq.Solve(&solution.v_c0, &y);
+  solution.condition_number = eq.Solve(&v_prime, &y);
   solution.iterations = 1;
-  if (!std::isfinite(solution.condition_number)) {
-    solution.v_c0.assign(frames_.size(), Eigen::Vector3d::Zero());
-    return solution;
-  }
-  solution.gravity_c0 = y.head<3>();
-  solution.scale = y(3);
+  solution.v_c0.assign(frames_.size(), Eigen::Vector3d::Zero());
+  if (!std::isfinite(solution.condition_number)) return solution;
+  // x' = x / s: s = 1 / u, g = g' / u, v = v' / u.
+  const double u = y(3);
+  solution.scale = 1.0 / u;
+  solution.gravity_c0 = y.head<3>() / u;
+  for (size_t k = 0; k < v_prime.size(); ++k) solution.v_c0[k] = v_prime[k] / u;
   solution.converged = true;
   return solution;
 }
 
-AlignmentSolution AlignmentProblem::RefineGravity(const Eigen::Vector3d& initial_gravity_c0,
+AlignmentSolution AlignmentProblem::RefineGravity(const AlignmentSolution& initial,
                                                   double gravity_norm,
                                                   double tolerance_rad,
                                                   int max_iterations) const {
   CHECK_GT(gravity_norm, 0.0);
   AlignmentSolution solution;
-  Eigen::Vector3d direction = initial_gravity_c0.normalized();
+  solution.v_c0.assign(frames_.size(), Eigen::Vector3d::Zero());
+  Eigen::Vector3d direction = initial.gravity_c0.normalized();
+  double u0 = 1.0 / initial.scale;
   double previous_step = kInfinity;
+  std::vector<Eigen::Vector3d> v_prime;
   for (int iteration = 1; iteration <= max_iterations; ++iteration) {
-    // Rebuild the rows at the current direction d: g ~ G d + G B(d) w [seed001], w in radians.
+    // Rebuild the rows at the current (d, u0) [seed001]: g' = u G Retract(d, w)
+    //   ~ G d u + G u0 B(d) w   (w in radians; first order in w and in u - u0).
     const Eigen::Matrix<double, 3, 2> basis = GravityTangentBasis(direction);
-    const NormalEquations eq = Build(gravity_norm * direction, gravity_norm * basis);
+    const NormalEquations eq = Build(gravity_norm * direction, (gravity_norm * u0) * basis);
     NormalEquations::VectorY y;
-    solution.condition_number = eq.Solve(&solution.v_c0, &y);
+    solution.condition_number = eq.Solve(&v_prime, &y);
     solution.iterations = iteration;
-    if (!std::isfinite(solution.condition_number)) break;
-    const Eigen::Vector2d w = y.head<2>();
-    solution.scale = y(2);
+    if (!std::isfinite(solution.condition_number) || !(y(2) != 0.0)) {
+      solution.condition_number = kInfinity;
+      break;
+    }
+    const double u = y(2);
+    // The tangent step the solve found is G u0 B w, the model's is G u B w: rescale.
+    const Eigen::Vector2d w = y.head<2>() * (u0 / u);
     direction = RetractGravity(direction, w);
+    u0 = u;
+    solution.scale = 1.0 / u;
+    for (size_t k = 0; k < v_prime.size(); ++k) solution.v_c0[k] = v_prime[k] / u;
     const double step = w.norm();
     if (Converged(step, previous_step, tolerance_rad)) {
       solution.converged = true;
@@ -244,33 +270,38 @@ AlignmentSolution AlignmentProblem::RefineGravity(const Eigen::Vector3d& initial
 namespace internal {
 
 AlignmentSolution RefineGravityAccumulating(const AlignmentProblem& problem,
-                                            const Eigen::Vector3d& initial_gravity_c0,
+                                            const AlignmentSolution& initial,
                                             double gravity_norm,
                                             int iterations) {
   // VINS-Mono's RefineGravity: A and b are zeroed once, before the loop; every iteration adds
-  // the rows linearised at its g0 with the unknown g = g0 + [b1 b2] w (w in m/s^2), multiplies
-  // A and b by 1000, solves, and sets g0 = normalize(g0 + [b1 b2] w) * G.
+  // the rows linearised at its g0, multiplies A and b by 1000, solves, and moves g0 by the
+  // tangent step (normalised back to the sphere). Same formulation as RefineGravity otherwise.
   constexpr double kVinsFactor = 1000.0;
   AlignmentSolution solution;
-  Eigen::Vector3d g0 = gravity_norm * initial_gravity_c0.normalized();
+  solution.v_c0.assign(problem.num_frames(), Eigen::Vector3d::Zero());
+  Eigen::Vector3d direction = initial.gravity_c0.normalized();
+  double u0 = 1.0 / initial.scale;
   NormalEquations total;
+  std::vector<Eigen::Vector3d> v_prime;
   for (int iteration = 1; iteration <= iterations; ++iteration) {
-    const Eigen::Matrix<double, 3, 2> basis = GravityTangentBasis(g0);
-    const NormalEquations eq = problem.Build(g0, basis);
+    const Eigen::Matrix<double, 3, 2> basis = GravityTangentBasis(direction);
+    const NormalEquations eq = problem.Build(gravity_norm * direction, (gravity_norm * u0) * basis);
     if (iteration == 1) {
       total = eq;
       total.AccumulateScaled(eq, 0.0);  // zero, with the right sizes
     }
     total.AccumulateScaled(eq, kVinsFactor);
     NormalEquations::VectorY y;
-    solution.condition_number = total.Solve(&solution.v_c0, &y);
+    solution.condition_number = total.Solve(&v_prime, &y);
     solution.iterations = iteration;
-    if (!std::isfinite(solution.condition_number)) break;
-    const Eigen::Vector2d w = y.head<2>();
-    solution.scale = y(2);
-    g0 = gravity_norm * (g0 + basis * w).normalized();
+    if (!std::isfinite(solution.condition_number) || !(y(2) != 0.0)) break;
+    const double u = y(2);
+    direction = (direction + basis * (y.head<2>() * (u0 / u))).normalized();
+    u0 = u;
+    solution.scale = 1.0 / u;
+    for (size_t k = 0; k < v_prime.size(); ++k) solution.v_c0[k] = v_prime[k] / u;
   }
-  solution.gravity_c0 = g0;
+  solution.gravity_c0 = gravity_norm * direction;
   solution.converged = true;
   return solution;
 }
@@ -438,7 +469,7 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   // Step 3: linear alignment with free gravity.
   const SE3d T_cam_imu(bias.R_cam_imu, options.T_cam_imu.translation());
   const AlignmentProblem problem(imu, frames, T_cam_imu, bias.gyro_bias, options.accel_bias,
-                                 noise);
+                                 noise, options.camera_noise);
   const AlignmentSolution free = problem.SolveFreeGravity();
   result.free_gravity_c0 = free.gravity_c0;
   result.free_scale = free.scale;
@@ -446,9 +477,10 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   const std::string excitation_advice =
       "the motion does not determine scale and gravity (it needs changes of acceleration and "
       "rotation, e.g. a figure eight; constant velocity or a pure rotation is not enough)";
-  if (!(free.condition_number <= options.max_condition_number)) {
+  result.condition_number = free.condition_number;
+  if (!(result.condition_number <= options.max_condition_number)) {
     result.message = Format("not enough excitation: condition number %.3g exceeds %.3g; ",
-                            free.condition_number, options.max_condition_number) +
+                            result.condition_number, options.max_condition_number) +
                      excitation_advice;
     return result;
   }
@@ -471,14 +503,11 @@ AlignResult Align(const std::vector<ImuSample>& imu,
 
   // Step 4: refinement on the sphere |g| = G.
   const AlignmentSolution refined = problem.RefineGravity(
-      free.gravity_c0, G, options.gravity_tolerance_rad, options.max_gravity_iterations);
+      free, G, options.gravity_tolerance_rad, options.max_gravity_iterations);
   result.iterations = refined.iterations;
-  result.condition_number = refined.condition_number;
-  if (!(refined.condition_number <= options.max_condition_number)) {
-    result.message = Format("not enough excitation: condition number %.3g of the refined "
-                            "system exceeds %.3g; ",
-                            refined.condition_number, options.max_condition_number) +
-                     excitation_advice;
+  result.refined_condition_number = refined.condition_number;
+  if (!std::isfinite(refined.condition_number)) {
+    result.message = "the refined system is singular; " + excitation_advice;
     return result;
   }
   if (!refined.converged) {
