@@ -179,8 +179,8 @@ class SE3 {
 
   // Exp([rho; phi]) = [[Exp(phi), Jl(phi) rho], [0, 1]]     ([Sola18] SE(3) exp;
   // [Barfoot17] SE(3) exponential). Jl(phi) rho is applied without forming the matrix:
-  //   Jl(phi) rho = rho + a phi x rho + b phi x (phi x rho)   (a, b: internal::SO3Jacobian...;
-  // series for |phi| < 1e-3 rad).
+  //   Jl(phi) rho = rho + a phi x rho + b phi x (phi x rho)
+  // (a, b from internal::ComputeSO3JacobianCoefficients; series for |phi| < 1e-3 rad).
   static SE3 Exp(const Vector6<T>& xi) {
     const Vector3<T> rho = xi.template head<3>();
     const Vector3<T> phi = xi.template tail<3>();
