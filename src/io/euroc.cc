@@ -31,9 +31,11 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
     ImuSample sample;
     sample.t_ns = ParseInt64(fields[0], reader, kNames[0]);
     for (int i = 0; i < 3; ++i) {
-      sample.gyro[i] = options.gyro_scale * ParseFiniteDouble(fields[1 + i], reader, kNames[1 + i]);
-      sample.accel[i] =
-          options.accel_scale * ParseFiniteDouble(fields[4 + i], reader, kNames[4 + i]);
+      sample.gyro[i] = options.gyro_scale * ParseBoundedDouble(fields[1 + i], reader, kNames[1 + i],
+                                                               kMaxAngularRate, "rad/s");
+      sample.accel[i] = options.accel_scale * ParseBoundedDouble(fields[4 + i], reader,
+                                                                 kNames[4 + i], kMaxAcceleration,
+                                                                 "m/s^2");
     }
     timestamps.Add(sample.t_ns, fields[0]);
     samples.push_back(sample);
@@ -89,7 +91,13 @@ std::vector<GroundTruthState> ReadEurocGroundTruth(const std::string& path) {
     double v[17];
     GroundTruthState state;
     state.t_ns = ParseInt64(fields[0], reader, kNames[0]);
-    for (int i = 1; i < 17; ++i) v[i] = ParseFiniteDouble(fields[i], reader, kNames[i]);
+    for (int i = 1; i < 17; ++i) {
+      // Positions, quaternion (checked for unit norm below), velocities, biases.
+      const double limit = i < 4 ? kMaxPosition : i < 8 ? 2.0 : i < 11 ? kMaxVelocity
+                                                        : i < 14 ? kMaxAngularRate : kMaxAcceleration;
+      const char* unit = i < 4 ? "m" : i < 8 ? "" : i < 11 ? "m/s" : i < 14 ? "rad/s" : "m/s^2";
+      v[i] = ParseBoundedDouble(fields[i], reader, kNames[i], limit, unit);
+    }
     state.p_w_s = Eigen::Vector3d(v[1], v[2], v[3]);
     state.q_w_s = internal::CheckedUnitQuaternion(reader, fields[4], v[4], v[5], v[6], v[7]);
     state.v_w = Eigen::Vector3d(v[8], v[9], v[10]);

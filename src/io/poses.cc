@@ -21,7 +21,10 @@ StampedPose ParseRow(const TextFileReader& reader,
     static const char* const kNames[] = {"time", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
     internal::CheckColumnCount(reader, fields, 8, "TUM: t_s tx ty tz qx qy qz qw");
     pose.t_ns = ParseSecondsToNs(fields[0], reader, kNames[0]);
-    for (int i = 1; i < 8; ++i) v[i] = ParseFiniteDouble(fields[i], reader, kNames[i]);
+    for (int i = 1; i < 8; ++i) {
+      v[i] = ParseBoundedDouble(fields[i], reader, kNames[i], i < 4 ? kMaxPosition : 2.0,
+                                i < 4 ? "m" : "(quaternion)");
+    }
     pose.p = Eigen::Vector3d(v[1], v[2], v[3]);
     pose.q = internal::CheckedUnitQuaternion(reader, fields[4], v[7], v[4], v[5], v[6]);
   } else {
@@ -32,7 +35,10 @@ StampedPose ParseRow(const TextFileReader& reader,
                   "found " + std::to_string(fields.size()));
     }
     pose.t_ns = ParseInt64(fields[0], reader, kNames[0]);
-    for (int i = 1; i < 8; ++i) v[i] = ParseFiniteDouble(fields[i], reader, kNames[i]);
+    for (int i = 1; i < 8; ++i) {
+      v[i] = ParseBoundedDouble(fields[i], reader, kNames[i], i < 4 ? kMaxPosition : 2.0,
+                                i < 4 ? "m" : "(quaternion)");
+    }
     pose.p = Eigen::Vector3d(v[1], v[2], v[3]);
     pose.q = internal::CheckedUnitQuaternion(reader, fields[4], v[4], v[5], v[6], v[7]);
   }

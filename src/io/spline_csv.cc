@@ -26,7 +26,10 @@ SE3Splined ReadSplineCsv(const std::string& path) {
     internal::CheckColumnCount(reader, fields, 8, "spline.csv: t_ns,px,py,pz,qw,qx,qy,qz");
     const int64_t t_ns = ParseInt64(fields[0], reader, kNames[0]);
     double v[8];
-    for (int i = 1; i < 8; ++i) v[i] = ParseFiniteDouble(fields[i], reader, kNames[i]);
+    for (int i = 1; i < 8; ++i) {
+      v[i] = ParseBoundedDouble(fields[i], reader, kNames[i], i < 4 ? kMaxPosition : 2.0,
+                                i < 4 ? "m" : "(quaternion)");
+    }
     const Eigen::Quaterniond q =
         internal::CheckedUnitQuaternion(reader, fields[4], v[4], v[5], v[6], v[7]);
     if (poses.empty()) {

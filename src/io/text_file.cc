@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -163,6 +164,21 @@ double ParseFiniteDouble(std::string_view field, const TextFileReader& at, const
   }
   if (result.ec == std::errc::result_out_of_range || !std::isfinite(value)) {
     at.Fail(what + ": value " + Quote(field) + " is not a finite number", field);
+  }
+  return value;
+}
+
+double ParseBoundedDouble(std::string_view field,
+                          const TextFileReader& at,
+                          const std::string& what,
+                          double max_abs,
+                          const char* unit) {
+  const double value = ParseFiniteDouble(field, at, what);
+  if (std::abs(value) > max_abs) {
+    char message[160];
+    std::snprintf(message, sizeof(message), ": value %.6g is beyond the plausible %g %s", value,
+                  max_abs, unit);
+    at.Fail(what + message, field);
   }
   return value;
 }

@@ -49,7 +49,7 @@ TEST(ReadEurocImu, WriteThenReadIsBitExact) {
   std::vector<ImuSample> samples(4);
   for (int i = 0; i < 4; ++i) {
     samples[i].t_ns = 1000 + i;
-    samples[i].gyro = Eigen::Vector3d(1.0 / 3.0, -2e-17, 1e300) * (i + 1);
+    samples[i].gyro = Eigen::Vector3d(1.0 / 3.0, -2e-17, 123.456789) * (i + 1);
     samples[i].accel = Eigen::Vector3d(9.81, 0.1 + i, -std::acos(-1.0));
   }
   std::ostringstream text;
@@ -138,6 +138,26 @@ TEST(ReadEurocGroundTruth, SharedRealDataReads) {
   const auto imu = ReadEurocImu(std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/imu0.csv");
   EXPECT_EQ(imu.size(), 29120u);
   EXPECT_EQ(imu.front().t_ns, states.front().t_ns);
+}
+
+}  // namespace
+}  // namespace splinecal
+
+namespace splinecal {
+namespace {
+
+TEST(ReadEurocImu, ImplausibleMagnitudeIsRefusedWithTheLimit) {
+  testing::TempDir dir;
+  const std::string path = dir.Write("huge.csv",
+                                     "1000,0,0,0,0,0,9.8\n"
+                                     "2000,0,1e300,0,0,0,9.8\n");
+  try {
+    ReadEurocImu(path);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("huge.csv:2:8: gyro y: value 1e+300 is beyond the "
+                                               "plausible 1000 rad/s"));
+  }
 }
 
 }  // namespace

@@ -64,6 +64,21 @@ bool LooksNumeric(std::string_view field);
 // Parses a finite double; throws "path:line:column: <what>: expected a number, got 'x'" or
 // "...: value is not finite". `what` names the field (e.g. "gyro x").
 double ParseFiniteDouble(std::string_view field, const TextFileReader& at, const std::string& what);
+// Parses a finite double whose magnitude is at most `max_abs`; a larger value is refused as
+// implausible for the quantity (a corrupt file or wrong units), naming the limit and `unit`.
+double ParseBoundedDouble(std::string_view field,
+                          const TextFileReader& at,
+                          const std::string& what,
+                          double max_abs,
+                          const char* unit);
+
+// Plausibility limits of the readers: far beyond any real rig, small enough that squares and
+// products of them stay finite in double.
+inline constexpr double kMaxAngularRate = 1e3;     // [rad/s]
+inline constexpr double kMaxAcceleration = 1e4;    // [m/s^2]
+inline constexpr double kMaxPosition = 1e7;        // [m]
+inline constexpr double kMaxVelocity = 1e5;        // [m/s]
+
 // Parses a decimal int64 without going through floating point.
 int64_t ParseInt64(std::string_view field, const TextFileReader& at, const std::string& what);
 // Parses seconds written as decimal text ("1403715273.262142976") into int64 nanoseconds

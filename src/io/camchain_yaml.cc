@@ -1,0 +1,164 @@
+#include "splinecal/io/camchain_yaml.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "splinecal/error.h"
+#include "splinecal/io/yaml_document.h"
+#include "splinecal/io/yaml_writer.h"
+
+namespace splinecal {
+
+namespace {
+
+// A rotation block this far from orthonormal (max |R^T R - I|) is not a rotation: the matrix is
+// in another layout or corrupt, not rounded in its last digits.
+constexpr double kMaxOrthonormalityError = 1e-6;
+// Resolutions beyond this [px] per side are refused as implausible (a corrupt file).
+constexpr int64_t kMaxResolution = 1 << 20;
+
+DistortionModel ParseDistortionModel(const YamlDocument& yaml, const std::string& key) {
+  const std::string name = yaml.String(key);
+  if (name == "radtan") return DistortionModel::kRadTan;
+  if (name == "equidistant") return DistortionModel::kEquidistant;
+  if (name == "none") return DistortionModel::kNone;
+  throw Error(yaml.path(), 0,
+              key + ": unsupported distortion model '" + name +
+                  "' (supported: radtan, equidistant, none)");
+}
+
+SE3d ParseRigidTransform(const YamlDocument& yaml, const std::string& key) {
+  const std::vector<std::vector<double>> rows = yaml.Rows(key);
+  if (rows.size() != 4 || rows[0].size() != 4) {
+    throw Error(yaml.path(), 0, key + ": expected a 4x4 matrix (4 rows of 4 numbers)");
+  }
+  Eigen::Matrix4d T;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) T(r, c) = rows[r][c];
+  }
+  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+  const double bottom = std::abs(T(3, 0)) + std::abs(T(3, 1)) + std::abs(T(3, 2)) +
+                        std::abs(T(3, 3) - 1.0);
+  if (bottom > kMaxOrthonormalityError ||
+      (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() >
+          kMaxOrthonormalityError ||
+      R.determinant() < 0.0) {
+    throw Error(yaml.path(), 0,
+                key + ": not a rigid transform (the rotation block must be orthonormal with "
+                      "determinant +1 and the last row 0 0 0 1)");
+  }
+  return SE3d(SO3d::FromMatrix(R), T.topRightCorner<3, 1>());
+}
+
+CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
+  CameraCalibration calibration;
+  PinholeCamera& camera = calibration.camera;
+  const std::string model = yaml.String(cam + "/camera_model");
+  if (model != "pinhole") {
+    throw Error(yaml.path(), 0,
+                cam + "/camera_model: unsupported camera model '" + model +
+                    "' (supported: pinhole with radtan, equidistant or none)");
+  }
+  const std::vector<double> intrinsics = yaml.Numbers(cam + "/intrinsics");
+  if (intrinsics.size() != 4) {
+    throw Error(yaml.path(), 0,
+                cam + "/intrinsics: expected 4 numbers [fu, fv, pu, pv], got " +
+                    std::to_string(intrinsics.size()));
+  }
+  if (!(intrinsics[0] > 0.0) || !(intrinsics[1] > 0.0)) {
+    throw Error(yaml.path(), 0, cam + "/intrinsics: focal lengths fu, fv must be positive");
+  }
+  camera.fu = intrinsics[0];
+  camera.fv = intrinsics[1];
+  camera.pu = intrinsics[2];
+  camera.pv = intrinsics[3];
+  camera.distortion = yaml.Has(cam + "/distortion_model")
+                          ? ParseDistortionModel(yaml, cam + "/distortion_model")
+                          : DistortionModel::kNone;
+  std::vector<double> coeffs;
+  if (yaml.Has(cam + "/distortion_coeffs")) coeffs = yaml.Numbers(cam + "/distortion_coeffs");
+  const size_t expected = camera.distortion == DistortionModel::kNone ? 0 : 4;
+  // `none` with four zeros is what some tools write: accept zeros.
+  const bool zeros_for_none = camera.distortion == DistortionModel::kNone &&
+                              coeffs.size() == 4 && coeffs == std::vector<double>(4, 0.0);
+  if (coeffs.size() != expected && !zeros_for_none) {
+    throw Error(yaml.path(), 0,
+                cam + "/distortion_coeffs: the " + DistortionModelName(camera.distortion) +
+                    " model takes " + std::to_string(expected) + " coefficients, got " +
+                    std::to_string(coeffs.size()));
+  }
+  for (size_t i = 0; i < coeffs.size(); ++i) camera.distortion_coeffs(i) = coeffs[i];
+  const std::vector<double> resolution = yaml.Numbers(cam + "/resolution");
+  if (resolution.size() != 2 || !(resolution[0] >= 1.0) || !(resolution[1] >= 1.0) ||
+      resolution[0] != std::floor(resolution[0]) || resolution[1] != std::floor(resolution[1]) ||
+      resolution[0] > kMaxResolution || resolution[1] > kMaxResolution) {
+    throw Error(yaml.path(), 0,
+                cam + "/resolution: expected two positive integers [width, height] in pixels");
+  }
+  camera.width = static_cast<int>(resolution[0]);
+  camera.height = static_cast<int>(resolution[1]);
+  if (yaml.Has(cam + "/T_cam_imu")) {
+    calibration.T_cam_imu = ParseRigidTransform(yaml, cam + "/T_cam_imu");
+  }
+  if (yaml.Has(cam + "/timeshift_cam_imu")) {
+    calibration.timeshift_cam_imu_s = yaml.Number(cam + "/timeshift_cam_imu");
+  }
+  if (yaml.Has(cam + "/line_delay")) {
+    calibration.line_delay_s = yaml.Number(cam + "/line_delay");
+    if (calibration.line_delay_s < 0.0) {
+      throw Error(yaml.path(), 0, cam + "/line_delay: must be >= 0 [s per row]");
+    }
+  }
+  if (yaml.Has(cam + "/rostopic")) calibration.rostopic = yaml.String(cam + "/rostopic");
+  return calibration;
+}
+
+}  // namespace
+
+Camchain ReadCamchainYaml(const std::string& path) {
+  const YamlDocument yaml(path);
+  Camchain camchain;
+  for (int i = 0;; ++i) {
+    const std::string cam = "cam" + std::to_string(i);
+    if (!yaml.Has(cam)) break;
+    camchain.push_back(ReadCamera(yaml, cam));
+  }
+  if (camchain.empty()) throw Error(path, 0, "no camera: expected a key 'cam0'");
+  for (const std::string& key : yaml.TopLevelKeys()) {
+    if (key.rfind("cam", 0) == 0 && key.size() > 3 &&
+        key.find_first_not_of("0123456789", 3) == std::string::npos &&
+        std::stoll(key.substr(3)) >= static_cast<long long>(camchain.size())) {
+      throw Error(path, 0,
+                  "'" + key + "': cameras must be numbered cam0, cam1, ... without gaps");
+    }
+  }
+  return camchain;
+}
+
+std::string CamchainYamlText(const Camchain& camchain) {
+  YamlWriter yaml;
+  for (size_t i = 0; i < camchain.size(); ++i) {
+    const CameraCalibration& c = camchain[i];
+    yaml.BeginMap("cam" + std::to_string(i));
+    yaml.Scalar("camera_model", "pinhole");
+    yaml.Vector("intrinsics", Eigen::Vector4d(c.camera.fu, c.camera.fv, c.camera.pu, c.camera.pv));
+    yaml.Scalar("distortion_model", DistortionModelName(c.camera.distortion));
+    if (c.camera.distortion == DistortionModel::kNone) {
+      yaml.Vector("distortion_coeffs", Eigen::VectorXd(0));
+    } else {
+      yaml.Vector("distortion_coeffs", c.camera.distortion_coeffs);
+    }
+    yaml.Vector("resolution", Eigen::Vector2d(c.camera.width, c.camera.height));
+    yaml.Matrix("T_cam_imu", c.T_cam_imu.matrix());
+    yaml.Scalar("timeshift_cam_imu", c.timeshift_cam_imu_s);
+    yaml.Scalar("line_delay", c.line_delay_s);
+    if (!c.rostopic.empty()) yaml.Scalar("rostopic", c.rostopic);
+    yaml.EndMap();
+  }
+  return yaml.str();
+}
+
+}  // namespace splinecal
