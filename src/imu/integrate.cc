@@ -190,10 +190,14 @@ void MidpointStep(
 //   p += h/6 (k_p1 + 2 k_p2 + 2 k_p3 + k_p4) = h v + h^2/6 (k_v1 + k_v2 + k_v3)
 //   v += h/6 (k_v1 + 2 k_v2 + 2 k_v3 + k_v4)
 // need R_k only twice.
-void Rk4Step(
-    const Reading& r0, const Reading& r1, const Eigen::Vector3d& g_w, double h, Motion* m) {
-  const Eigen::Vector3d w_m = 0.5 * (r0.w + r1.w);
-  const Eigen::Vector3d a_m = 0.5 * (r0.a + r1.a);
+void Rk4Step(const Reading& r0,
+             const Reading& r_m,
+             const Reading& r1,
+             const Eigen::Vector3d& g_w,
+             double h,
+             Motion* m) {
+  const Eigen::Vector3d& w_m = r_m.w;
+  const Eigen::Vector3d& a_m = r_m.a;
   // Stage 1 at s = 0: theta = 0, Jr^-1 = I.
   const Eigen::Vector3d& k_th1 = r0.w;
   const Eigen::Vector3d& b1 = r0.a;
@@ -218,22 +222,60 @@ void Rk4Step(
   m->R = Renormalized(R * internal::StepExp(theta));
 }
 
-void Step(IntegrationMethod method,
+// The gyro reading at the middle of the step [r0.t_ns, r1.t_ns], which lies inside the sample
+// interval [imu[i-1], imu[i]]: the cubic through imu[i-2..i+1] (Lagrange; the quadratic or the
+// line through the samples that exist at the ends of the data), minus the bias. Error O(h^4)
+// for a smooth rate (O(h^2) across a jump of d2w/dt2, as at the knots of a cubic spline),
+// against O(h^2) for the average of the two ends (integrate.h explains why RK4 needs it).
+Eigen::Vector3d MidGyro(const std::vector<ImuSample>& imu,
+                        size_t i,
+                        const Reading& r0,
+                        const Reading& r1,
+                        const ImuBias& bias) {
+  const size_t first = i >= 2 ? i - 2 : i - 1;
+  const size_t last = std::min(i + 1, imu.size() - 1);
+  const int64_t origin = imu[i - 1].t_ns;
+  if (last - first == 3 && r0.t_ns == origin && r1.t_ns == imu[i].t_ns &&
+      imu[i - 1].t_ns - imu[i - 2].t_ns == imu[i].t_ns - imu[i - 1].t_ns &&
+      imu[i + 1].t_ns - imu[i].t_ns == imu[i].t_ns - imu[i - 1].t_ns) {
+    // Uniform samples, a whole interval: the cubic's weights at the middle are (-1, 9, 9, -1)/16.
+    return (9.0 * (imu[i - 1].gyro + imu[i].gyro) - (imu[i - 2].gyro + imu[i + 1].gyro)) / 16.0 -
+           bias.gyro;
+  }
+  const double x = 0.5 * static_cast<double>((r0.t_ns - origin) + (r1.t_ns - origin));
+  Eigen::Vector3d gyro = Eigen::Vector3d::Zero();
+  for (size_t j = first; j <= last; ++j) {
+    double weight = 1.0;  // Lagrange basis polynomial of node j at x.
+    const double x_j = static_cast<double>(imu[j].t_ns - origin);
+    for (size_t l = first; l <= last; ++l) {
+      if (l == j) continue;
+      const double x_l = static_cast<double>(imu[l].t_ns - origin);
+      weight *= (x - x_l) / (x_j - x_l);
+    }
+    gyro += weight * imu[j].gyro;
+  }
+  return gyro - bias.gyro;  // The weights sum to 1.
+}
+
+template <IntegrationMethod kMethod>
+void Step(const std::vector<ImuSample>& imu,
+          size_t i,
           const Reading& r0,
           const Reading& r1,
+          const ImuBias& bias,
           const Eigen::Vector3d& g_w,
           Motion* m) {
   const double h = static_cast<double>(r1.t_ns - r0.t_ns) * 1e-9;
-  switch (method) {
-    case IntegrationMethod::kEuler:
-      EulerStep(r0, g_w, h, m);
-      return;
-    case IntegrationMethod::kMidpoint:
-      MidpointStep(r0, r1, g_w, h, m);
-      return;
-    case IntegrationMethod::kRk4:
-      Rk4Step(r0, r1, g_w, h, m);
-      return;
+  if constexpr (kMethod == IntegrationMethod::kEuler) {
+    EulerStep(r0, g_w, h, m);
+  } else if constexpr (kMethod == IntegrationMethod::kMidpoint) {
+    MidpointStep(r0, r1, g_w, h, m);
+  } else {
+    Reading mid;
+    mid.t_ns = r0.t_ns + (r1.t_ns - r0.t_ns) / 2;
+    mid.w = MidGyro(imu, i, r0, r1, bias);
+    mid.a = 0.5 * (r0.a + r1.a);
+    Rk4Step(r0, mid, r1, g_w, h, m);
   }
 }
 
@@ -264,13 +306,13 @@ NavState Integrate(const std::vector<ImuSample>& imu,
   Reading previous = Interpolated(imu, i, start.t_ns, bias);
   for (; i < imu.size() && imu[i].t_ns < end_ns; ++i) {
     const Reading next = Corrected(imu[i], bias);
-    Step(kMethod, previous, next, g_w, &m);
+    Step<kMethod>(imu, i, previous, next, bias, g_w, &m);
     if (trajectory != nullptr) trajectory->push_back(ToNavState(next.t_ns, m));
     previous = next;
   }
   // The last step ends at end_ns, on or before imu[i].
   const Reading last = Interpolated(imu, i, end_ns, bias);
-  Step(kMethod, previous, last, g_w, &m);
+  Step<kMethod>(imu, i, previous, last, bias, g_w, &m);
   const NavState end = ToNavState(end_ns, m);
   if (trajectory != nullptr) trajectory->push_back(end);
   return end;

@@ -54,11 +54,18 @@ AnalyticData MakeAnalyticData(const AnalyticTrajectory& trajectory,
   return data;
 }
 
-double FinalPositionError(const AnalyticData& data, IntegrationMethod method) {
+NavState IntegrateAll(const AnalyticData& data, IntegrationMethod method) {
   const NavState start = NavStateFromGroundTruth(data.truth.front());
-  const NavState end =
-      IntegrateImu(data.imu, start, data.imu.back().t_ns, ImuBias(), kGravityW, method);
-  return (end.p_w_s - data.truth.back().p_w_s).norm();
+  return IntegrateImu(data.imu, start, data.imu.back().t_ns, ImuBias(), kGravityW, method);
+}
+
+double FinalPositionError(const AnalyticData& data, IntegrationMethod method) {
+  return (IntegrateAll(data, method).p_w_s - data.truth.back().p_w_s).norm();
+}
+
+double FinalRotationError(const AnalyticData& data, IntegrationMethod method) {
+  const SO3d R_true = SO3d::FromQuaternion(data.truth.back().q_w_s);
+  return (R_true.inverse() * IntegrateAll(data, method).R_w_s).Log().norm();
 }
 
 constexpr IntegrationMethod kAllMethods[] = {
@@ -249,9 +256,10 @@ TEST(IntegrateImu, MidpointBeatsEulerTenfoldAndRk4BeatsMidpointOnVioCourse) {
   EXPECT_LE(rk4, midpoint);
 }
 
-// Doubling the rate divides the error by 2^order. Bounds: Euler order 1 (ratio 2), midpoint and
-// RK4 order 2 (ratio 4; RK4 is limited by the linear interpolation of the readings, see
-// integrate.h). The ranges allow +-25% for the higher-order terms still present at 100 Hz.
+// Doubling the rate divides the error by 2^order. Position bounds: Euler order 1 (ratio 2),
+// midpoint and RK4 order 2 (ratio 4; RK4 is limited by the linear interpolation of the
+// accelerometer, see integrate.h). The ranges allow +-25% for the higher-order terms still
+// present at 100 Hz.
 TEST(IntegrateImu, ErrorsShrinkAtTheExpectedOrderWhenTheRateDoubles) {
   struct Expected {
     IntegrationMethod method;
@@ -289,6 +297,19 @@ TEST(IntegrateImu, ErrorsShrinkAtTheExpectedOrderWhenTheRateDoubles) {
       EXPECT_LE(e200 / e400, e.max_ratio)
           << trajectory.name() << " " << IntegrationMethodName(e.method);
     }
+    // Rotation: RK4 with the cubic mid-step gyro is order 4 (ratio 16), midpoint order 2.
+    const double r100 = FinalRotationError(data[0], IntegrationMethod::kRk4);
+    const double r200 = FinalRotationError(data[1], IntegrationMethod::kRk4);
+    const double m200 = FinalRotationError(data[1], IntegrationMethod::kMidpoint);
+    std::printf(
+        "%s final rotation error [rad]: rk4 %.3g (100 Hz) %.3g (200 Hz), midpoint %.3g "
+        "(200 Hz)\n",
+        trajectory.name().c_str(),
+        r100,
+        r200,
+        m200);
+    EXPECT_GE(r100 / r200, 12.0) << trajectory.name();
+    EXPECT_LT(r200, m200 / 100.0) << trajectory.name();
   }
 }
 
