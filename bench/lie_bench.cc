@@ -5,10 +5,10 @@
 // Inputs cycle through a fixed, seeded set of generic arguments (angles uniform in [0, pi),
 // translations ~ N(0, 3^2)) so that branch prediction sees realistic data; the small-angle
 // series branches are measured separately (the *Small variants, |phi| = 1e-4 rad).
+#include <benchmark/benchmark.h>
+
 #include <random>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"
@@ -24,7 +24,8 @@ std::vector<Vector6d> MakeTwists(double max_angle) {
   std::uniform_real_distribution<double> uniform(0.0, max_angle);
   std::vector<Vector6d> out;
   for (int i = 0; i < kNumInputs; ++i) {
-    const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    const Eigen::Vector3d axis =
+        Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
     Vector6d xi;
     xi << 3.0 * normal(rng), 3.0 * normal(rng), 3.0 * normal(rng), uniform(rng) * axis;
     out.push_back(xi);

@@ -4,9 +4,9 @@
 // right-perturbation helpers on SE(3) and SO(3).
 #include "testing/numeric_diff.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"

@@ -5,13 +5,13 @@
 // derivative through PoseFromBlock times PlusJacobian is the right-perturbation Jacobian.
 #include "splinecal/lie/se3_manifold.h"
 
-#include <cmath>
-#include <random>
-#include <vector>
-
 #include <ceres/jet.h>
 #include <ceres/manifold_test_utils.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
 
 #include "testing/numeric_diff.h"
 
@@ -67,7 +67,8 @@ void MatchHemisphere(const Vector& x, int quaternion_offset, Vector* y) {
 // A tangent [rho; phi] with |phi| = angle (random axis) and rho with N(0, scale^2) entries.
 Vector RandomDelta(double angle, double scale, std::mt19937* rng) {
   std::normal_distribution<double> normal;
-  const Eigen::Vector3d axis = Eigen::Vector3d(normal(*rng), normal(*rng), normal(*rng)).normalized();
+  const Eigen::Vector3d axis =
+      Eigen::Vector3d(normal(*rng), normal(*rng), normal(*rng)).normalized();
   Vector delta(6);
   delta << scale * normal(*rng), scale * normal(*rng), scale * normal(*rng), angle * axis;
   return delta;
@@ -173,8 +174,7 @@ TEST(SO3Manifold, InvariantsHoldAtRandomAndEdgePoints) {
   std::mt19937 rng(25);
   std::uniform_real_distribution<double> angle(0.0, kPi - 1e-3);
   std::vector<Eigen::Quaterniond> points = {
-      Eigen::Quaterniond::Identity(),
-      Eigen::Quaterniond(1e-12, std::sqrt(1.0 - 1e-24), 0.0, 0.0)};
+      Eigen::Quaterniond::Identity(), Eigen::Quaterniond(1e-12, std::sqrt(1.0 - 1e-24), 0.0, 0.0)};
   for (int trial = 0; trial < kNumTrials; ++trial) points.push_back(RandomQuaternion(&rng));
   for (const Eigen::Quaterniond& q : points) {
     Vector x(4);

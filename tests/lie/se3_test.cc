@@ -5,13 +5,13 @@
 // instantiation plus Jet derivatives of Exp against the analytic right Jacobian.
 #include "splinecal/lie/se3.h"
 
-#include <cmath>
-#include <random>
-#include <vector>
-
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "testing/numeric_diff.h"
 
@@ -38,9 +38,17 @@ constexpr double kJetValueTolerance = 1e-13;
 constexpr double kPi = M_PI;
 
 const std::vector<double>& EdgeAngles() {
-  static const std::vector<double> angles = {
-      0.0, 1e-9, 1e-6, 1e-3, 0.1 * (1.0 - 1e-12), 0.1 * (1.0 + 1e-12), 0.3, 1.0, 2.5,
-      kPi - 1e-6, kPi - 1e-7};
+  static const std::vector<double> angles = {0.0,
+                                             1e-9,
+                                             1e-6,
+                                             1e-3,
+                                             0.1 * (1.0 - 1e-12),
+                                             0.1 * (1.0 + 1e-12),
+                                             0.3,
+                                             1.0,
+                                             2.5,
+                                             kPi - 1e-6,
+                                             kPi - 1e-7};
   return angles;
 }
 
@@ -69,7 +77,8 @@ std::vector<Vector6d> RandomTwists(int count, double max_angle, uint32_t seed) {
   std::uniform_real_distribution<double> uniform(0.0, max_angle);
   std::vector<Vector6d> out;
   for (int i = 0; i < count; ++i) {
-    const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    const Eigen::Vector3d axis =
+        Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
     const Eigen::Vector3d rho(3.0 * normal(rng), 3.0 * normal(rng), 3.0 * normal(rng));
     Vector6d xi;
     xi << rho, uniform(rng) * axis;

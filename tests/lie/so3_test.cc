@@ -5,13 +5,13 @@
 // analytic Jacobians.
 #include "splinecal/lie/so3.h"
 
-#include <cmath>
-#include <random>
-#include <vector>
-
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "testing/numeric_diff.h"
 
@@ -45,16 +45,24 @@ constexpr double kPi = M_PI;
 // Angles [rad] at which every property is checked: zero, tiny, around the series switch, generic,
 // large, and just below pi.
 const std::vector<double>& EdgeAngles() {
-  static const std::vector<double> angles = {
-      0.0, 1e-9, 1e-6, 1e-3 * (1.0 - 1e-9), 1e-3 * (1.0 + 1e-9), 0.3, 1.0, 2.5,
-      kPi - 1e-6, kPi - 1e-7};
+  static const std::vector<double> angles = {0.0,
+                                             1e-9,
+                                             1e-6,
+                                             1e-3 * (1.0 - 1e-9),
+                                             1e-3 * (1.0 + 1e-9),
+                                             0.3,
+                                             1.0,
+                                             2.5,
+                                             kPi - 1e-6,
+                                             kPi - 1e-7};
   return angles;
 }
 
 const std::vector<Eigen::Vector3d>& Axes() {
-  static const std::vector<Eigen::Vector3d> axes = {
-      Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(),
-      Eigen::Vector3d(1.0, -2.0, 0.5).normalized(), Eigen::Vector3d(-0.3, 0.1, 0.9).normalized()};
+  static const std::vector<Eigen::Vector3d> axes = {Eigen::Vector3d::UnitX(),
+                                                    Eigen::Vector3d::UnitZ(),
+                                                    Eigen::Vector3d(1.0, -2.0, 0.5).normalized(),
+                                                    Eigen::Vector3d(-0.3, 0.1, 0.9).normalized()};
   return axes;
 }
 
@@ -73,7 +81,8 @@ std::vector<Eigen::Vector3d> RandomRotationVectors(int count, double max_angle, 
   std::uniform_real_distribution<double> uniform(0.0, max_angle);
   std::vector<Eigen::Vector3d> out;
   for (int i = 0; i < count; ++i) {
-    const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    const Eigen::Vector3d axis =
+        Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
     out.push_back(uniform(rng) * axis);
   }
   return out;
@@ -365,7 +374,8 @@ TEST(SO3Jet, ExpDerivativeAtGenericPointsIsRightJacobian) {
   // Exp(phi + d) p ~ Exp(phi) Exp(Jr d) p ~ R p - R Hat(p) Jr d.
   const Eigen::Vector3d p(1.0, -2.0, 0.5);
   const std::vector<Eigen::Vector3d> points = {
-      Eigen::Vector3d(0.3, -0.2, 0.5), Eigen::Vector3d(1e-9, 0.0, 0.0),
+      Eigen::Vector3d(0.3, -0.2, 0.5),
+      Eigen::Vector3d(1e-9, 0.0, 0.0),
       (kPi - 1e-6) * Eigen::Vector3d(1.0, 2.0, 3.0).normalized()};
   for (const Eigen::Vector3d& phi : points) {
     const SO3<Jet3> r = SO3<Jet3>::Exp(JetVector(phi));
@@ -379,7 +389,8 @@ TEST(SO3Jet, LogDerivativeIsRightJacobianInverse) {
   // d Log(R Exp(d)) / d d at d = 0 = Jr^-1(Log R), including R = identity (series branch of
   // both Exp and Log).
   const std::vector<Eigen::Vector3d> points = {
-      Eigen::Vector3d::Zero(), Eigen::Vector3d(0.3, -0.2, 0.5),
+      Eigen::Vector3d::Zero(),
+      Eigen::Vector3d(0.3, -0.2, 0.5),
       (kPi - 1e-3) * Eigen::Vector3d(-1.0, 0.5, 0.2).normalized()};
   for (const Eigen::Vector3d& phi : points) {
     const SO3<Jet3> r = SO3d::Exp(phi).cast<Jet3>();

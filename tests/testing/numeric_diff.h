@@ -27,13 +27,13 @@
 #ifndef SPLINECAL_TESTS_TESTING_NUMERIC_DIFF_H_
 #define SPLINECAL_TESTS_TESTING_NUMERIC_DIFF_H_
 
+#include <glog/logging.h>
+
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
-
-#include <Eigen/Core>
-#include <glog/logging.h>
 
 namespace splinecal {
 namespace testutil {

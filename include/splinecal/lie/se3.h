@@ -24,10 +24,9 @@
 #ifndef SPLINECAL_LIE_SE3_H_
 #define SPLINECAL_LIE_SE3_H_
 
+#include <Eigen/Core>
 #include <cmath>
 #include <type_traits>
-
-#include <Eigen/Core>
 
 #include "splinecal/lie/so3.h"
 #include "splinecal/lie/types.h"
@@ -79,10 +78,9 @@ SE3JacobianCoefficients<T> ComputeSE3JacobianCoefficients(const T& theta_sq) {
     const T t8 = t4 * t4;
     k.a = T(0.5) - t2 / T(24.0) + t4 / T(720.0) - t6 / T(40320.0) + t8 / T(3628800.0);
     k.b = T(1.0 / 6.0) - t2 / T(120.0) + t4 / T(5040.0) - t6 / T(362880.0) + t8 / T(39916800.0);
-    k.c = T(1.0 / 12.0) + t2 / T(720.0) + t4 / T(30240.0) + t6 / T(1209600.0) +
-          t8 / T(47900160.0);
-    k.c2 = T(1.0 / 24.0) - t2 / T(720.0) + t4 / T(40320.0) - t6 / T(3628800.0) +
-           t8 / T(479001600.0);
+    k.c = T(1.0 / 12.0) + t2 / T(720.0) + t4 / T(30240.0) + t6 / T(1209600.0) + t8 / T(47900160.0);
+    k.c2 =
+        T(1.0 / 24.0) - t2 / T(720.0) + t4 / T(40320.0) - t6 / T(3628800.0) + t8 / T(479001600.0);
     k.c3 = T(1.0 / 120.0) - t2 / T(2520.0) + t4 / T(120960.0) - t6 / T(9979200.0) +
            t8 / T(1245404160.0);
     return k;
@@ -126,9 +124,9 @@ Matrix3<T> SE3QBlock(const Vector3<T>& rho,
 }  // namespace internal
 
 // Hat(xi) = [[Hat(phi), rho], [0, 0]] for xi = [rho; phi] (4x4 twist matrix).
-template <typename Derived,
-          std::enable_if_t<Derived::RowsAtCompileTime == 6 && Derived::ColsAtCompileTime == 1,
-                           int> = 0>
+template <
+    typename Derived,
+    std::enable_if_t<Derived::RowsAtCompileTime == 6 && Derived::ColsAtCompileTime == 1, int> = 0>
 Matrix4<typename Derived::Scalar> Hat(const Eigen::MatrixBase<Derived>& xi) {
   using T = typename Derived::Scalar;
   Matrix4<T> m = Matrix4<T>::Zero();
@@ -138,9 +136,9 @@ Matrix4<typename Derived::Scalar> Hat(const Eigen::MatrixBase<Derived>& xi) {
 }
 
 // Vee(Hat(xi)) = xi for a 4x4 twist matrix [[skew, rho], [0, 0]].
-template <typename Derived,
-          std::enable_if_t<Derived::RowsAtCompileTime == 4 && Derived::ColsAtCompileTime == 4,
-                           int> = 0>
+template <
+    typename Derived,
+    std::enable_if_t<Derived::RowsAtCompileTime == 4 && Derived::ColsAtCompileTime == 4, int> = 0>
 Vector6<typename Derived::Scalar> Vee(const Eigen::MatrixBase<Derived>& m) {
   using T = typename Derived::Scalar;
   Vector6<T> xi;

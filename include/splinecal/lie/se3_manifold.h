@@ -30,9 +30,10 @@
 #ifndef SPLINECAL_LIE_SE3_MANIFOLD_H_
 #define SPLINECAL_LIE_SE3_MANIFOLD_H_
 
+#include <ceres/manifold.h>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <ceres/manifold.h>
 
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"
@@ -130,10 +131,10 @@ class SE3Manifold : public ceres::Manifold {
                                    double* tangent_matrix) const override {
     if (num_rows == 0) return true;
     const SE3d pose = PoseFromBlock(x);
-    Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>> a(ambient_matrix,
-                                                                                  num_rows, 7);
-    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>> t(tangent_matrix,
-                                                                            num_rows, 6);
+    Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>> a(
+        ambient_matrix, num_rows, 7);
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>> t(
+        tangent_matrix, num_rows, 6);
     t.leftCols<3>() = a.leftCols<3>() * pose.so3().matrix();
     t.rightCols<3>() =
         a.rightCols<4>() * internal::QuaternionRightPlusJacobian(pose.so3().quaternion());

@@ -24,12 +24,12 @@
 #ifndef SPLINECAL_LIE_SO3_H_
 #define SPLINECAL_LIE_SO3_H_
 
-#include <cmath>
-#include <type_traits>
+#include <glog/logging.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <glog/logging.h>
+#include <cmath>
+#include <type_traits>
 
 #include "splinecal/lie/types.h"
 
@@ -87,9 +87,9 @@ SO3JacobianCoefficients<T> ComputeSO3JacobianCoefficients(const T& theta_sq, boo
 
 // Hat(v) = [v]x = [[0, -v3, v2], [v3, 0, -v1], [-v2, v1, 0]], so that Hat(v) p = v x p.
 // Accepts any 3-vector expression.
-template <typename Derived,
-          std::enable_if_t<Derived::RowsAtCompileTime == 3 && Derived::ColsAtCompileTime == 1,
-                           int> = 0>
+template <
+    typename Derived,
+    std::enable_if_t<Derived::RowsAtCompileTime == 3 && Derived::ColsAtCompileTime == 1, int> = 0>
 Matrix3<typename Derived::Scalar> Hat(const Eigen::MatrixBase<Derived>& v) {
   using T = typename Derived::Scalar;
   Matrix3<T> m;
@@ -102,9 +102,9 @@ Matrix3<typename Derived::Scalar> Hat(const Eigen::MatrixBase<Derived>& v) {
 }
 
 // Vee(Hat(v)) = v. Reads the three entries below the diagonal; m must be skew-symmetric.
-template <typename Derived,
-          std::enable_if_t<Derived::RowsAtCompileTime == 3 && Derived::ColsAtCompileTime == 3,
-                           int> = 0>
+template <
+    typename Derived,
+    std::enable_if_t<Derived::RowsAtCompileTime == 3 && Derived::ColsAtCompileTime == 3, int> = 0>
 Vector3<typename Derived::Scalar> Vee(const Eigen::MatrixBase<Derived>& m) {
   return Vector3<typename Derived::Scalar>(m(2, 1), m(0, 2), m(1, 0));
 }
