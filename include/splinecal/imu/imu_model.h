@@ -99,19 +99,15 @@ inline void PredictAccelWithJacobian(const SegmentKnots<double>& knots,
   request.q_coefficients = J_accel_ctrl != nullptr;
   internal::SegmentTrace<double> trace;
   internal::ForwardPass(knots, segment, request, &trace);
-  const Eigen::Matrix3d R_w_s = internal::SegmentRotation(knots, trace);
   const Eigen::Vector3d a_s = trace.av[2] + trace.w[2].cross(trace.v[2]);
-  const Eigen::Vector3d g_s = R_w_s.transpose() * g_w;
+  const Eigen::Vector3d g_s = internal::RotateToBody(knots, trace, g_w);
   if (accel != nullptr) *accel = a_s - g_s + b_a;
-  if (J_accel_gw != nullptr) *J_accel_gw = -R_w_s.transpose();
+  if (J_accel_gw != nullptr) {
+    *J_accel_gw = -internal::SegmentRotation(knots, trace).transpose();
+  }
   if (J_accel_ctrl == nullptr) return;
   internal::CheckJacobianCaches(knots);
-  internal::AccelerationTypeJacobian(knots,
-                                     segment,
-                                     trace,
-                                     Eigen::Matrix3d::Identity(),
-                                     -Hat(g_s),
-                                     J_accel_ctrl);
+  internal::SpecificForceJacobian(knots, segment, trace, g_s, J_accel_ctrl);
 }
 
 // The same on an SE3Spline<double>.

@@ -401,6 +401,17 @@ Matrix3<T> SegmentRotation(const SegmentKnots<T>& knots, const SegmentTrace<T>& 
   return (*knots.R_first) * (trace.A[0].R * (trace.A[1].R * trace.A[2].R));
 }
 
+// R_w_s^T x_w = R_3^T R_2^T R_1^T R_0^T x_w (four matrix-vector products).
+template <typename T>
+Vector3<T> RotateToBody(const SegmentKnots<T>& knots,
+                        const SegmentTrace<T>& trace,
+                        const Vector3<T>& x_w) {
+  const Vector3<T> x_0 = knots.R_first->transpose() * x_w;
+  const Vector3<T> x_1 = trace.A[0].R.transpose() * x_0;
+  const Vector3<T> x_2 = trace.A[1].R.transpose() * x_1;
+  return trace.A[2].R.transpose() * x_2;
+}
+
 // T_w_s = P_0 A_1 A_2 A_3 (quaternion product for the rotation; needs the translations).
 template <typename T>
 SE3<T> SegmentPose(const SegmentKnots<T>& knots, const SegmentTrace<T>& trace) {

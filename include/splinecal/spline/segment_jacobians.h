@@ -161,47 +161,31 @@ inline void RotationSensitivities(const SegmentKnots<double>& knots,
   (*S)[0] = R23t * trace.A[0].R.transpose();
 }
 
-// Gradients of a_s w.r.t. Omega_1..3, pre-multiplied by L (derivation, step 5). The trace must
-// hold the full recursion (rates, linear, acceleration, translation, q_coefficients).
-inline void SpecificAccelerationGradients(const SegmentKnots<double>& knots,
-                                          const Segment<double>& segment,
-                                          const SegmentTrace<double>& trace,
-                                          const Eigen::Matrix3d& L,
-                                          std::array<Rows3x6, 3>* G_Omega) {
-  Rows3x6 G_xi;
-  G_xi.v = MulHat(L, trace.w[2]);
-  G_xi.w = -MulHat(L, trace.v[2]);
-  Rows3x6 G_alpha;
-  G_alpha.v = L;
-  G_alpha.w.setZero();
-  for (int j = 2; j >= 1; --j) {
-    const KnotDelta<double>& delta = knots.deltas[j];
-    const ScaledExp<double>& A = trace.A[j];
-    const double bd = segment.b_dot[j + 1];
-    const double bdd = segment.b_ddot[j + 1];
-    // G_y = G_xi - bdot G_alpha ad(Omega_j)
-    Rows3x6 G_y = G_xi;
-    AddScaled(-bd, MulAd(G_alpha, delta.rho, delta.phi), &G_y);
-    // H = G_y ad(y) + G_alpha ad(z); G_Omega_j = bdot G_xi + bddot G_alpha + bdot G_alpha ad(y)
-    //     + H E_j
-    Rows3x6 H = MulAd(G_y, trace.yv[j], trace.yw[j]);
-    const Rows3x6 Gz = MulAd(G_alpha, trace.zv[j], trace.zw[j]);
-    H.v += Gz.v;
-    H.w += Gz.w;
-    Eigen::Matrix3d b_Jr;
-    ScaledRightJacobianSO3(delta, A, &b_Jr);
-    const Eigen::Matrix3d b_Qr = A.b * ScaledQRight(delta, knots.jacobians[j], A);
-    Rows3x6& out = (*G_Omega)[j];
-    out = MulBlockTri(H, b_Jr, b_Qr);
-    AddScaled(bd, G_xi, &out);
-    AddScaled(bdd, G_alpha, &out);
-    AddScaled(bd, MulAd(G_alpha, trace.yv[j], trace.yw[j]), &out);
-    G_xi = MulAdInverse(G_y, A.R, A.t);
-    G_alpha = MulAdInverse(G_alpha, A.R, A.t);
-  }
-  Rows3x6& out = (*G_Omega)[0];
-  out.v = segment.b_dot[1] * G_xi.v + segment.b_ddot[1] * G_alpha.v;
-  out.w = segment.b_dot[1] * G_xi.w + segment.b_ddot[1] * G_alpha.w;
+// a^ b^ = b a^T - (a . b) I.
+inline Eigen::Matrix3d HatHat(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  Eigen::Matrix3d m = b * a.transpose();
+  m.diagonal().array() -= a.dot(b);
+  return m;
+}
+
+// Hat(a) M: column c is a x M.col(c).
+inline Eigen::Matrix3d HatMul(const Eigen::Vector3d& a, const Eigen::Matrix3d& M) {
+  Eigen::Matrix3d out;
+  out.col(0) = a.cross(M.col(0));
+  out.col(1) = a.cross(M.col(1));
+  out.col(2) = a.cross(M.col(2));
+  return out;
+}
+
+// m += s Hat(x).
+inline void AddHat(double s, const Eigen::Vector3d& x, Eigen::Matrix3d* m) {
+  const Eigen::Vector3d sx = s * x;
+  (*m)(0, 1) -= sx(2);
+  (*m)(0, 2) += sx(1);
+  (*m)(1, 0) += sx(2);
+  (*m)(1, 2) -= sx(0);
+  (*m)(2, 0) -= sx(1);
+  (*m)(2, 1) += sx(0);
 }
 
 inline TraceRequest FullTraceRequest() {
@@ -214,19 +198,142 @@ inline TraceRequest FullTraceRequest() {
   return request;
 }
 
-// a_s-type outputs o with do = L da_s + N dphi_T (see the header comment, step 5).
-// Returns through *J; the caller has run the full forward pass into `trace`.
-inline void AccelerationTypeJacobian(const SegmentKnots<double>& knots,
-                                     const Segment<double>& segment,
-                                     const SegmentTrace<double>& trace,
-                                     const Eigen::Matrix3d& L,
-                                     const Eigen::Matrix3d& N,
-                                     ControlPoseJacobian<3>* J) {
+// Gradients (3x6 each) of f = a_s - R_w_s^T g_w (or of a_s alone when g_s == nullptr) with
+// respect to Omega_1..3 (G[0..2]), and the direct rotation block on d_0 (*J0_rot, the
+// [0, N S_0] of step 5; zero without gravity). g_s = R_w_s^T g_w. The trace must hold the full
+// forward pass (FullTraceRequest).
+//
+// This is step 5 of the header comment with its structure exploited (L = I):
+//  * step 3 starts from G_alpha = [I, 0] and G_xi = [[w]x, -[v]x], so G_y = [[a]x, [c]x] with
+//    a = w_3 - bdot_3 phi_3 = y_3.w and c = -(v_3 + bdot_3 rho_3), and every product with an
+//    ad() is a product of two hats: [a]x [b]x = b a^T - (a.b) I.
+//  * after step 3, G_xi = R_3^T [[p]x, [q]x - [p]x [t_3]x] (p = R_3 a, q = R_3 c) and
+//    G_alpha = R_3^T [I, -[t_3]x], since [a]x R^T = R^T [R a]x. Step 2 runs on the bracketed
+//    (primed) gradients, which keep that cheap structure, and R_3^T is applied once at the end.
+//    The gravity terms N S_j with N = -[g_s]x move into the primed frame as -[R_3 g_s]x.
+inline void SpecificForceGradients(const SegmentKnots<double>& knots,
+                                   const Segment<double>& segment,
+                                   const SegmentTrace<double>& trace,
+                                   const Eigen::Vector3d* g_s,
+                                   std::array<Rows3x6, 3>* G,
+                                   Eigen::Matrix3d* J0_rot) {
+  const ScaledExp<double>& A1 = trace.A[0];
+  const ScaledExp<double>& A2 = trace.A[1];
+  const ScaledExp<double>& A3 = trace.A[2];
+  const KnotDelta<double>& D2 = knots.deltas[1];
+  const KnotDelta<double>& D3 = knots.deltas[2];
+  Eigen::Matrix3d b_Jr;
+  Eigen::Matrix3d b_Qr;
+
+  // Step 3 (Omega_3).
+  const double bd3 = segment.b_dot[3];
+  const double bdd3 = segment.b_ddot[3];
+  const Eigen::Vector3d& v3 = trace.v[2];
+  const Eigen::Vector3d& yv3 = trace.yv[2];
+  const Eigen::Vector3d& yw3 = trace.yw[2];
+  const Eigen::Vector3d a = yw3;
+  const Eigen::Vector3d c = -(v3 + bd3 * D3.rho);
+  Eigen::Matrix3d Hv = HatHat(a, yw3);  // H = G_y ad(y) + G_alpha ad(z)
+  AddHat(1.0, trace.zw[2], &Hv);
+  Eigen::Matrix3d Hw = HatHat(a, yv3) + HatHat(c, yw3);
+  AddHat(1.0, trace.zv[2], &Hw);
+  ScaledRightJacobianSO3(D3, A3, &b_Jr);
+  b_Qr = A3.b * ScaledQRight(D3, knots.jacobians[2], A3);
+  Rows3x6& G3 = (*G)[2];
+  G3.v.noalias() = Hv * b_Jr;  // + bdot G_xi + bddot G_alpha + bdot G_alpha ad(y)
+  AddHat(bd3, trace.w[2] + yw3, &G3.v);
+  G3.v.diagonal().array() += bdd3;
+  G3.w.noalias() = Hv * b_Qr;
+  G3.w.noalias() += Hw * b_Jr;
+  AddHat(bd3, yv3 - v3, &G3.w);
+  if (g_s != nullptr) G3.w -= HatMul(*g_s, b_Jr);  // N S_3
+
+  // Step 2 (Omega_2), primed: G = R_3^T G'.
+  const Eigen::Vector3d p = A3.R * a;
+  const Eigen::Vector3d q = A3.R * c;
+  const Eigen::Vector3d& t = A3.t;
+  const double bd2 = segment.b_dot[2];
+  const double bdd2 = segment.b_ddot[2];
+  const Eigen::Vector3d& yv2 = trace.yv[1];
+  const Eigen::Vector3d& yw2 = trace.yw[1];
+  const Eigen::Vector3d e = p - bd2 * D2.phi;  // G'_y = [[e]x, M]
+  const Eigen::Matrix3d pt = HatHat(p, t);
+  Eigen::Matrix3d M = bd2 * HatHat(t, D2.phi) - pt;
+  AddHat(1.0, q - bd2 * D2.rho, &M);
+  Eigen::Matrix3d Hv2 = HatHat(e, yw2);
+  AddHat(1.0, trace.zw[1], &Hv2);
+  Eigen::Matrix3d Hw2 = HatHat(e, yv2) + MulHat(M, yw2) - HatHat(t, trace.zw[1]);
+  AddHat(1.0, trace.zv[1], &Hw2);
+  ScaledRightJacobianSO3(D2, A2, &b_Jr);
+  b_Qr = A2.b * ScaledQRight(D2, knots.jacobians[1], A2);
+  Rows3x6 G2p;
+  G2p.v.noalias() = Hv2 * b_Jr;
+  AddHat(bd2, p + yw2, &G2p.v);
+  G2p.v.diagonal().array() += bdd2;
+  G2p.w.noalias() = Hv2 * b_Qr;
+  G2p.w.noalias() += Hw2 * b_Jr;
+  G2p.w -= bd2 * (pt + HatHat(t, yw2));
+  AddHat(bd2, q + yv2, &G2p.w);
+  AddHat(-bdd2, t, &G2p.w);
+  Eigen::Vector3d g_p = Eigen::Vector3d::Zero();
+  if (g_s != nullptr) {
+    g_p = A3.R * (*g_s);
+    G2p.w -= HatMul(g_p, b_Jr);  // N S_2 (primed)
+  }
+
+  // Step 1 (Omega_1): G'_Omega1 = bdot_1 G'_y Ad(A_2^-1) + bddot_1 G'_alpha Ad(A_2^-1).
+  const Eigen::Matrix3d R2t = A2.R.transpose();
+  const double bd1 = segment.b_dot[1];
+  const double bdd1 = segment.b_ddot[1];
+  Rows3x6 G1p;
+  G1p.v = bd1 * HatMul(e, R2t) + bdd1 * R2t;
+  G1p.w.noalias() = bd1 * (M * R2t);
+  G1p.w -= MulHat(G1p.v, A2.t) + bdd1 * HatMul(t, R2t);
+  const Eigen::Matrix3d R3t = A3.R.transpose();
+  if (g_s != nullptr) {
+    ScaledRightJacobianSO3(knots.deltas[0], A1, &b_Jr);
+    const Eigen::Matrix3d R21t = R2t * A1.R.transpose();
+    G1p.w -= HatMul(g_p, R2t * b_Jr);  // N S_1 (primed)
+    J0_rot->noalias() = -R3t * HatMul(g_p, R21t);  // N S_0
+  } else {
+    J0_rot->setZero();
+  }
+  (*G)[1].v.noalias() = R3t * G2p.v;
+  (*G)[1].w.noalias() = R3t * G2p.w;
+  (*G)[0].v.noalias() = R3t * G1p.v;
+  (*G)[0].w.noalias() = R3t * G1p.w;
+}
+
+// Jacobian of the specific force f = R_w_s^T (a_w - g_w) (without bias) w.r.t. the control
+// poses; the trace holds the full forward pass.
+inline void SpecificForceJacobian(const SegmentKnots<double>& knots,
+                                  const Segment<double>& segment,
+                                  const SegmentTrace<double>& trace,
+                                  const Eigen::Vector3d& g_s,
+                                  ControlPoseJacobian<3>* J) {
   std::array<Rows3x6, 3> G;
-  SpecificAccelerationGradients(knots, segment, trace, L, &G);
+  Eigen::Matrix3d J0_rot;
+  SpecificForceGradients(knots, segment, trace, &g_s, &G, &J0_rot);
+  ChainToControlPoses(knots, G, J0_rot, J);
+}
+
+// Jacobian of a_w = R_w_s a_s: L = R_w_s, N = -R_w_s [a_s]x (step 5).
+inline void WorldAccelerationJacobian(const SegmentKnots<double>& knots,
+                                      const Segment<double>& segment,
+                                      const SegmentTrace<double>& trace,
+                                      const Eigen::Matrix3d& R_w_s,
+                                      const Eigen::Vector3d& a_s,
+                                      ControlPoseJacobian<3>* J) {
+  std::array<Rows3x6, 3> G;
+  Eigen::Matrix3d unused;
+  SpecificForceGradients(knots, segment, trace, nullptr, &G, &unused);
   std::array<Eigen::Matrix3d, 4> S;
   RotationSensitivities(knots, trace, &S);
-  for (int j = 0; j < 3; ++j) G[j].w += N * S[j + 1];
+  const Eigen::Matrix3d N = -MulHat(R_w_s, a_s);
+  for (int j = 0; j < 3; ++j) {
+    G[j].v = R_w_s * G[j].v;
+    G[j].w = R_w_s * G[j].w + N * S[j + 1];
+  }
   ChainToControlPoses(knots, G, N * S[0], J);
 }
 
@@ -346,8 +453,7 @@ inline void EvaluateLinearAccelerationJacobian(const SegmentKnots<double>& knots
   if (a_w != nullptr) *a_w = R_w_s * a_s;
   if (J_aw_ctrl == nullptr) return;
   internal::CheckJacobianCaches(knots);
-  internal::AccelerationTypeJacobian(
-      knots, segment, trace, R_w_s, -internal::MulHat(R_w_s, a_s), J_aw_ctrl);
+  internal::WorldAccelerationJacobian(knots, segment, trace, R_w_s, a_s, J_aw_ctrl);
 }
 
 }  // namespace splinecal
