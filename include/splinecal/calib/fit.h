@@ -1,0 +1,283 @@
+// Continuous-time fit of IMU data and a pose source (`splinecal fit`): the spline's control
+// poses, the gyro and accelerometer biases, the gravity direction and, optionally, the time
+// offset and the extrinsic between the pose source and the IMU, with standard deviations from
+// ceres::Covariance and plain-words warnings where the data does not determine a parameter.
+// docs/fit.md is the user's guide; this comment is the contract.
+//
+// The problem (CONVENTIONS.md for frames, units and the IMU model):
+//
+//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2       every IMU sample in the overlap
+//           + sum_j |r_pose,j|^2                      every pose in the overlap
+//           + sum_m |r_rw,m|^2                        bias-spline segments (BiasModel::kSpline)
+//
+// over the control poses T_i of the spline T_w_s(t) (IMU clock; uniform knots, SE3Manifold),
+// the biases (constant or a bias spline), g_w (|g_w| fixed, GravityManifold), the time offset
+// t_imu = t_pose + time_offset (optional) and T_pose_imu = T_m_s (optional). Residuals:
+// calib/imu_costs.h (sigma = Kalibr density * sqrt(rate)), calib/pose_cost.h (pose_sigma_m,
+// pose_sigma_rad), calib/bias_costs.h (random walk).
+//
+// Initialisation (docs/fit.md, "Initialisation"): control poses by least squares on the poses
+// (calib/pose_fit.h); gravity g_w = g * unit(mean(a_w) - mean(R_w_s f)) over the whole overlap,
+// mean(a_w) = (v_end - v_start) / duration from that spline (the platform's accelerations
+// average out; no static period needed); biases zero; the time offset, when estimated, from the
+// best alignment of the gyro's and the poses' angular speed within +-max_time_offset_s; the
+// extrinsic rotation, when estimated, by hand-eye on relative rotations (calib/hand_eye.h).
+//
+// Errors. Throws splinecal::Error, with the likely cause in plain words, for: bad options;
+// IMU and pose time ranges that do not overlap; data too short for the knot spacing; gyro or
+// accelerometer units that disagree with the poses (deg/s vs rad/s, g vs m/s^2); a time offset
+// at the edge of its search range; and a solver failure (Ceres failed, or residuals far beyond
+// the noise: FitOptions::max_residual_noise_ratio).
+#ifndef SPLINECAL_CALIB_FIT_H_
+#define SPLINECAL_CALIB_FIT_H_
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "splinecal/calib/bias_costs.h"
+#include "splinecal/calib/pose_fit.h"
+#include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_sample.h"
+#include "splinecal/imu/noise.h"
+#include "splinecal/io/poses.h"
+#include "splinecal/lie/se3.h"
+#include "splinecal/spline/se3_spline.h"
+
+namespace splinecal {
+
+// How the IMU residuals are handed to Ceres (the same objective either way; calib/imu_costs.h).
+enum class ImuResidualLayout {
+  kPerSegment,  // one gyro and one accel block per spline segment (default, fastest)
+  kPerSample,   // one gyro and one accel block per IMU sample
+};
+
+enum class Differentiation {
+  kAnalytic,  // calib/imu_costs.h, calib/pose_cost.h analytic Jacobians (default)
+  kAutoDiff,  // their ceres::AutoDiffCostFunction twins, one block per sample (tests, bench)
+};
+
+// When a standard deviation exceeds its threshold the parameter is reported as not determined
+// by the data (FitResult::warnings says why, in plain words).
+struct ExcitationThresholds {
+  double gyro_bias_std_rad_s = 2e-3;
+  double accel_bias_std_m_s2 = 2e-2;
+  double gravity_direction_std_deg = 0.5;
+  double time_offset_std_s = 2e-3;
+  double extrinsic_translation_std_m = 1e-2;
+  double extrinsic_rotation_std_deg = 0.5;
+  // |correlation| above this between two estimated quantities: they cannot be told apart.
+  double max_correlation = 0.99;
+};
+
+struct FitOptions {
+  // Knot spacing dt [s]; 0 chooses it from the data (ChooseKnotSpacing).
+  double knot_spacing_s = 0.0;
+  // Gravity magnitude g [m/s^2]; g_w keeps this norm.
+  double gravity_m_s2 = kDefaultGravity;
+  // Initial g_w (its norm is replaced by g); unset: from the specific force (file comment).
+  std::optional<Eigen::Vector3d> initial_gravity_w;
+  // IMU noise (Kalibr densities). Weights use density * sqrt(rate) with the rate measured from
+  // the IMU timestamps; noise.update_rate_hz is only compared with it (a warning if they differ).
+  ImuNoise noise;
+  // Pose source noise: position [m] per axis, rotation [rad] per axis.
+  double pose_sigma_m = 1e-3;
+  double pose_sigma_rad = 1e-3;
+  // Biases.
+  BiasModel bias_model = BiasModel::kConstant;
+  double bias_knot_spacing_s = 1.0;  // bias spline; rounded to a multiple of dt
+  Eigen::Vector3d initial_gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d initial_accel_bias = Eigen::Vector3d::Zero();
+  // Time offset t_imu = t_pose + time_offset [s]: the fixed value, or the initial guess when
+  // estimated (then also the centre of the correlation search).
+  bool estimate_time_offset = false;
+  double time_offset_s = 0.0;
+  double max_time_offset_s = 0.1;  // search range +-max [s] when estimated
+  // Extrinsic T_pose_imu = T_m_s: fixed, or the initial guess when estimated.
+  bool estimate_extrinsic = false;
+  SE3d T_pose_imu;
+  // Solver (Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY).
+  int max_iterations = 50;
+  int num_threads = 1;
+  double function_tolerance = 1e-10;
+  double gradient_tolerance = 1e-12;
+  double parameter_tolerance = 1e-10;
+  ImuResidualLayout layout = ImuResidualLayout::kPerSegment;
+  Differentiation differentiation = Differentiation::kAnalytic;
+  bool share_knot_caches = true;  // calib/spline_evaluation_callback.h (analytic only)
+  // Uncertainty and diagnostics.
+  bool compute_covariance = true;
+  ExcitationThresholds excitation;
+  // Residual RMS above this many times the noise std (gyro or accel) is a failed fit (Error).
+  double max_residual_noise_ratio = 30.0;
+  // Keep per-sample predictions and residuals in FitResult (for residuals.csv / report.html).
+  bool keep_samples = true;
+  // One line per solver iteration (nullptr: silent).
+  std::function<void(const std::string&)> progress;
+};
+
+// Per-axis root mean square of the residuals (unweighted, in the sensor's units) and the noise
+// std the weights assumed.
+struct ResidualStats {
+  double gyro_rad_s = 0.0;
+  double accel_m_s2 = 0.0;
+  double position_m = 0.0;
+  double rotation_rad = 0.0;
+};
+
+// One IMU sample after the fit.
+struct FitImuSample {
+  int64_t t_ns = 0;
+  Eigen::Vector3d gyro_measured = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_fitted = Eigen::Vector3d::Zero();  // w_s + b_g
+  Eigen::Vector3d accel_measured = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_fitted = Eigen::Vector3d::Zero();  // R^T (a_w - g_w) + b_a
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
+};
+
+// One pose after the fit (pose-source clock).
+struct FitPoseSample {
+  int64_t t_ns = 0;
+  Eigen::Vector3d position_error_m = Eigen::Vector3d::Zero();    // p_pred - p_measured (world)
+  Eigen::Vector3d rotation_error_rad = Eigen::Vector3d::Zero();  // Log(R_measured^T R_pred)
+};
+
+struct FitResult {
+  // The spline T_w_s(t), IMU clock.
+  KnotLayout layout;
+  std::vector<SE3d> control_poses;
+  SE3Splined MakeSpline() const { return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns); }
+  double knot_spacing_s = 0.0;
+  std::string knot_spacing_rule;  // how dt was chosen, in words
+
+  // Biases: the constant bias, or for BiasModel::kSpline the time average of the bias spline
+  // over the IMU samples. Standard deviations per axis.
+  BiasModel bias_model = BiasModel::kConstant;
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_bias_std = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias_std = Eigen::Vector3d::Zero();
+  // Bias spline (kSpline): control points at tb_m = bias_t0_ns + m * bias_dt_ns.
+  int64_t bias_t0_ns = 0;
+  int64_t bias_dt_ns = 0;
+  std::vector<Eigen::Vector3d> gyro_bias_control_points;
+  std::vector<Eigen::Vector3d> accel_bias_control_points;
+
+  // Gravity in the pose source's world frame [m/s^2]; std per component, and of the direction.
+  Eigen::Vector3d gravity_w = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gravity_w_std = Eigen::Vector3d::Zero();
+  double gravity_direction_std_deg = 0.0;
+
+  bool time_offset_estimated = false;
+  double time_offset_s = 0.0;
+  double time_offset_std_s = 0.0;
+
+  bool extrinsic_estimated = false;
+  SE3d T_pose_imu;
+  Eigen::Vector3d T_pose_imu_translation_std_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d T_pose_imu_rotation_std_rad = Eigen::Vector3d::Zero();
+
+  // Joint covariance of the estimated global quantities in tangent coordinates, in this order:
+  // gyro bias (3), accel bias (3) (the time averages for kSpline), gravity direction (2, rad),
+  // time offset (1, s, when estimated), extrinsic [rho; phi] (6, m and rad, when estimated).
+  // Empty when it could not be computed (covariance_ok = false: warnings say why).
+  bool covariance_ok = false;
+  Eigen::MatrixXd covariance;
+  std::vector<std::string> covariance_labels;
+
+  ResidualStats residual_rms;
+  ResidualStats noise_std;  // what the weights assume (sigma per axis)
+  double imu_rate_hz = 0.0;
+  int num_imu_samples = 0;
+  int num_poses = 0;
+
+  int iterations = 0;
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  double solve_time_s = 0.0;  // wall time in ceres::Solve
+  double covariance_time_s = 0.0;
+  std::string termination;  // Ceres' termination message
+  std::string solver_report;  // Ceres' FullReport of the last solve (timings per phase)
+  int solver_rounds = 0;    // > 1 when pose residuals were re-attached after a time-offset move
+
+  std::vector<std::string> warnings;
+
+  std::vector<FitImuSample> imu_samples;    // when FitOptions::keep_samples
+  std::vector<FitPoseSample> pose_samples;  // when FitOptions::keep_samples
+};
+
+// The fit as an object, for callers that want to inspect or replace the initial guess (tests,
+// the benchmark). The constructor validates the data and builds the initial guess (throws
+// splinecal::Error as described in the file comment); Solve() runs the solver, the covariance
+// and the diagnostics.
+class FitProblem {
+ public:
+  FitProblem(const std::vector<ImuSample>& imu,
+             const std::vector<StampedPose>& poses,
+             const FitOptions& options);
+  ~FitProblem();
+  FitProblem(const FitProblem&) = delete;
+  FitProblem& operator=(const FitProblem&) = delete;
+
+  const KnotLayout& layout() const;
+  double knot_spacing_s() const;
+  int num_imu_samples() const;
+  int num_poses() const;
+
+  // The current values of the parameters (initial guess before Solve()).
+  std::vector<SE3d> ControlPoses() const;
+  Eigen::Vector3d GravityW() const;
+  void SetControlPoses(const std::vector<SE3d>& control_poses);  // same count as layout()
+  void SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias);
+  void SetGravity(const Eigen::Vector3d& g_w);  // norm replaced by FitOptions::gravity_m_s2
+  void SetTimeOffset(double time_offset_s);
+  void SetExtrinsic(const SE3d& T_pose_imu);
+
+  // Total cost 1/2 sum |r|^2 at the current values.
+  double Cost();
+
+  FitResult Solve();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// FitProblem(imu, poses, options).Solve().
+FitResult Fit(const std::vector<ImuSample>& imu,
+              const std::vector<StampedPose>& poses,
+              const FitOptions& options = {});
+
+// The automatic knot spacing (docs/fit.md, "Knot spacing"): the largest of 0.2, 0.1, 0.05,
+// 0.04, 0.025, 0.02, 0.01 s, not below 2 IMU periods, for which the centred moving average over
+// one knot interval leaves at most max(1% of the gyro signal's variance, the gyro's white-noise
+// variance) of the gyro signal unexplained (the white noise's own share removed); the smallest
+// candidate if none does. `rule` (may be nullptr) receives the choice in words. imu: at least 2
+// samples with increasing times.
+double ChooseKnotSpacing(const std::vector<ImuSample>& imu,
+                         const ImuNoise& noise,
+                         std::string* rule);
+
+// Time offset (t_imu = t_pose + offset) that best aligns the mean body rate of each pose interval
+// (Log(R_j^T R_j+1) / (t_j+1 - t_j), frame m) with the mean gyro over the same interval shifted
+// by the offset (frame s), searched over centre +- range in steps of one IMU period. At each
+// offset the unknown extrinsic rotation and gyro bias are eliminated in closed form (Kabsch on the
+// centred rates), so neither biases the alignment. Returns false (and leaves *offset_s) when the
+// poses are too sparse (< 5 Hz) or the motion too slow to tell (rate spread < 0.05 rad/s).
+// *at_edge (may be nullptr) is set when the best offset is at the edge of the range.
+bool EstimateTimeOffsetByCorrelation(const std::vector<ImuSample>& imu,
+                                     const std::vector<StampedPose>& poses,
+                                     double centre_s,
+                                     double range_s,
+                                     double* offset_s,
+                                     bool* at_edge);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_CALIB_FIT_H_

@@ -1,0 +1,1328 @@
+#include "splinecal/calib/fit.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+#include <ceres/ceres.h>
+#include <ceres/covariance.h>
+#include <Eigen/SVD>
+#include <glog/logging.h>
+
+#include "splinecal/calib/bias_costs.h"
+#include "splinecal/calib/gravity_manifold.h"
+#include "splinecal/calib/hand_eye.h"
+#include "splinecal/calib/imu_costs.h"
+#include "splinecal/calib/pose_cost.h"
+#include "splinecal/calib/spline_evaluation_callback.h"
+#include "splinecal/error.h"
+#include "splinecal/lie/se3_manifold.h"
+
+namespace splinecal {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRadToDeg = 180.0 / kPi;
+
+// Candidates of the automatic knot spacing [s], largest first (docs/fit.md, "Knot spacing").
+constexpr double kKnotSpacingCandidates[] = {0.2, 0.1, 0.05, 0.04, 0.025, 0.02, 0.01};
+// Share of the gyro signal's variance a knot interval may leave unexplained.
+constexpr double kKnotSpacingUnexplainedShare = 0.01;
+
+// Poses slower than this [Hz], or angular speeds that vary less than this [rad/s] (std), cannot
+// align the clocks by correlation.
+constexpr double kCorrelationMinPoseRateHz = 5.0;
+constexpr double kCorrelationMinSpeedStd = 0.05;
+
+// The data must span at least this many knot intervals, and hold at least this many poses.
+constexpr int kMinKnotIntervals = 4;
+constexpr int kMinPoses = 3;
+
+// Units checks: RMS angular speeds below this [rad/s] are too slow to compare; the ratio of gyro
+// to pose rotation rate, and of the mean specific force to g, must lie within these bounds.
+constexpr double kMinRateForUnitsCheck = 0.05;
+constexpr double kMaxRateRatio = 3.0;
+constexpr double kMaxGravityRatio = 1.4;
+
+// Residual RMS above this many noise stds draws a warning.
+constexpr double kWarnResidualNoiseRatio = 3.0;
+
+// A time offset within this fraction of the search range's edge is "at the edge".
+constexpr double kEdgeFraction = 0.01;
+
+// At most this many solves when pose residuals must be re-attached after a time-offset move.
+constexpr int kMaxSolverRounds = 4;
+
+std::string Format(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, value);
+  return buffer;
+}
+
+int64_t MedianPeriodNs(const std::vector<int64_t>& times) {
+  std::vector<int64_t> periods;
+  periods.reserve(times.size());
+  for (size_t k = 1; k < times.size(); ++k) periods.push_back(times[k] - times[k - 1]);
+  if (periods.empty()) return 0;
+  std::nth_element(periods.begin(), periods.begin() + periods.size() / 2, periods.end());
+  return periods[periods.size() / 2];
+}
+
+double ImuRateHz(const std::vector<ImuSample>& imu) {
+  std::vector<int64_t> times(imu.size());
+  for (size_t k = 0; k < imu.size(); ++k) times[k] = imu[k].t_ns;
+  const int64_t period = MedianPeriodNs(times);
+  return period > 0 ? 1e9 / static_cast<double>(period) : 0.0;
+}
+
+SE3d PoseOf(const StampedPose& pose) {
+  return SE3d(SO3d::FromQuaternion(pose.q), pose.p);
+}
+
+void CheckIncreasing(const std::vector<ImuSample>& imu, const std::vector<StampedPose>& poses) {
+  if (imu.size() < 2) throw Error("fit: needs at least 2 IMU samples, got " + std::to_string(imu.size()));
+  if (poses.size() < 2) {
+    throw Error("fit: needs at least 2 poses, got " + std::to_string(poses.size()));
+  }
+  for (size_t k = 1; k < imu.size(); ++k) {
+    if (imu[k].t_ns <= imu[k - 1].t_ns) {
+      throw Error("fit: IMU timestamps must increase strictly (sample " + std::to_string(k) + ")");
+    }
+  }
+  for (size_t k = 1; k < poses.size(); ++k) {
+    if (poses[k].t_ns <= poses[k - 1].t_ns) {
+      throw Error("fit: pose timestamps must increase strictly (pose " + std::to_string(k) + ")");
+    }
+  }
+}
+
+void CheckOptions(const FitOptions& o) {
+  auto positive = [](double value, const std::string& name) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+      throw Error("fit: " + name + " must be a positive number, got " + std::to_string(value));
+    }
+  };
+  if (!(o.knot_spacing_s >= 0.0) || !std::isfinite(o.knot_spacing_s)) {
+    throw Error("fit: knot spacing must be >= 0 s (0: automatic), got " +
+                std::to_string(o.knot_spacing_s));
+  }
+  positive(o.gravity_m_s2, "gravity");
+  positive(o.pose_sigma_m, "pose sigma [m]");
+  positive(o.pose_sigma_rad, "pose sigma [rad]");
+  positive(o.noise.gyroscope_noise_density, "gyroscope_noise_density");
+  positive(o.noise.accelerometer_noise_density, "accelerometer_noise_density");
+  if (o.bias_model == BiasModel::kSpline) {
+    positive(o.noise.gyroscope_random_walk, "gyroscope_random_walk (needed by the bias spline)");
+    positive(o.noise.accelerometer_random_walk,
+             "accelerometer_random_walk (needed by the bias spline)");
+    positive(o.bias_knot_spacing_s, "bias knot spacing");
+  }
+  if (!std::isfinite(o.time_offset_s)) throw Error("fit: time offset must be finite");
+  if (o.estimate_time_offset) {
+    positive(o.max_time_offset_s, "max time offset");
+    if (std::abs(o.time_offset_s) >= o.max_time_offset_s) {
+      throw Error("fit: the initial time offset " + Format("%.6g", o.time_offset_s) +
+                  " s is outside the search range +-" + Format("%.6g", o.max_time_offset_s) + " s");
+    }
+  }
+  if (o.initial_gravity_w.has_value() &&
+      !(o.initial_gravity_w->norm() > 0.0 && o.initial_gravity_w->allFinite())) {
+    throw Error("fit: the initial gravity vector must be finite and nonzero");
+  }
+  if (o.max_iterations < 1) throw Error("fit: max iterations must be >= 1");
+  if (o.num_threads < 1) throw Error("fit: threads must be >= 1");
+}
+
+// Product of the gyro's rotations over [a_ns, b_ns] (IMU clock), piecewise constant rates with
+// exact exponentials; bias not removed (used for initial guesses only).
+SO3d IntegrateGyro(const std::vector<ImuSample>& imu, int64_t a_ns, int64_t b_ns) {
+  SO3d R;
+  auto it = std::upper_bound(imu.begin(), imu.end(), a_ns,
+                             [](int64_t t, const ImuSample& s) { return t < s.t_ns; });
+  size_t k = it == imu.begin() ? 0 : static_cast<size_t>(it - imu.begin()) - 1;
+  int64_t t = a_ns;
+  while (t < b_ns && k < imu.size()) {
+    const int64_t next = k + 1 < imu.size() ? std::min(imu[k + 1].t_ns, b_ns) : b_ns;
+    if (next > t) R = R * SO3d::Exp(imu[k].gyro * (1e-9 * static_cast<double>(next - t)));
+    t = next;
+    ++k;
+  }
+  return R;
+}
+
+class ProgressCallback : public ceres::IterationCallback {
+ public:
+  explicit ProgressCallback(std::function<void(const std::string&)> progress)
+      : progress_(std::move(progress)) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    char line[256];
+    std::snprintf(line,
+                  sizeof(line),
+                  "fit: iteration %2d  cost %.9e  change %+.3e  |gradient| %.3e  |step| %.3e  "
+                  "%s  %.2f s",
+                  s.iteration,
+                  s.cost,
+                  -s.cost_change,
+                  s.gradient_max_norm,
+                  s.step_norm,
+                  s.step_is_successful ? "accepted" : "rejected",
+                  s.cumulative_time_in_seconds);
+    progress_(line);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  std::function<void(const std::string&)> progress_;
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+double ChooseKnotSpacing(const std::vector<ImuSample>& imu,
+                         const ImuNoise& noise,
+                         std::string* rule) {
+  CHECK_GE(imu.size(), 2u);
+  const double rate_hz = ImuRateHz(imu);
+  CHECK_GT(rate_hz, 0.0);
+  const int n = static_cast<int>(imu.size());
+  // Prefix sums of the gyro for O(1) window means.
+  std::vector<Eigen::Vector3d> prefix(n + 1, Eigen::Vector3d::Zero());
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int k = 0; k < n; ++k) {
+    prefix[k + 1] = prefix[k] + imu[k].gyro;
+    mean += imu[k].gyro;
+  }
+  mean /= n;
+  double variance = 0.0;
+  for (int k = 0; k < n; ++k) variance += (imu[k].gyro - mean).squaredNorm();
+  variance /= 3.0 * n;
+  const double noise_variance =
+      noise.gyroscope_noise_density * noise.gyroscope_noise_density * rate_hz;
+  const double signal_variance = std::max(0.0, variance - noise_variance);
+  const double allowed =
+      std::max(kKnotSpacingUnexplainedShare * signal_variance, noise_variance);
+  const double min_spacing = 2.0 / rate_hz;
+
+  double chosen = 0.0;
+  double chosen_unexplained = 0.0;
+  double smallest = 0.0;
+  double smallest_unexplained = 0.0;
+  for (double dt : kKnotSpacingCandidates) {
+    if (dt < min_spacing * (1.0 - 1e-9)) continue;
+    const int m = std::max(1, static_cast<int>(std::lround(dt * rate_hz)));
+    if (m > n) continue;
+    const int half = m / 2;
+    double sum = 0.0;
+    int count = 0;
+    for (int k = half; k + (m - 1 - half) < n; ++k) {
+      const int first = k - half;
+      const Eigen::Vector3d average = (prefix[first + m] - prefix[first]) / m;
+      sum += (imu[k].gyro - average).squaredNorm();
+      ++count;
+    }
+    if (count == 0) continue;
+    const double residual = sum / (3.0 * count);
+    // A sample's white noise contributes sigma^2 (1 - 1/m) to its distance from the mean of a
+    // window that contains it.
+    const double unexplained = std::max(0.0, residual - noise_variance * (1.0 - 1.0 / m));
+    smallest = dt;
+    smallest_unexplained = unexplained;
+    if (unexplained <= allowed) {
+      chosen = dt;
+      chosen_unexplained = unexplained;
+      break;
+    }
+  }
+  bool fallback = false;
+  if (chosen == 0.0) {
+    fallback = true;
+    chosen = smallest > 0.0 ? smallest : std::max(min_spacing, 0.01);
+    chosen_unexplained = smallest_unexplained;
+  }
+  if (rule != nullptr) {
+    std::ostringstream text;
+    text << "automatic: " << chosen << " s, ";
+    if (fallback) {
+      text << "the smallest candidate (no candidate captured the gyro signal to within "
+              "max(1% of its variance, the gyro noise variance))";
+    } else {
+      text << "the largest of 0.2, 0.1, 0.05, 0.04, 0.025, 0.02, 0.01 s (>= 2 IMU periods) whose "
+              "one-interval moving average leaves <= max(1% of the gyro signal variance, the gyro "
+              "noise variance) unexplained";
+    }
+    const double share = signal_variance > 0.0 ? chosen_unexplained / signal_variance : 0.0;
+    text << " (" << Format("%.2g", 100.0 * share) << "% of the gyro signal variance left)";
+    *rule = text.str();
+  }
+  return chosen;
+}
+
+bool EstimateTimeOffsetByCorrelation(const std::vector<ImuSample>& imu,
+                                     const std::vector<StampedPose>& poses,
+                                     double centre_s,
+                                     double range_s,
+                                     double* offset_s,
+                                     bool* at_edge) {
+  if (at_edge != nullptr) *at_edge = false;
+  if (imu.size() < 2 || poses.size() < 3 || !(range_s > 0.0)) return false;
+  const double duration = 1e-9 * static_cast<double>(poses.back().t_ns - poses.front().t_ns);
+  if (!(duration > 0.0) ||
+      static_cast<double>(poses.size() - 1) / duration < kCorrelationMinPoseRateHz) {
+    return false;
+  }
+  // Mean body rate of each pose interval, in the pose source's body frame m.
+  std::vector<Eigen::Vector3d> rate(poses.size() - 1);
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (size_t j = 0; j + 1 < poses.size(); ++j) {
+    const double dt = 1e-9 * static_cast<double>(poses[j + 1].t_ns - poses[j].t_ns);
+    const SO3d R_a = SO3d::FromQuaternion(poses[j].q);
+    const SO3d R_b = SO3d::FromQuaternion(poses[j + 1].q);
+    rate[j] = (R_a.inverse() * R_b).Log() / dt;
+    mean += rate[j];
+  }
+  mean /= static_cast<double>(rate.size());
+  double spread = 0.0;
+  for (const Eigen::Vector3d& x : rate) spread += (x - mean).squaredNorm();
+  if (std::sqrt(spread / static_cast<double>(rate.size())) < kCorrelationMinSpeedStd) return false;
+
+  // The gyro as a piecewise-linear function of time; integral[k] = its integral from t_0 to t_k.
+  std::vector<Eigen::Vector3d> integral(imu.size(), Eigen::Vector3d::Zero());
+  for (size_t k = 1; k < imu.size(); ++k) {
+    integral[k] = integral[k - 1] + 0.5e-9 * static_cast<double>(imu[k].t_ns - imu[k - 1].t_ns) *
+                                        (imu[k].gyro + imu[k - 1].gyro);
+  }
+  auto integral_to = [&](int64_t t) -> Eigen::Vector3d {  // t in [t_0, t_last]
+    size_t k = static_cast<size_t>(
+        std::upper_bound(imu.begin(), imu.end(), t,
+                         [](int64_t value, const ImuSample& s) { return value < s.t_ns; }) -
+        imu.begin());
+    k = std::clamp<size_t>(k, 1, imu.size() - 1) - 1;  // t in [t_k, t_k+1]
+    const double h = 1e-9 * static_cast<double>(imu[k + 1].t_ns - imu[k].t_ns);
+    const double d = 1e-9 * static_cast<double>(t - imu[k].t_ns);
+    return integral[k] + d * imu[k].gyro + (0.5 * d * d / h) * (imu[k + 1].gyro - imu[k].gyro);
+  };
+  const double step = 1.0 / ImuRateHz(imu);
+  const int steps = std::max(1, static_cast<int>(std::floor(range_s / step)));
+  std::vector<double> costs(2 * steps + 1, std::numeric_limits<double>::infinity());
+  double best_cost = std::numeric_limits<double>::infinity();
+  int best = 0;
+  std::vector<Eigen::Vector3d> x;
+  std::vector<Eigen::Vector3d> y;
+  for (int s = -steps; s <= steps; ++s) {
+    const int64_t tau_ns = std::llround((centre_s + s * step) * 1e9);
+    x.clear();
+    y.clear();
+    for (size_t j = 0; j + 1 < poses.size(); ++j) {
+      const int64_t a = poses[j].t_ns + tau_ns;
+      const int64_t b = poses[j + 1].t_ns + tau_ns;
+      if (a < imu.front().t_ns || b > imu.back().t_ns) continue;
+      x.push_back(rate[j]);
+      y.push_back((integral_to(b) - integral_to(a)) / (1e-9 * static_cast<double>(b - a)));
+    }
+    if (x.size() < 10) continue;
+    // Least squares over an unknown rotation R (extrinsic) and gyro bias b of
+    // sum |x_j - R (y_j - b)|^2: centre both sets, then Kabsch. The minimum is
+    // sum |x'|^2 + sum |y'|^2 - 2 (s_1 + s_2 + sign s_3), s the singular values of sum y' x'^T.
+    Eigen::Vector3d x_mean = Eigen::Vector3d::Zero();
+    Eigen::Vector3d y_mean = Eigen::Vector3d::Zero();
+    for (size_t j = 0; j < x.size(); ++j) {
+      x_mean += x[j];
+      y_mean += y[j];
+    }
+    x_mean /= static_cast<double>(x.size());
+    y_mean /= static_cast<double>(y.size());
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    double sum_sq = 0.0;
+    for (size_t j = 0; j < x.size(); ++j) {
+      const Eigen::Vector3d xc = x[j] - x_mean;
+      const Eigen::Vector3d yc = y[j] - y_mean;
+      H += yc * xc.transpose();
+      sum_sq += xc.squaredNorm() + yc.squaredNorm();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H);
+    const double sign = H.determinant() < 0.0 ? -1.0 : 1.0;
+    const Eigen::Vector3d sv = svd.singularValues();
+    const double cost =
+        (sum_sq - 2.0 * (sv[0] + sv[1] + sign * sv[2])) / static_cast<double>(x.size());
+    costs[s + steps] = cost;
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = s;
+    }
+  }
+  if (!std::isfinite(best_cost)) return false;
+  // Sub-sample refinement: the vertex of the parabola through the best cost and its neighbours.
+  double refinement = 0.0;
+  if (std::abs(best) < steps) {
+    const double c_minus = costs[best + steps - 1];
+    const double c_zero = costs[best + steps];
+    const double c_plus = costs[best + steps + 1];
+    const double curvature = c_minus - 2.0 * c_zero + c_plus;
+    if (std::isfinite(curvature) && curvature > 0.0) {
+      refinement = std::clamp(0.5 * (c_minus - c_plus) / curvature, -0.5, 0.5);
+    }
+  }
+  *offset_s = centre_s + (best + refinement) * step;
+  if (at_edge != nullptr) *at_edge = std::abs(best) == steps;
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+struct FitProblem::Impl {
+  FitOptions options;
+  std::vector<ImuSample> imu;          // samples inside the spline's valid range
+  std::vector<StampedPose> poses;      // every input pose (pose clock)
+  std::vector<int> used_poses;         // indices into poses with residuals
+  std::vector<int> pose_segments;      // attached segment of each used pose
+  double imu_rate_hz = 0.0;
+  double sigma_g = 0.0;
+  double sigma_a = 0.0;
+  KnotLayout layout;
+  double dt_s = 0.0;
+  std::string knot_rule;
+  std::vector<std::string> warnings;
+
+  std::vector<double> control_values;  // 7 per control pose
+  std::vector<double*> control_blocks;
+  int bias_blocks_per_residual = 1;    // 1 (constant) or 4 (spline)
+  int num_bias_points = 1;
+  int pose_knots_per_bias_knot = 1;
+  int64_t bias_t0_ns = 0;
+  int64_t bias_dt_ns = 0;
+  std::vector<double> gyro_bias_values;   // 3 per control point
+  std::vector<double> accel_bias_values;
+  std::array<double, 3> gravity = {0.0, 0.0, 0.0};
+  double time_offset = 0.0;
+  std::array<double, 7> extrinsic = {0, 0, 0, 0, 0, 0, 1};
+
+  SE3Manifold se3_manifold;
+  GravityManifold gravity_manifold;
+  std::unique_ptr<SplineEvaluationCallback> callback;
+  std::unique_ptr<ceres::Problem> problem;
+
+  // Diagnostics for failure messages.
+  double gyro_rate_ratio = 1.0;
+  double correlation_offset_s = std::numeric_limits<double>::quiet_NaN();
+  bool correlation_at_edge = false;
+
+  double* gyro_bias(int m) { return &gyro_bias_values[3 * m]; }
+  double* accel_bias(int m) { return &accel_bias_values[3 * m]; }
+  int num_control_poses() const { return layout.num_control_poses; }
+  bool analytic() const { return options.differentiation == Differentiation::kAnalytic; }
+
+  // The pose segment i and u of an IMU time inside [t_1, t_{n-2}].
+  void SegmentOf(int64_t t_ns, int* index, double* u) const {
+    const int64_t since = t_ns - layout.t0_ns;
+    int i = static_cast<int>(since / layout.dt_ns);
+    int64_t remainder = since % layout.dt_ns;
+    if (i > num_control_poses() - 3) {
+      i = num_control_poses() - 3;
+      remainder = since - static_cast<int64_t>(i) * layout.dt_ns;
+    }
+    *index = i;
+    *u = static_cast<double>(remainder) / static_cast<double>(layout.dt_ns);
+  }
+
+  // The bias-spline segment m and weights of an IMU time in pose segment i.
+  std::array<double, 4> BiasWeightsAt(int64_t t_ns, int pose_segment, int* bias_segment) const {
+    if (options.bias_model == BiasModel::kConstant) {
+      *bias_segment = 0;
+      return {1.0, 0.0, 0.0, 0.0};
+    }
+    const int m = 1 + (pose_segment - 1) / pose_knots_per_bias_knot;
+    *bias_segment = m;
+    const int64_t tb = bias_t0_ns + static_cast<int64_t>(m) * bias_dt_ns;
+    const double u = static_cast<double>(t_ns - tb) / static_cast<double>(bias_dt_ns);
+    return BiasSplineWeights(u);
+  }
+
+  Eigen::Vector3d BiasAt(const std::vector<double>& values, int64_t t_ns) const {
+    int i = 0;
+    double u = 0.0;
+    SegmentOf(t_ns, &i, &u);
+    int m = 0;
+    const std::array<double, 4> w = BiasWeightsAt(t_ns, i, &m);
+    if (options.bias_model == BiasModel::kConstant) {
+      return Eigen::Map<const Eigen::Vector3d>(values.data());
+    }
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (int j = 0; j < 4; ++j) b += w[j] * Eigen::Map<const Eigen::Vector3d>(&values[3 * (m - 1 + j)]);
+    return b;
+  }
+
+  double PoseTimeSinceT0(int pose_index) const {
+    return 1e-9 * static_cast<double>(poses[pose_index].t_ns - layout.t0_ns);
+  }
+
+  int SegmentOfSeconds(double t_s) const {
+    int i = static_cast<int>(std::floor(t_s / dt_s));
+    return std::clamp(i, 1, num_control_poses() - 3);
+  }
+
+  SE3Splined Spline() const {
+    std::vector<SE3d> T(num_control_poses());
+    for (int i = 0; i < num_control_poses(); ++i) T[i] = PoseFromBlock(&control_values[7 * i]);
+    return SE3Splined(T, layout.t0_ns, layout.dt_ns);
+  }
+
+  void Initialise(const std::vector<ImuSample>& all_imu, const std::vector<StampedPose>& all_poses);
+  void BuildProblem();
+  void AddImuResiduals();
+  void AddPoseResiduals();
+  FitResult Solve();
+  std::string LikelyCauses(double gyro_ratio, double accel_ratio) const;
+  void ComputeCovariance(FitResult* result);
+};
+
+void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
+                                  const std::vector<StampedPose>& all_poses) {
+  CheckOptions(options);
+  CheckIncreasing(all_imu, all_poses);
+  poses = all_poses;
+  imu_rate_hz = ImuRateHz(all_imu);
+  sigma_g = options.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz);
+  sigma_a = options.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz);
+  if (options.noise.update_rate_hz > 0.0 &&
+      std::abs(options.noise.update_rate_hz - imu_rate_hz) > 0.1 * imu_rate_hz) {
+    warnings.push_back("the IMU file's sample rate is " + Format("%.1f", imu_rate_hz) +
+                       " Hz but the noise file says " +
+                       Format("%.1f", options.noise.update_rate_hz) +
+                       " Hz; the weights use the measured rate");
+  }
+
+  // Time offset: the correlation of angular speeds (an initial guess when estimated, a check
+  // otherwise).
+  time_offset = options.time_offset_s;
+  {
+    const double range = options.estimate_time_offset ? options.max_time_offset_s : 0.1;
+    double offset = 0.0;
+    bool at_edge = false;
+    if (EstimateTimeOffsetByCorrelation(
+            all_imu, all_poses, options.estimate_time_offset ? 0.0 : time_offset, range, &offset,
+            &at_edge)) {
+      correlation_offset_s = offset;
+      correlation_at_edge = at_edge;
+      if (options.estimate_time_offset) {
+        if (at_edge) {
+          throw Error("fit: the time offset between IMU and poses appears to be beyond the search "
+                      "range +-" + Format("%.3g", options.max_time_offset_s) +
+                      " s (the best alignment of gyro and pose rotation rates is at its edge): "
+                      "raise --max-time-offset or check that both files use the same clock");
+        }
+        time_offset = offset;
+      } else if (std::abs(offset - time_offset) > 2.5 / imu_rate_hz && !at_edge) {
+        warnings.push_back("the gyro and the poses' rotation rates line up best with a time "
+                           "offset of " + Format("%.1f", 1e3 * offset) + " ms, not the " +
+                           Format("%.1f", 1e3 * time_offset) +
+                           " ms used: consider --estimate-time-offset");
+      }
+    }
+  }
+
+  // Overlap of the IMU and the poses (shifted onto the IMU clock).
+  const int64_t offset_ns = std::llround(time_offset * 1e9);
+  const int64_t margin_ns =
+      options.estimate_time_offset ? std::llround(options.max_time_offset_s * 1e9) : 0;
+  const int64_t imu_start = all_imu.front().t_ns;
+  const int64_t imu_end = all_imu.back().t_ns;
+  const int64_t pose_start = all_poses.front().t_ns + offset_ns;
+  const int64_t pose_end = all_poses.back().t_ns + offset_ns;
+  const int64_t start = std::max(imu_start, pose_start);
+  const int64_t end = std::min(imu_end, pose_end);
+  if (end <= start) {
+    std::ostringstream message;
+    message.precision(12);
+    message << "fit: the IMU data [" << 1e-9 * imu_start << ", " << 1e-9 * imu_end
+            << "] s and the poses [" << 1e-9 * pose_start << ", " << 1e-9 * pose_end
+            << "] s (IMU clock, time offset " << time_offset
+            << " s) do not overlap: the files are from different recordings or use different "
+               "time bases (seconds vs nanoseconds, another clock origin); the gap is "
+            << 1e-9 * static_cast<double>(pose_end < imu_start ? imu_start - pose_end
+                                                               : pose_start - imu_end)
+            << " s";
+    throw Error(message.str());
+  }
+
+  // Knot spacing.
+  std::vector<ImuSample> overlap_imu;
+  for (const ImuSample& s : all_imu) {
+    if (s.t_ns >= start && s.t_ns <= end) overlap_imu.push_back(s);
+  }
+  if (overlap_imu.size() < 2) {
+    throw Error("fit: fewer than 2 IMU samples fall inside the pose data's time range");
+  }
+  if (options.knot_spacing_s > 0.0) {
+    dt_s = options.knot_spacing_s;
+    knot_rule = "given (--knot-spacing)";
+  } else {
+    dt_s = ChooseKnotSpacing(overlap_imu, options.noise, &knot_rule);
+  }
+  const int64_t dt_ns = std::llround(dt_s * 1e9);
+  dt_s = 1e-9 * static_cast<double>(dt_ns);
+  if (static_cast<double>(dt_ns) < 2e9 / imu_rate_hz * (1.0 - 1e-6)) {
+    throw Error("fit: knot spacing " + Format("%.6g", dt_s) + " s is below two IMU periods (" +
+                Format("%.6g", 2.0 / imu_rate_hz) + " s): some segments would hold no IMU data");
+  }
+  const double overlap_s = 1e-9 * static_cast<double>(end - start);
+  const int64_t min_span_ns = kMinKnotIntervals * dt_ns + 2 * margin_ns;
+  int poses_inside = 0;
+  for (const StampedPose& p : all_poses) {
+    const int64_t t = p.t_ns + offset_ns;
+    if (t - margin_ns >= start && t + margin_ns <= end) ++poses_inside;
+  }
+  if (end - start < min_span_ns || poses_inside < kMinPoses) {
+    throw Error("fit: the data is too short for knot spacing " + Format("%.6g", dt_s) + " s: " +
+                Format("%.6g", overlap_s) + " s of overlapping IMU and pose data with " +
+                std::to_string(poses_inside) + " poses inside; needs at least " +
+                Format("%.6g", 1e-9 * static_cast<double>(min_span_ns)) + " s (" +
+                std::to_string(kMinKnotIntervals) + " knot intervals" +
+                (margin_ns > 0 ? " plus the time-offset search range at both ends" : "") +
+                ") and " + std::to_string(kMinPoses) +
+                " poses: record longer or use a smaller --knot-spacing");
+  }
+  layout = KnotLayoutCovering(start, end, dt_ns);
+  imu = std::move(overlap_imu);
+
+  // Poses with residuals: inside [t_1, t_{n-2}] for every offset in the search range.
+  const int64_t t_first = layout.t0_ns + layout.dt_ns;
+  const int64_t t_last = layout.t0_ns + static_cast<int64_t>(layout.num_control_poses - 2) * dt_ns;
+  for (size_t j = 0; j < poses.size(); ++j) {
+    const int64_t t = poses[j].t_ns + offset_ns;
+    if (t - margin_ns >= t_first && t + margin_ns <= t_last) used_poses.push_back(static_cast<int>(j));
+  }
+
+  // Extrinsic: the given value, its rotation from hand-eye when estimated.
+  SE3d T_m_s = options.T_pose_imu;
+  if (options.estimate_extrinsic) {
+    std::vector<SO3d> R_m_pairs;
+    std::vector<SO3d> R_s_pairs;
+    constexpr int64_t kMinPairSpacingNs = 200'000'000;  // 0.2 s: rotations well above noise
+    size_t a = 0;
+    for (size_t b = 1; b < poses.size(); ++b) {
+      if (poses[b].t_ns - poses[a].t_ns < kMinPairSpacingNs) continue;
+      const int64_t ta = poses[a].t_ns + offset_ns;
+      const int64_t tb = poses[b].t_ns + offset_ns;
+      if (ta >= imu.front().t_ns && tb <= imu.back().t_ns) {
+        R_m_pairs.push_back(SO3d::FromQuaternion(poses[a].q).inverse() *
+                            SO3d::FromQuaternion(poses[b].q));
+        R_s_pairs.push_back(IntegrateGyro(imu, ta, tb));
+      }
+      a = b;
+    }
+    const HandEyeRotationResult hand_eye = EstimateHandEyeRotation(R_m_pairs, R_s_pairs);
+    if (hand_eye.ok) {
+      T_m_s = SE3d(hand_eye.R_cam_imu, T_m_s.translation());
+    } else {
+      warnings.push_back("the extrinsic rotation could not be initialised by hand-eye (" +
+                         hand_eye.message + "); starting from the given T_pose_imu");
+    }
+  }
+  PoseToBlock(T_m_s, extrinsic.data());
+
+  // Control poses: least squares on the poses mapped to the IMU (T_w_s = T_w_m T_m_s) and clock.
+  std::vector<StampedPose> imu_poses(poses.size());
+  for (size_t j = 0; j < poses.size(); ++j) {
+    const SE3d T_w_s = PoseOf(poses[j]) * T_m_s;
+    imu_poses[j].t_ns = poses[j].t_ns + offset_ns;
+    imu_poses[j].p = T_w_s.translation();
+    imu_poses[j].q = T_w_s.so3().quaternion();
+  }
+  PoseFitOptions pose_fit_options;
+  pose_fit_options.rotation_weight_m_per_rad = options.pose_sigma_m / options.pose_sigma_rad;
+  pose_fit_options.num_threads = options.num_threads;
+  const PoseFitResult initial = FitControlPoses(imu_poses, layout, pose_fit_options);
+  control_values.resize(7 * static_cast<size_t>(num_control_poses()));
+  control_blocks.resize(num_control_poses());
+  for (int i = 0; i < num_control_poses(); ++i) {
+    PoseToBlock(initial.control_poses[i], &control_values[7 * i]);
+    control_blocks[i] = &control_values[7 * i];
+  }
+  const SE3Splined spline = Spline();
+
+  // Units: gyro against the poses' rotation rate; mean specific force against g.
+  double gyro_sq = 0.0;
+  double pose_sq = 0.0;
+  Eigen::Vector3d mean_Rf = Eigen::Vector3d::Zero();
+  for (const ImuSample& s : imu) {
+    const Segment<double> seg = spline.SegmentAtNs(s.t_ns);
+    SE3d T_w_s;
+    Eigen::Vector3d w_s;
+    spline.Evaluate(seg, &T_w_s, &w_s);
+    gyro_sq += s.gyro.squaredNorm();
+    pose_sq += w_s.squaredNorm();
+    mean_Rf += T_w_s.so3() * s.accel;
+  }
+  const double gyro_rms = std::sqrt(gyro_sq / imu.size());
+  const double pose_rms = std::sqrt(pose_sq / imu.size());
+  if (pose_rms > kMinRateForUnitsCheck) {
+    gyro_rate_ratio = gyro_rms / pose_rms;
+    if (gyro_rate_ratio > kMaxRateRatio || gyro_rate_ratio < 1.0 / kMaxRateRatio) {
+      std::string hint;
+      if (gyro_rate_ratio > 40.0 && gyro_rate_ratio < 80.0) {
+        hint = ": the gyro seems to be in deg/s (use --gyro-unit deg/s)";
+      } else if (gyro_rate_ratio > 1.0 / 80.0 && gyro_rate_ratio < 1.0 / 40.0) {
+        hint = ": the gyro seems to be in rad/s but was read as deg/s (--gyro-unit rad/s)";
+      } else {
+        hint = ": wrong gyro units, or the poses are not this IMU's trajectory";
+      }
+      throw Error("fit: the gyro's rotation rate (RMS " + Format("%.4g", gyro_rms) +
+                  " rad/s) and the poses' (RMS " + Format("%.4g", pose_rms) +
+                  " rad/s) differ by a factor " + Format("%.3g", gyro_rate_ratio) + hint);
+    }
+  }
+  mean_Rf /= static_cast<double>(imu.size());
+  // Mean world acceleration over the overlap: (v_end - v_start) / duration.
+  Eigen::Vector3d v_start;
+  Eigen::Vector3d v_end;
+  SE3d ignored;
+  spline.Evaluate(spline.SegmentAtNs(imu.front().t_ns), &ignored, nullptr, nullptr, &v_start);
+  spline.Evaluate(spline.SegmentAtNs(imu.back().t_ns), &ignored, nullptr, nullptr, &v_end);
+  const double duration = 1e-9 * static_cast<double>(imu.back().t_ns - imu.front().t_ns);
+  const Eigen::Vector3d mean_a = duration > 0.0 ? Eigen::Vector3d((v_end - v_start) / duration)
+                                                : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d g_estimate = mean_a - mean_Rf;  // f = R^T (a - g)  =>  g = a - R f
+  const double g_ratio = g_estimate.norm() / options.gravity_m_s2;
+  if (g_ratio > kMaxGravityRatio || g_ratio < 1.0 / kMaxGravityRatio) {
+    std::string hint = ": wrong accelerometer units or a wrong --gravity";
+    if (g_ratio > 1.0 / 12.0 && g_ratio < 1.0 / 8.0) {
+      hint = ": the accelerometer seems to be in units of g (use --accel-unit g)";
+    }
+    throw Error("fit: the mean specific force in the world frame has magnitude " +
+                Format("%.4g", g_estimate.norm()) + " m/s^2 but gravity is " +
+                Format("%.4g", options.gravity_m_s2) + " m/s^2" + hint);
+  }
+  Eigen::Vector3d g_init =
+      options.initial_gravity_w.has_value() ? *options.initial_gravity_w : g_estimate;
+  g_init = options.gravity_m_s2 * g_init.normalized();
+  for (int a = 0; a < 3; ++a) gravity[a] = g_init[a];
+
+  // Biases.
+  if (options.bias_model == BiasModel::kConstant) {
+    bias_blocks_per_residual = 1;
+    num_bias_points = 1;
+  } else {
+    bias_blocks_per_residual = 4;
+    pose_knots_per_bias_knot =
+        std::max(1, static_cast<int>(std::lround(options.bias_knot_spacing_s / dt_s)));
+    bias_dt_ns = static_cast<int64_t>(pose_knots_per_bias_knot) * dt_ns;
+    bias_t0_ns = t_first - bias_dt_ns;
+    const int64_t span = t_last - t_first;
+    num_bias_points = static_cast<int>(span / bias_dt_ns + (span % bias_dt_ns != 0 ? 1 : 0)) + 3;
+  }
+  gyro_bias_values.assign(3 * static_cast<size_t>(num_bias_points), 0.0);
+  accel_bias_values.assign(3 * static_cast<size_t>(num_bias_points), 0.0);
+  for (int m = 0; m < num_bias_points; ++m) {
+    for (int a = 0; a < 3; ++a) {
+      gyro_bias(m)[a] = options.initial_gyro_bias[a];
+      accel_bias(m)[a] = options.initial_accel_bias[a];
+    }
+  }
+
+  if (analytic() && options.share_knot_caches) {
+    callback = std::make_unique<SplineEvaluationCallback>(control_blocks, layout.t0_ns, dt_ns);
+  }
+  BuildProblem();
+}
+
+void FitProblem::Impl::BuildProblem() {
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.evaluation_callback = callback.get();
+  problem = std::make_unique<ceres::Problem>(problem_options);
+  for (double* block : control_blocks) problem->AddParameterBlock(block, 7, &se3_manifold);
+  for (int m = 0; m < num_bias_points; ++m) {
+    problem->AddParameterBlock(gyro_bias(m), 3);
+    problem->AddParameterBlock(accel_bias(m), 3);
+  }
+  problem->AddParameterBlock(gravity.data(), 3, &gravity_manifold);
+  problem->AddParameterBlock(&time_offset, 1);
+  problem->AddParameterBlock(extrinsic.data(), 7, &se3_manifold);
+  if (options.estimate_time_offset) {
+    problem->SetParameterLowerBound(&time_offset, 0, -options.max_time_offset_s);
+    problem->SetParameterUpperBound(&time_offset, 0, options.max_time_offset_s);
+  } else {
+    problem->SetParameterBlockConstant(&time_offset);
+  }
+  if (!options.estimate_extrinsic) problem->SetParameterBlockConstant(extrinsic.data());
+  AddImuResiduals();
+  AddPoseResiduals();
+  if (options.bias_model == BiasModel::kSpline) {
+    const double db = 1e-9 * static_cast<double>(bias_dt_ns);
+    for (int m = 1; m + 2 < num_bias_points; ++m) {
+      problem->AddResidualBlock(
+          new BiasRandomWalkCostFunction(db, options.noise.gyroscope_random_walk),
+          nullptr,
+          {gyro_bias(m - 1), gyro_bias(m), gyro_bias(m + 1), gyro_bias(m + 2)});
+      problem->AddResidualBlock(
+          new BiasRandomWalkCostFunction(db, options.noise.accelerometer_random_walk),
+          nullptr,
+          {accel_bias(m - 1), accel_bias(m), accel_bias(m + 1), accel_bias(m + 2)});
+    }
+  }
+}
+
+void FitProblem::Impl::AddImuResiduals() {
+  const int nb = bias_blocks_per_residual;
+  size_t k = 0;
+  while (k < imu.size()) {
+    int index = 0;
+    double u = 0.0;
+    SegmentOf(imu[k].t_ns, &index, &u);
+    ImuResidualSegment gyro_segment;
+    gyro_segment.segment_index = index;
+    gyro_segment.dt_s = dt_s;
+    gyro_segment.sigma = sigma_g;
+    gyro_segment.shared = callback.get();
+    ImuResidualSegment accel_segment = gyro_segment;
+    accel_segment.sigma = sigma_a;
+    std::vector<ImuResidualSample> gyro_samples;
+    std::vector<ImuResidualSample> accel_samples;
+    int bias_segment = 0;
+    for (; k < imu.size(); ++k) {
+      int i = 0;
+      SegmentOf(imu[k].t_ns, &i, &u);
+      if (i != index) break;
+      ImuResidualSample sample;
+      sample.u = u;
+      sample.bias_weights = BiasWeightsAt(imu[k].t_ns, i, &bias_segment);
+      sample.measured = imu[k].gyro;
+      gyro_samples.push_back(sample);
+      sample.measured = imu[k].accel;
+      accel_samples.push_back(sample);
+    }
+    std::vector<double*> gyro_blocks(control_blocks.begin() + (index - 1),
+                                     control_blocks.begin() + (index + 3));
+    std::vector<double*> accel_blocks = gyro_blocks;
+    const int first_bias = nb == 1 ? 0 : bias_segment - 1;
+    for (int j = 0; j < nb; ++j) {
+      gyro_blocks.push_back(gyro_bias(first_bias + j));
+      accel_blocks.push_back(accel_bias(first_bias + j));
+    }
+    accel_blocks.push_back(gravity.data());
+
+    if (!analytic()) {
+      for (size_t s = 0; s < gyro_samples.size(); ++s) {
+        problem->AddResidualBlock(
+            NewAutoDiffGyroCost(nb, gyro_segment, gyro_samples[s]), nullptr, gyro_blocks);
+        problem->AddResidualBlock(
+            NewAutoDiffAccelCost(nb, accel_segment, accel_samples[s]), nullptr, accel_blocks);
+      }
+    } else if (options.layout == ImuResidualLayout::kPerSample) {
+      for (size_t s = 0; s < gyro_samples.size(); ++s) {
+        ceres::CostFunction* gyro_cost;
+        ceres::CostFunction* accel_cost;
+        if (nb == 1) {
+          gyro_cost = new GyroCostFunction<1>(gyro_segment, gyro_samples[s]);
+          accel_cost = new AccelCostFunction<1>(accel_segment, accel_samples[s]);
+        } else {
+          gyro_cost = new GyroCostFunction<4>(gyro_segment, gyro_samples[s]);
+          accel_cost = new AccelCostFunction<4>(accel_segment, accel_samples[s]);
+        }
+        problem->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
+        problem->AddResidualBlock(accel_cost, nullptr, accel_blocks);
+      }
+    } else {
+      ceres::CostFunction* gyro_cost;
+      ceres::CostFunction* accel_cost;
+      if (nb == 1) {
+        gyro_cost = new GyroSegmentCostFunction<1>(gyro_segment, std::move(gyro_samples));
+        accel_cost = new AccelSegmentCostFunction<1>(accel_segment, std::move(accel_samples));
+      } else {
+        gyro_cost = new GyroSegmentCostFunction<4>(gyro_segment, std::move(gyro_samples));
+        accel_cost = new AccelSegmentCostFunction<4>(accel_segment, std::move(accel_samples));
+      }
+      problem->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
+      problem->AddResidualBlock(accel_cost, nullptr, accel_blocks);
+    }
+  }
+}
+
+void FitProblem::Impl::AddPoseResiduals() {
+  pose_segments.clear();
+  for (int j : used_poses) {
+    PoseResidualData data;
+    data.t_s = PoseTimeSinceT0(j);
+    data.segment_index = SegmentOfSeconds(data.t_s + time_offset);
+    data.dt_s = dt_s;
+    data.T_w_m = PoseOf(poses[j]);
+    data.sigma_m = options.pose_sigma_m;
+    data.sigma_rad = options.pose_sigma_rad;
+    data.shared = callback.get();
+    pose_segments.push_back(data.segment_index);
+    ceres::CostFunction* cost =
+        analytic() ? static_cast<ceres::CostFunction*>(new PoseCostFunction(data))
+                   : NewAutoDiffPoseCost(data);
+    const int i = data.segment_index;
+    problem->AddResidualBlock(cost,
+                              nullptr,
+                              {control_blocks[i - 1],
+                               control_blocks[i],
+                               control_blocks[i + 1],
+                               control_blocks[i + 2],
+                               &time_offset,
+                               extrinsic.data()});
+  }
+}
+
+std::string FitProblem::Impl::LikelyCauses(double gyro_ratio, double accel_ratio) const {
+  std::vector<std::string> causes;
+  if (options.estimate_time_offset &&
+      std::abs(time_offset) >= (1.0 - kEdgeFraction) * options.max_time_offset_s) {
+    causes.push_back("the time offset is beyond the search range");
+  }
+  if (!options.estimate_time_offset && std::isfinite(correlation_offset_s) &&
+      std::abs(correlation_offset_s - time_offset) > 2.5 / imu_rate_hz) {
+    causes.push_back("an unestimated time offset (the rotation rates line up best at " +
+                     Format("%.1f", 1e3 * correlation_offset_s) + " ms; try --estimate-time-offset)");
+  }
+  if (gyro_ratio > options.max_residual_noise_ratio) {
+    causes.push_back("gyro readings that do not match the poses' rotation (wrong --gyro-unit, "
+                     "an extrinsic rotation that was not estimated, or poses of another body)");
+  }
+  if (accel_ratio > options.max_residual_noise_ratio) {
+    causes.push_back("accelerometer readings that do not match the poses' motion (wrong "
+                     "--accel-unit or --gravity, or an extrinsic that was not estimated)");
+  }
+  causes.push_back("noise densities in --imu-yaml far below the sensor's");
+  causes.push_back("too little excitation (the IMU barely moved or rotated)");
+  std::string text;
+  for (size_t c = 0; c < causes.size(); ++c) text += (c == 0 ? "" : "; ") + causes[c];
+  return text;
+}
+
+FitResult FitProblem::Impl::Solve() {
+  FitResult result;
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver_options.num_threads = options.num_threads;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.function_tolerance = options.function_tolerance;
+  solver_options.gradient_tolerance = options.gradient_tolerance;
+  solver_options.parameter_tolerance = options.parameter_tolerance;
+  solver_options.logging_type = ceres::SILENT;
+  std::unique_ptr<ProgressCallback> progress;
+  if (options.progress) {
+    progress = std::make_unique<ProgressCallback>(options.progress);
+    solver_options.callbacks.push_back(progress.get());
+  }
+
+  ceres::Solver::Summary summary;
+  for (int round = 0; round < kMaxSolverRounds; ++round) {
+    const auto start = std::chrono::steady_clock::now();
+    ceres::Solve(solver_options, problem.get(), &summary);
+    result.solve_time_s +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.iterations += static_cast<int>(summary.iterations.size()) - 1;
+    if (round == 0) result.initial_cost = summary.initial_cost;
+    ++result.solver_rounds;
+    if (summary.termination_type == ceres::FAILURE || !summary.IsSolutionUsable()) {
+      throw Error("fit: the solver failed (" + summary.message + "); likely causes: " +
+                  LikelyCauses(0.0, 0.0));
+    }
+    if (!options.estimate_time_offset) break;
+    bool moved = false;
+    for (size_t p = 0; p < used_poses.size(); ++p) {
+      if (SegmentOfSeconds(PoseTimeSinceT0(used_poses[p]) + time_offset) != pose_segments[p]) {
+        moved = true;
+      }
+    }
+    if (!moved) break;
+    if (options.progress) options.progress("fit: time offset moved poses across knots; solving again");
+    BuildProblem();
+  }
+  result.final_cost = summary.final_cost;
+  result.termination = summary.message;
+  result.solver_report = summary.FullReport();
+  if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    result.warnings.push_back("the solver stopped after " + std::to_string(result.iterations) +
+                              " iterations without converging (" + summary.message + ")");
+  }
+  if (callback) callback->Update();
+
+  // Estimates.
+  result.layout = layout;
+  result.knot_spacing_s = dt_s;
+  result.knot_spacing_rule = knot_rule;
+  result.control_poses.resize(num_control_poses());
+  for (int i = 0; i < num_control_poses(); ++i) {
+    result.control_poses[i] = PoseFromBlock(&control_values[7 * i]);
+  }
+  result.bias_model = options.bias_model;
+  result.gravity_w = Eigen::Map<const Eigen::Vector3d>(gravity.data());
+  result.time_offset_estimated = options.estimate_time_offset;
+  result.time_offset_s = time_offset;
+  result.extrinsic_estimated = options.estimate_extrinsic;
+  result.T_pose_imu = PoseFromBlock(extrinsic.data());
+  result.imu_rate_hz = imu_rate_hz;
+  result.num_imu_samples = static_cast<int>(imu.size());
+  result.num_poses = static_cast<int>(used_poses.size());
+  result.noise_std.gyro_rad_s = sigma_g;
+  result.noise_std.accel_m_s2 = sigma_a;
+  result.noise_std.position_m = options.pose_sigma_m;
+  result.noise_std.rotation_rad = options.pose_sigma_rad;
+  if (options.bias_model == BiasModel::kSpline) {
+    result.bias_t0_ns = bias_t0_ns;
+    result.bias_dt_ns = bias_dt_ns;
+    for (int m = 0; m < num_bias_points; ++m) {
+      result.gyro_bias_control_points.push_back(Eigen::Map<const Eigen::Vector3d>(gyro_bias(m)));
+      result.accel_bias_control_points.push_back(Eigen::Map<const Eigen::Vector3d>(accel_bias(m)));
+    }
+  }
+
+  // Residuals at the solution (and the bias averages).
+  const SE3Splined spline = Spline();
+  const Eigen::Vector3d g_w = result.gravity_w;
+  double gyro_sq = 0.0;
+  double accel_sq = 0.0;
+  Eigen::Vector3d gyro_bias_sum = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias_sum = Eigen::Vector3d::Zero();
+  if (options.keep_samples) result.imu_samples.reserve(imu.size());
+  for (const ImuSample& s : imu) {
+    const Eigen::Vector3d b_g = BiasAt(gyro_bias_values, s.t_ns);
+    const Eigen::Vector3d b_a = BiasAt(accel_bias_values, s.t_ns);
+    Eigen::Vector3d gyro;
+    Eigen::Vector3d accel;
+    PredictImu<double>(spline, spline.SegmentAtNs(s.t_ns), g_w, b_g, b_a, &gyro, &accel);
+    gyro_sq += (gyro - s.gyro).squaredNorm();
+    accel_sq += (accel - s.accel).squaredNorm();
+    gyro_bias_sum += b_g;
+    accel_bias_sum += b_a;
+    if (options.keep_samples) {
+      FitImuSample out;
+      out.t_ns = s.t_ns;
+      out.gyro_measured = s.gyro;
+      out.gyro_fitted = gyro;
+      out.accel_measured = s.accel;
+      out.accel_fitted = accel;
+      out.gyro_bias = b_g;
+      out.accel_bias = b_a;
+      result.imu_samples.push_back(out);
+    }
+  }
+  const double n_imu = static_cast<double>(imu.size());
+  result.residual_rms.gyro_rad_s = std::sqrt(gyro_sq / (3.0 * n_imu));
+  result.residual_rms.accel_m_s2 = std::sqrt(accel_sq / (3.0 * n_imu));
+  result.gyro_bias = gyro_bias_sum / n_imu;
+  result.accel_bias = accel_bias_sum / n_imu;
+  const SE3d T_s_m = result.T_pose_imu.inverse();
+  double position_sq = 0.0;
+  double rotation_sq = 0.0;
+  for (int j : used_poses) {
+    const double t = PoseTimeSinceT0(j) + time_offset;
+    const SE3d T_pred = spline.Pose(std::clamp(t, spline.start_time(), spline.end_time())) * T_s_m;
+    const SE3d T_meas = PoseOf(poses[j]);
+    const Eigen::Vector3d dp = T_pred.translation() - T_meas.translation();
+    const Eigen::Vector3d dphi = (T_meas.so3().inverse() * T_pred.so3()).Log();
+    position_sq += dp.squaredNorm();
+    rotation_sq += dphi.squaredNorm();
+    if (options.keep_samples) {
+      FitPoseSample out;
+      out.t_ns = poses[j].t_ns;
+      out.position_error_m = dp;
+      out.rotation_error_rad = dphi;
+      result.pose_samples.push_back(out);
+    }
+  }
+  const double n_poses = std::max<double>(1.0, static_cast<double>(used_poses.size()));
+  result.residual_rms.position_m = std::sqrt(position_sq / (3.0 * n_poses));
+  result.residual_rms.rotation_rad = std::sqrt(rotation_sq / (3.0 * n_poses));
+
+  // Failure and warnings from the residuals.
+  const double gyro_ratio = result.residual_rms.gyro_rad_s / sigma_g;
+  const double accel_ratio = result.residual_rms.accel_m_s2 / sigma_a;
+  if (options.estimate_time_offset &&
+      std::abs(time_offset) >= (1.0 - kEdgeFraction) * options.max_time_offset_s) {
+    throw Error("fit: the time offset reached the edge of its search range (" +
+                Format("%.6g", time_offset) + " s of +-" + Format("%.6g", options.max_time_offset_s) +
+                " s): the true offset is probably beyond it; raise --max-time-offset or check that "
+                "IMU and poses share a clock");
+  }
+  if (gyro_ratio > options.max_residual_noise_ratio ||
+      accel_ratio > options.max_residual_noise_ratio) {
+    throw Error("fit: the solution does not explain the data: residual RMS is " +
+                Format("%.3g", gyro_ratio) + "x the gyro noise and " + Format("%.3g", accel_ratio) +
+                "x the accelerometer noise; likely causes: " + LikelyCauses(gyro_ratio, accel_ratio));
+  }
+  auto warn_ratio = [&](double ratio, const std::string& what) {
+    if (ratio > kWarnResidualNoiseRatio) {
+      result.warnings.push_back(what + " residuals are " + Format("%.2g", ratio) +
+                                "x the assumed noise: the reported standard deviations assume "
+                                "that noise and are too small by about that factor (unmodelled "
+                                "vibration, noise densities that are too low, or a time offset "
+                                "or extrinsic that was not estimated)");
+    }
+  };
+  warn_ratio(gyro_ratio, "gyro");
+  warn_ratio(accel_ratio, "accelerometer");
+  warn_ratio(result.residual_rms.position_m / options.pose_sigma_m, "pose position");
+  warn_ratio(result.residual_rms.rotation_rad / options.pose_sigma_rad, "pose rotation");
+
+  if (options.compute_covariance) ComputeCovariance(&result);
+  result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
+  return result;
+}
+
+void FitProblem::Impl::ComputeCovariance(FitResult* result) {
+  const auto start = std::chrono::steady_clock::now();
+  // Parameter blocks and the linear map from their tangent coordinates to the reported
+  // quantities (bias averages for the spline model).
+  std::vector<const double*> blocks;
+  std::vector<int> tangent_sizes;
+  for (int m = 0; m < num_bias_points; ++m) {
+    blocks.push_back(gyro_bias(m));
+    tangent_sizes.push_back(3);
+  }
+  for (int m = 0; m < num_bias_points; ++m) {
+    blocks.push_back(accel_bias(m));
+    tangent_sizes.push_back(3);
+  }
+  blocks.push_back(gravity.data());
+  tangent_sizes.push_back(2);
+  if (options.estimate_time_offset) {
+    blocks.push_back(&time_offset);
+    tangent_sizes.push_back(1);
+  }
+  if (options.estimate_extrinsic) {
+    blocks.push_back(extrinsic.data());
+    tangent_sizes.push_back(6);
+  }
+  const int tangent_total = std::accumulate(tangent_sizes.begin(), tangent_sizes.end(), 0);
+  const int reported = 8 + (options.estimate_time_offset ? 1 : 0) + (options.estimate_extrinsic ? 6 : 0);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(reported, tangent_total);
+  // Bias averages: mean over the samples of sum_j w_j c_{m-1+j}.
+  if (options.bias_model == BiasModel::kConstant) {
+    A.block<3, 3>(0, 0).setIdentity();
+    A.block<3, 3>(3, 3).setIdentity();
+  } else {
+    std::vector<double> a(num_bias_points, 0.0);
+    for (const ImuSample& s : imu) {
+      int i = 0;
+      double u = 0.0;
+      SegmentOf(s.t_ns, &i, &u);
+      int m = 0;
+      const std::array<double, 4> w = BiasWeightsAt(s.t_ns, i, &m);
+      for (int j = 0; j < 4; ++j) a[m - 1 + j] += w[j] / static_cast<double>(imu.size());
+    }
+    for (int m = 0; m < num_bias_points; ++m) {
+      A.block<3, 3>(0, 3 * m) = a[m] * Eigen::Matrix3d::Identity();
+      A.block<3, 3>(3, 3 * (num_bias_points + m)) = a[m] * Eigen::Matrix3d::Identity();
+    }
+  }
+  int column = 6 * num_bias_points;
+  int row = 6;
+  const int extra = tangent_total - column;
+  A.block(row, column, extra, extra).setIdentity();
+
+  result->covariance_labels = {"gyro_bias_x", "gyro_bias_y", "gyro_bias_z", "accel_bias_x",
+                               "accel_bias_y", "accel_bias_z", "gravity_direction_1",
+                               "gravity_direction_2"};
+  if (options.estimate_time_offset) result->covariance_labels.push_back("time_offset");
+  if (options.estimate_extrinsic) {
+    for (const char* label : {"T_pose_imu_rho_x", "T_pose_imu_rho_y", "T_pose_imu_rho_z",
+                              "T_pose_imu_phi_x", "T_pose_imu_phi_y", "T_pose_imu_phi_z"}) {
+      result->covariance_labels.push_back(label);
+    }
+  }
+
+  ceres::Covariance::Options covariance_options;
+  covariance_options.num_threads = options.num_threads;
+  covariance_options.algorithm_type = ceres::SPARSE_QR;
+  ceres::Covariance covariance(covariance_options);
+  bool ok = covariance.Compute(blocks, problem.get());
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> full(tangent_total,
+                                                                              tangent_total);
+  if (ok) ok = covariance.GetCovarianceMatrixInTangentSpace(blocks, full.data());
+  if (ok) ok = full.allFinite();
+  const ExcitationThresholds& limit = options.excitation;
+  if (!ok) {
+    result->covariance_ok = false;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    result->gyro_bias_std.setConstant(nan);
+    result->accel_bias_std.setConstant(nan);
+    result->gravity_w_std.setConstant(nan);
+    result->gravity_direction_std_deg = nan;
+    result->time_offset_std_s = nan;
+    result->T_pose_imu_translation_std_m.setConstant(nan);
+    result->T_pose_imu_rotation_std_rad.setConstant(nan);
+    result->warnings.push_back(
+        "the information matrix is singular: some parameters are not determined by this data at "
+        "all, so no standard deviations are reported. Typical reasons: the IMU did not rotate "
+        "(accelerometer bias and gravity cannot be told apart), it rotated about one axis only "
+        "(extrinsic), or its rotation rate never changed (time offset)");
+    result->covariance_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
+  const Eigen::MatrixXd C = A * full * A.transpose();
+  result->covariance_ok = true;
+  result->covariance = C;
+  const Eigen::VectorXd std_dev = C.diagonal().cwiseMax(0.0).cwiseSqrt();
+  result->gyro_bias_std = std_dev.segment<3>(0);
+  result->accel_bias_std = std_dev.segment<3>(3);
+  const Eigen::Matrix2d C_dir = C.block<2, 2>(6, 6);
+  const Eigen::Matrix<double, 3, 2> J_g =
+      options.gravity_m_s2 * GravityTangentBasis(result->gravity_w);
+  result->gravity_w_std = (J_g * C_dir * J_g.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
+  // Direction std: the larger principal std of the 2-D tangent covariance.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> dir_eigen(C_dir);
+  result->gravity_direction_std_deg =
+      std::sqrt(std::max(0.0, dir_eigen.eigenvalues()[1])) * kRadToDeg;
+  int next = 8;
+  if (options.estimate_time_offset) result->time_offset_std_s = std_dev[next++];
+  if (options.estimate_extrinsic) {
+    result->T_pose_imu_translation_std_m = std_dev.segment<3>(next);
+    result->T_pose_imu_rotation_std_rad = std_dev.segment<3>(next + 3);
+  }
+
+  // Plain-words excitation warnings.
+  auto max_of = [](const Eigen::Vector3d& v) { return v.maxCoeff(); };
+  if (max_of(result->gyro_bias_std) > limit.gyro_bias_std_rad_s) {
+    result->warnings.push_back(
+        "gyro_bias is not determined by this data (std up to " +
+        Format("%.3g", max_of(result->gyro_bias_std)) +
+        " rad/s): too little data, or poses too noisy to pin down the rotation");
+  }
+  if (max_of(result->accel_bias_std) > limit.accel_bias_std_m_s2) {
+    result->warnings.push_back(
+        "accel_bias is not determined by this data (std up to " +
+        Format("%.3g", max_of(result->accel_bias_std)) +
+        " m/s^2): the accelerometer bias can only be told apart from gravity when the IMU is "
+        "held in several orientations; rotate it about at least two axes");
+  }
+  if (result->gravity_direction_std_deg > limit.gravity_direction_std_deg) {
+    result->warnings.push_back(
+        "gravity_w's direction is not determined by this data (std " +
+        Format("%.3g", result->gravity_direction_std_deg) +
+        " deg): it trades off against the accelerometer bias unless the IMU rotates");
+  }
+  if (options.estimate_time_offset && result->time_offset_std_s > limit.time_offset_std_s) {
+    result->warnings.push_back(
+        "time_offset_s is not determined by this data (std " +
+        Format("%.3g", 1e3 * result->time_offset_std_s) +
+        " ms): the clocks are aligned by changes of the rotation rate; the motion needs "
+        "rotational accelerations");
+  }
+  if (options.estimate_extrinsic) {
+    if (max_of(result->T_pose_imu_translation_std_m) > limit.extrinsic_translation_std_m) {
+      result->warnings.push_back(
+          "the translation of T_pose_imu is not determined by this data (std up to " +
+          Format("%.3g", max_of(result->T_pose_imu_translation_std_m)) +
+          " m): it shows only through lever-arm accelerations; rotate faster about at least two "
+          "axes");
+    }
+    if (max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg > limit.extrinsic_rotation_std_deg) {
+      result->warnings.push_back(
+          "the rotation of T_pose_imu is not determined by this data (std up to " +
+          Format("%.3g", max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg) +
+          " deg): rotate about at least two axes");
+    }
+  }
+  // Near-perfect correlations between different quantities.
+  const std::vector<std::string>& labels = result->covariance_labels;
+  auto group = [](const std::string& label) { return label.substr(0, label.rfind('_')); };
+  for (int a = 0; a < C.rows(); ++a) {
+    for (int b = a + 1; b < C.rows(); ++b) {
+      if (group(labels[a]) == group(labels[b])) continue;
+      const double denominator = std::sqrt(C(a, a) * C(b, b));
+      if (!(denominator > 0.0)) continue;
+      const double rho = C(a, b) / denominator;
+      if (std::abs(rho) > limit.max_correlation) {
+        result->warnings.push_back(labels[a] + " and " + labels[b] +
+                                   " are almost perfectly correlated (" + Format("%.4f", rho) +
+                                   "): this data cannot tell them apart");
+      }
+    }
+  }
+  result->covariance_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// ---------------------------------------------------------------------------------------------
+
+FitProblem::FitProblem(const std::vector<ImuSample>& imu,
+                       const std::vector<StampedPose>& poses,
+                       const FitOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  impl_->Initialise(imu, poses);
+}
+
+FitProblem::~FitProblem() = default;
+
+const KnotLayout& FitProblem::layout() const { return impl_->layout; }
+double FitProblem::knot_spacing_s() const { return impl_->dt_s; }
+int FitProblem::num_imu_samples() const { return static_cast<int>(impl_->imu.size()); }
+int FitProblem::num_poses() const { return static_cast<int>(impl_->used_poses.size()); }
+
+std::vector<SE3d> FitProblem::ControlPoses() const {
+  std::vector<SE3d> poses(impl_->num_control_poses());
+  for (size_t i = 0; i < poses.size(); ++i) poses[i] = PoseFromBlock(impl_->control_blocks[i]);
+  return poses;
+}
+
+Eigen::Vector3d FitProblem::GravityW() const {
+  return Eigen::Map<const Eigen::Vector3d>(impl_->gravity.data());
+}
+
+void FitProblem::SetControlPoses(const std::vector<SE3d>& control_poses) {
+  if (static_cast<int>(control_poses.size()) != impl_->num_control_poses()) {
+    throw Error("FitProblem::SetControlPoses: expected " +
+                std::to_string(impl_->num_control_poses()) + " control poses, got " +
+                std::to_string(control_poses.size()));
+  }
+  for (size_t i = 0; i < control_poses.size(); ++i) {
+    PoseToBlock(control_poses[i], impl_->control_blocks[i]);
+  }
+  if (impl_->callback) impl_->callback->Update();
+}
+
+void FitProblem::SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias) {
+  for (int m = 0; m < impl_->num_bias_points; ++m) {
+    Eigen::Map<Eigen::Vector3d> bg(impl_->gyro_bias(m));
+    Eigen::Map<Eigen::Vector3d> ba(impl_->accel_bias(m));
+    bg = gyro_bias;
+    ba = accel_bias;
+  }
+}
+
+void FitProblem::SetGravity(const Eigen::Vector3d& g_w) {
+  if (!(g_w.norm() > 0.0) || !g_w.allFinite()) throw Error("SetGravity: needs a nonzero vector");
+  const Eigen::Vector3d g = impl_->options.gravity_m_s2 * g_w.normalized();
+  for (int a = 0; a < 3; ++a) impl_->gravity[a] = g[a];
+}
+
+void FitProblem::SetTimeOffset(double time_offset_s) {
+  impl_->time_offset = time_offset_s;
+  impl_->BuildProblem();  // re-attaches the pose residuals to the segments of the new offset
+}
+
+void FitProblem::SetExtrinsic(const SE3d& T_pose_imu) {
+  PoseToBlock(T_pose_imu, impl_->extrinsic.data());
+}
+
+double FitProblem::Cost() {
+  double cost = 0.0;
+  impl_->problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
+  return cost;
+}
+
+FitResult FitProblem::Solve() { return impl_->Solve(); }
+
+FitResult Fit(const std::vector<ImuSample>& imu,
+              const std::vector<StampedPose>& poses,
+              const FitOptions& options) {
+  FitProblem problem(imu, poses, options);
+  return problem.Solve();
+}
+
+}  // namespace splinecal
