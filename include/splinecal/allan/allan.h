@@ -1,0 +1,97 @@
+// IMU noise identification: what `splinecal allan` does, as a library call.
+//
+// ComputeAllan takes a static recording (one sample series per axis, allan/static_recording.h),
+// computes the overlapping Allan deviation of every axis at log-spaced averaging times
+// (allan/allan_deviation.h; axes in parallel on std::threads), fits the noise terms of each axis
+// (allan/noise_fit.h) and combines the axes of each sensor into Kalibr's four keys
+// (docs/conventions.md, "IMU model": densities, not per-sample standard deviations).
+//
+// The text writers give the files of `splinecal allan --out DIR`: allan.csv, result.yaml,
+// imu.yaml and allan.svg (layouts in docs/allan.md).
+//
+// Example (in memory):
+//
+//   StaticRecording recording;
+//   recording.rate_hz = 200.0;
+//   recording.axes.push_back({ImuSensor::kGyroscope, 0, std::move(gyro_x_samples)});
+//   const AllanResult result = ComputeAllan(std::move(recording));
+//   const double n = result.gyroscope_noise_density.value;   // [rad/s/sqrt(Hz)]
+#ifndef SPLINECAL_ALLAN_ALLAN_H_
+#define SPLINECAL_ALLAN_ALLAN_H_
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "splinecal/allan/allan_deviation.h"
+#include "splinecal/allan/noise_fit.h"
+#include "splinecal/allan/static_recording.h"
+
+namespace splinecal {
+
+enum class CombineAxes { kMean, kMax };
+
+struct AllanOptions {
+  int taus_per_decade = 10;       // averaging times per decade (before de-duplication)
+  double max_tau_fraction = 0.1;  // longest averaging time, as a fraction of the record
+  CombineAxes combine = CombineAxes::kMean;
+  NoiseFitOptions fit;
+  int num_threads = 0;  // 0: one per axis, at most the hardware's threads
+  // Called (from worker threads, one call at a time) as each axis finishes; may be empty.
+  std::function<void(const std::string&)> progress;
+};
+
+struct AxisAllan {
+  ImuSensor sensor = ImuSensor::kGyroscope;
+  int axis = 0;           // 0, 1, 2: x, y, z
+  std::string name;       // "gyro_x"
+  double mean = 0.0;      // mean reading (the bias plus gravity, for an accelerometer)
+  AllanCurve curve;
+  AxisNoiseFit fit;
+};
+
+// One of Kalibr's keys, combined over the axes of its sensor.
+struct KalibrKey {
+  bool present = false;      // the sensor is in the input
+  double value = 0.0;        // mean or max over the axes whose slope line identified it
+  int num_axes = 0;          // how many axes that was
+  bool upper_bound = false;  // no axis identified it: value combines the axes' upper bounds
+};
+
+struct AllanResult {
+  std::string source;
+  double rate_hz = 0.0;
+  int64_t num_samples = 0;
+  int taus_per_decade = 0;
+  double max_tau_fraction = 0.0;
+  CombineAxes combine = CombineAxes::kMean;
+  std::vector<AxisAllan> axes;  // in the recording's order
+  KalibrKey gyroscope_noise_density;      // [rad/s/sqrt(Hz)]
+  KalibrKey gyroscope_random_walk;        // [rad/s^2/sqrt(Hz)]
+  KalibrKey accelerometer_noise_density;  // [m/s^2/sqrt(Hz)]
+  KalibrKey accelerometer_random_walk;    // [m/s^3/sqrt(Hz)]
+};
+
+// The whole computation; consumes the recording's samples (memory is freed axis by axis).
+// Throws splinecal::Error (naming recording.source when set) for: no axes, axes of different
+// lengths, a rate that is not positive, a sample that is not finite, a constant axis, or too few
+// samples for 3 averaging times (the message says how many are needed).
+AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& options = {});
+
+// The smallest number of samples that gives `count` averaging times with these options.
+int64_t MinimumSamplesForAveragingTimes(int count, int taus_per_decade, double max_tau_fraction);
+
+// allan.csv: "#tau_s", one Allan deviation column per axis, then one error column per axis
+// (gyro in rad/s, accel in m/s^2), 17 significant digits.
+std::string AllanCsvText(const AllanResult& result);
+// result.yaml: Kalibr keys at the top, then gyroscope: {x: {...}, ...}, accelerometer: {...}.
+std::string AllanResultYamlText(const AllanResult& result);
+// imu.yaml (Kalibr), with the keys of the sensors present.
+std::string AllanImuYamlText(const AllanResult& result);
+// allan.svg: log-log deviation per axis with error bars and the fitted lines.
+std::string AllanSvgText(const AllanResult& result);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_ALLAN_ALLAN_H_

@@ -1,0 +1,240 @@
+#include "splinecal/allan/static_recording.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string_view>
+
+#include "splinecal/error.h"
+#include "splinecal/io/row_checks.h"
+#include "splinecal/io/text_file.h"
+
+namespace splinecal {
+namespace {
+
+// After this many rows the average row length is known well enough to reserve memory for the
+// whole file at once (instead of letting the vectors double, which would briefly need 1.5-2x).
+constexpr int64_t kRowsForEstimate = 1024;
+// A mean accelerometer reading with a magnitude in this range is gravity in units of g.
+constexpr double kGravityInGLow = 0.5;
+constexpr double kGravityInGHigh = 1.5;
+
+const char* const kAxisLetters[] = {"x", "y", "z"};
+
+// Reserves every axis for the whole file, estimated from the rows read so far.
+class CapacityPlanner {
+ public:
+  explicit CapacityPlanner(const std::string& path) {
+    std::error_code error;
+    file_bytes_ = static_cast<int64_t>(std::filesystem::file_size(path, error));
+    if (error) file_bytes_ = 0;
+  }
+  void AddRow(std::string_view line, std::vector<AxisSeries>* axes) {
+    if (rows_ >= kRowsForEstimate) return;
+    bytes_ += static_cast<int64_t>(line.size()) + 1;
+    if (++rows_ < kRowsForEstimate || file_bytes_ == 0) return;
+    const int64_t estimate = file_bytes_ / std::max<int64_t>(1, bytes_ / rows_) * 21 / 20 + 16;
+    for (AxisSeries& axis : *axes) axis.samples.reserve(static_cast<size_t>(estimate));
+  }
+
+ private:
+  int64_t file_bytes_ = 0;
+  int64_t bytes_ = 0;
+  int64_t rows_ = 0;
+};
+
+std::vector<AxisSeries> MakeAxes(bool gyro, bool accel, int count_per_sensor) {
+  std::vector<AxisSeries> axes;
+  for (int s = 0; s < 2; ++s) {
+    if ((s == 0 && !gyro) || (s == 1 && !accel)) continue;
+    for (int a = 0; a < count_per_sensor; ++a) {
+      AxisSeries axis;
+      axis.sensor = s == 0 ? ImuSensor::kGyroscope : ImuSensor::kAccelerometer;
+      axis.axis = a;
+      axes.push_back(std::move(axis));
+    }
+  }
+  return axes;
+}
+
+// Field names for error messages ("gyro x"), built once.
+std::vector<std::string> FieldNames(const std::vector<AxisSeries>& axes) {
+  std::vector<std::string> names;
+  for (const AxisSeries& axis : axes) {
+    names.push_back(std::string(axis.sensor == ImuSensor::kGyroscope ? "gyro " : "accel ") +
+                    kAxisLetters[axis.axis]);
+  }
+  return names;
+}
+
+double ScaleOf(const AxisSeries& axis, const StaticReadOptions& options) {
+  return axis.sensor == ImuSensor::kGyroscope ? options.gyro_scale : options.accel_scale;
+}
+
+void CheckScales(const StaticReadOptions& options) {
+  if (!(std::isfinite(options.gyro_scale) && options.gyro_scale > 0.0)) {
+    throw Error("gyro scale must be positive and finite, got " + std::to_string(options.gyro_scale));
+  }
+  if (!(std::isfinite(options.accel_scale) && options.accel_scale > 0.0)) {
+    throw Error("accel scale must be positive and finite, got " +
+                std::to_string(options.accel_scale));
+  }
+}
+
+// Refuses accelerometer data in g: the mean reading of a static IMU is gravity, 9.81 m/s^2.
+void CheckAccelUnits(const std::string& path,
+                     const std::vector<AxisSeries>& axes,
+                     const StaticReadOptions& options) {
+  if (!options.check_accel_units || options.accel_scale != 1.0) return;
+  double squared = 0.0;
+  int count = 0;
+  for (const AxisSeries& axis : axes) {
+    if (axis.sensor != ImuSensor::kAccelerometer || axis.samples.empty()) continue;
+    long double sum = 0.0L;
+    for (const double v : axis.samples) sum += v;
+    const double mean = static_cast<double>(sum / axis.samples.size());
+    squared += mean * mean;
+    ++count;
+  }
+  const double magnitude = std::sqrt(squared);
+  if (count == 3 && magnitude > kGravityInGLow && magnitude < kGravityInGHigh) {
+    char message[200];
+    std::snprintf(message, sizeof(message),
+                  "mean accelerometer reading has magnitude %.3f: the data looks like units of "
+                  "g, expected m/s^2 (pass --accel-scale 9.80665)",
+                  magnitude);
+    throw Error(path, 0, message);
+  }
+}
+
+void CheckEnoughRows(const std::string& path, const std::vector<AxisSeries>& axes) {
+  const size_t rows = axes.empty() ? 0 : axes.front().samples.size();
+  if (rows < 2) throw Error(path, 0, "needs at least 2 data rows, found " + std::to_string(rows));
+}
+
+}  // namespace
+
+const char* ImuSensorName(ImuSensor sensor) {
+  return sensor == ImuSensor::kGyroscope ? "gyroscope" : "accelerometer";
+}
+
+std::string AxisSeries::name() const {
+  return std::string(sensor == ImuSensor::kGyroscope ? "gyro_" : "accel_") + kAxisLetters[axis];
+}
+
+StaticRecording ReadEurocStaticRecording(const std::string& path,
+                                         const StaticReadOptions& options) {
+  CheckScales(options);
+  TextFileReader reader(path);
+  StaticRecording recording;
+  recording.source = path;
+  recording.axes = MakeAxes(true, true, 3);
+  const std::vector<std::string> names = FieldNames(recording.axes);
+  const std::string timestamp_name = "timestamp";
+  CapacityPlanner planner(path);
+  std::vector<std::string_view> fields;
+  int64_t first_t_ns = 0;
+  int64_t last_t_ns = 0;
+  int64_t rows = 0;
+  int64_t largest_step_ns = 0;
+  int64_t largest_step_line = 0;
+  while (reader.NextLine()) {
+    SplitFields(reader.line(), &fields);
+    if (internal::IsHeaderRow(reader, fields)) continue;
+    internal::CheckColumnCount(reader, fields, 7, "EuRoC IMU (t_ns, gyro xyz, accel xyz)");
+    const int64_t t_ns = ParseInt64(fields[0], reader, timestamp_name);
+    if (rows > 0) {
+      if (t_ns <= last_t_ns) {
+        reader.Fail("timestamps not increasing: " + std::to_string(t_ns) +
+                        (t_ns == last_t_ns ? " repeats the previous row"
+                                           : " is before the previous row's " +
+                                                 std::to_string(last_t_ns)),
+                    fields[0]);
+      }
+      if (t_ns - last_t_ns > largest_step_ns) {
+        largest_step_ns = t_ns - last_t_ns;
+        largest_step_line = reader.line_number();
+      }
+    } else {
+      first_t_ns = t_ns;
+    }
+    last_t_ns = t_ns;
+    for (size_t a = 0; a < 6; ++a) {
+      recording.axes[a].samples.push_back(
+          ScaleOf(recording.axes[a], options) * ParseFiniteDouble(fields[1 + a], reader, names[a]));
+    }
+    ++rows;
+    planner.AddRow(reader.line(), &recording.axes);
+  }
+  CheckEnoughRows(path, recording.axes);
+  const double mean_period_s = 1e-9 * static_cast<double>(last_t_ns - first_t_ns) / (rows - 1);
+  recording.rate_hz = 1.0 / mean_period_s;
+  if (1e-9 * largest_step_ns > options.max_gap_periods * mean_period_s) {
+    char message[240];
+    std::snprintf(message, sizeof(message),
+                  "gap of %.6g s before this row, more than %g mean sample periods (%.6g s): the "
+                  "Allan variance needs uniformly sampled data (cut the file at the gap)",
+                  1e-9 * largest_step_ns, options.max_gap_periods, mean_period_s);
+    throw Error(path, largest_step_line, message);
+  }
+  CheckAccelUnits(path, recording.axes, options);
+  return recording;
+}
+
+StaticRecording ReadColumnStaticRecording(const std::string& path,
+                                          double rate_hz,
+                                          std::optional<ImuSensor> sensor,
+                                          const StaticReadOptions& options) {
+  CheckScales(options);
+  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
+    throw Error("the sample rate of plain columns must be positive and finite, got " +
+                std::to_string(rate_hz) + " Hz (--rate)");
+  }
+  TextFileReader reader(path);
+  StaticRecording recording;
+  recording.source = path;
+  recording.rate_hz = rate_hz;
+  CapacityPlanner planner(path);
+  std::vector<std::string_view> fields;
+  std::vector<std::string> names;
+  size_t columns = 0;
+  while (reader.NextLine()) {
+    SplitFields(reader.line(), &fields);
+    if (internal::IsHeaderRow(reader, fields)) continue;
+    if (columns == 0) {
+      // The first data row fixes the layout.
+      columns = fields.size();
+      if (columns == 6) {
+        if (sensor.has_value()) {
+          reader.Fail("6 columns are gyro xyz then accel xyz; --sensor is for 1 to 3 columns of "
+                      "one sensor");
+        }
+        recording.axes = MakeAxes(true, true, 3);
+      } else if (columns >= 1 && columns <= 3) {
+        if (!sensor.has_value()) {
+          reader.Fail(std::to_string(columns) +
+                      " column(s) of one sensor: say which with --sensor gyro or --sensor accel");
+        }
+        recording.axes = MakeAxes(*sensor == ImuSensor::kGyroscope,
+                                  *sensor == ImuSensor::kAccelerometer, static_cast<int>(columns));
+      } else {
+        reader.Fail("expected 1, 2, 3 (one sensor) or 6 (gyro xyz, accel xyz) columns, found " +
+                    std::to_string(columns));
+      }
+      names = FieldNames(recording.axes);
+    }
+    internal::CheckColumnCount(reader, fields, columns,
+                               columns == 6 ? "gyro xyz, accel xyz" : "one sensor's axes");
+    for (size_t a = 0; a < columns; ++a) {
+      recording.axes[a].samples.push_back(ScaleOf(recording.axes[a], options) *
+                                          ParseFiniteDouble(fields[a], reader, names[a]));
+    }
+    planner.AddRow(reader.line(), &recording.axes);
+  }
+  CheckEnoughRows(path, recording.axes);
+  CheckAccelUnits(path, recording.axes, options);
+  return recording;
+}
+
+}  // namespace splinecal

@@ -1,0 +1,158 @@
+// `splinecal allan`: IMU noise identification from a static recording (allan/allan.h,
+// docs/allan.md). Reads EuRoC imu0/data.csv (--imu) or plain columns (--columns, --rate), writes
+// allan.csv, imu.yaml, result.yaml and allan.svg to --out.
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include <gflags/gflags.h>
+
+#include "splinecal/allan/allan.h"
+#include "splinecal/allan/static_recording.h"
+#include "splinecal/cli/command.h"
+#include "splinecal/cli/commands.h"
+#include "splinecal/cli/common_flags.h"
+#include "splinecal/error.h"
+#include "splinecal/io/output_dir.h"
+
+DEFINE_int32(taus_per_decade, 10, "Averaging times per decade (before de-duplication)");
+DEFINE_double(max_tau_fraction,
+              0.1,
+              "Longest averaging time as a fraction of the record length, in (0, 0.5]");
+DEFINE_string(columns,
+              "",
+              "Plain text columns without timestamps, whitespace or comma separated: 6 columns "
+              "(gyro xyz [rad/s], accel xyz [m/s^2]) or 1 to 3 columns of one sensor (--sensor) "
+              "[path]; needs --rate");
+DEFINE_double(rate, 0.0, "Sample rate of --columns [Hz]");
+DEFINE_string(sensor, "", "Sensor of 1 to 3 --columns: gyro or accel");
+DEFINE_double(gyro_scale,
+              1.0,
+              "Multiplies gyro readings into rad/s (pi/180 = 0.017453292519943295 for deg/s)");
+DEFINE_double(accel_scale, 1.0, "Multiplies accel readings into m/s^2 (9.80665 for g)");
+DEFINE_string(combine, "mean", "How Kalibr keys combine the x, y, z axes: mean or max");
+
+namespace splinecal {
+namespace cli {
+namespace {
+
+std::string Summary(const char* name, const KalibrKey& key, const char* unit) {
+  if (!key.present) return "";
+  char line[256];
+  std::snprintf(line, sizeof(line), "allan: %-28s %.6g %s%s\n", name, key.value, unit,
+                key.upper_bound ? " (upper bound: not identifiable, see result.yaml)" : "");
+  return line;
+}
+
+int RunAllan() {
+  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
+  if (FLAGS_imu.empty() == FLAGS_columns.empty()) {
+    throw Error("give the static recording as --imu FILE (EuRoC imu0/data.csv) or as --columns "
+                "FILE --rate HZ, not both");
+  }
+  AllanOptions options;
+  options.taus_per_decade = FLAGS_taus_per_decade;
+  options.max_tau_fraction = FLAGS_max_tau_fraction;
+  if (FLAGS_combine == "mean") {
+    options.combine = CombineAxes::kMean;
+  } else if (FLAGS_combine == "max") {
+    options.combine = CombineAxes::kMax;
+  } else {
+    throw Error("--combine: expected mean or max, got '" + FLAGS_combine + "'");
+  }
+  options.progress = [](const std::string& line) { Progress(line); };
+  // Check the averaging-time flags before reading a large file.
+  AllanClusterSizes(1, options.taus_per_decade, options.max_tau_fraction);
+
+  // Units: --gyro-unit / --accel-unit (shared with the other commands) times --gyro-scale /
+  // --accel-scale.
+  const ImuReadOptions units = ImuReadOptionsFromFlags();
+  StaticReadOptions read;
+  read.gyro_scale = units.gyro_scale * PositiveFlag("gyro-scale", FLAGS_gyro_scale);
+  read.accel_scale = units.accel_scale * PositiveFlag("accel-scale", FLAGS_accel_scale);
+  read.check_accel_units = units.check_accel_units;
+
+  StaticRecording recording;
+  if (!FLAGS_imu.empty()) {
+    if (FLAGS_rate != 0.0 || !FLAGS_sensor.empty()) {
+      throw Error("--rate and --sensor are for --columns; EuRoC files carry timestamps");
+    }
+    Progress("allan: reading " + FLAGS_imu);
+    recording = ReadEurocStaticRecording(FLAGS_imu, read);
+  } else {
+    const double rate_hz = PositiveFlag("rate", FLAGS_rate);
+    std::optional<ImuSensor> sensor;
+    if (FLAGS_sensor == "gyro") {
+      sensor = ImuSensor::kGyroscope;
+    } else if (FLAGS_sensor == "accel") {
+      sensor = ImuSensor::kAccelerometer;
+    } else if (!FLAGS_sensor.empty()) {
+      throw Error("--sensor: expected gyro or accel, got '" + FLAGS_sensor + "'");
+    }
+    Progress("allan: reading " + FLAGS_columns);
+    recording = ReadColumnStaticRecording(FLAGS_columns, rate_hz, sensor, read);
+  }
+  OutputDir output(out_dir);
+  char line[256];
+  std::snprintf(line, sizeof(line), "allan: %zu axes, %zu samples at %.6g Hz (%.6g s)",
+                recording.axes.size(), recording.axes.front().samples.size(), recording.rate_hz,
+                recording.axes.front().samples.size() / recording.rate_hz);
+  Progress(line);
+
+  const AllanResult result = ComputeAllan(std::move(recording), options);
+  output.WriteFile("allan.csv", AllanCsvText(result));
+  output.WriteFile("imu.yaml", AllanImuYamlText(result));
+  output.WriteFile("result.yaml", AllanResultYamlText(result));
+  output.WriteFile("allan.svg", AllanSvgText(result));
+  output.Commit();
+
+  const std::string summary =
+      Summary("gyroscope_noise_density", result.gyroscope_noise_density, "rad/s/sqrt(Hz)") +
+      Summary("gyroscope_random_walk", result.gyroscope_random_walk, "rad/s^2/sqrt(Hz)") +
+      Summary("accelerometer_noise_density", result.accelerometer_noise_density,
+              "m/s^2/sqrt(Hz)") +
+      Summary("accelerometer_random_walk", result.accelerometer_random_walk, "m/s^3/sqrt(Hz)");
+  if (!Quiet()) std::fputs(summary.c_str(), stderr);
+  return 0;
+}
+
+}  // namespace
+
+Command AllanCommand() {
+  Command command;
+  command.name = "allan";
+  command.summary = "IMU noise densities from a static recording (Allan deviation, Kalibr imu.yaml)";
+  command.usage =
+      "splinecal allan (--imu imu0/data.csv | --columns FILE --rate HZ [--sensor gyro|accel]) "
+      "--out DIR";
+  command.description =
+      "Computes the overlapping Allan deviation of every axis at log-spaced averaging times, "
+      "reads the white-noise density N off the -1/2 slope line at tau = 1 s, the random walk K "
+      "off the +1/2 slope line at tau = 3 s and the bias instability B off the flat floor, each "
+      "where its term dominates, and fits the IEEE Std 952 model (quantization, N, B, K, rate "
+      "ramp) by weighted least squares. A term without a region of its slope is reported as not "
+      "identifiable. Writes allan.csv (tau_s, deviation and error per axis), imu.yaml (Kalibr "
+      "densities, not per-sample standard deviations), result.yaml (every term per axis) and "
+      "allan.svg (log-log plot). The recording must be static: the IMU at rest for its whole "
+      "length (hours for the random walk). See docs/allan.md.";
+  command.flags = {{"imu", "Static recording, EuRoC imu0/data.csv; the rate comes from the "
+                           "timestamps [path]"},
+                   {"columns", ""},
+                   {"rate", ""},
+                   {"sensor", ""},
+                   {"out", ""},
+                   {"taus_per_decade", ""},
+                   {"max_tau_fraction", ""},
+                   {"combine", ""},
+                   {"gyro_scale", ""},
+                   {"accel_scale", ""},
+                   {"gyro_unit", ""},
+                   {"accel_unit", ""},
+                   {"quiet", ""}};
+  command.run = &RunAllan;
+  return command;
+}
+
+}  // namespace cli
+}  // namespace splinecal
