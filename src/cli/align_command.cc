@@ -25,10 +25,6 @@ DEFINE_string(camera_poses,
               "",
               "Camera poses T_c0_c up to scale: TUM trajectory (t tx ty tz qx qy qz qw) or EuRoC "
               "ground-truth format [path]");
-DEFINE_string(camchain,
-              "",
-              "Kalibr camchain.yaml; cam0's T_cam_imu (and timeshift_cam_imu if present) are used "
-              "[path]; without it T_cam_imu is the identity");
 DEFINE_bool(estimate_rotation_extrinsic,
             false,
             "Estimate the camera-IMU rotation by hand-eye (needs rotation about 2 axes or more); "
@@ -173,7 +169,9 @@ Command AlignCommand() {
           "system. See docs/align.md.",
           {{"imu", ""},
            {"camera_poses", ""},
-           {"camchain", ""},
+           {"camchain",
+            "Kalibr camchain.yaml; cam0's T_cam_imu (and timeshift_cam_imu if present) are "
+            "used [path]; without it T_cam_imu is the identity"},
            {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; weights the system"},
            {"estimate_rotation_extrinsic", ""},
            {"gravity", ""},

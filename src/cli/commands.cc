@@ -8,6 +8,8 @@ namespace cli {
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
       EvaluateCommand(),
+      AllanCommand(),
+      AlignCommand(),
   };
   return commands;
 }

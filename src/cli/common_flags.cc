@@ -16,6 +16,8 @@ DEFINE_int32(seed, 1, "Random seed; the same seed gives byte-identical output");
 DEFINE_int32(threads, 1, "Worker threads");
 DEFINE_double(knot_spacing, 0.0, "Spline knot spacing dt [s]; 0 chooses the command's default");
 DEFINE_string(accel_unit, "m/s^2", "Unit of the accelerometer columns: m/s^2 or g");
+DEFINE_string(camchain, "", "Kalibr camchain.yaml [path]");
+DEFINE_string(target, "", "Calibration target: Kalibr aprilgrid YAML or a points YAML [path]");
 DEFINE_string(gyro_bias, "0,0,0", "Gyro bias b_g, x,y,z [rad/s]");
 DEFINE_string(accel_bias, "0,0,0", "Accelerometer bias b_a, x,y,z [m/s^2]");
 DEFINE_string(gyro_unit, "rad/s", "Unit of the gyroscope columns: rad/s or deg/s");

@@ -8,6 +8,8 @@ namespace splinecal {
 namespace cli {
 
 Command EvaluateCommand();
+Command AllanCommand();
+Command AlignCommand();
 
 }  // namespace cli
 }  // namespace splinecal

@@ -21,6 +21,8 @@ DECLARE_int32(threads);
 DECLARE_double(knot_spacing);
 DECLARE_string(accel_unit);
 DECLARE_string(gyro_unit);
+DECLARE_string(camchain);
+DECLARE_string(target);
 DECLARE_string(gyro_bias);
 DECLARE_string(accel_bias);
 
