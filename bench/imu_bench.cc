@@ -9,6 +9,7 @@
 
 #include "splinecal/imu/integrate.h"
 #include "splinecal/imu/noise_generator.h"
+#include "splinecal/imu/simulate.h"
 #include "splinecal/imu/trajectories.h"
 
 namespace splinecal {
@@ -70,6 +71,38 @@ void BM_NoiseGenerator(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_NoiseGenerator);
+
+// The course spline for 20 s (knots every 50 ms), fitted once.
+const SE3Splined& CourseSpline() {
+  static const SE3Splined spline =
+      FitAnalyticTrajectory(VioCourseTrajectory(), 50'000'000, 20'050'000'000, 50'000'000)
+          .MakeSpline();
+  return spline;
+}
+
+// Simulation throughput: spline evaluation, IMU model, noise (white + random walk), ground truth
+// rows; no file writing. 4001 samples per iteration (20 s at 200 Hz).
+void BM_Simulate(benchmark::State& state, bool noise_free, bool with_ground_truth) {
+  const SE3Splined& spline = CourseSpline();
+  SimulationOptions options;
+  options.noise_free = noise_free;
+  options.seed = 1;
+  std::vector<ImuSample> imu;
+  std::vector<GroundTruthState> truth;
+  for (auto _ : state) {
+    SimulateImu(spline,
+                spline.start_time_ns(),
+                spline.start_time_ns() + 20'000'000'000,
+                options,
+                &imu,
+                with_ground_truth ? &truth : nullptr);
+    benchmark::DoNotOptimize(imu.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(imu.size()));
+}
+BENCHMARK_CAPTURE(BM_Simulate, noisy_with_ground_truth, false, true);
+BENCHMARK_CAPTURE(BM_Simulate, noisy_imu_only, false, false);
+BENCHMARK_CAPTURE(BM_Simulate, noise_free_with_ground_truth, true, true);
 
 }  // namespace
 }  // namespace splinecal

@@ -68,9 +68,9 @@ double GaussianSampler::NextSlow(int layer, double u) {
     const double y = tables_.f[layer] + NextUniform() * (tables_.f[layer + 1] - tables_.f[layer]);
     if (y < std::exp(-0.5 * x * x)) return x;
     // Rejected: a whole new draw (the fast path again, written out here).
-    const uint64_t bits = engine_();
+    const uint32_t bits = NextBits();
     layer = static_cast<int>(bits & 0xff);
-    u = static_cast<double>(static_cast<int64_t>(bits) >> 11) * 0x1.0p-52;
+    u = static_cast<double>(static_cast<int32_t>(bits) >> 8) * 0x1.0p-23;
     if (std::abs(u) < tables_.ratio[layer]) return u * tables_.x[layer];
   }
 }

@@ -66,12 +66,9 @@ void SimulateImu(const SE3Splined& spline,
   }
   const Eigen::Vector3d g_w(0.0, 0.0, -options.gravity_m_s2);
 
-  imu->clear();
+  // Every element is overwritten below: resize only (no clear), so a reused vector costs nothing.
   imu->resize(times.size());
-  if (ground_truth != nullptr) {
-    ground_truth->clear();
-    ground_truth->resize(times.size());
-  }
+  if (ground_truth != nullptr) ground_truth->resize(times.size());
   Eigen::Vector3d gyro_bias = options.gyro_bias;
   Eigen::Vector3d accel_bias = options.accel_bias;
   for (size_t k = 0; k < times.size(); ++k) {

@@ -173,6 +173,21 @@ TEST(IntegrateImu, ConstantReadingsAreExactForEveryMethod) {
       {IntegrationMethod::kEuler, IntegrationMethod::kMidpoint, IntegrationMethod::kRk4});
 }
 
+TEST(IntegrateImu, OrientationStaysUnitOverManySteps) {
+  // 100000 steps of a fast tumble: without renormalisation |q| would drift by ~1e-11.
+  std::vector<ImuSample> imu(100001);
+  for (size_t k = 0; k < imu.size(); ++k) {
+    imu[k].t_ns = static_cast<int64_t>(k) * 5'000'000;
+    imu[k].gyro = Eigen::Vector3d(3.0 * std::sin(0.01 * k), 2.0, -1.0 + std::cos(0.003 * k));
+    imu[k].accel = Eigen::Vector3d(0.0, 0.0, kGravity);
+  }
+  for (IntegrationMethod method : kAllMethods) {
+    const NavState end =
+        IntegrateImu(imu, NavState(), imu.back().t_ns, ImuBias(), kGravityW, method);
+    EXPECT_NEAR(end.R_w_s.quaternion().norm(), 1.0, 1e-14) << IntegrationMethodName(method);
+  }
+}
+
 TEST(IntegrateImu, BiasesAreSubtracted) {
   // A level IMU at rest with biased readings stays put once the biases are given.
   ImuBias bias;
