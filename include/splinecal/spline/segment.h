@@ -147,6 +147,9 @@ struct KnotDeltaJacobians {
   Eigen::Matrix3d Jr_inv_upper;  // upper block of Jr^-1(Omega)
   Eigen::Matrix3d Jl_inv_diag;   // Jl^-1(phi)
   Eigen::Matrix3d Jl_inv_upper;  // upper block of Jl^-1(Omega)
+  // Jr^-1(phi) = I + 1/2 P + c P^2 and Jl^-1(phi) = I - 1/2 P + c P^2 share c (lie/so3.h), so
+  // G Jr^-1 and G Jl^-1 share G P and G P^2 (internal::ChainToControlPoses).
+  double inv_c;
   Eigen::Matrix3d M2;            // P Rh + Rh P          (P = Hat(phi), Rh = Hat(rho))
   Eigen::Matrix3d M3;            // P Rh P
   Eigen::Matrix3d M4;            // P P Rh + Rh P P
@@ -556,6 +559,7 @@ KnotDeltaJacobians MakeKnotDeltaJacobians(const KnotDelta<T>& delta) {
   const Eigen::Matrix3d Q_left =
       0.5 * Rh + A.k.c3 * J.M2 + (A.k.c3 - 3.0 * A.k.c4) * J.M3 + A.k.c4 * J.M4 + A.k.c5 * J.M5;
   // Jr^-1(Omega) = [[Jr^-1, -Jr^-1 Qr Jr^-1], [0, Jr^-1]] (block inverse of Jr; lie/se3.h).
+  J.inv_c = internal::ComputeSO3JacobianCoefficients(delta.theta_sq, true).c;
   J.Jr_inv_diag = RightJacobianInverseSO3(delta.phi);
   J.Jl_inv_diag = LeftJacobianInverseSO3(delta.phi);
   J.Jr_inv_upper = -J.Jr_inv_diag * Q_right * J.Jr_inv_diag;

@@ -125,23 +125,28 @@ inline void ChainToControlPoses(const SegmentKnots<double>& knots,
                                 ControlPoseJacobian<3>* J) {
   const KnotDeltaJacobians* K = knots.jacobians;
   J->first_index = knots.first_index;
-  for (int k = 0; k < kSplineOrder; ++k) {
-    Rows3x6 block;
-    block.v.setZero();
-    block.w.setZero();
-    if (k == 0) block.w = N_S0;
-    if (k >= 1) {  // + G_k Jr^-1(Omega_k)
-      const Rows3x6 r = MulBlockTri(G[k - 1], K[k - 1].Jr_inv_diag, K[k - 1].Jr_inv_upper);
-      block.v += r.v;
-      block.w += r.w;
-    }
-    if (k <= 2) {  // - G_{k+1} Jl^-1(Omega_{k+1})
-      const Rows3x6 l = MulBlockTri(G[k], K[k].Jl_inv_diag, K[k].Jl_inv_upper);
-      block.v -= l.v;
-      block.w -= l.w;
-    }
-    J->blocks[k].leftCols<3>() = block.v;
-    J->blocks[k].rightCols<3>() = block.w;
+  for (auto& block : J->blocks) block.setZero();
+  J->blocks[0].rightCols<3>() = N_S0;
+  // Knot j contributes G_j Jr^-1(Omega_j) to block j and -G_j Jl^-1(Omega_j) to block j-1, with
+  // G [[D, U], [0, D]] = [G.v D, G.v U + G.w D] and D = I +- 1/2 P + c P^2 (P = [phi_j]x).
+  for (int j = 0; j < 3; ++j) {
+    const Rows3x6& g = G[j];
+    const KnotDeltaJacobians& c = K[j];
+    const Eigen::Vector3d& phi = knots.deltas[j].phi;
+    const Eigen::Matrix3d gv_p = MulHat(g.v, phi);
+    const Eigen::Matrix3d gw_p = MulHat(g.w, phi);
+    const Eigen::Matrix3d gv_even = g.v + c.inv_c * MulHat(gv_p, phi);  // G.v (I + c P^2)
+    const Eigen::Matrix3d gw_even = g.w + c.inv_c * MulHat(gw_p, phi);
+    auto next_trans = J->blocks[j + 1].leftCols<3>();
+    auto next_rot = J->blocks[j + 1].rightCols<3>();
+    auto prev_trans = J->blocks[j].leftCols<3>();
+    auto prev_rot = J->blocks[j].rightCols<3>();
+    next_trans += gv_even + 0.5 * gv_p;
+    next_rot += gw_even + 0.5 * gw_p;
+    next_rot.noalias() += g.v * c.Jr_inv_upper;
+    prev_trans -= gv_even - 0.5 * gv_p;
+    prev_rot -= gw_even - 0.5 * gw_p;
+    prev_rot.noalias() -= g.v * c.Jl_inv_upper;
   }
 }
 
