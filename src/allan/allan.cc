@@ -171,6 +171,12 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   std::vector<std::exception_ptr> errors(num_axes);
   std::atomic<size_t> next{0};
   std::mutex progress_mutex;
+  // Axes run in parallel; threads left over (fewer axes than threads) split each axis's passes.
+  const int total_threads = options.num_threads > 0
+                                ? options.num_threads
+                                : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = std::min<int>(total_threads, static_cast<int>(num_axes));
+  const int threads_per_axis = std::max(1, total_threads / threads);
   auto work = [&]() {
     for (size_t a = next++; a < num_axes; a = next++) {
       AxisSeries& series = recording.axes[a];
@@ -181,7 +187,7 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
       try {
         const IntegratedSignal signal(std::move(series.samples), recording.rate_hz, axis.name);
         axis.mean = signal.mean();
-        axis.curve = signal.Deviation(sizes);
+        axis.curve = signal.Deviation(sizes, threads_per_axis);
         axis.fit = FitNoise(axis.curve, options.fit);
       } catch (...) {
         errors[a] = std::current_exception();
@@ -195,10 +201,6 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
       }
     }
   };
-  int threads = options.num_threads > 0
-                    ? options.num_threads
-                    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = std::min<int>(threads, static_cast<int>(num_axes));
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(work);
   work();

@@ -1,9 +1,11 @@
 #include "splinecal/allan/allan_deviation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "splinecal/error.h"
@@ -75,23 +77,28 @@ long double FarSum(const double* a, int64_t m, int64_t count) {
   return total;
 }
 
-// The same sums for several near m at once (block by block), added to totals[i].
+// The same sums for several near m at once, over the start indices j in [j_begin, j_end) (block by
+// block), added to totals[i].
 void NearSums(const double* a,
               int64_t n,
               const std::vector<int64_t>& sizes,
-              std::vector<long double>* totals) {
-  int64_t longest = 0;
-  for (const int64_t m : sizes) longest = std::max(longest, n - 2 * m);
-  for (int64_t begin = 0; begin < longest; begin += kBlock) {
+              int64_t j_begin,
+              int64_t j_end,
+              long double* totals) {
+  for (int64_t begin = j_begin; begin < j_end; begin += kBlock) {
+    const int64_t block_end = std::min(j_end, begin + kBlock);
     for (size_t i = 0; i < sizes.size(); ++i) {
       const int64_t m = sizes[i];
-      const int64_t count = n - 2 * m;
+      const int64_t count = std::min(block_end, n - 2 * m);
       if (begin >= count) continue;
-      const int64_t length = std::min(kBlock, count - begin);
-      (*totals)[i] += BlockSum(a + begin, a + begin + m, a + begin + 2 * m, length);
+      totals[i] += BlockSum(a + begin, a + begin + m, a + begin + 2 * m, count - begin);
     }
   }
 }
+
+// Near sums are computed per segment of start indices and the segment totals added in order, so
+// that the result does not depend on how many threads share the segments.
+constexpr int64_t kSegment = 256 * kBlock;
 
 }  // namespace
 
@@ -133,16 +140,26 @@ IntegratedSignal::IntegratedSignal(std::vector<double>&& samples,
   }
   const int64_t n = static_cast<int64_t>(sums_.size());
   if (n < 2) throw Error(name + ": needs at least 2 samples, got " + std::to_string(n));
-  long double sum = 0.0L;
+  // Any constant c gives the same Allan variance; the mean only keeps the sums small, so it is
+  // taken in double (four interleaved sums), fast and accurate enough for that.
+  double partial[4] = {0.0, 0.0, 0.0, 0.0};
+  bool finite = true;
   bool constant = true;
+  const double first = sums_[0];
   for (int64_t i = 0; i < n; ++i) {
     const double y = sums_[i];
-    if (!std::isfinite(y)) {
-      throw Error(name + ": sample " + std::to_string(i) + " is not finite");
-    }
-    constant = constant && y == sums_[0];
-    sum += y;
+    finite = finite && std::isfinite(y);
+    constant = constant && y == first;
+    partial[i & 3] += y;
   }
+  if (!finite) {
+    for (int64_t i = 0; i < n; ++i) {
+      if (!std::isfinite(sums_[i])) {
+        throw Error(name + ": sample " + std::to_string(i) + " is not finite");
+      }
+    }
+  }
+  const long double sum = static_cast<long double>((partial[0] + partial[1]) + (partial[2] + partial[3]));
   if (constant) {
     throw Error(name + ": all " + std::to_string(n) + " samples are equal (" +
                 std::to_string(sums_[0]) + "): a constant signal has no noise to identify");
@@ -166,19 +183,11 @@ void IntegratedSignal::CheckClusterSize(int64_t m) const {
 }
 
 double IntegratedSignal::AllanVariance(int64_t m) const {
-  CheckClusterSize(m);
-  const int64_t n = num_samples();
   // With S_k = sum_{i<k} (y_i - mean) and theta_k = tau_0 S_k, tau = m tau_0:
   // AVAR = sum_{k=0}^{N-2m} (S_{k+2m} - 2 S_{k+m} + S_k)^2 / (2 m^2 (N - 2m + 1)).
   // S_0 = 0 is not stored (sums_[k - 1] = S_k): the k = 0 term first, then k = 1 .. N - 2m.
   // The k >= 1 terms are the kernel's j = k - 1.
-  std::vector<long double> rest(1, 0.0L);
-  if (2 * m <= kNearSpan) {
-    NearSums(sums_.data(), n, {m}, &rest);
-  } else {
-    rest[0] = FarSum(sums_.data(), m, n - 2 * m);
-  }
-  return Normalise(m, rest[0]);
+  return Variances({m}, 1)[0];
 }
 
 double IntegratedSignal::Normalise(int64_t m, long double sum_of_k_at_least_1) const {
@@ -191,28 +200,77 @@ double IntegratedSignal::Normalise(int64_t m, long double sum_of_k_at_least_1) c
   return static_cast<double>(total / (2.0L * m_ld * m_ld * terms));
 }
 
-AllanCurve IntegratedSignal::Deviation(const std::vector<int64_t>& cluster_sizes) const {
+std::vector<double> IntegratedSignal::Variances(const std::vector<int64_t>& cluster_sizes,
+                                                int num_threads) const {
+  const int64_t n = num_samples();
+  const double* a = sums_.data();
+  std::vector<int64_t> near;
+  std::vector<size_t> far;  // indices into cluster_sizes
+  int64_t longest = 0;      // start indices the near sizes need
+  for (size_t i = 0; i < cluster_sizes.size(); ++i) {
+    const int64_t m = cluster_sizes[i];
+    CheckClusterSize(m);
+    if (2 * m <= kNearSpan) {
+      near.push_back(m);
+      longest = std::max(longest, n - 2 * m);
+    } else {
+      far.push_back(i);
+    }
+  }
+  // Tasks: each far size (one comb pass), then each segment of the near sweep; long tasks first.
+  const int64_t num_segments = near.empty() ? 0 : (longest + kSegment - 1) / kSegment;
+  const int64_t num_tasks = static_cast<int64_t>(far.size()) + num_segments;
+  std::vector<long double> far_totals(far.size(), 0.0L);
+  std::vector<long double> segment_totals(num_segments * near.size(), 0.0L);
+  std::atomic<int64_t> next{0};
+  auto work = [&]() {
+    for (int64_t task = next++; task < num_tasks; task = next++) {
+      if (task < static_cast<int64_t>(far.size())) {
+        const int64_t m = cluster_sizes[far[task]];
+        far_totals[task] = FarSum(a, m, n - 2 * m);
+      } else {
+        const int64_t segment = task - static_cast<int64_t>(far.size());
+        const int64_t begin = segment * kSegment;
+        NearSums(a, n, near, begin, std::min(longest, begin + kSegment),
+                 &segment_totals[segment * near.size()]);
+      }
+    }
+  };
+  const int threads = static_cast<int>(std::clamp<int64_t>(num_threads, 1, std::max<int64_t>(num_tasks, 1)));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+
+  std::vector<double> variances(cluster_sizes.size());
+  size_t next_near = 0;
+  size_t next_far = 0;
+  for (size_t i = 0; i < cluster_sizes.size(); ++i) {
+    const int64_t m = cluster_sizes[i];
+    long double rest = 0.0L;
+    if (2 * m <= kNearSpan) {
+      for (int64_t segment = 0; segment < num_segments; ++segment) {
+        rest += segment_totals[segment * near.size() + next_near];
+      }
+      ++next_near;
+    } else {
+      rest = far_totals[next_far++];
+    }
+    variances[i] = Normalise(m, rest);
+  }
+  return variances;
+}
+
+AllanCurve IntegratedSignal::Deviation(const std::vector<int64_t>& cluster_sizes,
+                                       int num_threads) const {
   AllanCurve curve;
   curve.rate_hz = rate_hz_;
   curve.num_samples = num_samples();
   curve.cluster_sizes = cluster_sizes;
-  const int64_t n = num_samples();
-  std::vector<int64_t> near;
-  for (const int64_t m : cluster_sizes) {
-    CheckClusterSize(m);
-    if (2 * m <= kNearSpan) near.push_back(m);
-  }
-  std::vector<long double> near_totals(near.size(), 0.0L);
-  NearSums(sums_.data(), n, near, &near_totals);
-  size_t next_near = 0;
-  for (const int64_t m : cluster_sizes) {
-    long double rest = 0.0L;
-    if (2 * m <= kNearSpan) {
-      rest = near_totals[next_near++];
-    } else {
-      rest = FarSum(sums_.data(), m, n - 2 * m);
-    }
-    const double adev = std::sqrt(Normalise(m, rest));
+  const std::vector<double> variances = Variances(cluster_sizes, num_threads);
+  for (size_t i = 0; i < cluster_sizes.size(); ++i) {
+    const int64_t m = cluster_sizes[i];
+    const double adev = std::sqrt(variances[i]);
     curve.tau_s.push_back(static_cast<double>(m) / rate_hz_);
     curve.adev.push_back(adev);
     curve.adev_error.push_back(adev * AllanRelativeError(num_samples(), m));

@@ -37,7 +37,9 @@ struct AllanOptions {
   double max_tau_fraction = 0.1;  // longest averaging time, as a fraction of the record
   CombineAxes combine = CombineAxes::kMean;
   NoiseFitOptions fit;
-  int num_threads = 0;  // 0: one per axis, at most the hardware's threads
+  // 0: the hardware's threads. Axes run in parallel; with fewer axes than threads, each axis's
+  // passes are split too (results do not depend on the thread count).
+  int num_threads = 0;
   // Called (from worker threads, one call at a time) as each axis finishes; may be empty.
   std::function<void(const std::string&)> progress;
 };

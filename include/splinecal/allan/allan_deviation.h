@@ -70,11 +70,14 @@ class IntegratedSignal {
   // One O(N) pass.
   double AllanVariance(int64_t m) const;
 
-  // The curve at the given cluster sizes (each in [1, N / 2]).
-  AllanCurve Deviation(const std::vector<int64_t>& cluster_sizes) const;
+  // The curve at the given cluster sizes (each in [1, N / 2]), on up to num_threads threads
+  // (the passes are split into tasks whose sums are combined in a fixed order: the result does
+  // not depend on num_threads).
+  AllanCurve Deviation(const std::vector<int64_t>& cluster_sizes, int num_threads = 1) const;
 
  private:
   void CheckClusterSize(int64_t m) const;
+  std::vector<double> Variances(const std::vector<int64_t>& cluster_sizes, int num_threads) const;
   // AVAR(m) from sum_{k>=1} of the squared second differences (adds the k = 0 term).
   double Normalise(int64_t m, long double sum_of_k_at_least_1) const;
 
