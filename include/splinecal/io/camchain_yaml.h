@@ -1,0 +1,37 @@
+// Kalibr's camchain.yaml / camchain-imucam.yaml (CONVENTIONS.md "File formats"), read with the
+// one YAML layer (io/yaml_document.h: OpenCV's %YAML:1.0 first line accepted, errors name the
+// file and the line) and written with io/yaml_writer.h.
+//
+// Per camera camN (cam0, cam1, ... consecutive):
+//   camera_model       pinhole (the only model; others are refused by name)
+//   intrinsics         [fu, fv, pu, pv]                                  [px]
+//   distortion_model   radtan | equidistant | none
+//   distortion_coeffs  radtan [k1, k2, p1, p2]; equidistant [k1, k2, k3, k4]; none [] (optional)
+//   resolution         [width, height]                                   [px]
+//   T_cam_imu          4x4, list of rows (optional: identity)
+//   timeshift_cam_imu  [s] (optional: 0)
+//   line_delay         [s] per image row (optional: 0, a global shutter)
+//   rostopic           (optional, kept)
+// Other keys (T_cn_cnm1, cam_overlaps) are ignored.
+#ifndef SPLINECAL_IO_CAMCHAIN_YAML_H_
+#define SPLINECAL_IO_CAMCHAIN_YAML_H_
+
+#include <string>
+
+#include "splinecal/calib/camchain.h"
+
+namespace splinecal {
+
+// Throws splinecal::Error (file:line: what is wrong) for a missing cam0, a missing or invalid
+// key, an unsupported camera or distortion model, a wrong number of coefficients, non-positive
+// focal lengths or resolution, a T_cam_imu that is not a rigid transform, a negative line
+// delay.
+Camchain ReadCamchainYaml(const std::string& path);
+
+// The YAML text of `camchain` with every key above (Kalibr's camchain-imucam.yaml layout; numbers
+// with 17 significant digits so that it reads back exactly).
+std::string CamchainYamlText(const Camchain& camchain);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_IO_CAMCHAIN_YAML_H_

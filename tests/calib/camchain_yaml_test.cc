@@ -1,0 +1,154 @@
+#include "splinecal/io/camchain_yaml.h"
+
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "splinecal/error.h"
+#include "testing/temp_dir.h"
+
+namespace splinecal {
+namespace {
+
+using ::testing::HasSubstr;
+
+// EuRoC's cam0 sensor.yaml values in Kalibr's camchain-imucam layout, with OpenCV's first line,
+// CRLF line ends and a comment.
+constexpr char kKalibrCamchain[] =
+    "%YAML:1.0\r\n"
+    "# written by kalibr\r\n"
+    "cam0:\r\n"
+    "  T_cam_imu:\r\n"
+    "  - [0.0148655429818, 0.999557249008, -0.0257744366974, 0.0652229868707]\r\n"
+    "  - [-0.999880929698, 0.0149672133247, 0.00375618835797, -0.0207063833366]\r\n"
+    "  - [0.00414029679422, 0.0257155299480, 0.999660727178, -0.0080546014540]\r\n"
+    "  - [0.0, 0.0, 0.0, 1.0]\r\n"
+    "  cam_overlaps: []\r\n"
+    "  camera_model: pinhole\r\n"
+    "  distortion_coeffs: [-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05]\r\n"
+    "  distortion_model: radtan\r\n"
+    "  intrinsics: [458.654, 457.296, 367.215, 248.375]\r\n"
+    "  resolution: [752, 480]\r\n"
+    "  rostopic: /cam0/image_raw\r\n"
+    "  timeshift_cam_imu: 0.0012\r\n"
+    "  line_delay: 2.5e-5\r\n";
+
+TEST(ReadCamchainYaml, ReadsKalibrCamchainImucam) {
+  testing::TempDir dir;
+  const Camchain camchain = ReadCamchainYaml(dir.Write("camchain.yaml", kKalibrCamchain));
+  ASSERT_EQ(camchain.size(), 1u);
+  const CameraCalibration& c = camchain[0];
+  EXPECT_EQ(c.camera.fu, 458.654);
+  EXPECT_EQ(c.camera.pv, 248.375);
+  EXPECT_EQ(c.camera.distortion, DistortionModel::kRadTan);
+  EXPECT_EQ(c.camera.distortion_coeffs(3), 1.76187114e-05);
+  EXPECT_EQ(c.camera.width, 752);
+  EXPECT_EQ(c.camera.height, 480);
+  EXPECT_EQ(c.timeshift_cam_imu_s, 0.0012);
+  EXPECT_EQ(c.line_delay_s, 2.5e-5);
+  EXPECT_EQ(c.rostopic, "/cam0/image_raw");
+  EXPECT_NEAR(c.T_cam_imu.translation().x(), 0.0652229868707, 1e-15);
+  EXPECT_NEAR(c.T_cam_imu.rotationMatrix()(1, 0), -0.999880929698, 1e-9);
+}
+
+TEST(ReadCamchainYaml, DefaultsWithoutImuKeys) {
+  testing::TempDir dir;
+  const Camchain camchain = ReadCamchainYaml(dir.Write(
+      "camchain.yaml",
+      "cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+      "  distortion_model: none\n  distortion_coeffs: []\n  resolution: [640, 480]\n"
+      "cam1:\n  camera_model: pinhole\n  intrinsics: [300, 300, 320, 240]\n"
+      "  distortion_model: equidistant\n  distortion_coeffs: [0.01, 0.002, -0.001, 0.0003]\n"
+      "  resolution: [640, 480]\n"));
+  ASSERT_EQ(camchain.size(), 2u);
+  EXPECT_EQ(camchain[0].camera.distortion, DistortionModel::kNone);
+  EXPECT_EQ(camchain[0].T_cam_imu.matrix(), Eigen::Matrix4d::Identity());
+  EXPECT_EQ(camchain[0].timeshift_cam_imu_s, 0.0);
+  EXPECT_EQ(camchain[0].line_delay_s, 0.0);
+  EXPECT_EQ(camchain[1].camera.distortion, DistortionModel::kEquidistant);
+  EXPECT_EQ(camchain[1].camera.distortion_coeffs(2), -0.001);
+}
+
+TEST(CamchainYamlText, RoundTripsExactly) {
+  testing::TempDir dir;
+  Camchain camchain = ReadCamchainYaml(dir.Write("in.yaml", kKalibrCamchain));
+  camchain[0].T_cam_imu = camchain[0].T_cam_imu * SE3d::Exp((Vector6d() << 0.01, -0.02, 0.03,
+                                                                0.1, 0.2, -0.3).finished());
+  camchain[0].timeshift_cam_imu_s = -1.0 / 3.0;
+  camchain[0].line_delay_s = 1.0 / 30000.0;
+  const std::string text = CamchainYamlText(camchain);
+  const Camchain back = ReadCamchainYaml(dir.Write("out.yaml", text));
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].camera.intrinsics(), camchain[0].camera.intrinsics());
+  EXPECT_EQ(back[0].camera.width, 752);
+  EXPECT_EQ(back[0].timeshift_cam_imu_s, camchain[0].timeshift_cam_imu_s);
+  EXPECT_EQ(back[0].line_delay_s, camchain[0].line_delay_s);
+  EXPECT_LT((back[0].T_cam_imu.matrix() - camchain[0].T_cam_imu.matrix()).cwiseAbs().maxCoeff(),
+            1e-15);
+  EXPECT_EQ(back[0].rostopic, "/cam0/image_raw");
+  EXPECT_THAT(text, HasSubstr("camera_model: \"pinhole\""));
+  EXPECT_THAT(text, HasSubstr("distortion_model: \"radtan\""));
+}
+
+struct BadCase {
+  const char* yaml;
+  const char* message;
+};
+
+TEST(ReadCamchainYaml, RefusesBadFilesNamingTheKey) {
+  const std::string good_tail =
+      "  intrinsics: [400, 400, 320, 240]\n  distortion_model: radtan\n"
+      "  distortion_coeffs: [0.1, 0.01, 0.0, 0.0]\n  resolution: [640, 480]\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"cam1:\n  camera_model: pinhole\n" + good_tail, "cam0"},
+      {"cam0:\n  camera_model: omni\n" + good_tail, "unsupported camera model 'omni'"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320]\n"
+       "  distortion_model: none\n  resolution: [640, 480]\n",
+       "expected 4 numbers"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [-400, 400, 320, 240]\n"
+       "  distortion_model: none\n  resolution: [640, 480]\n",
+       "focal lengths"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+       "  distortion_model: fov\n  distortion_coeffs: [0.5]\n  resolution: [640, 480]\n",
+       "unsupported distortion model 'fov'"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+       "  distortion_model: radtan\n  distortion_coeffs: [0.1, 0.2]\n  resolution: [640, 480]\n",
+       "takes 4 coefficients, got 2"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+       "  distortion_model: none\n  resolution: [640.5, 480]\n",
+       "resolution"},
+      {"cam0:\n  camera_model: pinhole\n" + good_tail +
+           "  T_cam_imu:\n  - [1, 0, 0, 0]\n  - [0, 2, 0, 0]\n  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n",
+       "not a rigid transform"},
+      {"cam0:\n  camera_model: pinhole\n" + good_tail + "  line_delay: -1e-5\n", "line_delay"},
+      {"cam0:\n  camera_model: pinhole\n" + good_tail + "cam2:\n  camera_model: pinhole\n",
+       "without gaps"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+       "  distortion_model: none\n",
+       "resolution"},
+  };
+  testing::TempDir dir;
+  for (const auto& [yaml, message] : cases) {
+    const std::string path = dir.Write("bad.yaml", yaml);
+    try {
+      ReadCamchainYaml(path);
+      ADD_FAILURE() << "accepted:\n" << yaml;
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message)) << yaml;
+      EXPECT_THAT(e.what(), HasSubstr("bad.yaml")) << yaml;
+    }
+  }
+}
+
+TEST(ReadCamchainYaml, MissingFileNamesIt) {
+  try {
+    ReadCamchainYaml("/nonexistent/camchain.yaml");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/camchain.yaml"));
+  }
+}
+
+}  // namespace
+}  // namespace splinecal
