@@ -25,6 +25,10 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kStallStep = 1e-9;
 constexpr double kStallRatio = 0.5;
 
+// Gyro-bias iterations re-integrate the rotations only when the bias moved more than this
+// [rad/s] from where they were integrated (see EstimateGyroBias).
+constexpr double kRelinearizeBias = 1e-6;
+
 using NormalEquations = AlignmentProblem::NormalEquations;
 
 std::string Format(const char* format, ...) {
@@ -327,6 +331,13 @@ GyroBiasEstimate EstimateGyroBias(const std::vector<ImuSample>& imu,
   }
   const int num_params = estimate_rotation ? 6 : 3;  // (db_g, dphi)
   double previous_step = kInfinity;
+  // Rotations preintegrated at b_lin; for a bias within kRelinearizeBias of b_lin the first-order
+  // correction dR(b) = dR(b_lin) Exp(J (b - b_lin)) is used instead (error O(|b - b_lin|^2 T^2)
+  // < 1e-14 rad), which saves the last re-integrations.
+  std::vector<SO3d> dR_lin(num_pairs);
+  std::vector<Eigen::Matrix3d> J_lin(num_pairs);
+  Eigen::Vector3d b_lin = Eigen::Vector3d::Zero();
+  bool linearised = false;
   for (int iteration = 1; iteration <= options.max_gyro_bias_iterations; ++iteration) {
     // Gauss-Newton on r_k = Log(dR_k(b_g)^T X^T Rc_k X), X = R_cam_imu (align.h, step 2):
     //   dR(b + db)^T = Exp(-J_dR_bg db) dR^T              => dr/d db   = -Jl^-1(r) J_dR_bg
@@ -337,10 +348,17 @@ GyroBiasEstimate EstimateGyroBias(const std::vector<ImuSample>& imu,
     Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
     Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
     double sum_sq = 0.0;
+    if (!linearised || (estimate.gyro_bias - b_lin).norm() > kRelinearizeBias) {
+      for (int k = 0; k < num_pairs; ++k) {
+        dR_lin[k] = PreintegrateRotation(imu, frames[k].t_ns, frames[k + 1].t_ns,
+                                         estimate.gyro_bias, &J_lin[k]);
+      }
+      b_lin = estimate.gyro_bias;
+      linearised = true;
+    }
     for (int k = 0; k < num_pairs; ++k) {
-      Eigen::Matrix3d J_dR_bg;
-      const SO3d dR = PreintegrateRotation(imu, frames[k].t_ns, frames[k + 1].t_ns,
-                                           estimate.gyro_bias, &J_dR_bg);
+      const Eigen::Matrix3d& J_dR_bg = J_lin[k];
+      const SO3d dR = dR_lin[k] * SO3d::Exp(J_dR_bg * (estimate.gyro_bias - b_lin));
       const double weight =
           1e9 / static_cast<double>(frames[k + 1].t_ns - frames[k].t_ns);  // 1 / T_k [1/s]
       const SO3d M = estimate.R_cam_imu.inverse() * R_ck_ck1[k] * estimate.R_cam_imu;

@@ -160,38 +160,39 @@ ImuPreintegration Preintegrate(const std::vector<ImuSample>& imu,
     const double half_h2 = 0.5 * h * h;
 
     if (noise != nullptr) {
-      // M = F P, then P = M F^T + G Q G^T, block by block (F is mostly identity).
-      M.middleRows<3>(kPreintP) = P.middleRows<3>(kPreintP) + h * P.middleRows<3>(kPreintV) +
-                                  (half_h2 * A) * P.middleRows<3>(kPreintPhi) +
-                                  (half_h2 * Bg) * P.middleRows<3>(kPreintBg) +
-                                  (half_h2 * Ba) * P.middleRows<3>(kPreintBa);
-      M.middleRows<3>(kPreintV) = P.middleRows<3>(kPreintV) +
-                                  (h * A) * P.middleRows<3>(kPreintPhi) +
-                                  (h * Bg) * P.middleRows<3>(kPreintBg) +
-                                  (h * Ba) * P.middleRows<3>(kPreintBa);
+      // P = F P F^T + G Q G^T, block by block. With X = [h A, h B_g, h B_a] (the v row of F over
+      // z = (dphi, db_g, db_a)) the p row is (h/2) X, so each product with X is formed once:
+      //   F = [[I, h I, (h/2) X], [0, I, X], [0, 0, F_z]],  F_z = [[Exp(phi)^T, -Jr h, 0], [0, I,
+      //   0], [0, 0, I]].
+      const Eigen::Matrix3d hA = h * A, hBg = h * Bg, hBa = h * Ba;
+      // M = F P.
+      const Eigen::Matrix<double, 3, 15> W = hA * P.middleRows<3>(kPreintPhi) +
+                                             hBg * P.middleRows<3>(kPreintBg) +
+                                             hBa * P.middleRows<3>(kPreintBa);
+      M.middleRows<3>(kPreintP) =
+          P.middleRows<3>(kPreintP) + h * P.middleRows<3>(kPreintV) + (0.5 * h) * W;
+      M.middleRows<3>(kPreintV) = P.middleRows<3>(kPreintV) + W;
       M.middleRows<3>(kPreintPhi) =
           Rs.transpose() * P.middleRows<3>(kPreintPhi) - Jr_h * P.middleRows<3>(kPreintBg);
       M.middleRows<6>(kPreintBg) = P.middleRows<6>(kPreintBg);
-
-      P.middleCols<3>(kPreintP) = M.middleCols<3>(kPreintP) + h * M.middleCols<3>(kPreintV) +
-                                  M.middleCols<3>(kPreintPhi) * (half_h2 * A).transpose() +
-                                  M.middleCols<3>(kPreintBg) * (half_h2 * Bg).transpose() +
-                                  M.middleCols<3>(kPreintBa) * (half_h2 * Ba).transpose();
-      P.middleCols<3>(kPreintV) = M.middleCols<3>(kPreintV) +
-                                  M.middleCols<3>(kPreintPhi) * (h * A).transpose() +
-                                  M.middleCols<3>(kPreintBg) * (h * Bg).transpose() +
-                                  M.middleCols<3>(kPreintBa) * (h * Ba).transpose();
-      P.middleCols<3>(kPreintPhi) = M.middleCols<3>(kPreintPhi) * Rs +
-                                    M.middleCols<3>(kPreintBg) * (-Jr_h).transpose();
+      // P = M F^T.
+      const Eigen::Matrix<double, 15, 3> V = M.middleCols<3>(kPreintPhi) * hA.transpose() +
+                                             M.middleCols<3>(kPreintBg) * hBg.transpose() +
+                                             M.middleCols<3>(kPreintBa) * hBa.transpose();
+      P.middleCols<3>(kPreintP) =
+          M.middleCols<3>(kPreintP) + h * M.middleCols<3>(kPreintV) + (0.5 * h) * V;
+      P.middleCols<3>(kPreintV) = M.middleCols<3>(kPreintV) + V;
+      P.middleCols<3>(kPreintPhi) =
+          M.middleCols<3>(kPreintPhi) * Rs - M.middleCols<3>(kPreintBg) * Jr_h.transpose();
       P.middleCols<6>(kPreintBg) = M.middleCols<6>(kPreintBg);
 
       // Noise of the step: white gyro n_g enters like b_g, white accel n_a like b_a.
       Eigen::Matrix<double, 9, 3> G_g;
-      G_g << half_h2 * Bg, h * Bg, -Jr_h;
+      G_g << (0.5 * h) * hBg, hBg, -Jr_h;
       Eigen::Matrix<double, 6, 3> G_a;
-      G_a << half_h2 * Ba, h * Ba;
-      P.topLeftCorner<9, 9>() += (gyro_var / h) * G_g * G_g.transpose();
-      P.topLeftCorner<6, 6>() += (accel_var / h) * G_a * G_a.transpose();
+      G_a << (0.5 * h) * hBa, hBa;
+      P.topLeftCorner<9, 9>().noalias() += (gyro_var / h) * G_g * G_g.transpose();
+      P.topLeftCorner<6, 6>().noalias() += (accel_var / h) * G_a * G_a.transpose();
       P.diagonal().segment<3>(kPreintBg).array() += gyro_rw_var * h;
       P.diagonal().segment<3>(kPreintBa).array() += accel_rw_var * h;
     }
