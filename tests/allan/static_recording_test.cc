@@ -1,6 +1,8 @@
 #include "splinecal/allan/static_recording.h"
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -79,6 +81,39 @@ TEST(ReadEurocStaticRecording, RefusesBadInputWithFileAndLine) {
   StaticReadOptions in_g;
   in_g.accel_scale = 9.80665;
   EXPECT_NO_THROW(ReadEurocStaticRecording(dir.File("g.csv"), in_g));
+}
+
+// The parallel fast path (forced here with parallel_min_bytes = 0) gives the same numbers as the
+// TextFileReader path, and hands anything unusual to it, so errors keep their line.
+TEST(ReadEurocStaticRecording, ParallelPathEqualsReaderPath) {
+  testing::TempDir dir;
+  std::string text = std::string(kEurocHeader) + "# comment\n\n";
+  for (int k = 0; k < 5000; ++k) {
+    char line[200];
+    std::snprintf(line, sizeof(line), "%lld, %.17g,%.17g,%.17g ,%.17g,%.17g,%.17g%s\n",
+                  1000000000LL + 2500000LL * k, std::sin(k * 0.1), 1e-3 * k, -0.5,
+                  std::cos(k * 0.01), 1e-7 * k * k, 9.81 + 1e-3 * std::sin(k), k % 7 ? "" : "\r");
+    text += line;
+    if (k % 1000 == 0) text += "# a comment line in the middle\n";
+  }
+  const std::string path = dir.Write("big.csv", text);
+  StaticReadOptions parallel;
+  parallel.parallel_min_bytes = 0;
+  parallel.gyro_scale = 0.5;
+  StaticReadOptions sequential = parallel;
+  sequential.parallel_min_bytes = std::numeric_limits<int64_t>::max();
+  const StaticRecording a = ReadEurocStaticRecording(path, parallel);
+  const StaticRecording b = ReadEurocStaticRecording(path, sequential);
+  EXPECT_EQ(a.rate_hz, b.rate_hz);
+  EXPECT_DOUBLE_EQ(a.rate_hz, 400.0);
+  ASSERT_EQ(a.axes.size(), 6u);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(a.axes[i].samples, b.axes[i].samples) << i;
+  EXPECT_EQ(a.axes[0].samples.size(), 5000u);
+
+  const std::string bad = dir.Write("bad.csv", text + "13500000000,0,0,0,0,0,x\n");
+  ExpectError([&] { ReadEurocStaticRecording(bad, parallel); }, "bad.csv:5009:");
+  const std::string plus = dir.Write("plus.csv", text + "13500000000,+1,0,0,0,0,9.8\n");
+  EXPECT_EQ(ReadEurocStaticRecording(plus, parallel).axes[0].samples.back(), 0.5);
 }
 
 TEST(ReadColumnStaticRecording, SixColumnsAreGyroThenAccel) {

@@ -5,9 +5,9 @@
 //     timestamps: (rows - 1) / (t_last - t_first).
 //   - Plain text columns without timestamps, whitespace or comma separated, at a given rate:
 //     6 columns are gyro xyz then accel xyz; 1 to 3 columns are the x (y, z) axes of one sensor.
-// Both stream the file through the io layer's TextFileReader (blank lines, '#' comments, CRLF,
-// a header row without '#'), so memory is 8 bytes per sample and axis: 10^8 rows of six axes need
-// 4.8 GB. Readings are multiplied by gyro_scale / accel_scale (deg/s -> rad/s: pi / 180; g ->
+// Both read through the io layer's TextFileReader (blank lines, '#' comments, CRLF, a header row
+// without '#'); memory is 8 bytes per sample and axis: 10^8 rows of six axes need 4.8 GB. Large
+// EuRoC files take a parallel fast path first (StaticReadOptions::parallel_min_bytes). Readings are multiplied by gyro_scale / accel_scale (deg/s -> rad/s: pi / 180; g ->
 // m/s^2: 9.80665).
 #ifndef SPLINECAL_ALLAN_STATIC_RECORDING_H_
 #define SPLINECAL_ALLAN_STATIC_RECORDING_H_
@@ -48,6 +48,11 @@ struct StaticReadOptions {
   // Refuse a gap between EuRoC timestamps longer than this many mean sample periods: the Allan
   // variance assumes uniform sampling.
   double max_gap_periods = 10.0;
+  // EuRoC files at least this large are parsed by all hardware threads at once (the file is
+  // mapped and split at line ends); a file the fast path finds anything unusual in (a header row
+  // without '#', a bad value, a gap...) is read again by the one-thread TextFileReader path, which
+  // reports the error with its line. Both paths give the same numbers, bit for bit.
+  int64_t parallel_min_bytes = int64_t{32} << 20;
 };
 
 // Throws splinecal::Error with path:line[:column] for: a missing file, a wrong column count, a
