@@ -1,0 +1,264 @@
+// `splinecal simulate`: realistic IMU data from a spline (imu/simulate.h). The trajectory is an
+// analytic one (imu/trajectories.h) or a recorded one (--trajectory-file), turned into spline
+// control poses by a least-squares fit (calib/pose_fit.h); the IMU readings are the spline's
+// IMU model plus Kalibr noise. Writes a EuRoC folder (mav0/imu0, mav0/state_groundtruth_estimate0),
+// spline.csv, imu.yaml and result.yaml to --out. See docs/simulate.md.
+#include <gflags/gflags.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "splinecal/calib/pose_fit.h"
+#include "splinecal/cli/command.h"
+#include "splinecal/cli/common_flags.h"
+#include "splinecal/error.h"
+#include "splinecal/imu/simulate.h"
+#include "splinecal/imu/trajectories.h"
+#include "splinecal/io/euroc.h"
+#include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/io/output_dir.h"
+#include "splinecal/io/poses.h"
+#include "splinecal/io/spline_csv.h"
+#include "splinecal/io/yaml_writer.h"
+
+DEFINE_string(trajectory,
+              "vio_course",
+              "Analytic trajectory: vio_course, figure8 or random (seeded by --seed)");
+DEFINE_string(trajectory_file,
+              "",
+              "Recorded trajectory to simulate instead, TUM or EuRoC ground truth [path]; its "
+              "timestamps are kept");
+DEFINE_double(duration,
+              20.0,
+              "Duration [s] (simulate: default 20 s, or the whole --trajectory-file; integrate: "
+              "default until the end of the data)");
+DEFINE_double(imu_rate, 200.0, "IMU sample rate [Hz]");
+DEFINE_bool(noise_free, false, "No white noise and no bias random walk (initial biases kept)");
+DEFINE_double(gyroscope_noise_density, 1.6968e-4, "Gyro white noise density [rad/s/sqrt(Hz)]");
+DEFINE_double(gyroscope_random_walk, 1.9393e-5, "Gyro bias random walk [rad/s^2/sqrt(Hz)]");
+DEFINE_double(accelerometer_noise_density,
+              2.0e-3,
+              "Accelerometer white noise density [m/s^2/sqrt(Hz)]");
+DEFINE_double(accelerometer_random_walk, 3.0e-3, "Accelerometer bias random walk [m/s^3/sqrt(Hz)]");
+
+namespace splinecal {
+namespace cli {
+namespace {
+
+constexpr double kDefaultKnotSpacingS = 0.05;
+// Beyond this many IMU samples the outputs no longer fit comfortably in memory (~200 bytes per
+// sample with its ground truth): 2e7 is 27 hours at 200 Hz.
+constexpr double kMaxSamples = 2e7;
+
+bool IsDefault(const char* flag) { return gflags::GetCommandLineFlagInfoOrDie(flag).is_default; }
+
+int64_t SecondsToNs(double seconds) { return static_cast<int64_t>(std::llround(seconds * 1e9)); }
+
+ImuNoise NoiseFromFlags() {
+  const bool any_kalibr_flag =
+      !IsDefault("gyroscope_noise_density") || !IsDefault("gyroscope_random_walk") ||
+      !IsDefault("accelerometer_noise_density") || !IsDefault("accelerometer_random_walk");
+  if (!FLAGS_imu_yaml.empty()) {
+    if (any_kalibr_flag) {
+      throw Error("give the noise either with --imu-yaml or with the Kalibr-key flags, not both");
+    }
+    return ReadImuYaml(FLAGS_imu_yaml);
+  }
+  ImuNoise noise;
+  noise.gyroscope_noise_density =
+      NonNegativeFlag("gyroscope_noise_density", FLAGS_gyroscope_noise_density);
+  noise.gyroscope_random_walk =
+      NonNegativeFlag("gyroscope_random_walk", FLAGS_gyroscope_random_walk);
+  noise.accelerometer_noise_density =
+      NonNegativeFlag("accelerometer_noise_density", FLAGS_accelerometer_noise_density);
+  noise.accelerometer_random_walk =
+      NonNegativeFlag("accelerometer_random_walk", FLAGS_accelerometer_random_walk);
+  return noise;
+}
+
+int RunSimulate() {
+  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
+  const double rate_hz = PositiveFlag("imu-rate", FLAGS_imu_rate);
+  const double knot_spacing_s = FLAGS_knot_spacing == 0.0
+                                    ? kDefaultKnotSpacingS
+                                    : PositiveFlag("knot-spacing", FLAGS_knot_spacing);
+  const int64_t knot_spacing_ns = SecondsToNs(knot_spacing_s);
+  if (knot_spacing_ns < 1'000'000) {
+    throw Error("--knot-spacing: must be at least 0.001 s, got " + std::to_string(knot_spacing_s));
+  }
+  const double duration_s = PositiveFlag("duration", FLAGS_duration);
+  SimulationOptions options;
+  options.imu_rate_hz = rate_hz;
+  options.noise = NoiseFromFlags();
+  options.noise.update_rate_hz = rate_hz;
+  options.noise_free = FLAGS_noise_free;
+  options.gyro_bias = Vector3Flag("gyro-bias", FLAGS_gyro_bias);
+  options.accel_bias = Vector3Flag("accel-bias", FLAGS_accel_bias);
+  options.seed = static_cast<uint64_t>(static_cast<int64_t>(FLAGS_seed));
+  options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
+
+  PoseFitOptions fit_options;
+  fit_options.progress = [](const std::string& line) { Progress(line); };
+  PoseFitResult fit;
+  std::string source;
+  int64_t start_ns = 0;
+  int64_t end_ns = 0;
+  if (!FLAGS_trajectory_file.empty()) {
+    if (!IsDefault("trajectory")) {
+      throw Error("give either --trajectory or --trajectory-file, not both");
+    }
+    const std::vector<StampedPose> poses = ReadPoses(FLAGS_trajectory_file);
+    start_ns = poses.front().t_ns;
+    end_ns = poses.back().t_ns;
+    if (!IsDefault("duration")) {
+      const int64_t wanted_end = start_ns + SecondsToNs(duration_s);
+      if (wanted_end > end_ns) {
+        throw Error(FLAGS_trajectory_file,
+                    0,
+                    "--duration " + std::to_string(duration_s) + " s is longer than the " +
+                        "trajectory (" + std::to_string((end_ns - start_ns) * 1e-9) + " s)");
+      }
+      end_ns = wanted_end;
+    }
+    if (duration_s * rate_hz > kMaxSamples || (end_ns - start_ns) * 1e-9 * rate_hz > kMaxSamples) {
+      throw Error("simulation would produce more than 2e7 IMU samples: shorten it");
+    }
+    source = FLAGS_trajectory_file;
+    Progress("simulate: fitting " + std::to_string(knot_spacing_s) + " s knots to " +
+             std::to_string(poses.size()) + " poses of " + source);
+    fit =
+        FitControlPoses(poses, KnotLayoutCovering(start_ns, end_ns, knot_spacing_ns), fit_options);
+  } else {
+    if (duration_s * rate_hz > kMaxSamples) {
+      throw Error("--duration " + std::to_string(duration_s) + " s at " + std::to_string(rate_hz) +
+                  " Hz is more than 2e7 IMU samples: shorten it");
+    }
+    const AnalyticTrajectory trajectory = MakeTrajectory(FLAGS_trajectory, options.seed);
+    source = trajectory.name();
+    // The first knot at t = 0 and the IMU from t_1 = one knot spacing (trajectory time 0).
+    start_ns = knot_spacing_ns;
+    end_ns = start_ns + SecondsToNs(duration_s);
+    Progress("simulate: fitting the " + source + " trajectory (" + std::to_string(duration_s) +
+             " s, knots every " + std::to_string(knot_spacing_s) + " s)");
+    fit = FitAnalyticTrajectory(trajectory, start_ns, end_ns, knot_spacing_ns, 0, fit_options);
+  }
+  char line[256];
+  std::snprintf(line,
+                sizeof(line),
+                "simulate: spline fit position RMS %.3g m, rotation RMS %.3g deg (%d control "
+                "poses)",
+                fit.position_rms_m,
+                fit.rotation_rms_deg,
+                fit.layout.num_control_poses);
+  Progress(line);
+
+  const SE3Splined spline = fit.MakeSpline();
+  std::vector<ImuSample> imu;
+  std::vector<GroundTruthState> truth;
+  SimulateImu(spline, start_ns, end_ns, options, &imu, &truth);
+
+  OutputDir output(out_dir);
+  std::ostringstream imu_csv, truth_csv, spline_csv;
+  WriteEurocImu(imu, &imu_csv);
+  WriteEurocGroundTruth(truth, &truth_csv);
+  WriteSplineCsv(spline, &spline_csv);
+  output.WriteFile("mav0/imu0/data.csv", imu_csv.str());
+  output.WriteFile("mav0/state_groundtruth_estimate0/data.csv", truth_csv.str());
+  output.WriteFile("spline.csv", spline_csv.str());
+  output.WriteFile("imu.yaml", ImuYamlText(options.noise));
+
+  YamlWriter yaml;
+  yaml.Comment(
+      "splinecal simulate: IMU readings of the spline in spline.csv plus Kalibr noise "
+      "(docs/simulate.md)");
+  yaml.Scalar("trajectory", source);
+  yaml.Scalar("start_t_ns", start_ns);
+  yaml.Scalar("end_t_ns", end_ns);
+  yaml.Scalar("duration_s", (end_ns - start_ns) * 1e-9);
+  yaml.Scalar("imu_rate_hz", rate_hz);
+  yaml.Scalar("num_imu_samples", static_cast<int64_t>(imu.size()));
+  yaml.Scalar("seed", static_cast<int64_t>(FLAGS_seed));
+  yaml.Scalar("gravity_m_s2", options.gravity_m_s2);
+  yaml.Vector("gravity_w", Eigen::Vector3d(0.0, 0.0, -options.gravity_m_s2));
+  yaml.Scalar("noise_free", options.noise_free);
+  yaml.BeginMap("noise");
+  yaml.Scalar("gyroscope_noise_density", options.noise.gyroscope_noise_density);
+  yaml.Scalar("gyroscope_random_walk", options.noise.gyroscope_random_walk);
+  yaml.Scalar("accelerometer_noise_density", options.noise.accelerometer_noise_density);
+  yaml.Scalar("accelerometer_random_walk", options.noise.accelerometer_random_walk);
+  yaml.EndMap();
+  yaml.Vector("initial_gyro_bias", options.gyro_bias);
+  yaml.Vector("initial_accel_bias", options.accel_bias);
+  yaml.Vector("final_gyro_bias", truth.back().gyro_bias);
+  yaml.Vector("final_accel_bias", truth.back().accel_bias);
+  yaml.BeginMap("spline");
+  yaml.Scalar("knot_spacing_s", knot_spacing_s);
+  yaml.Scalar("t0_ns", spline.t0_ns());
+  yaml.Scalar("num_control_poses", static_cast<int64_t>(spline.num_control_poses()));
+  yaml.Scalar("fit_num_poses", fit.num_poses);
+  yaml.Scalar("fit_position_rms_m", fit.position_rms_m);
+  yaml.Scalar("fit_rotation_rms_deg", fit.rotation_rms_deg);
+  yaml.Scalar("fit_max_position_error_m", fit.max_position_error_m);
+  yaml.Scalar("fit_max_rotation_error_deg", fit.max_rotation_error_deg);
+  yaml.Scalar("fit_converged", fit.converged);
+  yaml.EndMap();
+  output.WriteFile("result.yaml", yaml.str());
+  output.Commit();
+
+  std::printf(
+      "simulated %zu IMU samples (%.6g s at %.6g Hz) on %s; spline fit RMS %.3g m, "
+      "%.3g deg\nwrote %s/mav0/imu0/data.csv, "
+      "mav0/state_groundtruth_estimate0/data.csv, spline.csv, imu.yaml, result.yaml\n",
+      imu.size(),
+      (end_ns - start_ns) * 1e-9,
+      rate_hz,
+      source.c_str(),
+      fit.position_rms_m,
+      fit.rotation_rms_deg,
+      out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command SimulateCommand() {
+  return {
+      "simulate",
+      "simulate IMU data (EuRoC format) with Kalibr noise from a spline trajectory",
+      "splinecal simulate [--trajectory vio_course|figure8|random | --trajectory-file FILE] "
+      "[--duration S] [--imu-rate HZ] [--knot-spacing S] [--seed N] [--gravity M_S2] "
+      "[--imu-yaml FILE | --gyroscope_noise_density ...] [--noise-free] [--gyro-bias x,y,z] "
+      "[--accel-bias x,y,z] --out DIR",
+      "Turns a trajectory into spline control poses (a least-squares fit to dense pose\n"
+      "samples, or to the poses of --trajectory-file) and writes the spline's IMU readings\n"
+      "at --imu-rate with Kalibr's noise model: white noise sigma*sqrt(f) per sample, a bias\n"
+      "random walk with steps sigma_rw/sqrt(f), and constant initial biases. The same --seed\n"
+      "gives byte-identical files. Writes DIR/mav0/imu0/data.csv (EuRoC IMU),\n"
+      "DIR/mav0/state_groundtruth_estimate0/data.csv (pose, world velocity and true biases\n"
+      "at every IMU time), DIR/spline.csv (the control poses), DIR/imu.yaml (the noise, Kalibr\n"
+      "keys) and DIR/result.yaml (with the fit's RMS). With --noise-free and zero biases the\n"
+      "IMU file is exactly the spline's prediction. See docs/simulate.md.",
+      {{"trajectory", ""},
+       {"trajectory_file", ""},
+       {"duration", "Duration [s]; default 20 s, or the whole --trajectory-file"},
+       {"imu_rate", ""},
+       {"knot_spacing", "Spline knot spacing dt [s]; default 0.05 s"},
+       {"seed", ""},
+       {"gravity", ""},
+       {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path] (instead of the flags below)"},
+       {"gyroscope_noise_density", ""},
+       {"gyroscope_random_walk", ""},
+       {"accelerometer_noise_density", ""},
+       {"accelerometer_random_walk", ""},
+       {"noise_free", ""},
+       {"gyro_bias", "Initial gyro bias b_g, x,y,z [rad/s]"},
+       {"accel_bias", "Initial accelerometer bias b_a, x,y,z [m/s^2]"},
+       {"out", ""}},
+      &RunSimulate};
+}
+
+}  // namespace cli
+}  // namespace splinecal
