@@ -1,15 +1,15 @@
 #include "splinecal/calib/align.h"
 
+#include <glog/logging.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <limits>
 #include <utility>
-
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
-#include <glog/logging.h>
 
 #include "splinecal/calib/gravity_tangent.h"
 #include "splinecal/calib/hand_eye.h"
@@ -63,8 +63,8 @@ AlignmentProblem::AlignmentProblem(const std::vector<ImuSample>& imu,
   preintegrations_.reserve(frames_.size() - 1);
   information_.reserve(frames_.size() - 1);
   for (size_t k = 0; k + 1 < frames_.size(); ++k) {
-    preintegrations_.push_back(Preintegrate(imu, frames_[k].t_ns, frames_[k + 1].t_ns, gyro_bias,
-                                            accel_bias, &noise));
+    preintegrations_.push_back(
+        Preintegrate(imu, frames_[k].t_ns, frames_[k + 1].t_ns, gyro_bias, accel_bias, &noise));
     // Weight = inverse covariance of (dp, dv) (calib/preintegration.h).
     const ImuPreintegration& pre = preintegrations_.back();
     Eigen::Matrix<double, 6, 6> covariance = pre.covariance.topLeftCorner<6, 6>();
@@ -78,8 +78,9 @@ AlignmentProblem::AlignmentProblem(const std::vector<ImuSample>& imu,
     covariance.topLeftCorner<3, 3>().diagonal().array() += 2.0 * var_p;
     const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(covariance);
     if (llt.info() != Eigen::Success) {
-      throw Error("alignment: the preintegration covariance is not positive definite (are the "
-                  "IMU noise densities positive?)");
+      throw Error(
+          "alignment: the preintegration covariance is not positive definite (are the "
+          "IMU noise densities positive?)");
     }
     information_.push_back(llt.solve(Eigen::Matrix<double, 6, 6>::Identity()));
   }
@@ -203,9 +204,9 @@ double NormalEquations::Solve(std::vector<Eigen::Vector3d>* v, VectorY* y) const
   const double lambda_min = eigen.eigenvalues()(0);
   const double lambda_max = eigen.eigenvalues()(m - 1);
   if (!(lambda_min > 0.0)) return kInfinity;
-  const VectorY y_hat = eigen.eigenvectors() *
-                        (eigen.eigenvalues().cwiseInverse().asDiagonal() *
-                         (eigen.eigenvectors().transpose() * scaling.asDiagonal() * t));
+  const VectorY y_hat =
+      eigen.eigenvectors() * (eigen.eigenvalues().cwiseInverse().asDiagonal() *
+                              (eigen.eigenvectors().transpose() * scaling.asDiagonal() * t));
   *y = scaling.asDiagonal() * y_hat;
   v->resize(n);
   for (int k = 0; k < n; ++k) (*v)[k] = Y[k].col(m) - Y[k].leftCols(m) * (*y);
@@ -350,8 +351,8 @@ GyroBiasEstimate EstimateGyroBias(const std::vector<ImuSample>& imu,
     double sum_sq = 0.0;
     if (!linearised || (estimate.gyro_bias - b_lin).norm() > kRelinearizeBias) {
       for (int k = 0; k < num_pairs; ++k) {
-        dR_lin[k] = PreintegrateRotation(imu, frames[k].t_ns, frames[k + 1].t_ns,
-                                         estimate.gyro_bias, &J_lin[k]);
+        dR_lin[k] = PreintegrateRotation(
+            imu, frames[k].t_ns, frames[k + 1].t_ns, estimate.gyro_bias, &J_lin[k]);
       }
       b_lin = estimate.gyro_bias;
       linearised = true;
@@ -375,9 +376,8 @@ GyroBiasEstimate EstimateGyroBias(const std::vector<ImuSample>& imu,
     estimate.rms_rotation_residual_rad = std::sqrt(sum_sq / num_pairs);
     estimate.iterations = iteration;
     Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
-    delta.head(num_params) = -H.topLeftCorner(num_params, num_params)
-                                  .ldlt()
-                                  .solve(gradient.head(num_params));
+    delta.head(num_params) =
+        -H.topLeftCorner(num_params, num_params).ldlt().solve(gradient.head(num_params));
     if (!delta.allFinite()) break;
     estimate.gyro_bias += delta.head<3>();
     if (estimate_rotation) estimate.R_cam_imu = estimate.R_cam_imu * SO3d::Exp(delta.tail<3>());
@@ -411,8 +411,10 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   const double G = options.gravity_m_s2;
   if (!std::isfinite(G) || G <= 0.0) throw Error("alignment: gravity must be a positive number");
   const ImuNoise& noise = options.noise;
-  for (double density : {noise.gyroscope_noise_density, noise.accelerometer_noise_density,
-                         noise.gyroscope_random_walk, noise.accelerometer_random_walk}) {
+  for (double density : {noise.gyroscope_noise_density,
+                         noise.accelerometer_noise_density,
+                         noise.gyroscope_random_walk,
+                         noise.accelerometer_random_walk}) {
     if (!std::isfinite(density) || density <= 0.0) {
       throw Error("alignment: the IMU noise densities must be positive numbers");
     }
@@ -440,10 +442,12 @@ AlignResult Align(const std::vector<ImuSample>& imu,
     frames.push_back(frame);
   }
   if (frames.size() < 3) {
-    throw Error(Format("alignment: need at least 3 camera poses inside the IMU data's time span "
-                       "[%.9f, %.9f] s, found %d",
-                       imu.front().t_ns * 1e-9, imu.back().t_ns * 1e-9,
-                       static_cast<int>(frames.size())));
+    throw Error(
+        Format("alignment: need at least 3 camera poses inside the IMU data's time span "
+               "[%.9f, %.9f] s, found %d",
+               imu.front().t_ns * 1e-9,
+               imu.back().t_ns * 1e-9,
+               static_cast<int>(frames.size())));
   }
 
   // Step 1: camera-IMU rotation by hand-eye.
@@ -453,8 +457,8 @@ AlignResult Align(const std::vector<ImuSample>& imu,
     std::vector<SO3d> R_ck_ck1, R_sk_sk1;
     for (size_t k = 0; k + 1 < frames.size(); ++k) {
       R_ck_ck1.push_back(frames[k].R_c0_c.inverse() * frames[k + 1].R_c0_c);
-      R_sk_sk1.push_back(PreintegrateRotation(imu, frames[k].t_ns, frames[k + 1].t_ns,
-                                              options.initial_gyro_bias, nullptr));
+      R_sk_sk1.push_back(PreintegrateRotation(
+          imu, frames[k].t_ns, frames[k + 1].t_ns, options.initial_gyro_bias, nullptr));
     }
     HandEyeOptions hand_eye_options;
     hand_eye_options.min_second_axis_ratio = options.min_hand_eye_second_axis_ratio;
@@ -477,17 +481,19 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   result.gyro_bias_iterations = bias.iterations;
   result.rms_rotation_residual_rad = bias.rms_rotation_residual_rad;
   if (!bias.converged) {
-    result.message = Format("the gyro bias did not converge in %d iterations (rotation residual "
-                            "%.3g rad RMS): the camera rotations do not match the gyro (check "
-                            "T_cam_imu, the time offset and the gyro units)",
-                            bias.iterations, bias.rms_rotation_residual_rad);
+    result.message = Format(
+        "the gyro bias did not converge in %d iterations (rotation residual "
+        "%.3g rad RMS): the camera rotations do not match the gyro (check "
+        "T_cam_imu, the time offset and the gyro units)",
+        bias.iterations,
+        bias.rms_rotation_residual_rad);
     return result;
   }
 
   // Step 3: linear alignment with free gravity.
   const SE3d T_cam_imu(bias.R_cam_imu, options.T_cam_imu.translation());
-  const AlignmentProblem problem(imu, frames, T_cam_imu, bias.gyro_bias, options.accel_bias,
-                                 noise, options.camera_noise);
+  const AlignmentProblem problem(
+      imu, frames, T_cam_imu, bias.gyro_bias, options.accel_bias, noise, options.camera_noise);
   const AlignmentSolution free = problem.SolveFreeGravity();
   result.free_gravity_c0 = free.gravity_c0;
   result.free_scale = free.scale;
@@ -498,30 +504,36 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   result.condition_number = free.condition_number;
   if (!(result.condition_number <= options.max_condition_number)) {
     result.message = Format("not enough excitation: condition number %.3g exceeds %.3g; ",
-                            result.condition_number, options.max_condition_number) +
+                            result.condition_number,
+                            options.max_condition_number) +
                      excitation_advice;
     return result;
   }
   if (!(free.scale > 0.0)) {
-    result.message = Format("the scale came out %s (%.6g): the camera trajectory does not match "
-                            "the IMU motion (check that the poses are T_c0_c and not their "
-                            "inverses, T_cam_imu, and the time offset)",
-                            free.scale < 0.0 ? "negative" : "zero", free.scale);
+    result.message = Format(
+        "the scale came out %s (%.6g): the camera trajectory does not match "
+        "the IMU motion (check that the poses are T_c0_c and not their "
+        "inverses, T_cam_imu, and the time offset)",
+        free.scale < 0.0 ? "negative" : "zero",
+        free.scale);
     return result;
   }
   const double norm_error = std::abs(free.gravity_c0.norm() - G);
   if (!(norm_error <= options.max_gravity_norm_error_m_s2)) {
-    result.message = Format("the gravity estimated without its known norm is %.4g m/s^2, %.3g "
-                            "m/s^2 from the expected %.4g m/s^2 (allowed %.3g): ",
-                            free.gravity_c0.norm(), norm_error, G,
-                            options.max_gravity_norm_error_m_s2) +
+    result.message = Format(
+                         "the gravity estimated without its known norm is %.4g m/s^2, %.3g "
+                         "m/s^2 from the expected %.4g m/s^2 (allowed %.3g): ",
+                         free.gravity_c0.norm(),
+                         norm_error,
+                         G,
+                         options.max_gravity_norm_error_m_s2) +
                      "check the accelerometer units, --gravity, T_cam_imu and the time offset";
     return result;
   }
 
   // Step 4: refinement on the sphere |g| = G.
-  const AlignmentSolution refined = problem.RefineGravity(
-      free, G, options.gravity_tolerance_rad, options.max_gravity_iterations);
+  const AlignmentSolution refined =
+      problem.RefineGravity(free, G, options.gravity_tolerance_rad, options.max_gravity_iterations);
   result.iterations = refined.iterations;
   result.refined_condition_number = refined.condition_number;
   if (!std::isfinite(refined.condition_number)) {
@@ -529,14 +541,15 @@ AlignResult Align(const std::vector<ImuSample>& imu,
     return result;
   }
   if (!refined.converged) {
-    result.message = Format("the gravity refinement did not converge in %d iterations",
-                            refined.iterations);
+    result.message =
+        Format("the gravity refinement did not converge in %d iterations", refined.iterations);
     return result;
   }
   if (!(refined.scale > 0.0)) {
-    result.message = Format("the refined scale came out %.6g (not positive): the camera "
-                            "trajectory does not match the IMU motion",
-                            refined.scale);
+    result.message = Format(
+        "the refined scale came out %.6g (not positive): the camera "
+        "trajectory does not match the IMU motion",
+        refined.scale);
     return result;
   }
 
@@ -550,7 +563,8 @@ AlignResult Align(const std::vector<ImuSample>& imu,
     GroundTruthState state;
     state.t_ns = frame.t_ns;
     const SO3d R_c0_s = frame.R_c0_c * T_cam_imu.so3();
-    const Eigen::Vector3d p_c0_s = refined.scale * frame.p_c0_c + frame.R_c0_c * T_cam_imu.translation();
+    const Eigen::Vector3d p_c0_s =
+        refined.scale * frame.p_c0_c + frame.R_c0_c * T_cam_imu.translation();
     state.q_w_s = (result.R_w_c0 * R_c0_s).quaternion();
     state.p_w_s = result.R_w_c0 * p_c0_s;
     state.v_w = result.R_w_c0 * refined.v_c0[k];
@@ -559,13 +573,16 @@ AlignResult Align(const std::vector<ImuSample>& imu,
     result.states_w.push_back(state);
   }
   result.success = true;
-  result.message = Format("aligned %d camera frames: scale %.6g, gravity refined in %d "
-                          "iterations, condition number %.3g",
-                          static_cast<int>(frames.size()), result.scale, result.iterations,
-                          result.condition_number);
+  result.message = Format(
+      "aligned %d camera frames: scale %.6g, gravity refined in %d "
+      "iterations, condition number %.3g",
+      static_cast<int>(frames.size()),
+      result.scale,
+      result.iterations,
+      result.condition_number);
   if (result.num_ignored_frames > 0) {
-    result.message += Format("; %d camera poses outside the IMU data were ignored",
-                             result.num_ignored_frames);
+    result.message +=
+        Format("; %d camera poses outside the IMU data were ignored", result.num_ignored_frames);
   }
   return result;
 }

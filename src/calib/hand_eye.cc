@@ -1,10 +1,10 @@
 #include "splinecal/calib/hand_eye.h"
 
-#include <cmath>
-#include <cstdio>
+#include <glog/logging.h>
 
 #include <Eigen/Eigenvalues>
-#include <glog/logging.h>
+#include <cmath>
+#include <cstdio>
 
 namespace splinecal {
 namespace {
@@ -76,11 +76,14 @@ HandEyeRotationResult EstimateHandEyeRotation(const std::vector<SO3d>& R_ck_ck1,
       sigma_3 < options.min_second_axis_rotation_rad) {
     result.message =
         "cannot estimate the camera-IMU rotation: the rig rotated about one axis only " +
-        Format("(rotation about other axes: ratio %.3g, minimum %.3g; ", result.second_axis_ratio,
+        Format("(rotation about other axes: ratio %.3g, minimum %.3g; ",
+               result.second_axis_ratio,
                options.min_second_axis_ratio) +
-        Format("%.3g rad in total, minimum %.3g rad). Rotate about at least two axes, or give "
-               "T_cam_imu with --camchain",
-               sigma_3, options.min_second_axis_rotation_rad);
+        Format(
+            "%.3g rad in total, minimum %.3g rad). Rotate about at least two axes, or give "
+            "T_cam_imu with --camchain",
+            sigma_3,
+            options.min_second_axis_rotation_rad);
     return result;
   }
   result.ok = true;

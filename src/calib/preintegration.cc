@@ -21,8 +21,7 @@ void CheckInterval(const std::vector<ImuSample>& imu, int64_t t_begin_ns, int64_
   if (t_begin_ns < imu.front().t_ns || t_end_ns > imu.back().t_ns) {
     throw Error("preintegration interval [" + std::to_string(t_begin_ns) + ", " +
                 std::to_string(t_end_ns) + "] ns is not inside the IMU data [" +
-                std::to_string(imu.front().t_ns) + ", " + std::to_string(imu.back().t_ns) +
-                "] ns");
+                std::to_string(imu.front().t_ns) + ", " + std::to_string(imu.back().t_ns) + "] ns");
   }
 }
 
@@ -51,9 +50,10 @@ void ForEachStep(const std::vector<ImuSample>& imu,
                  int64_t t_end_ns,
                  StepFunction&& step) {
   // First sample strictly after t_begin (exists: t_begin < t_end <= back).
-  auto next = std::upper_bound(
-      imu.begin(), imu.end(), t_begin_ns,
-      [](int64_t t, const ImuSample& sample) { return t < sample.t_ns; });
+  auto next =
+      std::upper_bound(imu.begin(), imu.end(), t_begin_ns, [](int64_t t, const ImuSample& sample) {
+        return t < sample.t_ns;
+      });
   ImuSample previous = Lerp(*(next - 1), *next, t_begin_ns);
   for (; next != imu.end() && next->t_ns < t_end_ns; ++next) {
     step(static_cast<double>(next->t_ns - previous.t_ns) * kNsToS, previous, *next);
@@ -84,9 +84,10 @@ ImuSample InterpolateImu(const std::vector<ImuSample>& imu, int64_t t_ns) {
   if (imu.empty() || t_ns < imu.front().t_ns || t_ns > imu.back().t_ns) {
     throw Error("time " + std::to_string(t_ns) + " ns is outside the IMU data");
   }
-  auto next = std::lower_bound(
-      imu.begin(), imu.end(), t_ns,
-      [](const ImuSample& sample, int64_t t) { return sample.t_ns < t; });
+  auto next =
+      std::lower_bound(imu.begin(), imu.end(), t_ns, [](const ImuSample& sample, int64_t t) {
+        return sample.t_ns < t;
+      });
   if (next->t_ns == t_ns) return *next;
   return Lerp(*(next - 1), *next, t_ns);
 }
@@ -99,16 +100,15 @@ SO3d PreintegrateRotation(const std::vector<ImuSample>& imu,
   CheckInterval(imu, t_begin_ns, t_end_ns);
   Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
   Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-  ForEachStep(imu, t_begin_ns, t_end_ns,
-              [&](double h, const ImuSample& r0, const ImuSample& r1) {
-                const Eigen::Vector3d phi = (0.5 * (r0.gyro + r1.gyro) - gyro_bias) * h;
-                const SO3d step = SO3d::Exp(phi);
-                q = q * step.quaternion();
-                if (J_dR_bg != nullptr) {
-                  // J' = Exp(phi)^T J - Jr(phi) h (header comment).
-                  J = step.matrix().transpose() * J - RightJacobianSO3(phi) * h;
-                }
-              });
+  ForEachStep(imu, t_begin_ns, t_end_ns, [&](double h, const ImuSample& r0, const ImuSample& r1) {
+    const Eigen::Vector3d phi = (0.5 * (r0.gyro + r1.gyro) - gyro_bias) * h;
+    const SO3d step = SO3d::Exp(phi);
+    q = q * step.quaternion();
+    if (J_dR_bg != nullptr) {
+      // J' = Exp(phi)^T J - Jr(phi) h (header comment).
+      J = step.matrix().transpose() * J - RightJacobianSO3(phi) * h;
+    }
+  });
   if (J_dR_bg != nullptr) *J_dR_bg = J;
   return SO3d::FromQuaternion(q);
 }

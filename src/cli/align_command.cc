@@ -2,13 +2,13 @@
 // plus IMU readings give the metric scale, gravity in the first camera frame, velocities and the
 // gyro bias; writes result.yaml and the IMU poses in a gravity-aligned world (aligned_poses.csv,
 // EuRoC ground-truth format) for `fit --poses` or as the initial guess of `calibrate`.
+#include <gflags/gflags.h>
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gflags/gflags.h>
 
 #include "splinecal/calib/align.h"
 #include "splinecal/cli/command.h"
@@ -61,7 +61,8 @@ Camchain ReadCamchain(const std::string& path) {
         (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() >
             kMaxOrthonormalityError ||
         R.determinant() < 0.0) {
-      throw Error(path, 0,
+      throw Error(path,
+                  0,
                   "cam0/T_cam_imu: not a rigid transform (the rotation block must be orthonormal "
                   "with determinant +1 and the last row 0 0 0 1)");
     }
@@ -104,17 +105,23 @@ int RunAlign() {
   if (!result.success) throw Error("alignment refused: " + result.message);
 
   char line[512];
-  std::snprintf(line, sizeof(line),
+  std::snprintf(line,
+                sizeof(line),
                 "align: gyro bias [%.6g %.6g %.6g] rad/s (%d iterations), free gravity %.6g m/s^2, "
                 "refined in %d iterations, condition number %.3g",
-                result.gyro_bias.x(), result.gyro_bias.y(), result.gyro_bias.z(),
-                result.gyro_bias_iterations, result.free_gravity_c0.norm(), result.iterations,
+                result.gyro_bias.x(),
+                result.gyro_bias.y(),
+                result.gyro_bias.z(),
+                result.gyro_bias_iterations,
+                result.free_gravity_c0.norm(),
+                result.iterations,
                 result.condition_number);
   Progress(line);
 
   YamlWriter yaml;
-  yaml.Comment("splinecal align: metric = scale * input camera positions; gravity_c0 in the first "
-               "camera frame [m/s^2]; quaternions w x y z");
+  yaml.Comment(
+      "splinecal align: metric = scale * input camera positions; gravity_c0 in the first "
+      "camera frame [m/s^2]; quaternions w x y z");
   yaml.Scalar("success", true);
   yaml.Scalar("message", result.message);
   yaml.Scalar("scale", result.scale);
@@ -142,12 +149,22 @@ int RunAlign() {
   output.Commit();
 
   const Eigen::Vector3d g_w = result.R_w_c0 * result.gravity_c0;
-  std::printf("scale %.9g\ngravity_c0 [%.9f %.9f %.9f] m/s^2 (world: [%.3g %.3g %.6f])\n"
-              "gyro_bias [%.9f %.9f %.9f] rad/s\nwrote %s/result.yaml and aligned_poses.csv "
-              "(%d frames)\n",
-              result.scale, result.gravity_c0.x(), result.gravity_c0.y(), result.gravity_c0.z(),
-              g_w.x(), g_w.y(), g_w.z(), result.gyro_bias.x(), result.gyro_bias.y(),
-              result.gyro_bias.z(), out_dir.c_str(), static_cast<int>(result.states_w.size()));
+  std::printf(
+      "scale %.9g\ngravity_c0 [%.9f %.9f %.9f] m/s^2 (world: [%.3g %.3g %.6f])\n"
+      "gyro_bias [%.9f %.9f %.9f] rad/s\nwrote %s/result.yaml and aligned_poses.csv "
+      "(%d frames)\n",
+      result.scale,
+      result.gravity_c0.x(),
+      result.gravity_c0.y(),
+      result.gravity_c0.z(),
+      g_w.x(),
+      g_w.y(),
+      g_w.z(),
+      result.gyro_bias.x(),
+      result.gyro_bias.y(),
+      result.gyro_bias.z(),
+      out_dir.c_str(),
+      static_cast<int>(result.states_w.size()));
   return 0;
 }
 

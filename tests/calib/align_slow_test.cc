@@ -2,11 +2,11 @@
 // with free gravity, our refinement on the sphere (rebuilt at every iteration, to a tolerance),
 // and the accumulating VINS-Mono variant (4 iterations on rows accumulated over all earlier
 // linearisations). Camera pose noise and IMU noise (white + bias random walk).
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "calib/align_test_data.h"
 #include "splinecal/calib/align.h"
@@ -71,8 +71,12 @@ Figures RunMonteCarlo(const MonteCarloCase& c) {
     }
     const GyroBiasEstimate bias =
         EstimateGyroBias(s.imu, frames, options.T_cam_imu.so3(), false, align_options);
-    const AlignmentProblem problem(s.imu, frames, options.T_cam_imu, bias.gyro_bias,
-                                   Eigen::Vector3d::Zero(), align_options.noise,
+    const AlignmentProblem problem(s.imu,
+                                   frames,
+                                   options.T_cam_imu,
+                                   bias.gyro_bias,
+                                   Eigen::Vector3d::Zero(),
+                                   align_options.noise,
                                    align_options.camera_noise);
     const AlignmentSolution linear = problem.SolveFreeGravity();
     const AlignmentSolution refined = problem.RefineGravity(linear, 9.81, 1e-13, 30);
@@ -91,8 +95,12 @@ Figures RunMonteCarlo(const MonteCarloCase& c) {
     sum_sq_difference += (e_refined - e_linear) * (e_refined - e_linear);
     ++f.runs;
   }
-  for (double* mean : {&f.gravity_linear_deg, &f.gravity_refined_deg, &f.gravity_accumulating_deg,
-                       &f.scale_linear, &f.scale_refined, &f.scale_accumulating}) {
+  for (double* mean : {&f.gravity_linear_deg,
+                       &f.gravity_refined_deg,
+                       &f.gravity_accumulating_deg,
+                       &f.scale_linear,
+                       &f.scale_refined,
+                       &f.scale_accumulating}) {
     *mean /= f.runs;
   }
   f.difference_mean_deg /= f.runs;
@@ -100,15 +108,26 @@ Figures RunMonteCarlo(const MonteCarloCase& c) {
       (sum_sq_difference / f.runs - f.difference_mean_deg * f.difference_mean_deg) * f.runs /
       (f.runs - 1);
   f.difference_standard_error_deg = std::sqrt(variance / f.runs);
-  std::printf("%s (%d runs, %.0f s window, camera %.1f mm / %.2f deg): mean gravity error "
-              "linear %.4f deg, refined %.4f deg, accumulating %.4f deg; mean scale error "
-              "linear %.2f%%, refined %.2f%%, accumulating %.2f%%; refined better than linear "
-              "in %d runs (paired difference %.2g +- %.2g deg); Align accepted %d\n",
-              c.name, f.runs, c.duration_s, 1e3 * c.camera_position_std_m,
-              c.camera_rotation_std_rad * kRadToDeg, f.gravity_linear_deg, f.gravity_refined_deg,
-              f.gravity_accumulating_deg, 100.0 * f.scale_linear, 100.0 * f.scale_refined,
-              100.0 * f.scale_accumulating, f.refined_better, f.difference_mean_deg,
-              f.difference_standard_error_deg, f.accepted);
+  std::printf(
+      "%s (%d runs, %.0f s window, camera %.1f mm / %.2f deg): mean gravity error "
+      "linear %.4f deg, refined %.4f deg, accumulating %.4f deg; mean scale error "
+      "linear %.2f%%, refined %.2f%%, accumulating %.2f%%; refined better than linear "
+      "in %d runs (paired difference %.2g +- %.2g deg); Align accepted %d\n",
+      c.name,
+      f.runs,
+      c.duration_s,
+      1e3 * c.camera_position_std_m,
+      c.camera_rotation_std_rad * kRadToDeg,
+      f.gravity_linear_deg,
+      f.gravity_refined_deg,
+      f.gravity_accumulating_deg,
+      100.0 * f.scale_linear,
+      100.0 * f.scale_refined,
+      100.0 * f.scale_accumulating,
+      f.refined_better,
+      f.difference_mean_deg,
+      f.difference_standard_error_deg,
+      f.accepted);
   return f;
 }
 

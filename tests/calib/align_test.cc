@@ -1,14 +1,14 @@
 #include "splinecal/calib/align.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "calib/align_test_data.h"
 #include "splinecal/calib/gravity_tangent.h"
@@ -33,8 +33,8 @@ constexpr double kScaleRelativeTolerance = 1e-9;
 constexpr double kGyroBiasTolerance = 1e-9;  // [rad/s]
 // Velocities and the estimated rotation extrinsic come out of the same solves: rounding level
 // (1e-9 m/s against speeds of ~4 m/s; 1e-9 rad).
-constexpr double kVelocityTolerance = 1e-8;    // [m/s]
-constexpr double kRotationTolerance = 1e-9;    // [rad]
+constexpr double kVelocityTolerance = 1e-8;  // [m/s]
+constexpr double kRotationTolerance = 1e-9;  // [rad]
 
 double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;
@@ -107,8 +107,7 @@ TEST(Align, NoiseFreeRandomTrajectories) {
     options.scale = 0.1 + seed;
     options.gyro_bias = Eigen::Vector3d(0.01, -0.02, 0.005) * static_cast<double>(seed);
     const testdata::Scenario scenario = testdata::MakeScenario(RandomTrajectory(seed), options);
-    const AlignResult result =
-        Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
+    const AlignResult result = Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
     SCOPED_TRACE(seed);
     ExpectRecovered(result, scenario);
   }
@@ -126,8 +125,7 @@ TEST(Align, NoiseFreeGravityAlongPlusAndMinusZOfC0) {
     const testdata::Scenario scenario = testdata::MakeScenario(trajectory, options);
     ASSERT_LT((scenario.gravity_c0 - Eigen::Vector3d(0, 0, -sign * 9.81)).norm(), 1e-12);
     SCOPED_TRACE(sign);
-    ExpectRecovered(Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options)),
-                    scenario);
+    ExpectRecovered(Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options)), scenario);
   }
 }
 
@@ -295,8 +293,12 @@ TEST(AlignmentProblem, BlockSolveMatchesDenseSolve) {
   options.imu_noise = true;
   options.camera_translation_std_m = 0.01;
   const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
-  const AlignmentProblem problem(scenario.imu, FramesOf(scenario), options.T_cam_imu,
-                                 options.gyro_bias, Eigen::Vector3d::Zero(), ImuNoise());
+  const AlignmentProblem problem(scenario.imu,
+                                 FramesOf(scenario),
+                                 options.T_cam_imu,
+                                 options.gyro_bias,
+                                 Eigen::Vector3d::Zero(),
+                                 ImuNoise());
   const Eigen::Vector3d g0(0.3, 9.7, -0.5);
   for (int m_g : {3, 2}) {
     Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3> basis(3, m_g);
@@ -330,7 +332,8 @@ TEST(AlignmentProblem, BlockSolveMatchesDenseSolve) {
     AlignmentProblem::NormalEquations::VectorY y;
     const double condition = eq.Solve(&v, &y);
     EXPECT_TRUE(std::isfinite(condition));
-    for (int i = 0; i < m; ++i) EXPECT_NEAR(y(i), x(3 * n + i), 1e-9 * (1.0 + std::abs(x(3 * n + i))));
+    for (int i = 0; i < m; ++i)
+      EXPECT_NEAR(y(i), x(3 * n + i), 1e-9 * (1.0 + std::abs(x(3 * n + i))));
     for (int k = 0; k < n; ++k) {
       EXPECT_LT((v[k] - x.segment<3>(3 * k)).norm(), 1e-9 * (1.0 + v[k].norm())) << k;
     }
@@ -340,8 +343,12 @@ TEST(AlignmentProblem, BlockSolveMatchesDenseSolve) {
 TEST(AlignmentProblem, RefineGravityConvergesFromFarStart) {
   const testdata::ScenarioOptions options = DefaultOptions();
   const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
-  const AlignmentProblem problem(scenario.imu, FramesOf(scenario), options.T_cam_imu,
-                                 options.gyro_bias, Eigen::Vector3d::Zero(), ImuNoise());
+  const AlignmentProblem problem(scenario.imu,
+                                 FramesOf(scenario),
+                                 options.T_cam_imu,
+                                 options.gyro_bias,
+                                 Eigen::Vector3d::Zero(),
+                                 ImuNoise());
   // 60 degrees away from the truth.
   const Eigen::Vector3d start =
       SO3d::Exp(Eigen::Vector3d(M_PI / 3.0, 0.0, 0.0)) * scenario.gravity_c0;
@@ -361,8 +368,10 @@ TEST(AlignmentProblem, RefineGravityConvergesFromFarStart) {
 TEST(GravityAlignedRotation, MapsGravityDownWithoutYaw) {
   std::mt19937 rng(3);
   std::normal_distribution<double> normal(0.0, 1.0);
-  std::vector<Eigen::Vector3d> directions = {Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitY(),
-                                             Eigen::Vector3d::UnitZ(), -Eigen::Vector3d::UnitZ()};
+  std::vector<Eigen::Vector3d> directions = {Eigen::Vector3d::UnitX(),
+                                             -Eigen::Vector3d::UnitY(),
+                                             Eigen::Vector3d::UnitZ(),
+                                             -Eigen::Vector3d::UnitZ()};
   for (int i = 0; i < 20; ++i) directions.emplace_back(normal(rng), normal(rng), normal(rng));
   for (const Eigen::Vector3d& d : directions) {
     const Eigen::Vector3d g = 9.81 * d.normalized();
@@ -414,10 +423,15 @@ TEST(AlignCommand, WritesResultAndAlignedPoses) {
   const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, options.T_cam_imu);
-  const testing::ToolResult run =
-      testing::RunTool({"align", "--imu", dir.File("imu.csv"), "--camera-poses",
-                        dir.File("poses.txt"), "--camchain", dir.File("camchain.yaml"), "--out",
-                        dir.File("out")});
+  const testing::ToolResult run = testing::RunTool({"align",
+                                                    "--imu",
+                                                    dir.File("imu.csv"),
+                                                    "--camera-poses",
+                                                    dir.File("poses.txt"),
+                                                    "--camchain",
+                                                    dir.File("camchain.yaml"),
+                                                    "--out",
+                                                    dir.File("out")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const YamlDocument yaml(dir.File("out/result.yaml"));
   EXPECT_EQ(yaml.String("success"), "true");
@@ -434,7 +448,8 @@ TEST(AlignCommand, WritesResultAndAlignedPoses) {
   EXPECT_FALSE(yaml.Has("R_cam_imu"));
   EXPECT_GE(yaml.Integer("iterations"), 1);
   EXPECT_GT(yaml.Number("condition_number"), 1.0);
-  const std::vector<GroundTruthState> states = ReadEurocGroundTruth(dir.File("out/aligned_poses.csv"));
+  const std::vector<GroundTruthState> states =
+      ReadEurocGroundTruth(dir.File("out/aligned_poses.csv"));
   ASSERT_EQ(states.size(), scenario.camera_poses.size());
   EXPECT_EQ(states.front().t_ns, scenario.camera_poses.front().t_ns);
 }
@@ -445,10 +460,17 @@ TEST(AlignCommand, EstimatesRotationExtrinsicWhenAsked) {
   const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, SE3d(SO3d(), options.T_cam_imu.translation()));
-  const testing::ToolResult run = testing::RunTool(
-      {"align", "--imu", dir.File("imu.csv"), "--camera-poses", dir.File("poses.txt"),
-       "--camchain", dir.File("camchain.yaml"), "--estimate-rotation-extrinsic", "--out",
-       dir.File("out"), "--quiet"});
+  const testing::ToolResult run = testing::RunTool({"align",
+                                                    "--imu",
+                                                    dir.File("imu.csv"),
+                                                    "--camera-poses",
+                                                    dir.File("poses.txt"),
+                                                    "--camchain",
+                                                    dir.File("camchain.yaml"),
+                                                    "--estimate-rotation-extrinsic",
+                                                    "--out",
+                                                    dir.File("out"),
+                                                    "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
   const YamlDocument yaml(dir.File("out/result.yaml"));
@@ -465,10 +487,15 @@ TEST(AlignCommand, FailedCheckExitsTwoWithoutOutput) {
       testdata::MakeScenario(testdata::ConstantVelocityTrajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, options.T_cam_imu);
-  const testing::ToolResult run =
-      testing::RunTool({"align", "--imu", dir.File("imu.csv"), "--camera-poses",
-                        dir.File("poses.txt"), "--camchain", dir.File("camchain.yaml"), "--out",
-                        dir.File("out")});
+  const testing::ToolResult run = testing::RunTool({"align",
+                                                    "--imu",
+                                                    dir.File("imu.csv"),
+                                                    "--camera-poses",
+                                                    dir.File("poses.txt"),
+                                                    "--camchain",
+                                                    dir.File("camchain.yaml"),
+                                                    "--out",
+                                                    dir.File("out")});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("not enough excitation"));
   EXPECT_FALSE(std::filesystem::exists(dir.File("out/result.yaml")));
@@ -480,9 +507,13 @@ TEST(AlignCommand, BadInputNamesTheFile) {
   testing::TempDir dir;
   dir.Write("imu.csv", "#t,gx,gy,gz,ax,ay,az\n1000,0,0,0,0,0,9.81\n2000,0,0,0,0,0,9.81\n");
   dir.Write("poses.txt", "0.000001 0 0 0 0 0 0 1\n0.000002 0 0 zero 0 0 0 1\n");
-  const testing::ToolResult run =
-      testing::RunTool({"align", "--imu", dir.File("imu.csv"), "--camera-poses",
-                        dir.File("poses.txt"), "--out", dir.File("out")});
+  const testing::ToolResult run = testing::RunTool({"align",
+                                                    "--imu",
+                                                    dir.File("imu.csv"),
+                                                    "--camera-poses",
+                                                    dir.File("poses.txt"),
+                                                    "--out",
+                                                    dir.File("out")});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("poses.txt:2"));
   EXPECT_EQ(testing::CountLines(run.err), 1);

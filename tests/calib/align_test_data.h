@@ -13,11 +13,10 @@
 #ifndef SPLINECAL_TESTS_CALIB_ALIGN_TEST_DATA_H_
 #define SPLINECAL_TESTS_CALIB_ALIGN_TEST_DATA_H_
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <random>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
@@ -35,7 +34,7 @@ enum class Truth { kDiscrete, kContinuous };
 struct ScenarioOptions {
   double duration_s = 10.0;
   double imu_rate_hz = 200.0;
-  int imu_samples_per_frame = 20;  // camera at imu_rate / this (10 Hz)
+  int imu_samples_per_frame = 20;          // camera at imu_rate / this (10 Hz)
   int64_t start_ns = 1403715273000000000;  // EuRoC-like epoch
   double trajectory_start_s = 0.0;         // where in the analytic trajectory to start
   Truth truth = Truth::kDiscrete;
@@ -60,8 +59,8 @@ struct Scenario {
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();  // the constant part
   SE3d T_cam_imu;
   SO3d R_w_c0;
-  std::vector<SE3d> T_w_s;            // per camera frame
-  std::vector<Eigen::Vector3d> v_w;   // per camera frame
+  std::vector<SE3d> T_w_s;           // per camera frame
+  std::vector<Eigen::Vector3d> v_w;  // per camera frame
 };
 
 // EuRoC's cam0 extrinsic (sensor.yaml T_BS inverted), rounded: a realistic T_cam_imu.

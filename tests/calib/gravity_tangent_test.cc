@@ -1,11 +1,11 @@
 #include "splinecal/calib/gravity_tangent.h"
 
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include <Eigen/Dense>
-#include <gtest/gtest.h>
 
 #include "testing/numeric_diff.h"
 
@@ -17,12 +17,18 @@ constexpr double kOrthonormalTolerance = 1e-15;
 
 std::vector<Eigen::Vector3d> Directions() {
   std::vector<Eigen::Vector3d> directions = {
-      Eigen::Vector3d::UnitX(),  -Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-      -Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),  -Eigen::Vector3d::UnitZ(),
+      Eigen::Vector3d::UnitX(),
+      -Eigen::Vector3d::UnitX(),
+      Eigen::Vector3d::UnitY(),
+      -Eigen::Vector3d::UnitY(),
+      Eigen::Vector3d::UnitZ(),
+      -Eigen::Vector3d::UnitZ(),
       // A hair off the axes, where a basis built from e_z alone loses its digits.
-      Eigen::Vector3d(1e-12, -1e-12, -1.0), Eigen::Vector3d(0.0, 1e-9, 1.0),
+      Eigen::Vector3d(1e-12, -1e-12, -1.0),
+      Eigen::Vector3d(0.0, 1e-9, 1.0),
       // Ties between axes.
-      Eigen::Vector3d(1.0, 1.0, 1.0), Eigen::Vector3d(1.0, -1.0, 0.0)};
+      Eigen::Vector3d(1.0, 1.0, 1.0),
+      Eigen::Vector3d(1.0, -1.0, 0.0)};
   std::mt19937 rng(42);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (int i = 0; i < 1000; ++i) directions.emplace_back(normal(rng), normal(rng), normal(rng));

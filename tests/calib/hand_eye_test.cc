@@ -1,12 +1,12 @@
 #include "splinecal/calib/hand_eye.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include <Eigen/Dense>
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 namespace splinecal {
 namespace {
@@ -144,8 +144,8 @@ TEST(EstimateHandEyeRotation, RefusesFewerThanTwoPairs) {
 // N = sum sin^2(t/2) a a^T (calib/hand_eye.h).
 TEST(EstimateHandEyeRotation, SecondAxisRatioMatchesTheClosedForm) {
   const SO3d X = SO3d::Exp(Eigen::Vector3d(0.1, 0.9, -0.4));
-  const std::vector<Eigen::Vector3d> axes = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-                                             Eigen::Vector3d::UnitZ()};
+  const std::vector<Eigen::Vector3d> axes = {
+      Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
   const std::vector<double> angles = {0.3, 0.2, 0.1};
   const Pairs pairs = MakePairs(X, axes, angles);
   const HandEyeRotationResult result = EstimateHandEyeRotation(pairs.camera, pairs.imu);

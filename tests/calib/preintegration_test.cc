@@ -1,12 +1,12 @@
 #include "splinecal/calib/preintegration.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include <Eigen/Dense>
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "splinecal/error.h"
 #include "splinecal/imu/noise_generator.h"
@@ -58,8 +58,8 @@ RelativeMotion TrueRelativeMotion(const AnalyticTrajectory& trajectory, double t
   RelativeMotion m;
   m.delta_R = R_i_inv * b.T_w_s.so3();
   m.delta_v = R_i_inv * (b.v_w - a.v_w - g_w * T);
-  m.delta_p = R_i_inv * (b.T_w_s.translation() - a.T_w_s.translation() - a.v_w * T -
-                         0.5 * T * T * g_w);
+  m.delta_p =
+      R_i_inv * (b.T_w_s.translation() - a.T_w_s.translation() - a.v_w * T - 0.5 * T * T * g_w);
   return m;
 }
 
@@ -72,11 +72,12 @@ struct Errors {
 Errors PreintegrationErrors(const AnalyticTrajectory& trajectory, double rate_hz, double T) {
   const std::vector<ImuSample> imu = Readings(trajectory, rate_hz, T + 0.1);
   const int64_t t_end_ns = kStartNs + static_cast<int64_t>(T * 1e9 + 0.5);
-  const ImuPreintegration pre = Preintegrate(imu, kStartNs, t_end_ns, Eigen::Vector3d::Zero(),
-                                             Eigen::Vector3d::Zero(), nullptr);
+  const ImuPreintegration pre = Preintegrate(
+      imu, kStartNs, t_end_ns, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), nullptr);
   const RelativeMotion truth = TrueRelativeMotion(trajectory, 0.0, T);
   return {(truth.delta_R.inverse() * pre.delta_R).Log().norm(),
-          (truth.delta_v - pre.delta_v).norm(), (truth.delta_p - pre.delta_p).norm()};
+          (truth.delta_v - pre.delta_v).norm(),
+          (truth.delta_p - pre.delta_p).norm()};
 }
 
 // The midpoint scheme is second order: halving the step divides the error by ~4.
@@ -124,8 +125,7 @@ TEST(Preintegrate, ExactForTheDiscreteWorldTrajectory) {
       v_i = v;
     }
     const SO3d R1 = R * SO3d::Exp((0.5 * (imu[k].gyro + imu[k + 1].gyro) - bg) * h);
-    const Eigen::Vector3d a =
-        0.5 * (R * (imu[k].accel - ba) + R1 * (imu[k + 1].accel - ba)) + g_w;
+    const Eigen::Vector3d a = 0.5 * (R * (imu[k].accel - ba) + R1 * (imu[k + 1].accel - ba)) + g_w;
     p += v * h + 0.5 * h * h * a;
     v += a * h;
     R = R1;
@@ -180,8 +180,7 @@ TEST(Preintegrate, BiasJacobiansMatchNumericDerivatives) {
       const int64_t t0 = imu[20].t_ns + 3000000;  // between samples: interpolated readings
       const ImuPreintegration pre = Preintegrate(imu, t0, t1, c.bg, c.ba, nullptr);
       const auto dR_of_bg = [&](const Eigen::Vector3d& bg) -> Eigen::Vector3d {
-        return (pre.delta_R.inverse() * Preintegrate(imu, t0, t1, bg, c.ba, nullptr).delta_R)
-            .Log();
+        return (pre.delta_R.inverse() * Preintegrate(imu, t0, t1, bg, c.ba, nullptr).delta_R).Log();
       };
       const auto dv_of = [&](const Eigen::Vector3d& bg, const Eigen::Vector3d& ba) {
         return Preintegrate(imu, t0, t1, bg, ba, nullptr).delta_v;
@@ -253,11 +252,8 @@ TEST(PreintegrateRotation, MatchesTheFullPreintegration) {
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
 
 // Empirical covariance of [dp, dv, dphi] over `runs` noisy copies of the readings.
-Matrix9d MonteCarloCovariance(const std::vector<ImuSample>& clean,
-                              const ImuNoise& noise,
-                              int64_t t0,
-                              int64_t t1,
-                              int runs) {
+Matrix9d MonteCarloCovariance(
+    const std::vector<ImuSample>& clean, const ImuNoise& noise, int64_t t0, int64_t t1, int runs) {
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   const ImuPreintegration truth = Preintegrate(clean, t0, t1, zero, zero, nullptr);
   Matrix9d sum = Matrix9d::Zero();
@@ -292,8 +288,8 @@ TEST(PreintegrateCovariance, MatchesMonteCarloWhiteNoise) {
   noise.gyroscope_random_walk = 1e-12;
   noise.accelerometer_random_walk = 1e-12;
   const int64_t t0 = clean[10].t_ns, t1 = clean[50].t_ns;  // 0.2 s, 40 steps
-  const ImuPreintegration pre = Preintegrate(clean, t0, t1, Eigen::Vector3d::Zero(),
-                                             Eigen::Vector3d::Zero(), &noise);
+  const ImuPreintegration pre =
+      Preintegrate(clean, t0, t1, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), &noise);
   ASSERT_TRUE(pre.has_covariance);
   // 4000 draws: the trace of a 3x3 block is known to ~sqrt(2/(3*4000)) = 1.3%; midpoint
   // averaging of neighbouring samples lowers the true variance by 1/(2N) = 1.3%. 6% bound.
@@ -309,17 +305,16 @@ TEST(PreintegrateCovariance, MatchesMonteCarloWithBiasRandomWalk) {
   noise.gyroscope_random_walk = 2e-3;
   noise.accelerometer_random_walk = 0.3;
   const int64_t t0 = clean[0].t_ns, t1 = clean[200].t_ns;  // 1 s
-  const ImuPreintegration pre = Preintegrate(clean, t0, t1, Eigen::Vector3d::Zero(),
-                                             Eigen::Vector3d::Zero(), &noise);
+  const ImuPreintegration pre =
+      Preintegrate(clean, t0, t1, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), &noise);
   // The random walk's share of the covariance must be right, not only the white part.
   ImuNoise white_only = noise;
   white_only.gyroscope_random_walk = 1e-12;
   white_only.accelerometer_random_walk = 1e-12;
-  const ImuPreintegration white = Preintegrate(clean, t0, t1, Eigen::Vector3d::Zero(),
-                                               Eigen::Vector3d::Zero(), &white_only);
+  const ImuPreintegration white =
+      Preintegrate(clean, t0, t1, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), &white_only);
   const double velocity_variance = pre.covariance.block<3, 3>(kPreintV, kPreintV).trace();
-  const double white_velocity_variance =
-      white.covariance.block<3, 3>(kPreintV, kPreintV).trace();
+  const double white_velocity_variance = white.covariance.block<3, 3>(kPreintV, kPreintV).trace();
   ASSERT_GT(velocity_variance, 10.0 * white_velocity_variance);
   const Matrix9d empirical = MonteCarloCovariance(clean, noise, t0, t1, 4000);
   // The generator's first sample uses the initial bias, so the walk starts one step late:
@@ -334,10 +329,10 @@ TEST(PreintegrateCovariance, IndependentOfTheImuRate) {
   const AnalyticTrajectory trajectory = Figure8Trajectory();
   const std::vector<ImuSample> imu200 = Readings(trajectory, 200.0, 1.0);
   const std::vector<ImuSample> imu800 = Readings(trajectory, 800.0, 1.0);
-  const ImuPreintegration a = Preintegrate(imu200, kStartNs, kStartNs + 500000000, zero, zero,
-                                           &noise);
-  const ImuPreintegration b = Preintegrate(imu800, kStartNs, kStartNs + 500000000, zero, zero,
-                                           &noise);
+  const ImuPreintegration a =
+      Preintegrate(imu200, kStartNs, kStartNs + 500000000, zero, zero, &noise);
+  const ImuPreintegration b =
+      Preintegrate(imu800, kStartNs, kStartNs + 500000000, zero, zero, &noise);
   // The per-step linearisation differs at O(h): 1% bound.
   EXPECT_LT((a.covariance - b.covariance).norm(), 0.01 * a.covariance.norm());
   // Symmetric positive definite.
@@ -346,16 +341,17 @@ TEST(PreintegrateCovariance, IndependentOfTheImuRate) {
   EXPECT_EQ(llt.info(), Eigen::Success);
   // Closed forms for the bias blocks: a random walk for T = 0.5 s.
   EXPECT_NEAR(a.covariance(kPreintBg, kPreintBg),
-              noise.gyroscope_random_walk * noise.gyroscope_random_walk * 0.5, 1e-20);
+              noise.gyroscope_random_walk * noise.gyroscope_random_walk * 0.5,
+              1e-20);
   EXPECT_NEAR(a.covariance(kPreintBa + 2, kPreintBa + 2),
-              noise.accelerometer_random_walk * noise.accelerometer_random_walk * 0.5, 1e-18);
+              noise.accelerometer_random_walk * noise.accelerometer_random_walk * 0.5,
+              1e-18);
 }
 
 TEST(Preintegrate, NoCovarianceWithoutNoise) {
   const std::vector<ImuSample> imu = Readings(Figure8Trajectory(), 200.0, 0.2);
-  const ImuPreintegration pre = Preintegrate(imu, imu[0].t_ns, imu[10].t_ns,
-                                             Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-                                             nullptr);
+  const ImuPreintegration pre = Preintegrate(
+      imu, imu[0].t_ns, imu[10].t_ns, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), nullptr);
   EXPECT_FALSE(pre.has_covariance);
   EXPECT_EQ(pre.covariance.norm(), 0.0);
 }

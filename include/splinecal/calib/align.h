@@ -47,11 +47,10 @@
 #ifndef SPLINECAL_CALIB_ALIGN_H_
 #define SPLINECAL_CALIB_ALIGN_H_
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/calib/preintegration.h"
 #include "splinecal/imu/imu_sample.h"
@@ -82,9 +81,9 @@ struct AlignOptions {
   bool estimate_rotation_extrinsic = false;
   // Camera timestamps are in the camera's clock: t_imu = t_cam + timeshift (Kalibr).
   double timeshift_cam_imu_s = 0.0;
-  ImuNoise noise;             // weights (Kalibr densities)
-  CameraNoise camera_noise;   // weights
-  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();    // known [m/s^2]
+  ImuNoise noise;                                        // weights (Kalibr densities)
+  CameraNoise camera_noise;                              // weights
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // known [m/s^2]
   Eigen::Vector3d initial_gyro_bias = Eigen::Vector3d::Zero();
 
   // Gyro bias: stop when the Gauss-Newton step is below this [rad/s] (1e-13 rad/s is ~1e-4 of
@@ -112,9 +111,9 @@ struct AlignOptions {
 
 // The per-frame data of the linear problem.
 struct AlignmentFrame {
-  int64_t t_ns = 0;                                   // IMU time
-  SO3d R_c0_c;                                        // camera rotation
-  Eigen::Vector3d p_c0_c = Eigen::Vector3d::Zero();   // camera position, up to scale
+  int64_t t_ns = 0;                                  // IMU time
+  SO3d R_c0_c;                                       // camera rotation
+  Eigen::Vector3d p_c0_c = Eigen::Vector3d::Zero();  // camera position, up to scale
 };
 
 // A solution of the linear or the refined problem.
@@ -159,14 +158,14 @@ class AlignmentProblem {
   // (free: 0 and the identity; refinement: G d and G u0 B(d)), unknowns (v', y_g, u). Internal
   // building block, public for internal::RefineGravityAccumulating and the tests.
   struct NormalEquations;
-  NormalEquations Build(const Eigen::Vector3d& gravity_per_u,
-                        const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>& gravity_basis)
-      const;
+  NormalEquations Build(
+      const Eigen::Vector3d& gravity_per_u,
+      const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>& gravity_basis) const;
 
  private:
   std::vector<AlignmentFrame> frames_;
   SE3d T_cam_imu_;
-  std::vector<ImuPreintegration> preintegrations_;  // pair k = frames k, k+1
+  std::vector<ImuPreintegration> preintegrations_;        // pair k = frames k, k+1
   std::vector<Eigen::Matrix<double, 6, 6>> information_;  // inverse covariance of (dp, dv)
 };
 
@@ -221,9 +220,9 @@ struct AlignResult {
   Eigen::Vector3d gravity_c0 = Eigen::Vector3d::Zero();  // refined, |g| = options' g [m/s^2]
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   // [rad/s]
   SO3d R_w_c0;
-  SO3d R_cam_imu;                                        // estimated or the given one
+  SO3d R_cam_imu;  // estimated or the given one
   bool rotation_extrinsic_estimated = false;
-  int iterations = 0;            // gravity refinement iterations
+  int iterations = 0;  // gravity refinement iterations
   int gyro_bias_iterations = 0;
   // The excitation measure (AlignmentProblem::ExcitationConditionNumber), gated.
   double condition_number = 0.0;

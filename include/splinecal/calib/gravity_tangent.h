@@ -22,11 +22,11 @@
 #ifndef SPLINECAL_CALIB_GRAVITY_TANGENT_H_
 #define SPLINECAL_CALIB_GRAVITY_TANGENT_H_
 
-#include <cmath>
+#include <glog/logging.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <glog/logging.h>
+#include <cmath>
 
 namespace splinecal {
 

@@ -30,10 +30,9 @@
 #ifndef SPLINECAL_CALIB_HAND_EYE_H_
 #define SPLINECAL_CALIB_HAND_EYE_H_
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/lie/so3.h"
 

@@ -51,10 +51,9 @@
 #ifndef SPLINECAL_CALIB_PREINTEGRATION_H_
 #define SPLINECAL_CALIB_PREINTEGRATION_H_
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
@@ -77,9 +76,9 @@ struct ImuPreintegration {
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   // [rad/s]
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // [m/s^2]
 
-  SO3d delta_R;                                        // R_si_sj (gamma)
-  Eigen::Vector3d delta_v = Eigen::Vector3d::Zero();   // beta, in s_i [m/s]
-  Eigen::Vector3d delta_p = Eigen::Vector3d::Zero();   // alpha, in s_i [m]
+  SO3d delta_R;                                       // R_si_sj (gamma)
+  Eigen::Vector3d delta_v = Eigen::Vector3d::Zero();  // beta, in s_i [m/s]
+  Eigen::Vector3d delta_p = Eigen::Vector3d::Zero();  // alpha, in s_i [m]
 
   Eigen::Matrix3d J_dR_bg = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d J_dv_bg = Eigen::Matrix3d::Zero();
