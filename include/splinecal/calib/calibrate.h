@@ -1,0 +1,193 @@
+// Camera-IMU calibration in continuous time, rolling shutter included (`splinecal calibrate`,
+// [Lovegrove13], [seed002]). docs/calibrate.md is the user's guide; this comment is the
+// contract.
+//
+// The problem (CONVENTIONS.md for frames, units, T_cam_imu, timeshift_cam_imu, line_delay):
+//
+//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (calib/imu_costs.h)
+//           + sum_m |r_rw,m|^2                         bias random walk (calib/bias_costs.h)
+//           + sum_f sum_c rho(|r_c,f|^2)               target corners, per frame
+//           + sum_o rho(|r_o|^2)                       landmark observations
+//                                                      (calib/reprojection_cost.h, Huber rho)
+//
+// over the control poses of T_w_s(t) (IMU clock, SE3Manifold), the biases (constant or a bias
+// spline), gravity g_w (|g_w| fixed, GravityManifold), and per camera T_cam_imu,
+// timeshift_cam_imu (unless fixed) and line_delay (with rolling_shutter; else fixed at the
+// camchain's value, normally 0), plus the inverse depths of natural landmarks. The world is the
+// target's frame (T_w_t = identity, fixed: it removes the 6 gauge freedoms of world position and
+// orientation; gravity is estimated in it). Without a target the first control pose is held
+// fixed instead. IMU residuals are weighted by Kalibr's densities (sigma = density sqrt(rate)),
+// pixels by pixel_sigma_px: given, or estimated from the residuals (1.4826 x the median absolute
+// pixel error, robust to outliers) and the problem solved again with it, so that the reported
+// standard deviations reflect the data's own pixel noise.
+//
+// Initialisation (target present): the target's pose in every frame by PnP (calib/pnp.h); those
+// camera poses as the pose source of `splinecal fit` (calib/fit.h) with the time offset (gyro vs
+// camera angular-speed correlation, then least squares) and the extrinsic (hand-eye rotation,
+// then least squares) estimated: it gives the trajectory, the biases, gravity, T_cam_imu and the
+// time offset; the full problem refines them together with the line delay. Landmarks are
+// initialised from their reference observation and a depth triangulated from the initial
+// trajectory. Without a target the caller supplies the initial guess
+// (CalibrationInitialGuess) -- e.g. from `splinecal align`.
+//
+// Time windows: each residual holds the control poses of its possible exposure times
+// (calib/reprojection_cost.h); after a solve in which the time offset or line delay moved them
+// out of their windows (or the pixel sigma changed by more than 10%), the problem is rebuilt and
+// solved again (at most max_rounds rounds).
+//
+// Errors and warnings. Throws splinecal::Error, in plain words, for: a camchain/observations
+// mismatch (a cam_id without a camera); observations outside the IMU's time range; a target
+// given but never seen (no point id of the target in the observations); too few usable frames;
+// too little rotation (the gyro's RMS rate about its weakest axis below
+// min_rotation_rate_rad_s: T_cam_imu's rotation and the time offset cannot be determined); and
+// solver failure. Parameters the data does not determine well (a standard deviation above
+// its threshold) get a warning in CalibrationResult::warnings.
+#ifndef SPLINECAL_CALIB_CALIBRATE_H_
+#define SPLINECAL_CALIB_CALIBRATE_H_
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "splinecal/calib/bias_costs.h"
+#include "splinecal/calib/camchain.h"
+#include "splinecal/calib/observations.h"
+#include "splinecal/calib/pose_fit.h"
+#include "splinecal/calib/target.h"
+#include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_sample.h"
+#include "splinecal/imu/noise.h"
+#include "splinecal/lie/se3.h"
+#include "splinecal/spline/se3_spline.h"
+
+namespace splinecal {
+
+struct CalibrateOptions {
+  double knot_spacing_s = 0.05;  // spline knot spacing dt [s]
+  double gravity_m_s2 = kDefaultGravity;
+  ImuNoise noise;  // Kalibr densities (the weights use the measured IMU rate)
+  BiasModel bias_model = BiasModel::kSpline;
+  double bias_knot_spacing_s = 1.0;  // rounded to a multiple of dt
+  bool rolling_shutter = false;      // estimate line_delay (else fixed at the camchain's)
+  bool estimate_time_offset = true;  // else timeshift_cam_imu fixed at the camchain's
+  double max_time_offset_s = 0.1;    // |timeshift_cam_imu| bound and correlation search range
+  double pixel_sigma_px = 0.0;       // pixel noise std [px]; 0 = estimated from the residuals
+  double huber_px = 2.0;             // Huber threshold [px]; 0 = plain least squares
+  int min_corners_per_frame = 8;     // frames with fewer target corners are not used
+  double min_rotation_rate_rad_s = 0.05;  // refuse data rotating less about its weakest axis
+  int max_iterations = 50;
+  int max_rounds = 4;
+  int num_threads = 1;
+  bool compute_covariance = true;
+  // Warnings when a standard deviation exceeds these.
+  double warn_rotation_std_deg = 0.1;
+  double warn_translation_std_m = 0.005;
+  double warn_timeshift_std_s = 0.001;
+  double warn_line_delay_relative_std = 0.05;
+  bool keep_residuals = true;  // per-observation and per-IMU-sample residuals in the result
+  std::function<void(const std::string&)> progress;  // one line per solver iteration
+};
+
+// A starting point for the whole state (required without a target; optional otherwise).
+struct CalibrationInitialGuess {
+  KnotLayout layout;
+  std::vector<SE3d> control_poses;   // T_w_s at the layout's knots
+  Eigen::Vector3d gravity_w = Eigen::Vector3d(0.0, 0.0, -kDefaultGravity);
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
+  Camchain camchain;                  // T_cam_imu, timeshift_cam_imu, line_delay per camera
+};
+
+struct CameraEstimate {
+  CameraCalibration calibration;  // the estimates (intrinsics as given)
+  // Standard deviations: rotation of T_cam_imu in its right tangent (per axis, IMU frame) [deg],
+  // translation t_cam_imu per axis (camera frame) [m]; NaN when not computed.
+  Eigen::Vector3d rotation_std_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d translation_std_m = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  double timeshift_std_s = std::numeric_limits<double>::quiet_NaN();
+  double line_delay_std_s = std::numeric_limits<double>::quiet_NaN();
+  bool timeshift_estimated = false;
+  bool line_delay_estimated = false;
+  double reprojection_rms_px = 0.0;  // RMS of the 2-D pixel errors
+  int num_frames = 0;
+  int num_observations = 0;
+};
+
+// One reprojection residual after the calibration (for report.html).
+struct ReprojectionSample {
+  int64_t t_ns = 0;  // frame stamp, camera clock
+  int cam_id = 0;
+  int64_t point_id = 0;
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();     // observed
+  Eigen::Vector2d error = Eigen::Vector2d::Zero();  // predicted - observed [px]
+};
+
+struct ImuResidualRecord {
+  int64_t t_ns = 0;
+  Eigen::Vector3d gyro_error = Eigen::Vector3d::Zero();   // predicted - measured [rad/s]
+  Eigen::Vector3d accel_error = Eigen::Vector3d::Zero();  // [m/s^2]
+};
+
+struct CalibrationResult {
+  std::vector<CameraEstimate> cameras;
+  Camchain camchain;  // the estimated camchain (intrinsics as given)
+
+  KnotLayout layout;
+  std::vector<SE3d> control_poses;  // T_w_s, w = the target's frame
+  SE3Splined MakeSpline() const { return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns); }
+  Eigen::Vector3d gravity_w = Eigen::Vector3d::Zero();
+  // Biases: constant, or the time average of the bias spline; std per axis (NaN if unknown).
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_bias_std = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d accel_bias_std = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+
+  double pixel_sigma_px = 1.0;       // the weight used in the last round
+  bool pixel_sigma_estimated = false;
+  double reprojection_rms_px = 0.0;  // all cameras
+  double gyro_rms = 0.0;             // per-axis RMS of the IMU residuals [rad/s]
+  double accel_rms = 0.0;            // [m/s^2]
+  int num_landmarks = 0;
+  int num_imu_samples = 0;
+
+  int iterations = 0;
+  int rounds = 0;
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  double solve_time_s = 0.0;
+  double covariance_time_s = 0.0;
+  double initialisation_time_s = 0.0;
+  std::string termination;
+  bool covariance_ok = false;
+  std::vector<std::string> warnings;
+
+  std::vector<ReprojectionSample> reprojection_samples;  // when keep_residuals
+  std::vector<ImuResidualRecord> imu_samples;            // when keep_residuals
+};
+
+// Calibrates. `target` may be nullptr (natural landmarks only: then `guess` is required).
+// Throws splinecal::Error as the file comment lists.
+CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
+                            const std::vector<Observation>& observations,
+                            const Camchain& camchain,
+                            const CalibrationTarget* target,
+                            const CalibrateOptions& options,
+                            const CalibrationInitialGuess* guess = nullptr);
+
+// The initial guess the target path computes (PnP per frame + `splinecal fit`), exposed for
+// tests and diagnostics. Throws splinecal::Error like Calibrate.
+CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu,
+                                               const std::vector<Observation>& observations,
+                                               const Camchain& camchain,
+                                               const CalibrationTarget& target,
+                                               const CalibrateOptions& options,
+                                               std::vector<std::string>* warnings);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_CALIB_CALIBRATE_H_

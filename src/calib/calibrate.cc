@@ -1,0 +1,1203 @@
+#include "splinecal/calib/calibrate.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <ceres/ceres.h>
+#include <ceres/covariance.h>
+
+#include "splinecal/calib/fit.h"
+#include "splinecal/calib/gravity_manifold.h"
+#include "splinecal/calib/imu_costs.h"
+#include "splinecal/calib/pnp.h"
+#include "splinecal/calib/reprojection_cost.h"
+#include "splinecal/calib/spline_evaluation_callback.h"
+#include "splinecal/error.h"
+#include "splinecal/lie/se3_manifold.h"
+
+namespace splinecal {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Time windows of the reprojection residuals reach this far beyond the current exposure range
+// [s]: the time offset may move this much during one solve before the windows are rebuilt.
+constexpr double kWindowMargin_s = 0.01;
+// A solve that ends with an exposure range within this of its window's edge [s] is re-solved
+// with new windows.
+constexpr double kWindowRebuildMargin_s = 0.005;
+// The pixel sigma is re-estimated after each solve; a change above this fraction triggers
+// another round.
+constexpr double kSigmaChangeForNewRound = 0.1;
+// 1.4826 x median absolute deviation = std of a Gaussian.
+constexpr double kMadToStd = 1.4826;
+// PnP poses whose reprojection RMS exceeds this [px] are not used for the initial guess (a
+// wrong detection or a strong rolling-shutter smear; the full problem still uses the frame).
+constexpr double kMaxPnpRmsPx = 10.0;
+// Fewer usable PnP poses than this make no initial trajectory.
+constexpr int kMinPnpPoses = 10;
+// Pose-source noise assumed for PnP poses in the initial fit [m], [rad].
+constexpr double kPnpSigmaM = 0.003;
+constexpr double kPnpSigmaRad = 0.003;
+// The initial spline extends this far beyond the camera's time span into the IMU data [ns].
+constexpr int64_t kImuMarginNs = 200'000'000;
+
+std::string Format(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+class ProgressCallback : public ceres::IterationCallback {
+ public:
+  ProgressCallback(std::function<void(const std::string&)> progress, int round)
+      : progress_(std::move(progress)), round_(round) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    char line[256];
+    std::snprintf(line, sizeof(line),
+                  "calibrate: round %d iteration %2d  cost %.9e  change %+.3e  |gradient| %.3e  "
+                  "|step| %.3e  %s  %.2f s",
+                  round_, s.iteration, s.cost, -s.cost_change, s.gradient_max_norm, s.step_norm,
+                  s.step_is_successful ? "accepted" : "rejected", s.cumulative_time_in_seconds);
+    progress_(line);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  std::function<void(const std::string&)> progress_;
+  int round_;
+};
+
+double ImuRateHz(const std::vector<ImuSample>& imu) {
+  std::vector<int64_t> periods;
+  for (size_t k = 1; k < imu.size(); ++k) periods.push_back(imu[k].t_ns - imu[k - 1].t_ns);
+  std::nth_element(periods.begin(), periods.begin() + periods.size() / 2, periods.end());
+  return 1e9 / static_cast<double>(periods[periods.size() / 2]);
+}
+
+// The median frame period of one camera [s] (0.05 when it has fewer than 2 frames).
+double FramePeriod(const std::vector<ObservationFrame>& frames, int cam) {
+  std::vector<int64_t> periods;
+  int64_t last = 0;
+  bool have = false;
+  for (const ObservationFrame& f : frames) {
+    if (f.cam_id != cam) continue;
+    if (have) periods.push_back(f.t_ns - last);
+    last = f.t_ns;
+    have = true;
+  }
+  if (periods.empty()) return 0.05;
+  std::nth_element(periods.begin(), periods.begin() + periods.size() / 2, periods.end());
+  return 1e-9 * static_cast<double>(periods[periods.size() / 2]);
+}
+
+void CheckInputs(const std::vector<ImuSample>& imu,
+                 const std::vector<Observation>& observations,
+                 const Camchain& camchain,
+                 const CalibrateOptions& options) {
+  if (camchain.empty()) throw Error("calibrate: the camchain has no camera");
+  if (imu.size() < 2) throw Error("calibrate: fewer than 2 IMU samples");
+  if (observations.empty()) throw Error("calibrate: no observations");
+  for (const Observation& o : observations) {
+    if (o.cam_id < 0 || o.cam_id >= static_cast<int>(camchain.size())) {
+      throw Error("calibrate: an observation of camera " + std::to_string(o.cam_id) +
+                  " (frame " + std::to_string(o.t_ns) + ") but the camchain describes " +
+                  std::to_string(camchain.size()) + " camera(s): wrong camchain or cam_id column");
+    }
+  }
+  for (size_t k = 1; k < imu.size(); ++k) {
+    if (imu[k].t_ns <= imu[k - 1].t_ns) throw Error("calibrate: IMU timestamps not increasing");
+  }
+  auto positive = [](double v, const char* what) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+      throw Error(std::string("calibrate: ") + what + " must be positive");
+    }
+  };
+  positive(options.knot_spacing_s, "the knot spacing");
+  positive(options.gravity_m_s2, "gravity");
+  positive(options.bias_knot_spacing_s, "the bias knot spacing");
+  positive(options.max_time_offset_s, "the time-offset range");
+  if (!(options.pixel_sigma_px >= 0.0) || !(options.huber_px >= 0.0)) {
+    throw Error("calibrate: the pixel sigma and the Huber threshold must be >= 0");
+  }
+  if (options.num_threads < 1 || options.max_iterations < 1 || options.max_rounds < 1) {
+    throw Error("calibrate: threads, iterations and rounds must be >= 1");
+  }
+}
+
+// Frames whose exposure (IMU clock, camchain time offset) falls inside the IMU data.
+std::vector<Observation> ObservationsInsideImu(const std::vector<ImuSample>& imu,
+                                               const std::vector<Observation>& observations,
+                                               const Camchain& camchain,
+                                               std::vector<std::string>* warnings) {
+  std::vector<Observation> inside;
+  std::set<std::pair<int64_t, int>> dropped_frames;
+  std::set<std::pair<int64_t, int>> frames;
+  int64_t first = observations.front().t_ns;
+  int64_t last = observations.front().t_ns;
+  for (const Observation& o : observations) {
+    const CameraCalibration& cam = camchain[o.cam_id];
+    const int64_t t = o.t_ns + std::llround(cam.timeshift_cam_imu_s * 1e9);
+    const int64_t readout = std::llround(cam.line_delay_s * (cam.camera.height - 1) * 1e9);
+    frames.insert({o.t_ns, o.cam_id});
+    first = std::min(first, o.t_ns);
+    last = std::max(last, o.t_ns);
+    if (t >= imu.front().t_ns && t + readout <= imu.back().t_ns) {
+      inside.push_back(o);
+    } else {
+      dropped_frames.insert({o.t_ns, o.cam_id});
+    }
+  }
+  if (inside.empty()) {
+    char text[512];
+    std::snprintf(text, sizeof(text),
+                  "calibrate: every observation is outside the IMU's time range: frames [%.9f, "
+                  "%.9f] s (camera clock) vs IMU [%.9f, %.9f] s; the files are from different "
+                  "recordings or use different time bases (seconds vs nanoseconds, another clock "
+                  "origin), or timeshift_cam_imu is wrong",
+                  1e-9 * static_cast<double>(first), 1e-9 * static_cast<double>(last),
+                  1e-9 * static_cast<double>(imu.front().t_ns),
+                  1e-9 * static_cast<double>(imu.back().t_ns));
+    throw Error(text);
+  }
+  if (!dropped_frames.empty()) {
+    warnings->push_back(std::to_string(dropped_frames.size()) + " of " +
+                        std::to_string(frames.size()) +
+                        " frames lie outside the IMU's time range and were not used");
+  }
+  return inside;
+}
+
+// Refuses motion that does not rotate about all three axes (file comment of calibrate.h).
+void CheckRotationExcitation(const std::vector<ImuSample>& imu, double min_rate) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const ImuSample& s : imu) mean += s.gyro;
+  mean /= static_cast<double>(imu.size());
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  for (const ImuSample& s : imu) second += (s.gyro - mean) * (s.gyro - mean).transpose();
+  second /= static_cast<double>(imu.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(second);
+  const Eigen::Vector3d rms = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  if (rms(0) < min_rate) {
+    throw Error("calibrate: too little rotation: the gyro's RMS rate about its weakest axis is " +
+                Format("%.3g", rms(0)) + " rad/s (about the others " + Format("%.3g", rms(1)) +
+                " and " + Format("%.3g", rms(2)) + " rad/s), below " + Format("%.3g", min_rate) +
+                " rad/s; T_cam_imu's rotation and the time offset cannot be determined. Record "
+                "again rotating the rig about all three axes");
+  }
+}
+
+// The IMU samples inside [start_ns, end_ns].
+std::vector<ImuSample> ImuBetween(const std::vector<ImuSample>& imu, int64_t start_ns,
+                                  int64_t end_ns) {
+  std::vector<ImuSample> out;
+  for (const ImuSample& s : imu) {
+    if (s.t_ns >= start_ns && s.t_ns <= end_ns) out.push_back(s);
+  }
+  return out;
+}
+
+// The spline layout for the camera data: the IMU range cut to the frames' span plus a margin.
+KnotLayout LayoutFor(const std::vector<ImuSample>& imu,
+                     const std::vector<Observation>& observations,
+                     const Camchain& camchain,
+                     double knot_spacing_s) {
+  int64_t first = std::numeric_limits<int64_t>::max();
+  int64_t last = std::numeric_limits<int64_t>::min();
+  for (const Observation& o : observations) {
+    const CameraCalibration& cam = camchain[o.cam_id];
+    const int64_t t = o.t_ns + std::llround(cam.timeshift_cam_imu_s * 1e9);
+    first = std::min(first, t);
+    last = std::max<int64_t>(last, t + std::llround(cam.line_delay_s * (cam.camera.height - 1) * 1e9));
+  }
+  const int64_t start = std::max<int64_t>(imu.front().t_ns, first - kImuMarginNs);
+  const int64_t end = std::min<int64_t>(imu.back().t_ns, last + kImuMarginNs);
+  return KnotLayoutCovering(start, end, std::llround(knot_spacing_s * 1e9));
+}
+
+struct TargetFrame {
+  int cam = 0;
+  int64_t t_ns = 0;
+  std::vector<int64_t> ids;
+  std::vector<TargetCornerObservation> corners;
+};
+
+struct Landmark {
+  int64_t id = 0;
+  int cam = 0;  // the reference observation's camera
+  Observation reference;
+  Eigen::Vector3d ray = Eigen::Vector3d::UnitZ();
+  double rho = 0.0;
+  std::vector<Observation> others;
+};
+
+class CalibrationProblem {
+ public:
+  CalibrationProblem(const std::vector<ImuSample>& imu,
+                     const Camchain& camchain,
+                     const CalibrateOptions& options,
+                     const CalibrationInitialGuess& guess,
+                     bool has_target)
+      : imu_(imu), camchain_(camchain), options_(options), layout_(guess.layout),
+        has_target_(has_target) {
+    dt_s_ = 1e-9 * static_cast<double>(layout_.dt_ns);
+    spline_layout_.dt_s = dt_s_;
+    spline_layout_.num_control_poses = layout_.num_control_poses;
+    const int n = layout_.num_control_poses;
+    control_values_.resize(7 * static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      PoseToBlock(guess.control_poses[i], &control_values_[7 * i]);
+      control_blocks_.push_back(&control_values_[7 * i]);
+    }
+    imu_rate_hz_ = ImuRateHz(imu_);
+    sigma_g_ = options.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz_);
+    sigma_a_ = options.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz_);
+    const Eigen::Vector3d g = options.gravity_m_s2 * guess.gravity_w.normalized();
+    for (int a = 0; a < 3; ++a) gravity_[a] = g[a];
+    // Biases.
+    const int64_t t_first = layout_.t0_ns + layout_.dt_ns;
+    const int64_t t_last = layout_.t0_ns + static_cast<int64_t>(n - 2) * layout_.dt_ns;
+    if (options.bias_model == BiasModel::kSpline) {
+      const int per = std::max(1, static_cast<int>(std::lround(options.bias_knot_spacing_s / dt_s_)));
+      bias_dt_ns_ = static_cast<int64_t>(per) * layout_.dt_ns;
+      bias_t0_ns_ = t_first - bias_dt_ns_;
+      const int64_t span = t_last - t_first;
+      num_bias_points_ = static_cast<int>(span / bias_dt_ns_ + (span % bias_dt_ns_ != 0 ? 1 : 0)) + 3;
+    } else {
+      num_bias_points_ = 1;
+    }
+    gyro_bias_values_.resize(3 * static_cast<size_t>(num_bias_points_));
+    accel_bias_values_.resize(3 * static_cast<size_t>(num_bias_points_));
+    for (int m = 0; m < num_bias_points_; ++m) {
+      for (int a = 0; a < 3; ++a) {
+        gyro_bias_values_[3 * m + a] = guess.gyro_bias[a];
+        accel_bias_values_[3 * m + a] = guess.accel_bias[a];
+      }
+    }
+    // Cameras.
+    cameras_.resize(camchain.size());
+    for (size_t c = 0; c < camchain.size(); ++c) {
+      const CameraCalibration& init = guess.camchain[c];
+      CameraState& cam = cameras_[c];
+      PoseToBlock(init.T_cam_imu, cam.extrinsic.data());
+      cam.shift = init.timeshift_cam_imu_s;
+      cam.line_delay = options.rolling_shutter ? std::max(0.0, init.line_delay_s) : init.line_delay_s;
+    }
+    PoseToBlock(SE3d(), T_w_t_.data());
+    callback_ = std::make_unique<SplineEvaluationCallback>(control_blocks_, layout_.t0_ns,
+                                                           layout_.dt_ns);
+    imu_ = ImuBetween(imu, layout_.t0_ns + layout_.dt_ns,
+                      layout_.t0_ns + static_cast<int64_t>(n - 2) * layout_.dt_ns);
+    if (imu_.size() < 2) throw Error("calibrate: fewer than 2 IMU samples inside the spline");
+  }
+
+  void SetFramePeriods(const std::vector<double>& periods) { frame_periods_ = periods; }
+  std::vector<TargetFrame>* target_frames() { return &target_frames_; }
+  std::vector<Landmark>* landmarks() { return &landmarks_; }
+  SE3Splined Spline() const {
+    std::vector<SE3d> poses;
+    for (const double* b : control_blocks_) poses.push_back(PoseFromBlock(b));
+    return SE3Splined(poses, layout_.t0_ns, layout_.dt_ns);
+  }
+  const KnotLayout& layout() const { return layout_; }
+  double TimeSinceT0(int64_t t_ns) const {
+    return 1e-9 * static_cast<double>(t_ns - layout_.t0_ns);
+  }
+
+  CalibrationResult Run();
+
+ private:
+  struct CameraState {
+    std::array<double, 7> extrinsic{};
+    double shift = 0.0;
+    double line_delay = 0.0;
+    double window_readout_s = 0.0;  // the readout the windows were built for
+  };
+
+  double* gyro_bias(int m) { return &gyro_bias_values_[3 * m]; }
+  double* accel_bias(int m) { return &accel_bias_values_[3 * m]; }
+
+  // The bias segment m (control points m-1 .. m+2) and weights at t_ns.
+  std::array<double, 4> BiasWeights(int64_t t_ns, int* segment) const {
+    if (num_bias_points_ == 1) {
+      *segment = 0;
+      return {1.0, 0.0, 0.0, 0.0};
+    }
+    int m = static_cast<int>((t_ns - bias_t0_ns_) / bias_dt_ns_);
+    m = std::clamp(m, 1, num_bias_points_ - 3);
+    const double u = std::clamp(static_cast<double>(t_ns - (bias_t0_ns_ + m * bias_dt_ns_)) /
+                                    static_cast<double>(bias_dt_ns_), 0.0, 1.0);
+    *segment = m;
+    return BiasSplineWeights(u);
+  }
+  Eigen::Vector3d BiasAt(const std::vector<double>& values, int64_t t_ns) const {
+    int m = 0;
+    const std::array<double, 4> w = BiasWeights(t_ns, &m);
+    if (num_bias_points_ == 1) return Eigen::Map<const Eigen::Vector3d>(values.data());
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (int j = 0; j < 4; ++j) b += w[j] * Eigen::Map<const Eigen::Vector3d>(&values[3 * (m - 1 + j)]);
+    return b;
+  }
+
+  ReprojectionSettings Settings(int cam, double sigma, double huber) const {
+    ReprojectionSettings s;
+    s.camera = &camchain_[cam].camera;
+    s.layout = spline_layout_;
+    s.sigma_px = sigma;
+    s.huber_px = huber;
+    s.shared = callback_.get();
+    return s;
+  }
+  // The window of a frame's exposures for the camera's current state (false near the ends).
+  bool FrameWindow(int cam, int64_t t_ns, double margin, ControlPoseWindow* window) const {
+    const CameraState& c = cameras_[cam];
+    const double t = TimeSinceT0(t_ns) + c.shift;
+    return WindowCovering(spline_layout_, t - margin, t + c.window_readout_s + margin, window);
+  }
+  bool Contains(const ControlPoseWindow& outer, const ControlPoseWindow& inner) const {
+    return inner.first_index >= outer.first_index && inner.last_index() <= outer.last_index();
+  }
+
+  void BuildProblem();
+  void AddImuResiduals();
+  double EstimatePixelSigma();
+  bool WindowsStillValid();
+  void ComputeCovariance(CalibrationResult* result);
+  void Collect(CalibrationResult* result);
+
+  std::vector<ImuSample> imu_;
+  const Camchain& camchain_;
+  const CalibrateOptions& options_;
+  KnotLayout layout_;
+  SplineLayout spline_layout_;
+  bool has_target_;
+  double dt_s_ = 0.0;
+  double imu_rate_hz_ = 0.0;
+  double sigma_g_ = 0.0;
+  double sigma_a_ = 0.0;
+  double sigma_px_ = 1.0;
+
+  std::vector<double> control_values_;
+  std::vector<double*> control_blocks_;
+  std::vector<double> gyro_bias_values_;
+  std::vector<double> accel_bias_values_;
+  int num_bias_points_ = 1;
+  int64_t bias_t0_ns_ = 0;
+  int64_t bias_dt_ns_ = 1;
+  std::array<double, 3> gravity_{};
+  std::vector<CameraState> cameras_;
+  std::array<double, 7> T_w_t_{};
+  std::vector<double> frame_periods_;
+
+  std::vector<TargetFrame> target_frames_;
+  std::vector<Landmark> landmarks_;
+  // Per residual: which frame / landmark observation it is, and its window(s).
+  struct FrameResidual {
+    int frame = 0;
+    ControlPoseWindow window;
+  };
+  struct LandmarkResidual {
+    int landmark = 0;
+    int observation = 0;
+    ControlPoseWindow reference_window;
+    ControlPoseWindow window;
+  };
+  std::vector<FrameResidual> frame_residuals_;
+  std::vector<LandmarkResidual> landmark_residuals_;
+
+  SE3Manifold se3_manifold_;
+  GravityManifold gravity_manifold_;
+  std::unique_ptr<SplineEvaluationCallback> callback_;
+  std::unique_ptr<ceres::Problem> problem_;
+};
+
+void CalibrationProblem::AddImuResiduals() {
+  const SE3Splined lookup = Spline();
+  const int nb = num_bias_points_ == 1 ? 1 : 4;
+  size_t k = 0;
+  while (k < imu_.size()) {
+    const int index = lookup.SegmentAtNs(imu_[k].t_ns).index;
+    ImuResidualSegment gyro_segment;
+    gyro_segment.segment_index = index;
+    gyro_segment.dt_s = dt_s_;
+    gyro_segment.sigma = sigma_g_;
+    gyro_segment.shared = callback_.get();
+    ImuResidualSegment accel_segment = gyro_segment;
+    accel_segment.sigma = sigma_a_;
+    std::vector<ImuResidualSample> gyro_samples;
+    std::vector<ImuResidualSample> accel_samples;
+    int bias_segment = 0;
+    BiasWeights(layout_.t0_ns + static_cast<int64_t>(index) * layout_.dt_ns, &bias_segment);
+    for (; k < imu_.size(); ++k) {
+      const Segment<double> seg = lookup.SegmentAtNs(imu_[k].t_ns);
+      if (seg.index != index) break;
+      ImuResidualSample sample;
+      sample.u = seg.u;
+      if (nb == 4) {
+        // Weights in the segment's bias segment (a pose segment lies inside one bias segment;
+        // the end sample at u = 1 is clamped into it).
+        const int64_t tb = bias_t0_ns_ + static_cast<int64_t>(bias_segment) * bias_dt_ns_;
+        const double ub = std::clamp(static_cast<double>(imu_[k].t_ns - tb) /
+                                         static_cast<double>(bias_dt_ns_), 0.0, 1.0);
+        sample.bias_weights = BiasSplineWeights(ub);
+      }
+      sample.measured = imu_[k].gyro;
+      gyro_samples.push_back(sample);
+      sample.measured = imu_[k].accel;
+      accel_samples.push_back(sample);
+    }
+    std::vector<double*> gyro_blocks(control_blocks_.begin() + (index - 1),
+                                     control_blocks_.begin() + (index + 3));
+    std::vector<double*> accel_blocks = gyro_blocks;
+    const int first_bias = nb == 1 ? 0 : bias_segment - 1;
+    for (int j = 0; j < nb; ++j) {
+      gyro_blocks.push_back(gyro_bias(first_bias + j));
+      accel_blocks.push_back(accel_bias(first_bias + j));
+    }
+    accel_blocks.push_back(gravity_.data());
+    ceres::CostFunction* gyro_cost;
+    ceres::CostFunction* accel_cost;
+    if (nb == 1) {
+      gyro_cost = new GyroSegmentCostFunction<1>(gyro_segment, std::move(gyro_samples));
+      accel_cost = new AccelSegmentCostFunction<1>(accel_segment, std::move(accel_samples));
+    } else {
+      gyro_cost = new GyroSegmentCostFunction<4>(gyro_segment, std::move(gyro_samples));
+      accel_cost = new AccelSegmentCostFunction<4>(accel_segment, std::move(accel_samples));
+    }
+    problem_->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
+    problem_->AddResidualBlock(accel_cost, nullptr, accel_blocks);
+  }
+}
+
+void CalibrationProblem::BuildProblem() {
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.evaluation_callback = callback_.get();
+  problem_ = std::make_unique<ceres::Problem>(problem_options);
+  callback_->Update();
+  for (double* block : control_blocks_) problem_->AddParameterBlock(block, 7, &se3_manifold_);
+  if (!has_target_) problem_->SetParameterBlockConstant(control_blocks_[0]);  // gauge
+  for (int m = 0; m < num_bias_points_; ++m) {
+    problem_->AddParameterBlock(gyro_bias(m), 3);
+    problem_->AddParameterBlock(accel_bias(m), 3);
+  }
+  problem_->AddParameterBlock(gravity_.data(), 3, &gravity_manifold_);
+  problem_->AddParameterBlock(T_w_t_.data(), 7, &se3_manifold_);
+  problem_->SetParameterBlockConstant(T_w_t_.data());
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    CameraState& cam = cameras_[c];
+    const int height = camchain_[c].camera.height;
+    problem_->AddParameterBlock(cam.extrinsic.data(), 7, &se3_manifold_);
+    problem_->AddParameterBlock(&cam.shift, 1);
+    problem_->AddParameterBlock(&cam.line_delay, 1);
+    if (options_.estimate_time_offset) {
+      cam.shift = std::clamp(cam.shift, -options_.max_time_offset_s, options_.max_time_offset_s);
+      problem_->SetParameterLowerBound(&cam.shift, 0, -options_.max_time_offset_s);
+      problem_->SetParameterUpperBound(&cam.shift, 0, options_.max_time_offset_s);
+    } else {
+      problem_->SetParameterBlockConstant(&cam.shift);
+    }
+    if (options_.rolling_shutter) {
+      // The readout cannot exceed the frame period.
+      const double max_line_delay = frame_periods_[c] / std::max(1, height - 1);
+      cam.line_delay = std::clamp(cam.line_delay, 0.0, max_line_delay);
+      problem_->SetParameterLowerBound(&cam.line_delay, 0, 0.0);
+      problem_->SetParameterUpperBound(&cam.line_delay, 0, max_line_delay);
+    } else {
+      problem_->SetParameterBlockConstant(&cam.line_delay);
+    }
+  }
+  AddImuResiduals();
+  if (num_bias_points_ > 1) {
+    const double db = 1e-9 * static_cast<double>(bias_dt_ns_);
+    for (int m = 1; m + 2 < num_bias_points_; ++m) {
+      problem_->AddResidualBlock(
+          new BiasRandomWalkCostFunction(db, options_.noise.gyroscope_random_walk), nullptr,
+          {gyro_bias(m - 1), gyro_bias(m), gyro_bias(m + 1), gyro_bias(m + 2)});
+      problem_->AddResidualBlock(
+          new BiasRandomWalkCostFunction(db, options_.noise.accelerometer_random_walk), nullptr,
+          {accel_bias(m - 1), accel_bias(m), accel_bias(m + 1), accel_bias(m + 2)});
+    }
+  }
+  frame_residuals_.clear();
+  for (size_t f = 0; f < target_frames_.size(); ++f) {
+    const TargetFrame& frame = target_frames_[f];
+    FrameResidual residual;
+    residual.frame = static_cast<int>(f);
+    if (!FrameWindow(frame.cam, frame.t_ns, kWindowMargin_s, &residual.window)) continue;
+    CameraState& cam = cameras_[frame.cam];
+    auto* cost = new TargetFrameCostFunction(Settings(frame.cam, sigma_px_, options_.huber_px),
+                                             residual.window, TimeSinceT0(frame.t_ns),
+                                             frame.corners);
+    std::vector<double*> blocks(control_blocks_.begin() + residual.window.first_index,
+                                control_blocks_.begin() + residual.window.last_index() + 1);
+    blocks.push_back(cam.extrinsic.data());
+    blocks.push_back(&cam.shift);
+    blocks.push_back(&cam.line_delay);
+    blocks.push_back(T_w_t_.data());
+    problem_->AddResidualBlock(cost, nullptr, blocks);
+    frame_residuals_.push_back(residual);
+  }
+  landmark_residuals_.clear();
+  for (size_t l = 0; l < landmarks_.size(); ++l) {
+    Landmark& landmark = landmarks_[l];
+    bool added_rho = false;
+    for (size_t o = 0; o < landmark.others.size(); ++o) {
+      const Observation& obs = landmark.others[o];
+      LandmarkResidual residual;
+      residual.landmark = static_cast<int>(l);
+      residual.observation = static_cast<int>(o);
+      if (!FrameWindow(landmark.cam, landmark.reference.t_ns, kWindowMargin_s,
+                       &residual.reference_window) ||
+          !FrameWindow(obs.cam_id, obs.t_ns, kWindowMargin_s, &residual.window)) {
+        continue;
+      }
+      if (obs.cam_id != landmark.cam) continue;  // one camera per landmark (the reference's)
+      const std::vector<int> indices =
+          LandmarkCostFunction::UnionOfWindows(residual.reference_window, residual.window);
+      LandmarkObservation data;
+      data.t_reference_frame_s = TimeSinceT0(landmark.reference.t_ns);
+      data.ray = landmark.ray;
+      data.reference_row = landmark.reference.uv.y();
+      data.t_frame_s = TimeSinceT0(obs.t_ns);
+      data.uv = obs.uv;
+      CameraState& cam = cameras_[landmark.cam];
+      auto* cost = new LandmarkCostFunction(Settings(landmark.cam, sigma_px_, options_.huber_px),
+                                            indices, data);
+      std::vector<double*> blocks;
+      for (int i : indices) blocks.push_back(control_blocks_[i]);
+      blocks.push_back(cam.extrinsic.data());
+      blocks.push_back(&cam.shift);
+      blocks.push_back(&cam.line_delay);
+      blocks.push_back(&landmark.rho);
+      problem_->AddResidualBlock(cost, nullptr, blocks);
+      landmark_residuals_.push_back(residual);
+      added_rho = true;
+    }
+    if (added_rho) problem_->SetParameterLowerBound(&landmark.rho, 0, 0.0);
+  }
+}
+
+// 1.4826 x the median absolute pixel error per coordinate over every residual.
+double CalibrationProblem::EstimatePixelSigma() {
+  std::vector<double> errors;
+  for (const FrameResidual& r : frame_residuals_) {
+    const TargetFrame& frame = target_frames_[r.frame];
+    CameraState& cam = cameras_[frame.cam];
+    const TargetFrameCostFunction cost(Settings(frame.cam, 1.0, 0.0), r.window,
+                                       TimeSinceT0(frame.t_ns), frame.corners);
+    std::vector<double*> blocks(control_blocks_.begin() + r.window.first_index,
+                                control_blocks_.begin() + r.window.last_index() + 1);
+    blocks.push_back(cam.extrinsic.data());
+    blocks.push_back(&cam.shift);
+    blocks.push_back(&cam.line_delay);
+    blocks.push_back(T_w_t_.data());
+    std::vector<double> residuals(cost.num_residuals());
+    if (cost.Evaluate(blocks.data(), residuals.data(), nullptr)) {
+      for (double e : residuals) errors.push_back(std::abs(e));
+    }
+  }
+  for (const LandmarkResidual& r : landmark_residuals_) {
+    Landmark& landmark = landmarks_[r.landmark];
+    const Observation& obs = landmark.others[r.observation];
+    CameraState& cam = cameras_[landmark.cam];
+    LandmarkObservation data;
+    data.t_reference_frame_s = TimeSinceT0(landmark.reference.t_ns);
+    data.ray = landmark.ray;
+    data.reference_row = landmark.reference.uv.y();
+    data.t_frame_s = TimeSinceT0(obs.t_ns);
+    data.uv = obs.uv;
+    const std::vector<int> indices = LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window);
+    const LandmarkCostFunction cost(Settings(landmark.cam, 1.0, 0.0), indices, data);
+    std::vector<double*> blocks;
+    for (int i : indices) blocks.push_back(control_blocks_[i]);
+    blocks.push_back(cam.extrinsic.data());
+    blocks.push_back(&cam.shift);
+    blocks.push_back(&cam.line_delay);
+    blocks.push_back(&landmark.rho);
+    double residuals[2];
+    if (cost.Evaluate(blocks.data(), residuals, nullptr)) {
+      errors.push_back(std::abs(residuals[0]));
+      errors.push_back(std::abs(residuals[1]));
+    }
+  }
+  if (errors.empty()) return sigma_px_;
+  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+  return std::max(1e-3, kMadToStd * errors[errors.size() / 2]);
+}
+
+// True when every residual's window still covers its exposure range with a margin.
+bool CalibrationProblem::WindowsStillValid() {
+  bool valid = true;
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    const double readout = cameras_[c].line_delay * (camchain_[c].camera.height - 1);
+    if (readout > cameras_[c].window_readout_s) valid = false;
+  }
+  for (const FrameResidual& r : frame_residuals_) {
+    const TargetFrame& frame = target_frames_[r.frame];
+    ControlPoseWindow needed;
+    if (!FrameWindow(frame.cam, frame.t_ns, kWindowRebuildMargin_s, &needed) ||
+        !Contains(r.window, needed)) {
+      valid = false;
+    }
+  }
+  for (const LandmarkResidual& r : landmark_residuals_) {
+    const Landmark& landmark = landmarks_[r.landmark];
+    ControlPoseWindow a;
+    ControlPoseWindow b;
+    const Observation& obs = landmark.others[r.observation];
+    if (!FrameWindow(landmark.cam, landmark.reference.t_ns, kWindowRebuildMargin_s, &a) ||
+        !FrameWindow(obs.cam_id, obs.t_ns, kWindowRebuildMargin_s, &b) ||
+        !Contains(r.reference_window, a) || !Contains(r.window, b)) {
+      valid = false;
+    }
+  }
+  return valid;
+}
+
+CalibrationResult CalibrationProblem::Run() {
+  CalibrationResult result;
+  sigma_px_ = options_.pixel_sigma_px > 0.0 ? options_.pixel_sigma_px : 1.0;
+  result.pixel_sigma_estimated = options_.pixel_sigma_px <= 0.0;
+  // Windows: the physically largest readout (the frame period) in the first round when the line
+  // delay is estimated, then the estimate with room to grow.
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    const int rows = camchain_[c].camera.height - 1;
+    cameras_[c].window_readout_s =
+        options_.rolling_shutter ? frame_periods_[c] : cameras_[c].line_delay * rows;
+  }
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver_options.num_threads = options_.num_threads;
+  solver_options.max_num_iterations = options_.max_iterations;
+  solver_options.function_tolerance = 1e-10;
+  solver_options.gradient_tolerance = 1e-12;
+  solver_options.parameter_tolerance = 1e-10;
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  for (int round = 1; round <= options_.max_rounds; ++round) {
+    BuildProblem();
+    if (frame_residuals_.empty() && landmark_residuals_.empty()) {
+      throw Error("calibrate: no frame lies inside the spline's time range");
+    }
+    std::unique_ptr<ProgressCallback> progress;
+    ceres::Solver::Options round_options = solver_options;
+    if (options_.progress) {
+      progress = std::make_unique<ProgressCallback>(options_.progress, round);
+      round_options.callbacks.push_back(progress.get());
+    }
+    const auto start = std::chrono::steady_clock::now();
+    ceres::Solve(round_options, problem_.get(), &summary);
+    result.solve_time_s +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.iterations += static_cast<int>(summary.iterations.size()) - 1;
+    if (round == 1) result.initial_cost = summary.initial_cost;
+    result.rounds = round;
+    if (summary.termination_type == ceres::FAILURE || !summary.IsSolutionUsable()) {
+      throw Error("calibrate: the solver failed (" + summary.message +
+                  "); likely causes: a wrong camchain (intrinsics, T_cam_imu far off), "
+                  "observations of another camera, or IMU units");
+    }
+    callback_->Update();
+    bool again = false;
+    if (result.pixel_sigma_estimated) {
+      const double sigma = EstimatePixelSigma();
+      if (std::abs(sigma / sigma_px_ - 1.0) > kSigmaChangeForNewRound) again = true;
+      sigma_px_ = sigma;
+    }
+    const bool windows_valid = WindowsStillValid();
+    if (!windows_valid) again = true;
+    // Later rounds: windows sized to the estimate with room to grow.
+    for (size_t c = 0; c < cameras_.size(); ++c) {
+      const int rows = camchain_[c].camera.height - 1;
+      if (options_.rolling_shutter) {
+        const double readout = cameras_[c].line_delay * rows;
+        const double wanted = std::min(frame_periods_[c], 1.2 * readout + 0.002);
+        if (!windows_valid || wanted < cameras_[c].window_readout_s) {
+          cameras_[c].window_readout_s = wanted;
+        }
+      }
+    }
+    if (!again) break;
+    if (round < options_.max_rounds && options_.progress) {
+      options_.progress("calibrate: pixel sigma " + Format("%.4g", sigma_px_) +
+                        " px; time windows " + (windows_valid ? "valid" : "moved") +
+                        ": solving again");
+    }
+  }
+  if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    result.warnings.push_back("the solver stopped after " + std::to_string(result.iterations) +
+                              " iterations without converging (" + summary.message + ")");
+  }
+  result.final_cost = summary.final_cost;
+  result.termination = summary.message;
+  result.pixel_sigma_px = sigma_px_;
+  Collect(&result);
+  if (options_.compute_covariance) {
+    const auto start = std::chrono::steady_clock::now();
+    ComputeCovariance(&result);
+    result.covariance_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return result;
+}
+
+void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
+  ceres::Covariance::Options covariance_options;
+  covariance_options.algorithm_type = ceres::SPARSE_QR;
+  covariance_options.num_threads = options_.num_threads;
+  covariance_options.apply_loss_function = true;
+  ceres::Covariance covariance(covariance_options);
+  std::vector<std::pair<const double*, const double*>> blocks;
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    const CameraState& cam = cameras_[c];
+    blocks.emplace_back(cam.extrinsic.data(), cam.extrinsic.data());
+    if (options_.estimate_time_offset) blocks.emplace_back(&cam.shift, &cam.shift);
+    if (options_.rolling_shutter) blocks.emplace_back(&cam.line_delay, &cam.line_delay);
+  }
+  if (num_bias_points_ == 1) {
+    blocks.emplace_back(gyro_bias(0), gyro_bias(0));
+    blocks.emplace_back(accel_bias(0), accel_bias(0));
+  }
+  if (!covariance.Compute(blocks, problem_.get())) {
+    result->warnings.push_back(
+        "the covariance could not be computed (the problem is rank deficient: some parameter is "
+        "not determined by the data); standard deviations are not reported");
+    return;
+  }
+  result->covariance_ok = true;
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    CameraState& cam = cameras_[c];
+    CameraEstimate& estimate = result->cameras[c];
+    Eigen::Matrix<double, 6, 6, Eigen::RowMajor> cov;
+    covariance.GetCovarianceBlockInTangentSpace(cam.extrinsic.data(), cam.extrinsic.data(),
+                                                cov.data());
+    const Eigen::Matrix3d R = PoseFromBlock(cam.extrinsic.data()).rotationMatrix();
+    const Eigen::Matrix3d cov_t = R * cov.topLeftCorner<3, 3>() * R.transpose();
+    estimate.translation_std_m = cov_t.diagonal().cwiseMax(0.0).cwiseSqrt();
+    estimate.rotation_std_deg =
+        cov.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * (180.0 / kPi);
+    if (options_.estimate_time_offset) {
+      double v = 0.0;
+      covariance.GetCovarianceBlock(&cam.shift, &cam.shift, &v);
+      estimate.timeshift_std_s = std::sqrt(std::max(0.0, v));
+    }
+    if (options_.rolling_shutter) {
+      double v = 0.0;
+      covariance.GetCovarianceBlock(&cam.line_delay, &cam.line_delay, &v);
+      estimate.line_delay_std_s = std::sqrt(std::max(0.0, v));
+    }
+    const std::string name = "cam" + std::to_string(c);
+    if (estimate.rotation_std_deg.maxCoeff() > options_.warn_rotation_std_deg) {
+      result->warnings.push_back(
+          name + ": the rotation of T_cam_imu is poorly determined (std up to " +
+          Format("%.3g", estimate.rotation_std_deg.maxCoeff()) +
+          " deg): rotate the rig more, about all three axes");
+    }
+    if (estimate.translation_std_m.maxCoeff() > options_.warn_translation_std_m) {
+      result->warnings.push_back(
+          name + ": the translation of T_cam_imu is poorly determined (std up to " +
+          Format("%.3g", 1e3 * estimate.translation_std_m.maxCoeff()) +
+          " mm): it shows only through rotational accelerations; rotate faster and longer");
+    }
+    if (options_.estimate_time_offset && estimate.timeshift_std_s > options_.warn_timeshift_std_s) {
+      result->warnings.push_back(name + ": the time offset is poorly determined (std " +
+                                 Format("%.3g", 1e3 * estimate.timeshift_std_s) +
+                                 " ms): the motion is too slow or too smooth");
+    }
+    if (options_.rolling_shutter && cam.line_delay > 0.0 &&
+        estimate.line_delay_std_s > options_.warn_line_delay_relative_std * cam.line_delay &&
+        cam.line_delay > 3.0 * estimate.line_delay_std_s) {
+      result->warnings.push_back(name + ": the line delay is poorly determined (std " +
+                                 Format("%.3g", 100.0 * estimate.line_delay_std_s / cam.line_delay) +
+                                 "% of its value)");
+    }
+    if (std::abs(cam.shift) > 0.99 * options_.max_time_offset_s && options_.estimate_time_offset) {
+      result->warnings.push_back(name + ": the time offset ended at its bound +-" +
+                                 Format("%.3g", options_.max_time_offset_s) + " s");
+    }
+  }
+  if (num_bias_points_ == 1) {
+    Eigen::Matrix3d cov;
+    covariance.GetCovarianceBlock(gyro_bias(0), gyro_bias(0), cov.data());
+    result->gyro_bias_std = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
+    covariance.GetCovarianceBlock(accel_bias(0), accel_bias(0), cov.data());
+    result->accel_bias_std = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
+  }
+}
+
+void CalibrationProblem::Collect(CalibrationResult* result) {
+  result->layout = layout_;
+  const SE3Splined spline = Spline();
+  result->control_poses = spline.control_poses();
+  result->gravity_w = Eigen::Map<const Eigen::Vector3d>(gravity_.data());
+  result->camchain = camchain_;
+  result->cameras.resize(cameras_.size());
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    CameraCalibration& out = result->camchain[c];
+    out.T_cam_imu = PoseFromBlock(cameras_[c].extrinsic.data());
+    out.timeshift_cam_imu_s = cameras_[c].shift;
+    out.line_delay_s = cameras_[c].line_delay;
+    result->cameras[c].calibration = out;
+    result->cameras[c].timeshift_estimated = options_.estimate_time_offset;
+    result->cameras[c].line_delay_estimated = options_.rolling_shutter;
+  }
+  // IMU residuals.
+  double gyro_sq = 0.0;
+  double accel_sq = 0.0;
+  Eigen::Vector3d gyro_sum = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_sum = Eigen::Vector3d::Zero();
+  for (const ImuSample& s : imu_) {
+    const Eigen::Vector3d b_g = BiasAt(gyro_bias_values_, s.t_ns);
+    const Eigen::Vector3d b_a = BiasAt(accel_bias_values_, s.t_ns);
+    Eigen::Vector3d gyro;
+    Eigen::Vector3d accel;
+    PredictImu<double>(spline, spline.SegmentAtNs(s.t_ns), result->gravity_w, b_g, b_a, &gyro,
+                       &accel);
+    gyro_sq += (gyro - s.gyro).squaredNorm();
+    accel_sq += (accel - s.accel).squaredNorm();
+    gyro_sum += b_g;
+    accel_sum += b_a;
+    if (options_.keep_residuals) {
+      result->imu_samples.push_back({s.t_ns, gyro - s.gyro, accel - s.accel});
+    }
+  }
+  const double n = static_cast<double>(imu_.size());
+  result->num_imu_samples = static_cast<int>(imu_.size());
+  result->gyro_rms = std::sqrt(gyro_sq / (3.0 * n));
+  result->accel_rms = std::sqrt(accel_sq / (3.0 * n));
+  result->gyro_bias = gyro_sum / n;
+  result->accel_bias = accel_sum / n;
+  // Reprojection residuals (pixels, no weights, no robust loss).
+  std::vector<double> cam_sq(cameras_.size(), 0.0);
+  std::vector<std::set<std::pair<int64_t, int>>> cam_frames(cameras_.size());
+  double all_sq = 0.0;
+  int all_count = 0;
+  for (const FrameResidual& r : frame_residuals_) {
+    const TargetFrame& frame = target_frames_[r.frame];
+    CameraState& cam = cameras_[frame.cam];
+    const TargetFrameCostFunction cost(Settings(frame.cam, 1.0, 0.0), r.window,
+                                       TimeSinceT0(frame.t_ns), frame.corners);
+    std::vector<double*> blocks(control_blocks_.begin() + r.window.first_index,
+                                control_blocks_.begin() + r.window.last_index() + 1);
+    blocks.push_back(cam.extrinsic.data());
+    blocks.push_back(&cam.shift);
+    blocks.push_back(&cam.line_delay);
+    blocks.push_back(T_w_t_.data());
+    std::vector<double> e(cost.num_residuals());
+    if (!cost.Evaluate(blocks.data(), e.data(), nullptr)) continue;
+    CameraEstimate& estimate = result->cameras[frame.cam];
+    ++estimate.num_frames;
+    for (size_t k = 0; k < frame.corners.size(); ++k) {
+      const Eigen::Vector2d error(e[2 * k], e[2 * k + 1]);
+      cam_sq[frame.cam] += error.squaredNorm();
+      all_sq += error.squaredNorm();
+      ++all_count;
+      ++estimate.num_observations;
+      if (options_.keep_residuals) {
+        result->reprojection_samples.push_back(
+            {frame.t_ns, frame.cam, frame.ids[k], frame.corners[k].uv, error});
+      }
+    }
+  }
+  std::set<int> landmarks_used;
+  for (const LandmarkResidual& r : landmark_residuals_) {
+    Landmark& landmark = landmarks_[r.landmark];
+    const Observation& obs = landmark.others[r.observation];
+    CameraState& cam = cameras_[landmark.cam];
+    LandmarkObservation data;
+    data.t_reference_frame_s = TimeSinceT0(landmark.reference.t_ns);
+    data.ray = landmark.ray;
+    data.reference_row = landmark.reference.uv.y();
+    data.t_frame_s = TimeSinceT0(obs.t_ns);
+    data.uv = obs.uv;
+    const std::vector<int> indices =
+        LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window);
+    const LandmarkCostFunction cost(Settings(landmark.cam, 1.0, 0.0), indices, data);
+    std::vector<double*> blocks;
+    for (int i : indices) blocks.push_back(control_blocks_[i]);
+    blocks.push_back(cam.extrinsic.data());
+    blocks.push_back(&cam.shift);
+    blocks.push_back(&cam.line_delay);
+    blocks.push_back(&landmark.rho);
+    double e[2];
+    if (!cost.Evaluate(blocks.data(), e, nullptr)) continue;
+    landmarks_used.insert(r.landmark);
+    const Eigen::Vector2d error(e[0], e[1]);
+    cam_sq[landmark.cam] += error.squaredNorm();
+    all_sq += error.squaredNorm();
+    ++all_count;
+    ++result->cameras[landmark.cam].num_observations;
+    if (options_.keep_residuals) {
+      result->reprojection_samples.push_back({obs.t_ns, obs.cam_id, landmark.id, obs.uv, error});
+    }
+  }
+  result->num_landmarks = static_cast<int>(landmarks_used.size());
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    const int count = result->cameras[c].num_observations;
+    result->cameras[c].reprojection_rms_px = count > 0 ? std::sqrt(cam_sq[c] / count) : 0.0;
+  }
+  result->reprojection_rms_px = all_count > 0 ? std::sqrt(all_sq / all_count) : 0.0;
+  std::sort(result->reprojection_samples.begin(), result->reprojection_samples.end(),
+            [](const ReprojectionSample& a, const ReprojectionSample& b) {
+              return std::tie(a.t_ns, a.cam_id, a.point_id) < std::tie(b.t_ns, b.cam_id, b.point_id);
+            });
+}
+
+// Target frames (corners of the target) of the observations.
+std::vector<TargetFrame> MakeTargetFrames(const std::vector<Observation>& observations,
+                                          const CalibrationTarget& target,
+                                          int min_corners) {
+  std::vector<TargetFrame> frames;
+  std::vector<Observation> corners;
+  for (const Observation& o : observations) {
+    if (target.Find(o.point_id) != nullptr) corners.push_back(o);
+  }
+  for (const ObservationFrame& f : GroupIntoFrames(corners)) {
+    if (static_cast<int>(f.observations.size()) < min_corners) continue;
+    TargetFrame frame;
+    frame.cam = f.cam_id;
+    frame.t_ns = f.t_ns;
+    for (const Observation& o : f.observations) {
+      frame.ids.push_back(o.point_id);
+      frame.corners.push_back({*target.Find(o.point_id), o.uv});
+    }
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
+// Landmarks: the observations whose ids are not target corners, grouped by id. The reference is
+// the first observation; rho is triangulated from the initial spline (the midpoint of the rays
+// in the least-squares sense). Landmarks seen once, or with rays that do not intersect in front
+// of the reference camera, are dropped.
+std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations,
+                                    const CalibrationTarget* target,
+                                    const Camchain& camchain,
+                                    const SE3Splined& spline,
+                                    std::vector<std::string>* warnings) {
+  std::map<int64_t, std::vector<Observation>> by_id;
+  for (const Observation& o : observations) {
+    if (target != nullptr && target->Find(o.point_id) != nullptr) continue;
+    by_id[o.point_id].push_back(o);
+  }
+  std::vector<Landmark> landmarks;
+  int dropped = 0;
+  for (auto& [id, obs] : by_id) {
+    if (obs.size() < 2) {
+      ++dropped;
+      continue;
+    }
+    Landmark landmark;
+    landmark.id = id;
+    landmark.reference = obs.front();
+    landmark.cam = obs.front().cam_id;
+    const CameraCalibration& cam = camchain[landmark.cam];
+    if (!cam.camera.Unproject(landmark.reference.uv, &landmark.ray)) {
+      ++dropped;
+      continue;
+    }
+    // Triangulate: minimise sum |(I - d d^T)(X - c)|^2 over the rays of every observation.
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    SE3d T_w_c_ref;
+    bool ok = true;
+    for (size_t k = 0; k < obs.size() && ok; ++k) {
+      const CameraCalibration& c = camchain[obs[k].cam_id];
+      const double t = spline.TimeSinceT0(obs[k].t_ns) + c.timeshift_cam_imu_s +
+                       c.line_delay_s * obs[k].uv.y();
+      Eigen::Vector3d ray;
+      if (!(t >= spline.start_time() && t <= spline.end_time()) ||
+          !c.camera.Unproject(obs[k].uv, &ray)) {
+        ok = k > 0;
+        break;
+      }
+      const SE3d T_w_c = spline.Pose(t) * c.T_cam_imu.inverse();
+      if (k == 0) T_w_c_ref = T_w_c;
+      const Eigen::Vector3d d = (T_w_c.so3() * ray).normalized();
+      const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
+      A += P;
+      b += P * T_w_c.translation();
+    }
+    const Eigen::Vector3d p_w = A.ldlt().solve(b);
+    const double depth = (T_w_c_ref.inverse() * p_w).z();
+    if (!ok || !p_w.allFinite() || !(depth > 0.05)) {
+      ++dropped;
+      continue;
+    }
+    landmark.rho = 1.0 / depth;
+    landmark.others.assign(obs.begin() + 1, obs.end());
+    landmarks.push_back(std::move(landmark));
+  }
+  if (dropped > 0) {
+    warnings->push_back(std::to_string(dropped) +
+                        " landmark(s) seen only once or not triangulable were not used");
+  }
+  return landmarks;
+}
+
+}  // namespace
+
+CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu,
+                                               const std::vector<Observation>& observations,
+                                               const Camchain& camchain,
+                                               const CalibrationTarget& target,
+                                               const CalibrateOptions& options,
+                                               std::vector<std::string>* warnings) {
+  // PnP per frame of cam0.
+  std::vector<StampedPose> poses;
+  int frames_tried = 0;
+  for (const TargetFrame& frame :
+       MakeTargetFrames(observations, target, options.min_corners_per_frame)) {
+    if (frame.cam != 0) continue;
+    ++frames_tried;
+    std::vector<Eigen::Vector3d> p_t;
+    std::vector<Eigen::Vector2d> uv;
+    for (const TargetCornerObservation& c : frame.corners) {
+      p_t.push_back(c.p_t);
+      uv.push_back(c.uv);
+    }
+    PnpOptions pnp_options;
+    pnp_options.min_points = options.min_corners_per_frame;
+    const PnpResult pnp = SolvePnp(camchain[0].camera, p_t, uv, pnp_options);
+    if (!pnp.ok || pnp.rms_px > kMaxPnpRmsPx) continue;
+    const SE3d T_t_c = pnp.T_c_t.inverse();
+    StampedPose pose;
+    pose.t_ns = frame.t_ns;
+    pose.p = T_t_c.translation();
+    pose.q = T_t_c.so3().quaternion();
+    poses.push_back(pose);
+  }
+  if (static_cast<int>(poses.size()) < kMinPnpPoses) {
+    throw Error("calibrate: the target gives a pose in only " + std::to_string(poses.size()) +
+                " of " + std::to_string(frames_tried) + " frames of cam0 with at least " +
+                std::to_string(options.min_corners_per_frame) +
+                " corners (need " + std::to_string(kMinPnpPoses) +
+                "): check the target file (size, spacing, corner ids) and the intrinsics");
+  }
+  if (warnings != nullptr && static_cast<int>(poses.size()) < frames_tried) {
+    warnings->push_back(std::to_string(frames_tried - static_cast<int>(poses.size())) + " of " +
+                        std::to_string(frames_tried) +
+                        " target frames gave no usable PnP pose (they still enter the "
+                        "calibration)");
+  }
+  // The continuous-time fit to those camera poses: T_pose_imu = T_c_s.
+  FitOptions fit_options;
+  fit_options.knot_spacing_s = options.knot_spacing_s;
+  fit_options.gravity_m_s2 = options.gravity_m_s2;
+  fit_options.noise = options.noise;
+  fit_options.pose_sigma_m = kPnpSigmaM;
+  fit_options.pose_sigma_rad = kPnpSigmaRad;
+  fit_options.estimate_time_offset = options.estimate_time_offset;
+  fit_options.time_offset_s = camchain[0].timeshift_cam_imu_s;
+  fit_options.max_time_offset_s = options.max_time_offset_s;
+  fit_options.estimate_extrinsic = true;
+  fit_options.T_pose_imu = camchain[0].T_cam_imu;
+  fit_options.compute_covariance = false;
+  fit_options.keep_samples = false;
+  fit_options.max_residual_noise_ratio = 1e9;
+  fit_options.max_iterations = 30;
+  fit_options.num_threads = options.num_threads;
+  fit_options.progress = nullptr;
+  FitResult fit;
+  try {
+    fit = Fit(imu, poses, fit_options);
+  } catch (const Error& e) {
+    std::string message = e.what();
+    if (message.rfind("fit: ", 0) == 0) message = message.substr(5);
+    throw Error("calibrate: initial guess from the target poses failed: " + message);
+  }
+  if (warnings != nullptr) {
+    for (const std::string& w : fit.warnings) warnings->push_back("initial guess: " + w);
+  }
+  CalibrationInitialGuess guess;
+  guess.layout = LayoutFor(imu, observations, camchain, options.knot_spacing_s);
+  // The fitted spline re-sampled onto the calibration's layout.
+  const SE3Splined fitted = fit.MakeSpline();
+  std::vector<StampedPose> samples;
+  const int64_t step = std::max<int64_t>(1, guess.layout.dt_ns / 10);
+  for (int64_t t = fitted.start_time_ns(); t <= fitted.end_time_ns(); t += step) {
+    const SE3d T = fitted.PoseNs(t);
+    samples.push_back({t, T.translation(), T.so3().quaternion()});
+  }
+  guess.control_poses = FitControlPoses(samples, guess.layout).control_poses;
+  guess.gravity_w = fit.gravity_w;
+  guess.gyro_bias = fit.gyro_bias;
+  guess.accel_bias = fit.accel_bias;
+  guess.camchain = camchain;
+  guess.camchain[0].T_cam_imu = fit.T_pose_imu;
+  guess.camchain[0].timeshift_cam_imu_s = fit.time_offset_s;
+  return guess;
+}
+
+CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
+                            const std::vector<Observation>& all_observations,
+                            const Camchain& camchain,
+                            const CalibrationTarget* target,
+                            const CalibrateOptions& options,
+                            const CalibrationInitialGuess* guess) {
+  CheckInputs(imu, all_observations, camchain, options);
+  std::vector<std::string> warnings;
+  const std::vector<Observation> observations =
+      ObservationsInsideImu(imu, all_observations, camchain, &warnings);
+  if (target != nullptr) {
+    bool seen = false;
+    for (const Observation& o : observations) seen = seen || target->Find(o.point_id) != nullptr;
+    if (!seen) {
+      throw Error("calibrate: the target is never seen: no point id in the observations is a "
+                  "corner of the " + target->type + " target (" +
+                  std::to_string(target->points.size()) +
+                  " corners); wrong target file, or the detector numbers corners differently");
+    }
+  }
+  CheckRotationExcitation(imu, options.min_rotation_rate_rad_s);
+  const auto init_start = std::chrono::steady_clock::now();
+  CalibrationInitialGuess initial;
+  if (guess != nullptr) {
+    initial = *guess;
+    if (initial.camchain.size() != camchain.size() ||
+        static_cast<int>(initial.control_poses.size()) != initial.layout.num_control_poses) {
+      throw Error("calibrate: the initial guess does not match the camchain or its layout");
+    }
+  } else if (target != nullptr) {
+    if (options.progress) options.progress("calibrate: initial guess (PnP per frame, then fit)");
+    initial = InitialGuessFromTarget(imu, observations, camchain, *target, options, &warnings);
+  } else {
+    throw Error("calibrate: without a target the calibration needs an initial trajectory "
+                "(CalibrationInitialGuess; e.g. from `splinecal align` on SLAM poses)");
+  }
+  CalibrationProblem problem(imu, camchain, options, initial, target != nullptr);
+  std::vector<ObservationFrame> frames = GroupIntoFrames(observations);
+  std::vector<double> periods;
+  for (size_t c = 0; c < camchain.size(); ++c) periods.push_back(FramePeriod(frames, c));
+  problem.SetFramePeriods(periods);
+  if (target != nullptr) {
+    *problem.target_frames() = MakeTargetFrames(observations, *target, options.min_corners_per_frame);
+  }
+  *problem.landmarks() =
+      MakeLandmarks(observations, target, initial.camchain, problem.Spline(), &warnings);
+  if (problem.target_frames()->empty() && problem.landmarks()->empty()) {
+    throw Error("calibrate: no usable frame: no frame has " +
+                std::to_string(options.min_corners_per_frame) +
+                " target corners and no landmark is seen twice");
+  }
+  const double init_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - init_start).count();
+  CalibrationResult result = problem.Run();
+  result.initialisation_time_s = init_time;
+  result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
+  return result;
+}
+
+}  // namespace splinecal
