@@ -16,15 +16,15 @@
 //                    which necessarily rebuilds the knot deltas from the blocks.
 // Each sample's segment (index, u, basis) is computed once at construction, as a cost function
 // of a fixed-time measurement would. Build with -DSPLINECAL_NATIVE=ON for -march=native.
+#include <benchmark/benchmark.h>
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/sized_cost_function.h>
+
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <random>
 #include <vector>
-
-#include <Eigen/Core>
-#include <benchmark/benchmark.h>
-#include <ceres/autodiff_cost_function.h>
-#include <ceres/sized_cost_function.h>
 
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/lie/se3.h"
@@ -47,7 +47,8 @@ Vector6d RandomTwist(std::mt19937* rng, double max_angle, double max_translation
   std::uniform_real_distribution<double> offset(-max_translation, max_translation);
   Vector6d xi;
   xi.head<3>() = Eigen::Vector3d(offset(*rng), offset(*rng), offset(*rng));
-  xi.tail<3>() = angle(*rng) * Eigen::Vector3d(normal(*rng), normal(*rng), normal(*rng)).normalized();
+  xi.tail<3>() =
+      angle(*rng) * Eigen::Vector3d(normal(*rng), normal(*rng), normal(*rng)).normalized();
   return xi;
 }
 
@@ -173,8 +174,8 @@ struct AutoDiffImuResidual {
   Eigen::Vector3d measurement;
 
   template <typename T>
-  bool operator()(const T* p0, const T* p1, const T* p2, const T* p3, const T* b, T* residual)
-      const {
+  bool operator()(
+      const T* p0, const T* p1, const T* p2, const T* p3, const T* b, T* residual) const {
     const SegmentKnotData<T> data(
         PoseFromBlock(p0), PoseFromBlock(p1), PoseFromBlock(p2), PoseFromBlock(p3), false);
     const Segment<T> segment = MakeSegment(segment_index, T(u), dt_s);
@@ -308,9 +309,8 @@ void BM_Residual(benchmark::State& state, bool gyro, Kind kind) {
     const Segment<double>& seg = f.segments[i];
     const Eigen::Vector3d measurement(0.1, -0.2, 9.7);
     if (kind == Kind::kAutoDiff) {
-      costs.emplace_back(
-          new ceres::AutoDiffCostFunction<AutoDiffImuResidual, 3, 7, 7, 7, 7, 3>(
-              new AutoDiffImuResidual{seg.index, seg.u, f.spline->dt(), gyro, measurement}));
+      costs.emplace_back(new ceres::AutoDiffCostFunction<AutoDiffImuResidual, 3, 7, 7, 7, 7, 3>(
+          new AutoDiffImuResidual{seg.index, seg.u, f.spline->dt(), gyro, measurement}));
     } else {
       costs.emplace_back(new AnalyticImuCost(
           kind == Kind::kAnalytic ? f.spline.get() : nullptr, seg, gyro, measurement));

@@ -1,12 +1,12 @@
 #include "splinecal/imu/imu_model.h"
 
-#include <array>
-#include <vector>
-
-#include <Eigen/Core>
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
 
 #include "spline/spline_test_util.h"
 #include "splinecal/lie/se3.h"
@@ -30,9 +30,8 @@ constexpr double kRoundingTolerance = 1e-12;
 constexpr int kNumPoses = 8;
 
 SE3Splined MakeRandomSpline(uint32_t seed) {
-  return SE3Splined(testutil::RandomControlPoses(kNumPoses, seed),
-                    testutil::kEurocLikeT0Ns,
-                    testutil::kTestDtNs);
+  return SE3Splined(
+      testutil::RandomControlPoses(kNumPoses, seed), testutil::kEurocLikeT0Ns, testutil::kTestDtNs);
 }
 
 std::vector<double> InteriorTimes(const SE3Splined& spline) {
@@ -88,9 +87,10 @@ TEST(PredictImu, MatchesSplineRatesPlusBiases) {
     spline.Evaluate(seg, &T_w_s, &w_s, nullptr, nullptr, &a_w);
     PredictImu(spline, seg, GravityWorld(), kGyroBias, kAccelBias, &gyro, &accel);
     EXPECT_TRUE(RelativelyNear(gyro, w_s + kGyroBias, kRoundingTolerance));
-    EXPECT_TRUE(RelativelyNear(
-        accel, T_w_s.rotationMatrix().transpose() * (a_w - GravityWorld()) + kAccelBias,
-        kRoundingTolerance));
+    EXPECT_TRUE(
+        RelativelyNear(accel,
+                       T_w_s.rotationMatrix().transpose() * (a_w - GravityWorld()) + kAccelBias,
+                       kRoundingTolerance));
     // The Jacobian variants return the same values.
     Eigen::Vector3d gyro_j, accel_j;
     PredictGyroWithJacobian(spline, seg, kGyroBias, &gyro_j, nullptr);
@@ -242,17 +242,22 @@ TEST(PredictImu, AutoDiffThroughTemplatedSplineMatchesAnalyticJacobians) {
     const Segment<double> seg = spline.SegmentAt(t);
     const int f = seg.first_index();
     for (bool gyro : {true, false}) {
-      auto* functor = new ImuResidualOnPerturbations{
-          {spline.control_pose(f), spline.control_pose(f + 1), spline.control_pose(f + 2),
-           spline.control_pose(f + 3)},
-          seg.index, seg.u, spline.dt(), gyro, Eigen::Vector3d(0.1, 0.2, 0.3)};
+      auto* functor = new ImuResidualOnPerturbations{{spline.control_pose(f),
+                                                      spline.control_pose(f + 1),
+                                                      spline.control_pose(f + 2),
+                                                      spline.control_pose(f + 3)},
+                                                     seg.index,
+                                                     seg.u,
+                                                     spline.dt(),
+                                                     gyro,
+                                                     Eigen::Vector3d(0.1, 0.2, 0.3)};
       ceres::AutoDiffCostFunction<ImuResidualOnPerturbations, 3, 6, 6, 6, 6> cost(functor);
       const double zeros[6] = {0, 0, 0, 0, 0, 0};
       const double* parameters[4] = {zeros, zeros, zeros, zeros};
       double residual[3];
       Eigen::Matrix<double, 3, 6, Eigen::RowMajor> J_auto[4];
-      double* jacobians[4] = {J_auto[0].data(), J_auto[1].data(), J_auto[2].data(),
-                              J_auto[3].data()};
+      double* jacobians[4] = {
+          J_auto[0].data(), J_auto[1].data(), J_auto[2].data(), J_auto[3].data()};
       ASSERT_TRUE(cost.Evaluate(parameters, residual, jacobians));
 
       ControlPoseJacobian<3> J;
@@ -283,12 +288,13 @@ TEST(PredictImu, AutoDiffOnPoseBlocksTimesPlusJacobianMatchesAnalytic) {
     for (int k = 0; k < 4; ++k) PoseToBlock(spline.control_pose(f + k), blocks[k]);
     for (bool gyro : {true, false}) {
       ceres::AutoDiffCostFunction<ImuResidualOnPoseBlocks, 3, 7, 7, 7, 7> cost(
-          new ImuResidualOnPoseBlocks{seg.index, seg.u, spline.dt(), gyro, Eigen::Vector3d::Zero()});
+          new ImuResidualOnPoseBlocks{
+              seg.index, seg.u, spline.dt(), gyro, Eigen::Vector3d::Zero()});
       const double* parameters[4] = {blocks[0], blocks[1], blocks[2], blocks[3]};
       double residual[3];
       Eigen::Matrix<double, 3, 7, Eigen::RowMajor> J_ambient[4];
-      double* jacobians[4] = {J_ambient[0].data(), J_ambient[1].data(), J_ambient[2].data(),
-                              J_ambient[3].data()};
+      double* jacobians[4] = {
+          J_ambient[0].data(), J_ambient[1].data(), J_ambient[2].data(), J_ambient[3].data()};
       ASSERT_TRUE(cost.Evaluate(parameters, residual, jacobians));
       ControlPoseJacobian<3> J;
       if (gyro) {

@@ -1,11 +1,11 @@
 #include "splinecal/spline/basis.h"
 
-#include <array>
-#include <cmath>
-
-#include <Eigen/Core>
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
 
 namespace splinecal {
 namespace {

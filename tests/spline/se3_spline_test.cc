@@ -1,15 +1,15 @@
 #include "splinecal/spline/se3_spline.h"
 
+#include <ceres/jet.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
-
-#include <Eigen/Core>
-#include <ceres/jet.h>
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "spline/spline_test_util.h"
 #include "splinecal/error.h"
@@ -324,8 +324,7 @@ TEST(SE3Spline, OneParameterSubgroupHasConstantBodyTwist) {
       EXPECT_TRUE(RelativelyNear(s.w_s, xi.tail<3>(), kRoundingTolerance)) << t;
       EXPECT_TRUE(RelativelyNear(R.transpose() * s.v_w, xi.head<3>(), kRoundingTolerance)) << t;
       EXPECT_LT(s.w_dot_s.norm(), 1e-10) << t;
-      EXPECT_TRUE(RelativelyNear(
-          s.a_w, R * xi.tail<3>().cross(xi.head<3>()), kRoundingTolerance))
+      EXPECT_TRUE(RelativelyNear(s.a_w, R * xi.tail<3>().cross(xi.head<3>()), kRoundingTolerance))
           << t;
     }
   }
@@ -347,10 +346,12 @@ TEST(SE3Spline, PureTranslationIsScalarCubicBSpline) {
     const Segment<double> seg = spline.SegmentAt(t);
     const double u = seg.u;
     // Standard (non-cumulative) uniform cubic basis and its u-derivatives.
-    const Eigen::Vector4d B((1 - u) * (1 - u) * (1 - u) / 6, (3 * u * u * u - 6 * u * u + 4) / 6,
-                            (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, u * u * u / 6);
-    const Eigen::Vector4d dB(-(1 - u) * (1 - u) / 2, (9 * u * u - 12 * u) / 6,
-                             (-9 * u * u + 6 * u + 3) / 6, u * u / 2);
+    const Eigen::Vector4d B((1 - u) * (1 - u) * (1 - u) / 6,
+                            (3 * u * u * u - 6 * u * u + 4) / 6,
+                            (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6,
+                            u * u * u / 6);
+    const Eigen::Vector4d dB(
+        -(1 - u) * (1 - u) / 2, (9 * u * u - 12 * u) / 6, (-9 * u * u + 6 * u + 3) / 6, u * u / 2);
     const Eigen::Vector4d ddB(1 - u, (18 * u - 12) / 6, (-18 * u + 6) / 6, u);
     Eigen::Vector3d p = Eigen::Vector3d::Zero(), v = p, a = p;
     for (int m = 0; m < 4; ++m) {

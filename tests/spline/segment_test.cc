@@ -1,12 +1,12 @@
 #include "splinecal/spline/segment.h"
 
+#include <ceres/jet.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include <Eigen/Core>
-#include <ceres/jet.h>
-#include <gtest/gtest.h>
 
 #include "spline/spline_test_util.h"
 #include "splinecal/lie/se3.h"
@@ -28,14 +28,12 @@ constexpr double kBranchTolerance = 1e-13;
 // Rotation angles |b phi| that exercise every branch: zero, tiny, around the series switch
 // (0.1 rad), generic, and near pi.
 const std::vector<double>& TestAngles() {
-  static const std::vector<double> angles = {0.0,        1e-9, 1e-4, 0.05,   0.0999999,
-                                             0.1000001,  0.3,  1.0,  2.5,    M_PI - 1e-6};
+  static const std::vector<double> angles = {
+      0.0, 1e-9, 1e-4, 0.05, 0.0999999, 0.1000001, 0.3, 1.0, 2.5, M_PI - 1e-6};
   return angles;
 }
 
-KnotDelta<double> DeltaOf(const Vector6d& omega) {
-  return MakeKnotDelta(SE3d(), SE3d::Exp(omega));
-}
+KnotDelta<double> DeltaOf(const Vector6d& omega) { return MakeKnotDelta(SE3d(), SE3d::Exp(omega)); }
 
 TEST(ExpCoefficients, SeriesAndClosedFormsMeetAtThreshold) {
   const double x_sq = internal::kExpSeriesThresholdSq;
@@ -73,13 +71,14 @@ TEST(ScaledExp, MatchesLieExpOfScaledTwist) {
       const KnotDelta<double> delta = DeltaOf(omega);
       internal::ScaledExp<double> A;
       internal::ComputeScaledExp(delta, b, true, false, &A);
-      const SE3d expected = SE3d::Exp(b * Vector6d((Vector6d() << delta.rho, delta.phi).finished()));
+      const SE3d expected =
+          SE3d::Exp(b * Vector6d((Vector6d() << delta.rho, delta.phi).finished()));
       EXPECT_TRUE(RelativelyNear(A.R, expected.rotationMatrix(), kSameFormulaTolerance))
           << angle << " " << b;
       EXPECT_TRUE(RelativelyNear(A.t, expected.translation(), kSameFormulaTolerance))
           << angle << " " << b;
-      EXPECT_TRUE(RelativelyNear(A.q.coeffs(), expected.so3().quaternion().coeffs(),
-                                 kSameFormulaTolerance))
+      EXPECT_TRUE(
+          RelativelyNear(A.q.coeffs(), expected.so3().quaternion().coeffs(), kSameFormulaTolerance))
           << angle << " " << b;
       EXPECT_TRUE(RelativelyNear(A.q.toRotationMatrix(), A.R, kSameFormulaTolerance));
     }

@@ -3,13 +3,13 @@
 #ifndef SPLINECAL_TESTS_SPLINE_SPLINE_TEST_UTIL_H_
 #define SPLINECAL_TESTS_SPLINE_SPLINE_TEST_UTIL_H_
 
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
 #include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
-
-#include <Eigen/Core>
-#include <gtest/gtest.h>
 
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/types.h"
@@ -54,7 +54,8 @@ inline std::vector<SE3d> RandomControlPoses(int n,
   std::vector<SE3d> poses;
   poses.push_back(SE3d::Exp(RandomTwist(&rng, 0.5, 2.5, 3.0)));
   for (int i = 1; i < n; ++i) {
-    poses.push_back(poses.back() * SE3d::Exp(RandomTwist(&rng, min_angle, max_angle, max_translation)));
+    poses.push_back(poses.back() *
+                    SE3d::Exp(RandomTwist(&rng, min_angle, max_angle, max_translation)));
   }
   return poses;
 }
@@ -70,10 +71,10 @@ template <typename A, typename B>
   const double scale = std::max(1.0, bd.lpNorm<Eigen::Infinity>());
   const double error = (ad - bd).lpNorm<Eigen::Infinity>();
   if (error <= tolerance * scale) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "max abs difference " << error << " > " << tolerance
-                                       << " * " << scale << "\nactual:\n"
-                                       << ad << "\nexpected:\n"
-                                       << bd;
+  return ::testing::AssertionFailure()
+         << "max abs difference " << error << " > " << tolerance << " * " << scale << "\nactual:\n"
+         << ad << "\nexpected:\n"
+         << bd;
 }
 
 }  // namespace testutil

@@ -9,8 +9,8 @@
 //              [1, 3,  3, -2],
 //              [0, 0,  0,  1]]
 //
-// Row j of C is the sum of rows j..3 of the uniform cubic B-spline matrix M (Bt_j = sum_{m>=j} B_m),
-// so Bt_0 = 1 for every u. Derivatives come from one table: d^k/du^k u^n = n!/(n-k)! u^(n-k)
+// Row j of C is the sum of rows j..3 of the uniform cubic B-spline matrix M (Bt_j = sum_{m>=j}
+// B_m), so Bt_0 = 1 for every u. Derivatives come from one table: d^k/du^k u^n = n!/(n-k)! u^(n-k)
 // (kPowerDerivativeFactor below), hence
 //
 //     d^k Bt / du^k = C [d^k/du^k (1, u, u^2, u^3)]^T,     d^k Bt / dt^k = (1/dt)^k d^k Bt / du^k.

@@ -27,11 +27,27 @@
 // Derivatives (spline/segment.h) and Jacobians (spline/segment_jacobians.h) are analytic; the
 // Jacobians use the RIGHT perturbation T_k Exp(d), d = [rho; phi] (lie/se3.h).
 //
+// Use in Ceres (fitting the control poses). Each control pose is a 7-parameter block
+// {px, py, pz, qx, qy, qz, qw} with lie/se3_manifold.h's SE3Manifold (the same RIGHT
+// perturbation as the Jacobians here). Two ways to write an analytic IMU cost function:
+//   * cached (fast): a ceres::EvaluationCallback calls SetControlPoses (or SetControlPose)
+//     from the blocks in PrepareForEvaluation, so the knot caches are refreshed once per
+//     evaluation point; each cost function keeps its Segment (fixed measurement time) and calls
+//     PredictGyroWithJacobian / PredictAccelWithJacobian (imu/imu_model.h) on spline.Knots(seg).
+//   * self-contained: build SegmentKnotData<double> from the four blocks inside Evaluate
+//     (three Logs and Jacobian caches per call; ~4x slower, see bench/spline_bench.cc).
+// Either way, Ceres wants d residual / d block (3x7): J_ambient = J_tangent * MinusJacobian(x)
+// (then J_ambient * PlusJacobian(x) = J_tangent); bench/spline_bench.cc, LiftToPoseBlock, shows
+// it. Automatic differentiation works on the same templates (SegmentKnotData<Jet>, PredictImu).
+//
 // Thread safety: const methods may run concurrently; SetControlPose must not run concurrently
 // with anything else on the same spline.
 #ifndef SPLINECAL_SPLINE_SE3_SPLINE_H_
 #define SPLINECAL_SPLINE_SE3_SPLINE_H_
 
+#include <ceres/jet.h>
+
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -40,9 +56,6 @@
 #include <type_traits>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
-#include <ceres/jet.h>
 
 #include "splinecal/error.h"
 #include "splinecal/lie/se3.h"
@@ -158,8 +171,8 @@ class SE3Spline {
       std::ostringstream message;
       message.precision(17);
       message << "SE3Spline: time " << internal::ScalarPart(t_s)
-              << " s (relative to t0) is outside the valid range [t_1, t_{n-2}] = ["
-              << start_time() << ", " << end_time() << "] s";
+              << " s (relative to t0) is outside the valid range [t_1, t_{n-2}] = [" << start_time()
+              << ", " << end_time() << "] s";
       throw Error(message.str());
     }
     int index = static_cast<int>(std::floor(s));
@@ -271,8 +284,8 @@ class SE3Spline {
   int64_t t0_ns_;
   int64_t dt_ns_;
   double dt_s_ = 0.0;
-  std::vector<KnotDelta<T>> deltas_;                  // deltas_[k-1] = Omega_k, k = 1..n-1
-  std::vector<KnotDeltaJacobians> delta_jacobians_;   // double only
+  std::vector<KnotDelta<T>> deltas_;                 // deltas_[k-1] = Omega_k, k = 1..n-1
+  std::vector<KnotDeltaJacobians> delta_jacobians_;  // double only
 };
 
 using SE3Splined = SE3Spline<double>;

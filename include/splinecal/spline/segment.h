@@ -55,14 +55,14 @@
 #ifndef SPLINECAL_SPLINE_SEGMENT_H_
 #define SPLINECAL_SPLINE_SEGMENT_H_
 
-#include <array>
-#include <cmath>
-#include <type_traits>
+#include <ceres/jet.h>
+#include <glog/logging.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <ceres/jet.h>
-#include <glog/logging.h>
+#include <array>
+#include <cmath>
+#include <type_traits>
 
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"
@@ -88,9 +88,9 @@ using NonDeducedT = typename NonDeduced<T>::type;
 // Omega_i, Omega_{i+1}, Omega_{i+2}. Made by SE3Spline::SegmentAt / SegmentAtNs or MakeSegment.
 template <typename T>
 struct Segment {
-  int index = 1;                          // i
-  T u = T(0.0);                           // (t - t_i) / dt
-  Eigen::Matrix<T, kSplineOrder, 1> b;    // Bt(u)
+  int index = 1;                             // i
+  T u = T(0.0);                              // (t - t_i) / dt
+  Eigen::Matrix<T, kSplineOrder, 1> b;       // Bt(u)
   Eigen::Matrix<T, kSplineOrder, 1> b_dot;   // dBt/dt    [1/s]
   Eigen::Matrix<T, kSplineOrder, 1> b_ddot;  // d2Bt/dt2  [1/s^2]
 
@@ -150,10 +150,10 @@ struct KnotDeltaJacobians {
   // Jr^-1(phi) = I + 1/2 P + c P^2 and Jl^-1(phi) = I - 1/2 P + c P^2 share c (lie/so3.h), so
   // G Jr^-1 and G Jl^-1 share G P and G P^2 (internal::ChainToControlPoses).
   double inv_c;
-  Eigen::Matrix3d M2;            // P Rh + Rh P          (P = Hat(phi), Rh = Hat(rho))
-  Eigen::Matrix3d M3;            // P Rh P
-  Eigen::Matrix3d M4;            // P P Rh + Rh P P
-  Eigen::Matrix3d M5;            // P Rh P P + P P Rh P
+  Eigen::Matrix3d M2;  // P Rh + Rh P          (P = Hat(phi), Rh = Hat(rho))
+  Eigen::Matrix3d M3;  // P Rh P
+  Eigen::Matrix3d M4;  // P P Rh + Rh P P
+  Eigen::Matrix3d M5;  // P Rh P P + P P Rh P
 };
 
 namespace internal {
@@ -203,8 +203,8 @@ ExpCoefficients<T> ComputeExpCoefficients(const T& x_sq, bool with_q) {
     k.c2 = T(0.5) - x2 / T(24.0) + x4 / T(720.0) - x6 / T(40320.0) + x8 / T(3628800.0);
     k.c3 = T(1.0 / 6.0) - x2 / T(120.0) + x4 / T(5040.0) - x6 / T(362880.0) + x8 / T(39916800.0);
     if (with_q) {
-      k.c4 = T(1.0 / 24.0) - x2 / T(720.0) + x4 / T(40320.0) - x6 / T(3628800.0) +
-             x8 / T(479001600.0);
+      k.c4 =
+          T(1.0 / 24.0) - x2 / T(720.0) + x4 / T(40320.0) - x6 / T(3628800.0) + x8 / T(479001600.0);
       k.c5 = T(1.0 / 120.0) - x2 / T(2520.0) + x4 / T(120960.0) - x6 / T(9979200.0) +
              x8 / T(1245404160.0);
     }
@@ -228,18 +228,15 @@ ExpCoefficients<T> ComputeExpCoefficients(const T& x_sq, bool with_q) {
 template <typename T>
 struct ScaledExp {
   T b;
-  ExpCoefficients<T> k;     // at x^2 = b^2 |phi|^2
-  Eigen::Quaternion<T> q;   // rotation of A
-  Matrix3<T> R;             // rotation of A
-  Vector3<T> t;             // translation of A (set only when with_translation)
+  ExpCoefficients<T> k;    // at x^2 = b^2 |phi|^2
+  Eigen::Quaternion<T> q;  // rotation of A
+  Matrix3<T> R;            // rotation of A
+  Vector3<T> t;            // translation of A (set only when with_translation)
 };
 
 template <typename T>
-void ComputeScaledExp(const KnotDelta<T>& delta,
-                      const T& b,
-                      bool with_translation,
-                      bool with_q,
-                      ScaledExp<T>* A) {
+void ComputeScaledExp(
+    const KnotDelta<T>& delta, const T& b, bool with_translation, bool with_q, ScaledExp<T>* A) {
   A->b = b;
   A->k = ComputeExpCoefficients(b * b * delta.theta_sq, with_q);
   const Vector3<T>& phi = delta.phi;
@@ -337,11 +334,11 @@ struct SegmentTrace {
 };
 
 struct TraceRequest {
-  bool translation = false;    // t(A_j): pose translation or linear rates
-  bool rates = false;          // xi / w recursion
-  bool linear = false;         // linear part of the recursion (v, av)
-  bool acceleration = false;   // alpha recursion
-  bool q_coefficients = false; // c4, c5 for the SE(3) Q block (Jacobians)
+  bool translation = false;     // t(A_j): pose translation or linear rates
+  bool rates = false;           // xi / w recursion
+  bool linear = false;          // linear part of the recursion (v, av)
+  bool acceleration = false;    // alpha recursion
+  bool q_coefficients = false;  // c4, c5 for the SE(3) Q block (Jacobians)
 };
 
 // The forward pass: the three scaled exponentials and the twist recursion.
@@ -418,9 +415,10 @@ Vector3<T> RotateToBody(const SegmentKnots<T>& knots,
 // T_w_s = P_0 A_1 A_2 A_3 (quaternion product for the rotation; needs the translations).
 template <typename T>
 SE3<T> SegmentPose(const SegmentKnots<T>& knots, const SegmentTrace<T>& trace) {
-  const Eigen::Quaternion<T> q = knots.T_first->so3().quaternion() * trace.A[0].q *
-                                 trace.A[1].q * trace.A[2].q;
-  const Vector3<T> t_123 = trace.A[0].t + trace.A[0].R * (trace.A[1].t + trace.A[1].R * trace.A[2].t);
+  const Eigen::Quaternion<T> q =
+      knots.T_first->so3().quaternion() * trace.A[0].q * trace.A[1].q * trace.A[2].q;
+  const Vector3<T> t_123 =
+      trace.A[0].t + trace.A[0].R * (trace.A[1].t + trace.A[1].R * trace.A[2].t);
   return SE3<T>(SO3<T>(q), knots.T_first->translation() + (*knots.R_first) * t_123);
 }
 
@@ -525,8 +523,8 @@ inline Eigen::Matrix3d ScaledQRight(const KnotDelta<double>& delta,
   const double c3 = A.k.c3;
   const double c4 = A.k.c4;
   const double c5 = A.k.c5;
-  Eigen::Matrix3d Q = (c3 * b2) * J.M2 + ((3.0 * c4 - c3) * b3) * J.M3 - (c4 * b3) * J.M4 +
-                      (c5 * b4) * J.M5;
+  Eigen::Matrix3d Q =
+      (c3 * b2) * J.M2 + ((3.0 * c4 - c3) * b3) * J.M3 - (c4 * b3) * J.M4 + (c5 * b4) * J.M5;
   const Eigen::Vector3d half_rho = (0.5 * b) * delta.rho;  // -b/2 Hat(rho)
   Q(0, 1) += half_rho(2);
   Q(0, 2) -= half_rho(1);

@@ -22,7 +22,8 @@
 //        J_T_2 = F_2 Jr^-1_2 - F_3 Jl^-1_3,    J_T_3 = F_3 Jr^-1_3.
 //    All factors are block upper-triangular [[D, U], [0, D]] and multiply as such
 //    ((D1, U1)(D2, U2) = (D1 D2, D1 U2 + U1 D2)). The rotation rows depend on phi only:
-//    d phi_T = S_0 d phi_0 + sum_j S_j d phi_j(Omega), S_0 = R_X0^T, S_j = R_Xj^T b_j Jr(b_j phi_j).
+//        d phi_T = S_0 d phi_0 + sum_j S_j d phi_j(Omega),
+//        S_0 = R_X0^T,  S_j = R_Xj^T b_j Jr(b_j phi_j).
 // 4. Body angular velocity (an SO(3) recursion, segment.h): w_1 = bdot_1 phi_1,
 //    w_j = R_j^T w_{j-1} + bdot_j phi_j, and R_j(phi + d) = R_j Exp(b_j Jr(b_j phi_j) d) gives
 //    d(R_j^T x) = [R_j^T x]x b_j Jr(b_j phi_j) d. Hence, with K_j = d w_s / d phi_j:
@@ -36,7 +37,8 @@
 //    y = Ad(A_j^-1) xi_{j-1}, z = Ad(A_j^-1) alpha_{j-1}, and, for A_j -> A_j Exp(eps),
 //    d(Ad(A_j^-1) x) = ad(Ad(A_j^-1) x) eps  (Ad(Exp(-eps)) ~ I - ad(eps)):
 //        G_y       = G_xi - bdot G_alpha ad(Omega_j)
-//        G_Omega_j = bdot G_xi + bddot G_alpha + bdot G_alpha ad(y) + (G_y ad(y) + G_alpha ad(z)) E_j
+//        G_Omega_j = bdot G_xi + bddot G_alpha + bdot G_alpha ad(y)
+//                    + (G_y ad(y) + G_alpha ad(z)) E_j
 //        G_xi     <- G_y Ad(A_j^-1),   G_alpha <- G_alpha Ad(A_j^-1)
 //    and G_Omega_1 = bdot_1 G_xi + bddot_1 G_alpha. Outputs o with do = L da_s + N dphi_T get
 //    L G_Omega_j + [0, N S_j] per Omega_j and [0, N S_0] directly on d_0, then step 1's chain:
@@ -45,10 +47,10 @@
 #ifndef SPLINECAL_SPLINE_SEGMENT_JACOBIANS_H_
 #define SPLINECAL_SPLINE_SEGMENT_JACOBIANS_H_
 
-#include <array>
+#include <glog/logging.h>
 
 #include <Eigen/Core>
-#include <glog/logging.h>
+#include <array>
 
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"
@@ -298,7 +300,7 @@ inline void SpecificForceGradients(const SegmentKnots<double>& knots,
   if (g_s != nullptr) {
     ScaledRightJacobianSO3(knots.deltas[0], A1, &b_Jr);
     const Eigen::Matrix3d R21t = R2t * A1.R.transpose();
-    G1p.w -= HatMul(g_p, R2t * b_Jr);  // N S_1 (primed)
+    G1p.w -= HatMul(g_p, R2t * b_Jr);              // N S_1 (primed)
     J0_rot->noalias() = -R3t * HatMul(g_p, R21t);  // N S_0
   } else {
     J0_rot->setZero();
