@@ -7,8 +7,10 @@ namespace cli {
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
-      EvaluateCommand(),
+      SimulateCommand(),
+      IntegrateCommand(),
       AllanCommand(),
+      EvaluateCommand(),
       AlignCommand(),
   };
   return commands;

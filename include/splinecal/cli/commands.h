@@ -8,6 +8,8 @@ namespace splinecal {
 namespace cli {
 
 Command EvaluateCommand();
+Command SimulateCommand();
+Command IntegrateCommand();
 Command AllanCommand();
 Command AlignCommand();
 
