@@ -30,6 +30,13 @@ DEFINE_bool(estimate_rotation_extrinsic,
             "Estimate the camera-IMU rotation by hand-eye (needs rotation about 2 axes or more); "
             "the translation of T_cam_imu is kept");
 
+DEFINE_double(camera_position_std,
+              0.005,
+              "Camera position noise per frame and axis, metric [m]; weights the system");
+DEFINE_double(camera_rotation_std,
+              0.002,
+              "Camera rotation noise per frame and axis [rad]; weights the system");
+
 namespace splinecal {
 namespace cli {
 namespace {
@@ -90,6 +97,11 @@ int RunAlign() {
   options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
   options.estimate_rotation_extrinsic = FLAGS_estimate_rotation_extrinsic;
   if (!FLAGS_imu_yaml.empty()) options.noise = ReadImuYaml(FLAGS_imu_yaml);
+  options.accel_bias = Vector3Flag("accel-bias", FLAGS_accel_bias);
+  options.camera_noise.position_std_m =
+      PositiveFlag("camera-position-std", FLAGS_camera_position_std);
+  options.camera_noise.rotation_std_rad =
+      PositiveFlag("camera-rotation-std", FLAGS_camera_rotation_std);
   if (!FLAGS_camchain.empty()) {
     const Camchain camchain = ReadCamchain(FLAGS_camchain);
     options.T_cam_imu = camchain.T_cam_imu;
@@ -137,9 +149,11 @@ int RunAlign() {
   yaml.Scalar("rms_rotation_residual_rad", result.rms_rotation_residual_rad);
   yaml.Vector("free_gravity_c0", result.free_gravity_c0);
   yaml.Scalar("free_scale", result.free_scale);
-  yaml.Scalar("free_condition_number", result.free_condition_number);
+  yaml.Scalar("refined_condition_number", result.refined_condition_number);
   yaml.Scalar("gravity_m_s2", options.gravity_m_s2);
   yaml.Vector("accel_bias_assumed", options.accel_bias);
+  yaml.Scalar("camera_position_std_m", options.camera_noise.position_std_m);
+  yaml.Scalar("camera_rotation_std_rad", options.camera_noise.rotation_std_rad);
   yaml.Scalar("num_frames", static_cast<int64_t>(result.states_w.size()));
   yaml.Scalar("num_ignored_frames", result.num_ignored_frames);
   output.WriteFile("result.yaml", yaml.str());
@@ -174,14 +188,14 @@ Command AlignCommand() {
   return {"align",
           "visual-inertial alignment: scale, gravity, gyro bias from up-to-scale camera poses",
           "splinecal align --imu FILE --camera-poses FILE [--camchain FILE] [--imu-yaml FILE] "
-          "[--estimate-rotation-extrinsic] [--gravity M_S2] --out DIR",
+          "[--estimate-rotation-extrinsic] [--gravity M_S2] [--accel-bias X,Y,Z] --out DIR",
           "Aligns camera poses T_c0_c known only up to scale (monocular SLAM, SfM) with IMU\n"
           "readings: preintegrates the IMU between camera frames, estimates the gyro bias from\n"
           "the relative rotations (and the camera-IMU rotation by hand-eye when asked), solves\n"
           "for velocities, gravity and scale, and refines gravity on the sphere of its known\n"
           "norm. Refuses (exit 2, no output) when the motion does not determine them. Writes\n"
           "result.yaml and aligned_poses.csv: the IMU poses T_w_s in a gravity-aligned world\n"
-          "(z up, yaw of c0 kept), metric, with velocities and the gyro bias (EuRoC\n"
+          "(z up, yaw-free R_w_c0), metric, with velocities and the gyro bias (EuRoC\n"
           "ground-truth format). Without --imu-yaml the EuRoC ADIS16448 densities weight the\n"
           "system. See docs/align.md.",
           {{"imu", ""},
@@ -192,6 +206,11 @@ Command AlignCommand() {
            {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; weights the system"},
            {"estimate_rotation_extrinsic", ""},
            {"gravity", ""},
+           {"accel_bias",
+            "Known accelerometer bias b_a, x,y,z [m/s^2] (not estimated; an unknown bias along "
+            "gravity goes into the scale, see docs/align.md)"},
+           {"camera_position_std", ""},
+           {"camera_rotation_std", ""},
            {"accel_unit", ""},
            {"gyro_unit", ""},
            {"out", ""}},
