@@ -8,6 +8,8 @@
 //     machine's threads, noise fit (target <= 3 s on 2 cores).
 //
 // Run: build-xxx/bench/allan_bench --benchmark_filter=OneAxis
+#include <benchmark/benchmark.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -15,8 +17,6 @@
 #include <random>
 #include <string>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/allan_deviation.h"
@@ -110,9 +110,10 @@ class EurocFile {
   EurocFile() {
     path_ = (std::filesystem::temp_directory_path() / "splinecal_allan_bench_imu0.csv").string();
     std::FILE* file = std::fopen(path_.c_str(), "w");
-    std::fputs("#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
-               "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n",
-               file);
+    std::fputs(
+        "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+        "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n",
+        file);
     std::mt19937_64 engine(11);
     std::normal_distribution<double> normal(0.0, 1.0);
     const double white[6] = {2.4e-3, 2.4e-3, 2.4e-3, 2.8e-2, 2.8e-2, 2.8e-2};
@@ -124,9 +125,15 @@ class EurocFile {
         bias[a] += step[a] * normal(engine);
         y[a] = bias[a] + white[a] * normal(engine);
       }
-      std::fprintf(file, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                   static_cast<long long>(1403636579758555392LL + 5000000LL * k), y[0], y[1],
-                   y[2], y[3], y[4], y[5]);
+      std::fprintf(file,
+                   "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                   static_cast<long long>(1403636579758555392LL + 5000000LL * k),
+                   y[0],
+                   y[1],
+                   y[2],
+                   y[3],
+                   y[4],
+                   y[5]);
     }
     std::fclose(file);
   }

@@ -23,21 +23,27 @@ namespace {
 constexpr int kMinAveragingTimes = 3;
 
 struct Units {
-  const char* adev;        // deviation and B [rad/s]
-  const char* density;     // N
-  const char* walk;        // K
+  const char* adev;     // deviation and B [rad/s]
+  const char* density;  // N
+  const char* walk;     // K
   const char* quantization;
   const char* ramp;
-  const char* adev_svg;    // the same with typographic symbols, for the plot
+  const char* adev_svg;  // the same with typographic symbols, for the plot
   const char* density_svg;
   const char* walk_svg;
 };
 
 const Units& UnitsOf(ImuSensor sensor) {
-  static const Units kGyro = {"rad/s", "rad/s/sqrt(Hz)", "rad/s^2/sqrt(Hz)", "rad", "rad/s^2",
-                              "rad/s", "rad/s/√Hz", "rad/s²/√Hz"};
-  static const Units kAccel = {"m/s^2", "m/s^2/sqrt(Hz)", "m/s^3/sqrt(Hz)", "m/s", "m/s^3",
-                               "m/s²", "m/s²/√Hz", "m/s³/√Hz"};
+  static const Units kGyro = {"rad/s",
+                              "rad/s/sqrt(Hz)",
+                              "rad/s^2/sqrt(Hz)",
+                              "rad",
+                              "rad/s^2",
+                              "rad/s",
+                              "rad/s/√Hz",
+                              "rad/s²/√Hz"};
+  static const Units kAccel = {
+      "m/s^2", "m/s^2/sqrt(Hz)", "m/s^3/sqrt(Hz)", "m/s", "m/s^3", "m/s²", "m/s²/√Hz", "m/s³/√Hz"};
   return sensor == ImuSensor::kGyroscope ? kGyro : kAccel;
 }
 
@@ -79,9 +85,7 @@ KalibrKey Combine(const std::vector<AxisAllan>& axes,
   return key;
 }
 
-void WriteEstimate(const std::string& key,
-                   const TermEstimate& estimate,
-                   YamlWriter* yaml) {
+void WriteEstimate(const std::string& key, const TermEstimate& estimate, YamlWriter* yaml) {
   if (estimate.identified) {
     yaml->Scalar(key, estimate.value);
     Eigen::VectorXd range(2);
@@ -129,8 +133,8 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   };
   if (recording.axes.empty()) throw fail("no axes to analyse");
   if (!(std::isfinite(recording.rate_hz) && recording.rate_hz > 0.0)) {
-    throw fail("sample rate must be positive and finite, got " +
-               std::to_string(recording.rate_hz) + " Hz");
+    throw fail("sample rate must be positive and finite, got " + std::to_string(recording.rate_hz) +
+               " Hz");
   }
   const int64_t n = static_cast<int64_t>(recording.axes.front().samples.size());
   for (const AxisSeries& axis : recording.axes) {
@@ -149,12 +153,17 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
     const int64_t needed = MinimumSamplesForAveragingTimes(
         kMinAveragingTimes, options.taus_per_decade, options.max_tau_fraction);
     char message[320];
-    std::snprintf(message, sizeof(message),
+    std::snprintf(message,
+                  sizeof(message),
                   "too few samples for the averaging times: %lld samples (%.4g s at %.6g Hz) give "
                   "%d averaging time(s) up to %g of the record; the noise fit needs at least %d, "
                   "i.e. at least %lld samples",
-                  static_cast<long long>(n), n / recording.rate_hz, recording.rate_hz,
-                  static_cast<int>(sizes.size()), options.max_tau_fraction, kMinAveragingTimes,
+                  static_cast<long long>(n),
+                  n / recording.rate_hz,
+                  recording.rate_hz,
+                  static_cast<int>(sizes.size()),
+                  options.max_tau_fraction,
+                  kMinAveragingTimes,
                   static_cast<long long>(needed));
     throw fail(message);
   }
@@ -172,9 +181,9 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   std::atomic<size_t> next{0};
   std::mutex progress_mutex;
   // Axes run in parallel; threads left over (fewer axes than threads) split each axis's passes.
-  const int total_threads = options.num_threads > 0
-                                ? options.num_threads
-                                : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int total_threads =
+      options.num_threads > 0 ? options.num_threads
+                              : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = std::min<int>(total_threads, static_cast<int>(num_axes));
   const int threads_per_axis = std::max(1, total_threads / threads);
   auto work = [&]() {
@@ -340,8 +349,11 @@ std::string AllanImuYamlText(const AllanResult& result) {
 std::string AllanSvgText(const AllanResult& result) {
   plot::Figure figure;
   char title[160];
-  std::snprintf(title, sizeof(title), "Allan deviation: %lld samples, %.6g s at %.6g Hz",
-                static_cast<long long>(result.num_samples), result.num_samples / result.rate_hz,
+  std::snprintf(title,
+                sizeof(title),
+                "Allan deviation: %lld samples, %.6g s at %.6g Hz",
+                static_cast<long long>(result.num_samples),
+                result.num_samples / result.rate_hz,
                 result.rate_hz);
   figure.title = title;
   int gyro_axes = 0;
@@ -354,8 +366,9 @@ std::string AllanSvgText(const AllanResult& result) {
     const Units& units = UnitsOf(axis.sensor);
     const AllanCurve& curve = axis.curve;
     plot::Panel& panel = figure.panels.emplace_back();
-    panel.title = std::string(axis.sensor == ImuSensor::kGyroscope ? "gyroscope " : "accelerometer ") +
-                  kAxisLetters[axis.axis];
+    panel.title =
+        std::string(axis.sensor == ImuSensor::kGyroscope ? "gyroscope " : "accelerometer ") +
+        kAxisLetters[axis.axis];
     panel.x = {"averaging time τ [s]", plot::Scale::kLog};
     panel.y = {std::string("Allan deviation [") + units.adev_svg + "]", plot::Scale::kLog};
     panel.legend = plot::LegendPosition::kBottomLeft;
@@ -386,8 +399,11 @@ std::string AllanSvgText(const AllanResult& result) {
     }
     if (data_lo > 0.0 && data_hi > data_lo) {
       const double span = std::log10(data_hi / data_lo);
-      plot::AutoRange(data_lo / std::pow(10.0, span * kLegendRoom / (1.0 - kLegendRoom)), data_hi,
-                      plot::Scale::kLog, &panel.y.min, &panel.y.max);
+      plot::AutoRange(data_lo / std::pow(10.0, span * kLegendRoom / (1.0 - kLegendRoom)),
+                      data_hi,
+                      plot::Scale::kLog,
+                      &panel.y.min,
+                      &panel.y.max);
     }
 
     const double tau_lo = curve.tau_s.front();

@@ -159,7 +159,8 @@ IntegratedSignal::IntegratedSignal(std::vector<double>&& samples,
       }
     }
   }
-  const long double sum = static_cast<long double>((partial[0] + partial[1]) + (partial[2] + partial[3]));
+  const long double sum =
+      static_cast<long double>((partial[0] + partial[1]) + (partial[2] + partial[3]));
   if (constant) {
     throw Error(name + ": all " + std::to_string(n) + " samples are equal (" +
                 std::to_string(sums_[0]) + "): a constant signal has no noise to identify");
@@ -177,8 +178,8 @@ IntegratedSignal::IntegratedSignal(std::vector<double>&& samples,
 void IntegratedSignal::CheckClusterSize(int64_t m) const {
   const int64_t n = num_samples();
   if (m < 1 || 2 * m > n) {
-    throw Error("cluster size " + std::to_string(m) + " outside [1, N/2] for N = " +
-                std::to_string(n) + " samples");
+    throw Error("cluster size " + std::to_string(m) +
+                " outside [1, N/2] for N = " + std::to_string(n) + " samples");
   }
 }
 
@@ -231,12 +232,17 @@ std::vector<double> IntegratedSignal::Variances(const std::vector<int64_t>& clus
       } else {
         const int64_t segment = task - static_cast<int64_t>(far.size());
         const int64_t begin = segment * kSegment;
-        NearSums(a, n, near, begin, std::min(longest, begin + kSegment),
+        NearSums(a,
+                 n,
+                 near,
+                 begin,
+                 std::min(longest, begin + kSegment),
                  &segment_totals[segment * near.size()]);
       }
     }
   };
-  const int threads = static_cast<int>(std::clamp<int64_t>(num_threads, 1, std::max<int64_t>(num_tasks, 1)));
+  const int threads =
+      static_cast<int>(std::clamp<int64_t>(num_threads, 1, std::max<int64_t>(num_tasks, 1)));
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(work);
   work();

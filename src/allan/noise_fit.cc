@@ -1,13 +1,13 @@
 #include "splinecal/allan/noise_fit.h"
 
+#include <glog/logging.h>
+
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
-
-#include <Eigen/QR>
-#include <glog/logging.h>
 
 #include "splinecal/error.h"
 
@@ -26,11 +26,16 @@ constexpr double kUpperBoundSigmas = 2.0;
 // Names used in reasons ("white noise holds ...").
 const char* TermName(NoiseTerm term) {
   switch (term) {
-    case NoiseTerm::kQuantization: return "quantization noise";
-    case NoiseTerm::kWhite: return "white noise";
-    case NoiseTerm::kBiasInstability: return "bias instability";
-    case NoiseTerm::kRandomWalk: return "random walk";
-    case NoiseTerm::kRateRamp: return "rate ramp";
+    case NoiseTerm::kQuantization:
+      return "quantization noise";
+    case NoiseTerm::kWhite:
+      return "white noise";
+    case NoiseTerm::kBiasInstability:
+      return "bias instability";
+    case NoiseTerm::kRandomWalk:
+      return "random walk";
+    case NoiseTerm::kRateRamp:
+      return "rate ramp";
   }
   return "?";
 }
@@ -58,8 +63,7 @@ std::vector<int> Region(const std::vector<std::array<double, kNumNoiseTerms>>& s
   return region;
 }
 
-double LargestShare(const std::vector<std::array<double, kNumNoiseTerms>>& shares,
-                    NoiseTerm term) {
+double LargestShare(const std::vector<std::array<double, kNumNoiseTerms>>& shares, NoiseTerm term) {
   double largest = 0.0;
   for (const auto& s : shares) largest = std::max(largest, s[static_cast<int>(term)]);
   return largest;
@@ -69,22 +73,32 @@ double LargestShare(const std::vector<std::array<double, kNumNoiseTerms>>& share
 
 const char* NoiseTermKey(NoiseTerm term) {
   switch (term) {
-    case NoiseTerm::kQuantization: return "quantization";
-    case NoiseTerm::kWhite: return "noise_density";
-    case NoiseTerm::kBiasInstability: return "bias_instability";
-    case NoiseTerm::kRandomWalk: return "random_walk";
-    case NoiseTerm::kRateRamp: return "rate_ramp";
+    case NoiseTerm::kQuantization:
+      return "quantization";
+    case NoiseTerm::kWhite:
+      return "noise_density";
+    case NoiseTerm::kBiasInstability:
+      return "bias_instability";
+    case NoiseTerm::kRandomWalk:
+      return "random_walk";
+    case NoiseTerm::kRateRamp:
+      return "rate_ramp";
   }
   return "?";
 }
 
 double NoiseTermBasis(NoiseTerm term, double tau_s) {
   switch (term) {
-    case NoiseTerm::kQuantization: return 3.0 / (tau_s * tau_s);
-    case NoiseTerm::kWhite: return 1.0 / tau_s;
-    case NoiseTerm::kBiasInstability: return 2.0 * kLn2 / kPi;
-    case NoiseTerm::kRandomWalk: return tau_s / 3.0;
-    case NoiseTerm::kRateRamp: return 0.5 * tau_s * tau_s;
+    case NoiseTerm::kQuantization:
+      return 3.0 / (tau_s * tau_s);
+    case NoiseTerm::kWhite:
+      return 1.0 / tau_s;
+    case NoiseTerm::kBiasInstability:
+      return 2.0 * kLn2 / kPi;
+    case NoiseTerm::kRandomWalk:
+      return tau_s / 3.0;
+    case NoiseTerm::kRateRamp:
+      return 0.5 * tau_s * tau_s;
   }
   return 0.0;
 }
@@ -217,7 +231,8 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
     const auto variances = fit.model.TermVariances(tau[i]);
     double total = 0.0;
     for (const double v : variances) total += v;
-    for (int j = 0; j < kNumNoiseTerms; ++j) shares[i][j] = total > 0.0 ? variances[j] / total : 0.0;
+    for (int j = 0; j < kNumNoiseTerms; ++j)
+      shares[i][j] = total > 0.0 ? variances[j] / total : 0.0;
     const double log_error = total > 0.0 ? 0.5 * std::log(total / (adev[i] * adev[i])) : 0.0;
     sum_squared_log += log_error * log_error;
   }
@@ -234,7 +249,8 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
       estimate.tau_max_s = tau[region.back()];
       estimate.num_points = static_cast<int>(region.size());
     } else if (fit.model.value[j] == 0.0) {
-      estimate.reason = std::string("the fit needs no ") + TermName(term) + " (its coefficient is 0)";
+      estimate.reason =
+          std::string("the fit needs no ") + TermName(term) + " (its coefficient is 0)";
     } else {
       estimate.reason = std::string(TermName(term)) + " holds at most " +
                         Percent(LargestShare(shares, term)) +
@@ -253,10 +269,9 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
     if (static_cast<int>(region.size()) < options.min_points) {
       estimate->reason = "no region of its slope: " + name + " holds " + Percent(share) +
                          " of the variance at " + std::to_string(region.size()) + " of " +
-                         std::to_string(m) + " averaging times (" + Seconds(tau.front()) +
-                         " to " + Seconds(tau.back()) + "), needs " +
-                         std::to_string(options.min_points) + " (at most " +
-                         Percent(LargestShare(shares, term)) + ")";
+                         std::to_string(m) + " averaging times (" + Seconds(tau.front()) + " to " +
+                         Seconds(tau.back()) + "), needs " + std::to_string(options.min_points) +
+                         " (at most " + Percent(LargestShare(shares, term)) + ")";
       return {};
     }
     estimate->identified = true;
@@ -278,7 +293,8 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
     return std::exp(sum / weights);
   };
   // N: adev = N tau^-1/2, so N = adev sqrt(tau) (the line read at tau = 1 s).
-  const std::vector<int> white = slope_line(NoiseTerm::kWhite, options.dominance, &fit.noise_density);
+  const std::vector<int> white =
+      slope_line(NoiseTerm::kWhite, options.dominance, &fit.noise_density);
   if (!white.empty()) fit.noise_density.value = intercept(white, -0.5, 1.0);
   // K: adev = K sqrt(tau / 3), so K = adev sqrt(3 / tau) (the line read at tau = 3 s).
   const std::vector<int> walk =
@@ -298,8 +314,10 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
   for (int i = 0; i < m; ++i) {
     // The top of the point's error bar (kUpperBoundSigmas standard errors) bounds the curve.
     const double top = adev[i] * (1.0 + kUpperBoundSigmas * relative[i]);
-    fit.noise_density_upper_bound = std::min(fit.noise_density_upper_bound, top * std::sqrt(tau[i]));
-    fit.random_walk_upper_bound = std::min(fit.random_walk_upper_bound, top * std::sqrt(3.0 / tau[i]));
+    fit.noise_density_upper_bound =
+        std::min(fit.noise_density_upper_bound, top * std::sqrt(tau[i]));
+    fit.random_walk_upper_bound =
+        std::min(fit.random_walk_upper_bound, top * std::sqrt(3.0 / tau[i]));
   }
   return fit;
 }

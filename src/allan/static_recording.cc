@@ -82,7 +82,8 @@ double ScaleOf(const AxisSeries& axis, const StaticReadOptions& options) {
 
 void CheckScales(const StaticReadOptions& options) {
   if (!(std::isfinite(options.gyro_scale) && options.gyro_scale > 0.0)) {
-    throw Error("gyro scale must be positive and finite, got " + std::to_string(options.gyro_scale));
+    throw Error("gyro scale must be positive and finite, got " +
+                std::to_string(options.gyro_scale));
   }
   if (!(std::isfinite(options.accel_scale) && options.accel_scale > 0.0)) {
     throw Error("accel scale must be positive and finite, got " +
@@ -108,7 +109,8 @@ void CheckAccelUnits(const std::string& path,
   const double magnitude = std::sqrt(squared);
   if (count == 3 && magnitude > kGravityInGLow && magnitude < kGravityInGHigh) {
     char message[200];
-    std::snprintf(message, sizeof(message),
+    std::snprintf(message,
+                  sizeof(message),
                   "mean accelerometer reading has magnitude %.3f: the data looks like units of "
                   "g, expected m/s^2 (pass --accel-scale 9.80665)",
                   magnitude);
@@ -121,7 +123,6 @@ void CheckEnoughRows(const std::string& path, const std::vector<AxisSeries>& axe
   if (rows < 2) throw Error(path, 0, "needs at least 2 data rows, found " + std::to_string(rows));
 }
 
-
 // ---- The parallel fast path for large, clean EuRoC files ----------------------------------------
 
 // A read-only memory map of a whole file (empty when mapping fails).
@@ -132,7 +133,8 @@ class MappedFile {
     if (fd < 0) return;
     struct stat info;
     if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode) && info.st_size > 0) {
-      void* data = ::mmap(nullptr, static_cast<size_t>(info.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+      void* data =
+          ::mmap(nullptr, static_cast<size_t>(info.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
       if (data != MAP_FAILED) {
         data_ = static_cast<const char*>(data);
         size_ = static_cast<size_t>(info.st_size);
@@ -336,11 +338,11 @@ StaticRecording ReadEurocStaticRecording(const std::string& path,
     const int64_t t_ns = ParseInt64(fields[0], reader, timestamp_name);
     if (rows > 0) {
       if (t_ns <= last_t_ns) {
-        reader.Fail("timestamps not increasing: " + std::to_string(t_ns) +
-                        (t_ns == last_t_ns ? " repeats the previous row"
-                                           : " is before the previous row's " +
-                                                 std::to_string(last_t_ns)),
-                    fields[0]);
+        reader.Fail(
+            "timestamps not increasing: " + std::to_string(t_ns) +
+                (t_ns == last_t_ns ? " repeats the previous row"
+                                   : " is before the previous row's " + std::to_string(last_t_ns)),
+            fields[0]);
       }
       if (t_ns - last_t_ns > largest_step_ns) {
         largest_step_ns = t_ns - last_t_ns;
@@ -351,8 +353,8 @@ StaticRecording ReadEurocStaticRecording(const std::string& path,
     }
     last_t_ns = t_ns;
     for (size_t a = 0; a < 6; ++a) {
-      recording.axes[a].samples.push_back(
-          ScaleOf(recording.axes[a], options) * ParseFiniteDouble(fields[1 + a], reader, names[a]));
+      recording.axes[a].samples.push_back(ScaleOf(recording.axes[a], options) *
+                                          ParseFiniteDouble(fields[1 + a], reader, names[a]));
     }
     ++rows;
     planner.AddRow(reader.line(), &recording.axes);
@@ -362,10 +364,13 @@ StaticRecording ReadEurocStaticRecording(const std::string& path,
   recording.rate_hz = 1.0 / mean_period_s;
   if (1e-9 * largest_step_ns > options.max_gap_periods * mean_period_s) {
     char message[240];
-    std::snprintf(message, sizeof(message),
+    std::snprintf(message,
+                  sizeof(message),
                   "gap of %.6g s before this row, more than %g mean sample periods (%.6g s): the "
                   "Allan variance needs uniformly sampled data (cut the file at the gap)",
-                  1e-9 * largest_step_ns, options.max_gap_periods, mean_period_s);
+                  1e-9 * largest_step_ns,
+                  options.max_gap_periods,
+                  mean_period_s);
     throw Error(path, largest_step_line, message);
   }
   CheckAccelUnits(path, recording.axes, options);
@@ -397,8 +402,9 @@ StaticRecording ReadColumnStaticRecording(const std::string& path,
       columns = fields.size();
       if (columns == 6) {
         if (sensor.has_value()) {
-          reader.Fail("6 columns are gyro xyz then accel xyz; --sensor is for 1 to 3 columns of "
-                      "one sensor");
+          reader.Fail(
+              "6 columns are gyro xyz then accel xyz; --sensor is for 1 to 3 columns of "
+              "one sensor");
         }
         recording.axes = MakeAxes(true, true, 3);
       } else if (columns >= 1 && columns <= 3) {
@@ -407,15 +413,16 @@ StaticRecording ReadColumnStaticRecording(const std::string& path,
                       " column(s) of one sensor: say which with --sensor gyro or --sensor accel");
         }
         recording.axes = MakeAxes(*sensor == ImuSensor::kGyroscope,
-                                  *sensor == ImuSensor::kAccelerometer, static_cast<int>(columns));
+                                  *sensor == ImuSensor::kAccelerometer,
+                                  static_cast<int>(columns));
       } else {
         reader.Fail("expected 1, 2, 3 (one sensor) or 6 (gyro xyz, accel xyz) columns, found " +
                     std::to_string(columns));
       }
       names = FieldNames(recording.axes);
     }
-    internal::CheckColumnCount(reader, fields, columns,
-                               columns == 6 ? "gyro xyz, accel xyz" : "one sensor's axes");
+    internal::CheckColumnCount(
+        reader, fields, columns, columns == 6 ? "gyro xyz, accel xyz" : "one sensor's axes");
     for (size_t a = 0; a < columns; ++a) {
       recording.axes[a].samples.push_back(ScaleOf(recording.axes[a], options) *
                                           ParseFiniteDouble(fields[a], reader, names[a]));

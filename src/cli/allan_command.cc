@@ -1,12 +1,12 @@
 // `splinecal allan`: IMU noise identification from a static recording (allan/allan.h,
 // docs/allan.md). Reads EuRoC imu0/data.csv (--imu) or plain columns (--columns, --rate), writes
 // allan.csv, imu.yaml, result.yaml and allan.svg to --out.
+#include <gflags/gflags.h>
+
 #include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
-
-#include <gflags/gflags.h>
 
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/static_recording.h"
@@ -40,7 +40,12 @@ namespace {
 std::string Summary(const char* name, const KalibrKey& key, const char* unit) {
   if (!key.present) return "";
   char line[256];
-  std::snprintf(line, sizeof(line), "allan: %-28s %.6g %s%s\n", name, key.value, unit,
+  std::snprintf(line,
+                sizeof(line),
+                "allan: %-28s %.6g %s%s\n",
+                name,
+                key.value,
+                unit,
                 key.upper_bound ? " (upper bound: not identifiable, see result.yaml)" : "");
   return line;
 }
@@ -48,8 +53,9 @@ std::string Summary(const char* name, const KalibrKey& key, const char* unit) {
 int RunAllan() {
   const std::string& out_dir = RequiredFlag("out", FLAGS_out);
   if (FLAGS_imu.empty() == FLAGS_columns.empty()) {
-    throw Error("give the static recording as --imu FILE (EuRoC imu0/data.csv) or as --columns "
-                "FILE --rate HZ, not both");
+    throw Error(
+        "give the static recording as --imu FILE (EuRoC imu0/data.csv) or as --columns "
+        "FILE --rate HZ, not both");
   }
   AllanOptions options;
   options.taus_per_decade = FLAGS_taus_per_decade;
@@ -95,8 +101,12 @@ int RunAllan() {
   }
   OutputDir output(out_dir);
   char line[256];
-  std::snprintf(line, sizeof(line), "allan: %zu axes, %zu samples at %.6g Hz (%.6g s)",
-                recording.axes.size(), recording.axes.front().samples.size(), recording.rate_hz,
+  std::snprintf(line,
+                sizeof(line),
+                "allan: %zu axes, %zu samples at %.6g Hz (%.6g s)",
+                recording.axes.size(),
+                recording.axes.front().samples.size(),
+                recording.rate_hz,
                 recording.axes.front().samples.size() / recording.rate_hz);
   Progress(line);
 
@@ -110,8 +120,7 @@ int RunAllan() {
   const std::string summary =
       Summary("gyroscope_noise_density", result.gyroscope_noise_density, "rad/s/sqrt(Hz)") +
       Summary("gyroscope_random_walk", result.gyroscope_random_walk, "rad/s^2/sqrt(Hz)") +
-      Summary("accelerometer_noise_density", result.accelerometer_noise_density,
-              "m/s^2/sqrt(Hz)") +
+      Summary("accelerometer_noise_density", result.accelerometer_noise_density, "m/s^2/sqrt(Hz)") +
       Summary("accelerometer_random_walk", result.accelerometer_random_walk, "m/s^3/sqrt(Hz)");
   if (!Quiet()) std::fputs(summary.c_str(), stderr);
   return 0;
@@ -122,7 +131,8 @@ int RunAllan() {
 Command AllanCommand() {
   Command command;
   command.name = "allan";
-  command.summary = "IMU noise densities from a static recording (Allan deviation, Kalibr imu.yaml)";
+  command.summary =
+      "IMU noise densities from a static recording (Allan deviation, Kalibr imu.yaml)";
   command.usage =
       "splinecal allan (--imu imu0/data.csv | --columns FILE --rate HZ [--sensor gyro|accel]) "
       "--out DIR";
@@ -136,8 +146,9 @@ Command AllanCommand() {
       "densities, not per-sample standard deviations), result.yaml (every term per axis) and "
       "allan.svg (log-log plot). The recording must be static: the IMU at rest for its whole "
       "length (hours for the random walk). See docs/allan.md.";
-  command.flags = {{"imu", "Static recording, EuRoC imu0/data.csv; the rate comes from the "
-                           "timestamps [path]"},
+  command.flags = {{"imu",
+                    "Static recording, EuRoC imu0/data.csv; the rate comes from the "
+                    "timestamps [path]"},
                    {"columns", ""},
                    {"rate", ""},
                    {"sensor", ""},

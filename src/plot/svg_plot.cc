@@ -1,12 +1,12 @@
 #include "splinecal/plot/svg_plot.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
-
-#include <glog/logging.h>
 
 namespace splinecal {
 namespace plot {
@@ -37,8 +37,16 @@ constexpr double kFarAway = 1e9;
 constexpr double kTickSlack = 1e-9;
 
 // Default colours (a common ten-colour qualitative palette), in order of use.
-const char* const kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
-                                "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+const char* const kPalette[] = {"#1f77b4",
+                                "#d62728",
+                                "#2ca02c",
+                                "#ff7f0e",
+                                "#9467bd",
+                                "#8c564b",
+                                "#e377c2",
+                                "#7f7f7f",
+                                "#bcbd22",
+                                "#17becf"};
 constexpr int kPaletteSize = sizeof(kPalette) / sizeof(kPalette[0]);
 
 // A pixel coordinate with two decimals; "-0.00" printed as "0.00" so output does not depend on
@@ -55,11 +63,21 @@ std::string Escape(const std::string& text) {
   escaped.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&apos;"; break;
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&apos;";
+        break;
       default:
         // Control characters are not allowed in XML 1.0 text.
         if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
@@ -142,14 +160,10 @@ class AxisMap {
     const double fraction = (Transform(value) - lo_) / (hi_ - lo_);
     return std::clamp(fraction, -kFarAway, kFarAway);
   }
-  double Pixel(double value) const {
-    return pixel_lo_ + Fraction(value) * (pixel_hi_ - pixel_lo_);
-  }
+  double Pixel(double value) const { return pixel_lo_ + Fraction(value) * (pixel_hi_ - pixel_lo_); }
 
  private:
-  double Transform(double value) const {
-    return scale_ == Scale::kLog ? std::log10(value) : value;
-  }
+  double Transform(double value) const { return scale_ == Scale::kLog ? std::log10(value) : value; }
 
   Scale scale_;
   double lo_ = 0.0;
@@ -245,16 +259,22 @@ void ResolveRange(const Axis& axis, const Extent& extent, double* lo, double* hi
   if (!(*lo < *hi)) {
     // A one-sided range that excludes all data: fall back to a unit range from the given end.
     if (axis.scale == Scale::kLog) {
-      if (have_min) *hi = *lo * 10.0; else *lo = *hi / 10.0;
+      if (have_min)
+        *hi = *lo * 10.0;
+      else
+        *lo = *hi / 10.0;
     } else {
-      if (have_min) *hi = *lo + 1.0; else *lo = *hi - 1.0;
+      if (have_min)
+        *hi = *lo + 1.0;
+      else
+        *lo = *hi - 1.0;
     }
   }
 }
 
 // Widens one of the linear ranges so that a data unit has the same length in x and y.
-void EqualAspect(double width, double height, double* x_lo, double* x_hi, double* y_lo,
-                 double* y_hi) {
+void EqualAspect(
+    double width, double height, double* x_lo, double* x_hi, double* y_lo, double* y_hi) {
   const double x_per_px = (*x_hi - *x_lo) / width;
   const double y_per_px = (*y_hi - *y_lo) / height;
   if (x_per_px < y_per_px) {
@@ -272,8 +292,8 @@ void EqualAspect(double width, double height, double* x_lo, double* x_hi, double
 
 class PanelWriter {
  public:
-  PanelWriter(const Panel& panel, int index, double panel_width, double panel_height,
-              std::string* out)
+  PanelWriter(
+      const Panel& panel, int index, double panel_width, double panel_height, std::string* out)
       : panel_(panel), index_(index), out_(out) {
     area_ = {kMarginLeft, kMarginTop, panel_width - kMarginRight, panel_height - kMarginBottom};
     CHECK_GT(area_.right, area_.left) << "panel_width too small";
@@ -303,8 +323,8 @@ class PanelWriter {
     ResolveRange(panel_.y, y_extent, &y_lo_, &y_hi_);
     if (panel_.equal_aspect && panel_.x.scale == Scale::kLinear &&
         panel_.y.scale == Scale::kLinear) {
-      EqualAspect(area_.right - area_.left, area_.bottom - area_.top, &x_lo_, &x_hi_, &y_lo_,
-                  &y_hi_);
+      EqualAspect(
+          area_.right - area_.left, area_.bottom - area_.top, &x_lo_, &x_hi_, &y_lo_, &y_hi_);
     }
     const AxisMap x_map(panel_.x.scale, x_lo_, x_hi_, area_.left, area_.right);
     const AxisMap y_map(panel_.y.scale, y_lo_, y_hi_, area_.bottom, area_.top);
@@ -359,8 +379,10 @@ class PanelWriter {
     return series.color.empty() ? kPalette[automatic % kPaletteSize] : Escape(series.color);
   }
 
-  void WriteGrid(const std::vector<Tick>& x_ticks, const std::vector<Tick>& y_ticks,
-                 const AxisMap& x_map, const AxisMap& y_map) {
+  void WriteGrid(const std::vector<Tick>& x_ticks,
+                 const std::vector<Tick>& y_ticks,
+                 const AxisMap& x_map,
+                 const AxisMap& y_map) {
     if (!panel_.grid) return;
     std::string path;
     for (const Tick& tick : x_ticks) {
@@ -376,8 +398,10 @@ class PanelWriter {
     }
   }
 
-  void WriteTicks(const std::vector<Tick>& x_ticks, const std::vector<Tick>& y_ticks,
-                  const AxisMap& x_map, const AxisMap& y_map) {
+  void WriteTicks(const std::vector<Tick>& x_ticks,
+                  const std::vector<Tick>& y_ticks,
+                  const AxisMap& x_map,
+                  const AxisMap& y_map) {
     std::string path;
     std::string labels;
     for (const Tick& tick : x_ticks) {
@@ -406,7 +430,9 @@ class PanelWriter {
     }
   }
 
-  void WriteSeries(const Series& series, const std::string& color, const AxisMap& x_map,
+  void WriteSeries(const Series& series,
+                   const std::string& color,
+                   const AxisMap& x_map,
                    const AxisMap& y_map) {
     const std::string stroke = "stroke=\"" + color + "\"";
     const size_t n = series.x.size();
@@ -417,10 +443,10 @@ class PanelWriter {
         if (!PointValid(panel_, series.x[i], series.y[i])) continue;
         const double x = x_map.Pixel(series.x[i]);
         if (x < area_.left - 1.0 || x > area_.right + 1.0) continue;
-        const double low = y_map.Valid(series.y_low[i]) ? y_map.Pixel(series.y_low[i])
-                                                        : area_.bottom;
-        const double high = y_map.Valid(series.y_high[i]) ? y_map.Pixel(series.y_high[i])
-                                                          : area_.top;
+        const double low =
+            y_map.Valid(series.y_low[i]) ? y_map.Pixel(series.y_low[i]) : area_.bottom;
+        const double high =
+            y_map.Valid(series.y_high[i]) ? y_map.Pixel(series.y_high[i]) : area_.top;
         const double y0 = std::clamp(std::max(low, high), area_.top, area_.bottom);
         const double y1 = std::clamp(std::min(low, high), area_.top, area_.bottom);
         path += "M" + Px(x) + " " + Px(y0) + "V" + Px(y1);
@@ -516,16 +542,15 @@ class PanelWriter {
     constexpr double kSampleWidth = 22.0;
     const double width = kPad + kSampleWidth + kPad + widest * kLegendCharWidth + kPad;
     const double height = kPad + entries.size() * kLegendRowHeight + kPad - 4.0;
-    const bool left = panel_.legend == LegendPosition::kTopLeft ||
-                      panel_.legend == LegendPosition::kBottomLeft;
-    const bool top = panel_.legend == LegendPosition::kTopLeft ||
-                     panel_.legend == LegendPosition::kTopRight;
+    const bool left =
+        panel_.legend == LegendPosition::kTopLeft || panel_.legend == LegendPosition::kBottomLeft;
+    const bool top =
+        panel_.legend == LegendPosition::kTopLeft || panel_.legend == LegendPosition::kTopRight;
     const double x = left ? area_.left + 8.0 : area_.right - 8.0 - width;
     const double y = top ? area_.top + 8.0 : area_.bottom - 8.0 - height;
     *out_ += "<g font-size=\"" + Px(kLegendFontSize) + "\">\n";
-    *out_ += "<rect x=\"" + Px(x) + "\" y=\"" + Px(y) + "\" width=\"" + Px(width) +
-             "\" height=\"" + Px(height) +
-             "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#999999\"/>\n";
+    *out_ += "<rect x=\"" + Px(x) + "\" y=\"" + Px(y) + "\" width=\"" + Px(width) + "\" height=\"" +
+             Px(height) + "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#999999\"/>\n";
     for (size_t e = 0; e < entries.size(); ++e) {
       const Series& series = panel_.series[entries[e]];
       const std::string color = ColorOf(entries[e]);
@@ -541,8 +566,7 @@ class PanelWriter {
       }
       if (series.marker != Marker::kNone) {
         *out_ += "<path d=\"" +
-                 MarkerPath(series.marker, sample_x + kSampleWidth / 2, row_y,
-                            series.marker_size) +
+                 MarkerPath(series.marker, sample_x + kSampleWidth / 2, row_y, series.marker_size) +
                  "\" fill=\"" + color + "\" stroke=\"none\"/>\n";
       }
       *out_ += "<text x=\"" + Px(sample_x + kSampleWidth + kPad) + "\" y=\"" + Px(row_y + 4) +
@@ -564,8 +588,8 @@ class PanelWriter {
 }  // namespace
 
 void AutoRange(double lo, double hi, Scale scale, double* range_lo, double* range_hi) {
-  CHECK(std::isfinite(lo) && std::isfinite(hi) && lo <= hi) << "AutoRange(" << lo << ", " << hi
-                                                            << ")";
+  CHECK(std::isfinite(lo) && std::isfinite(hi) && lo <= hi)
+      << "AutoRange(" << lo << ", " << hi << ")";
   if (scale == Scale::kLog) {
     CHECK_GT(lo, 0.0) << "AutoRange on a log axis";
     int lo_decade = static_cast<int>(std::floor(std::log10(lo) + kTickSlack));
@@ -586,8 +610,8 @@ void AutoRange(double lo, double hi, Scale scale, double* range_lo, double* rang
 }
 
 std::vector<Tick> AxisTicks(double lo, double hi, Scale scale) {
-  CHECK(std::isfinite(lo) && std::isfinite(hi) && lo < hi) << "AxisTicks(" << lo << ", " << hi
-                                                           << ")";
+  CHECK(std::isfinite(lo) && std::isfinite(hi) && lo < hi)
+      << "AxisTicks(" << lo << ", " << hi << ")";
   std::vector<Tick> ticks;
   if (scale == Scale::kLinear) {
     const double step = NiceStep(hi - lo);
@@ -629,8 +653,8 @@ std::vector<Tick> AxisTicks(double lo, double hi, Scale scale) {
         ticks.push_back({value, label, false});
       }
     }
-    std::sort(ticks.begin(), ticks.end(),
-              [](const Tick& a, const Tick& b) { return a.value < b.value; });
+    std::sort(
+        ticks.begin(), ticks.end(), [](const Tick& a, const Tick& b) { return a.value < b.value; });
   }
   return ticks;
 }
@@ -649,8 +673,7 @@ std::string RenderSvg(const Figure& figure) {
   out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + Px(width) +
          "\" height=\"" + Px(height) + "\" viewBox=\"0 0 " + Px(width) + " " + Px(height) +
-         "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"" + Px(kFontSize) +
-         "\">\n";
+         "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"" + Px(kFontSize) + "\">\n";
   out += "<rect x=\"0\" y=\"0\" width=\"" + Px(width) + "\" height=\"" + Px(height) +
          "\" fill=\"white\"/>\n";
   if (!figure.title.empty()) {

@@ -1,14 +1,14 @@
 // `splinecal allan` end to end: the binary, its files, its exit codes (docs/conventions.md,
 // "Command line": bad input exits 2 with one line naming the file and line, nothing written).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <random>
 #include <string>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
 
 #include "testing/run_tool.h"
 #include "testing/temp_dir.h"
@@ -16,17 +16,15 @@
 namespace splinecal {
 namespace {
 
-using ::testing::HasSubstr;
-using ::testing::StartsWith;
 using testing::CountLines;
+using ::testing::HasSubstr;
 using testing::RunTool;
+using ::testing::StartsWith;
 using testing::TempDir;
 
-bool AllanRegistered() {
-  return RunTool({"help"}).out.find("allan") != std::string::npos;
-}
+bool AllanRegistered() { return RunTool({"help"}).out.find("allan") != std::string::npos; }
 
-#define SKIP_UNLESS_REGISTERED()                                                  \
+#define SKIP_UNLESS_REGISTERED() \
   if (!AllanRegistered()) GTEST_SKIP() << "allan is not in src/cli/commands.cc yet"
 
 // A static EuRoC file: ADIS16448-like white noise and bias random walk on six axes.
@@ -47,8 +45,16 @@ std::string WriteStaticEuroc(const TempDir& dir, const std::string& name, int ro
       bias[a] += walk[a] / std::sqrt(rate) * normal(engine);
       y[a] = bias[a] + white[a] * std::sqrt(rate) * normal(engine);
     }
-    std::snprintf(line, sizeof(line), "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                  1403636579758555392LL + 5000000LL * k, y[0], y[1], y[2], y[3], y[4], y[5]);
+    std::snprintf(line,
+                  sizeof(line),
+                  "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                  1403636579758555392LL + 5000000LL * k,
+                  y[0],
+                  y[1],
+                  y[2],
+                  y[3],
+                  y[4],
+                  y[5]);
     text += line;
   }
   return dir.Write(name, text);
@@ -83,15 +89,25 @@ TEST(AllanCommand, PlainColumnsOfOneSensor) {
             std::to_string(0.1 * normal(engine)) + "\n";
   }
   const std::string columns = dir.Write("gyro.txt", text);
-  const testing::ToolResult run =
-      RunTool({"allan", "--columns", columns, "--rate", "100", "--sensor", "gyro",
-               "--gyro-scale", "0.017453292519943295", "--out", dir.File("out"), "--quiet"});
+  const testing::ToolResult run = RunTool({"allan",
+                                           "--columns",
+                                           columns,
+                                           "--rate",
+                                           "100",
+                                           "--sensor",
+                                           "gyro",
+                                           "--gyro-scale",
+                                           "0.017453292519943295",
+                                           "--out",
+                                           dir.File("out"),
+                                           "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
   const YAML::Node result = YAML::LoadFile(dir.File("out/result.yaml"));
   // White noise of 0.1 deg/s per sample at 100 Hz: N = 0.1 * pi / 180 / sqrt(100).
   EXPECT_NEAR(result["gyroscope"]["x"]["noise_density"].as<double>() / (0.1 * M_PI / 180.0 / 10.0),
-              1.0, 0.05);
+              1.0,
+              0.05);
   EXPECT_FALSE(result["accelerometer"]);
   EXPECT_THAT(testing::ReadFileText(dir.File("out/allan.csv")),
               StartsWith("#tau_s,gyro_x,gyro_y,gyro_x_err,gyro_y_err\n"));
@@ -105,8 +121,8 @@ TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {
       "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n";
   std::string nan_file = header;
   for (int k = 0; k < 100; ++k) {
-    nan_file += std::to_string(1000000 + 5000000LL * k) + (k == 41 ? ",0,NaN,0,0,0,9.8\n"
-                                                                     : ",0.1,0,0,0,0,9.8\n");
+    nan_file += std::to_string(1000000 + 5000000LL * k) +
+                (k == 41 ? ",0,NaN,0,0,0,9.8\n" : ",0.1,0,0,0,0,9.8\n");
   }
   std::string constant_file = header;
   for (int k = 0; k < 100; ++k) {
@@ -115,8 +131,8 @@ TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {
   }
   std::string short_file = header;
   for (int k = 0; k < 20; ++k) {
-    short_file += std::to_string(1000000 + 5000000LL * k) + ",0," + std::to_string(k % 3) +
-                  ",0,0,0,9.8\n";
+    short_file +=
+        std::to_string(1000000 + 5000000LL * k) + ",0," + std::to_string(k % 3) + ",0,0,0,9.8\n";
   }
   struct Case {
     std::vector<std::string> args;

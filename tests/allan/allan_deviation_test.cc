@@ -1,13 +1,13 @@
 #include "splinecal/allan/allan_deviation.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "allan/static_series.h"
 #include "splinecal/error.h"
@@ -81,8 +81,8 @@ TEST(OverlappingAllanDeviation, EqualsDirectDefinitionAtEveryClusterSize) {
 TEST(OverlappingAllanDeviation, EqualsPrefixSumReferenceForLongClusters) {
   constexpr int64_t kN = 400000;
   const std::vector<double> y = AccelLikeAxis(kN, 2);
-  const std::vector<int64_t> sizes = {1,     2,     7,      4096,   65535,  65536,  65537,
-                                      70001, 98304, 133333, 199999, 200000};
+  const std::vector<int64_t> sizes = {
+      1, 2, 7, 4096, 65535, 65536, 65537, 70001, 98304, 133333, 199999, 200000};
   const AllanCurve curve = OverlappingAllanDeviation(y, 200.0, sizes, "accel z");
   for (size_t i = 0; i < sizes.size(); ++i) {
     const double reference = std::sqrt(PrefixSumAllanVariance(y, sizes[i]));
@@ -187,9 +187,9 @@ TEST(IntegratedSignal, RefusesBadSamples) {
   }
   EXPECT_THROW(IntegratedSignal(std::vector<double>{1.0}, 100.0, "x"), Error);
   EXPECT_THROW(IntegratedSignal(std::vector<double>{1.0, 2.0}, 0.0, "x"), Error);
-  EXPECT_THROW(IntegratedSignal(std::vector<double>{1.0, 2.0},
-                                std::numeric_limits<double>::infinity(), "x"),
-               Error);
+  EXPECT_THROW(
+      IntegratedSignal(std::vector<double>{1.0, 2.0}, std::numeric_limits<double>::infinity(), "x"),
+      Error);
   const IntegratedSignal signal(std::vector<double>{1.0, 2.0, 4.0, 8.0, 16.0}, 10.0, "x");
   EXPECT_THROW(signal.AllanVariance(0), Error);
   EXPECT_THROW(signal.AllanVariance(3), Error);  // 2m > N
@@ -199,7 +199,8 @@ TEST(IntegratedSignal, RefusesBadSamples) {
 
 TEST(AllanClusterSizes, LogSpacedAndDeduplicated) {
   const std::vector<int64_t> sizes = AllanClusterSizes(1000000, 10, 0.1);
-  const std::vector<int64_t> first = {1, 2, 3, 4, 5, 6, 8, 10, 13, 16, 20, 25, 32, 40, 50, 63, 79, 100};
+  const std::vector<int64_t> first = {
+      1, 2, 3, 4, 5, 6, 8, 10, 13, 16, 20, 25, 32, 40, 50, 63, 79, 100};
   ASSERT_GT(sizes.size(), first.size());
   EXPECT_EQ(std::vector<int64_t>(sizes.begin(), sizes.begin() + first.size()), first);
   EXPECT_EQ(sizes.back(), 100000);

@@ -1,13 +1,13 @@
 #include "splinecal/allan/allan.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
 
 #include "allan/static_series.h"
 #include "splinecal/error.h"
@@ -36,9 +36,9 @@ StaticRecording SimulatedRecording(double seconds, uint64_t seed) {
       AxisSeries axis;
       axis.sensor = s == 0 ? ImuSensor::kGyroscope : ImuSensor::kAccelerometer;
       axis.axis = a;
-      axis.samples = s == 0 ? testing::StaticAxis(draws, kRateHz, kGyroN, kGyroK, 0.01 * a)
-                            : testing::StaticAxis(draws, kRateHz, kAccelN, kAccelK,
-                                                  a == 2 ? 9.81 : 0.0);
+      axis.samples =
+          s == 0 ? testing::StaticAxis(draws, kRateHz, kGyroN, kGyroK, 0.01 * a)
+                 : testing::StaticAxis(draws, kRateHz, kAccelN, kAccelK, a == 2 ? 9.81 : 0.0);
       recording.axes.push_back(std::move(axis));
     }
   }
@@ -115,9 +115,10 @@ TEST(ComputeAllan, RefusesBadRecordings) {
 TEST(AllanOutputs, CsvAndYamlLayouts) {
   const AllanResult result = ComputeAllan(SimulatedRecording(1200.0, 8));
   const std::string csv = AllanCsvText(result);
-  EXPECT_THAT(csv, StartsWith("#tau_s,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z,gyro_x_err,"
-                              "gyro_y_err,gyro_z_err,accel_x_err,accel_y_err,accel_z_err\n"
-                              "0.0050000000000000001,"));
+  EXPECT_THAT(csv,
+              StartsWith("#tau_s,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z,gyro_x_err,"
+                         "gyro_y_err,gyro_z_err,accel_x_err,accel_y_err,accel_z_err\n"
+                         "0.0050000000000000001,"));
   int rows = 0;
   for (char c : csv) rows += c == '\n';
   EXPECT_EQ(rows, 1 + static_cast<int>(result.axes[0].curve.tau_s.size()));

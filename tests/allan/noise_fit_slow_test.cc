@@ -1,10 +1,10 @@
 // Monte-Carlo check of the noise fit (label "slow"): 10 independent 4-hour recordings of the
 // EuRoC ADIS16448 at 200 Hz; the mean recovered/true ratio of every key within 10%.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "allan/static_series.h"
 #include "splinecal/allan/allan_deviation.h"
@@ -25,8 +25,7 @@ struct Sensor {
 };
 
 TEST(FitNoiseMonteCarlo, MeanOverTenSeedsWithinTenPercent) {
-  const Sensor sensors[] = {{"gyro", 1.6968e-4, 1.9393e-5, 0.01},
-                            {"accel", 2.0e-3, 3.0e-3, 9.81}};
+  const Sensor sensors[] = {{"gyro", 1.6968e-4, 1.9393e-5, 0.01}, {"accel", 2.0e-3, 3.0e-3, 9.81}};
   constexpr int64_t kSamples = static_cast<int64_t>(4 * 3600 * kRateHz);
   const std::vector<int64_t> sizes = AllanClusterSizes(kSamples, 10, 0.1);
   for (const Sensor& sensor : sensors) {
@@ -34,23 +33,26 @@ TEST(FitNoiseMonteCarlo, MeanOverTenSeedsWithinTenPercent) {
     double sum_k = 0.0;
     for (int seed = 1; seed <= kSeeds; ++seed) {
       const testing::UnitDraws draws = testing::MakeUnitDraws(kSamples, 1000 * seed + 7);
-      std::vector<double> y = testing::StaticAxis(draws, kRateHz, sensor.noise_density,
-                                                  sensor.random_walk, sensor.offset);
+      std::vector<double> y = testing::StaticAxis(
+          draws, kRateHz, sensor.noise_density, sensor.random_walk, sensor.offset);
       const AxisNoiseFit fit =
           FitNoise(IntegratedSignal(std::move(y), kRateHz, sensor.name).Deviation(sizes));
       ASSERT_TRUE(fit.noise_density.identified) << fit.noise_density.reason;
       ASSERT_TRUE(fit.random_walk.identified) << fit.random_walk.reason;
       const double n_ratio = fit.noise_density.value / sensor.noise_density;
       const double k_ratio = fit.random_walk.value / sensor.random_walk;
-      std::printf("%s seed %d: N ratio %.4f, K ratio %.4f (model N %.4f, K %.4f)\n", sensor.name,
-                  seed, n_ratio, k_ratio,
+      std::printf("%s seed %d: N ratio %.4f, K ratio %.4f (model N %.4f, K %.4f)\n",
+                  sensor.name,
+                  seed,
+                  n_ratio,
+                  k_ratio,
                   fit.model[NoiseTerm::kWhite] / sensor.noise_density,
                   fit.model[NoiseTerm::kRandomWalk] / sensor.random_walk);
       sum_n += n_ratio;
       sum_k += k_ratio;
     }
-    std::printf("%s mean: N ratio %.4f, K ratio %.4f\n", sensor.name, sum_n / kSeeds,
-                sum_k / kSeeds);
+    std::printf(
+        "%s mean: N ratio %.4f, K ratio %.4f\n", sensor.name, sum_n / kSeeds, sum_k / kSeeds);
     EXPECT_NEAR(sum_n / kSeeds, 1.0, kMeanTolerance) << sensor.name;
     EXPECT_NEAR(sum_k / kSeeds, 1.0, kMeanTolerance) << sensor.name;
   }

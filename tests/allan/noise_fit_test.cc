@@ -1,11 +1,11 @@
 #include "splinecal/allan/noise_fit.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "allan/static_series.h"
 #include "splinecal/error.h"
@@ -16,10 +16,10 @@ namespace {
 using ::testing::HasSubstr;
 
 // EuRoC ADIS16448 (its sensor.yaml): gyro N, K; accel N, K.
-constexpr double kGyroNoiseDensity = 1.6968e-4;   // [rad/s/sqrt(Hz)]
-constexpr double kGyroRandomWalk = 1.9393e-5;     // [rad/s^2/sqrt(Hz)]
-constexpr double kAccelNoiseDensity = 2.0e-3;     // [m/s^2/sqrt(Hz)]
-constexpr double kAccelRandomWalk = 3.0e-3;       // [m/s^3/sqrt(Hz)]
+constexpr double kGyroNoiseDensity = 1.6968e-4;  // [rad/s/sqrt(Hz)]
+constexpr double kGyroRandomWalk = 1.9393e-5;    // [rad/s^2/sqrt(Hz)]
+constexpr double kAccelNoiseDensity = 2.0e-3;    // [m/s^2/sqrt(Hz)]
+constexpr double kAccelRandomWalk = 3.0e-3;      // [m/s^3/sqrt(Hz)]
 constexpr double kRateHz = 200.0;
 
 // The bars for one run of >= 4 h: N within 3%, K within 35%.
@@ -124,8 +124,7 @@ RoundTrip RunRoundTrip(const testing::UnitDraws& gyro_draws,
       accel_draws, kRateHz, scale * kAccelNoiseDensity, scale * kAccelRandomWalk, 9.81);
   RoundTrip result;
   result.gyro = FitNoise(IntegratedSignal(std::move(gyro), kRateHz, "gyro x").Deviation(sizes));
-  result.accel =
-      FitNoise(IntegratedSignal(std::move(accel), kRateHz, "accel z").Deviation(sizes));
+  result.accel = FitNoise(IntegratedSignal(std::move(accel), kRateHz, "accel z").Deviation(sizes));
   return result;
 }
 
@@ -152,24 +151,30 @@ TEST(FitNoise, RoundTripAdis16448AtFourScales) {
     EXPECT_NEAR(accel_n, 1.0, kNoiseDensityTolerance);
     EXPECT_NEAR(accel_k, 1.0, kRandomWalkTolerance);
     // Scale invariance: the same ratios at every scale.
-    EXPECT_NEAR(gyro_n, base.gyro.noise_density.value / kGyroNoiseDensity,
+    EXPECT_NEAR(gyro_n,
+                base.gyro.noise_density.value / kGyroNoiseDensity,
                 kScaleInvarianceTolerance * gyro_n);
-    EXPECT_NEAR(gyro_k, base.gyro.random_walk.value / kGyroRandomWalk,
-                kScaleInvarianceTolerance * gyro_k);
-    EXPECT_NEAR(accel_n, base.accel.noise_density.value / kAccelNoiseDensity,
+    EXPECT_NEAR(
+        gyro_k, base.gyro.random_walk.value / kGyroRandomWalk, kScaleInvarianceTolerance * gyro_k);
+    EXPECT_NEAR(accel_n,
+                base.accel.noise_density.value / kAccelNoiseDensity,
                 kScaleInvarianceTolerance * accel_n);
-    EXPECT_NEAR(accel_k, base.accel.random_walk.value / kAccelRandomWalk,
+    EXPECT_NEAR(accel_k,
+                base.accel.random_walk.value / kAccelRandomWalk,
                 kScaleInvarianceTolerance * accel_k);
     for (int j = 0; j < kNumNoiseTerms; ++j) {
-      EXPECT_NEAR(run.gyro.model.value[j] / scale, base.gyro.model.value[j],
+      EXPECT_NEAR(run.gyro.model.value[j] / scale,
+                  base.gyro.model.value[j],
                   kScaleInvarianceTolerance * base.gyro.model.value[j])
           << NoiseTermKey(static_cast<NoiseTerm>(j));
       EXPECT_EQ(run.gyro.model_terms[j].identified, base.gyro.model_terms[j].identified);
     }
     // White noise and random walk only: the full model agrees with the slope lines.
-    EXPECT_NEAR(run.gyro.model[NoiseTerm::kWhite] / (scale * kGyroNoiseDensity), 1.0,
+    EXPECT_NEAR(run.gyro.model[NoiseTerm::kWhite] / (scale * kGyroNoiseDensity),
+                1.0,
                 kNoiseDensityTolerance);
-    EXPECT_NEAR(run.accel.model[NoiseTerm::kRandomWalk] / (scale * kAccelRandomWalk), 1.0,
+    EXPECT_NEAR(run.accel.model[NoiseTerm::kRandomWalk] / (scale * kAccelRandomWalk),
+                1.0,
                 kRandomWalkTolerance);
   }
 }

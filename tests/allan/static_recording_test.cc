@@ -1,12 +1,12 @@
 #include "splinecal/allan/static_recording.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "splinecal/error.h"
 #include "testing/temp_dir.h"
@@ -34,13 +34,13 @@ void ExpectError(F read, const std::string& text) {
 
 TEST(ReadEurocStaticRecording, ReadsAxesAndRateFromTimestamps) {
   testing::TempDir dir;
-  const std::string path = dir.Write(
-      "imu.csv", std::string(kEurocHeader) +
-                     "1000000000,0.1,0.2,0.3,0.4,0.5,9.8\r\n"
-                     "\n"
-                     "# a comment\n"
-                     "1005000000, 0.11, 0.21, 0.31, 0.41, 0.51, 9.81\n"
-                     "1010000000,0.12,0.22,0.32,0.42,0.52,9.82\n");
+  const std::string path = dir.Write("imu.csv",
+                                     std::string(kEurocHeader) +
+                                         "1000000000,0.1,0.2,0.3,0.4,0.5,9.8\r\n"
+                                         "\n"
+                                         "# a comment\n"
+                                         "1005000000, 0.11, 0.21, 0.31, 0.41, 0.51, 9.81\n"
+                                         "1010000000,0.12,0.22,0.32,0.42,0.52,9.82\n");
   StaticReadOptions options;
   options.gyro_scale = 2.0;
   const StaticRecording recording = ReadEurocStaticRecording(path, options);
@@ -56,28 +56,38 @@ TEST(ReadEurocStaticRecording, ReadsAxesAndRateFromTimestamps) {
 TEST(ReadEurocStaticRecording, RefusesBadInputWithFileAndLine) {
   testing::TempDir dir;
   const std::string header = kEurocHeader;
-  ExpectError([&] { ReadEurocStaticRecording(dir.Write("nan.csv", header +
-                                                           "1000,0,0,0,0,0,9.8\n"
-                                                           "2000,0,nan,0,0,0,9.8\n")); },
-              "nan.csv:3:");
-  ExpectError([&] { ReadEurocStaticRecording(dir.Write("order.csv", header +
-                                                             "2000,0,0,0,0,0,9.8\n"
-                                                             "2000,0,0,0,0,0,9.8\n")); },
-              "order.csv:3:1: timestamps not increasing");
-  ExpectError([&] { ReadEurocStaticRecording(dir.Write("columns.csv", header +
-                                                               "1000,0,0,0,0,9.8\n")); },
-              "columns.csv:2: expected 7 columns");
-  ExpectError([&] { ReadEurocStaticRecording(dir.Write("one.csv", header + "1000,0,0,0,0,0,9.8\n")); },
-              "one.csv: needs at least 2 data rows, found 1");
+  ExpectError(
+      [&] {
+        ReadEurocStaticRecording(dir.Write("nan.csv",
+                                           header + "1000,0,0,0,0,0,9.8\n"
+                                                    "2000,0,nan,0,0,0,9.8\n"));
+      },
+      "nan.csv:3:");
+  ExpectError(
+      [&] {
+        ReadEurocStaticRecording(dir.Write("order.csv",
+                                           header + "2000,0,0,0,0,0,9.8\n"
+                                                    "2000,0,0,0,0,0,9.8\n"));
+      },
+      "order.csv:3:1: timestamps not increasing");
+  ExpectError(
+      [&] { ReadEurocStaticRecording(dir.Write("columns.csv", header + "1000,0,0,0,0,9.8\n")); },
+      "columns.csv:2: expected 7 columns");
+  ExpectError(
+      [&] { ReadEurocStaticRecording(dir.Write("one.csv", header + "1000,0,0,0,0,0,9.8\n")); },
+      "one.csv: needs at least 2 data rows, found 1");
   ExpectError([&] { ReadEurocStaticRecording(dir.File("missing.csv")); }, "missing.csv");
   std::string gap = header;
   for (int k = 0; k < 20; ++k) gap += std::to_string(1000 + 10 * k) + ",0,0,0,0,0,9.8\n";
   gap += "100000,0,0,0,0,0,9.8\n";
   ExpectError([&] { ReadEurocStaticRecording(dir.Write("gap.csv", gap)); }, "gap.csv:22: gap of");
-  ExpectError([&] { ReadEurocStaticRecording(dir.Write("g.csv", header +
-                                                         "1000,0,0,0,0,0,1.0\n"
-                                                         "2000,0,0,0,0,0,1.01\n")); },
-              "units of g");
+  ExpectError(
+      [&] {
+        ReadEurocStaticRecording(dir.Write("g.csv",
+                                           header + "1000,0,0,0,0,0,1.0\n"
+                                                    "2000,0,0,0,0,0,1.01\n"));
+      },
+      "units of g");
   StaticReadOptions in_g;
   in_g.accel_scale = 9.80665;
   EXPECT_NO_THROW(ReadEurocStaticRecording(dir.File("g.csv"), in_g));
@@ -90,9 +100,17 @@ TEST(ReadEurocStaticRecording, ParallelPathEqualsReaderPath) {
   std::string text = std::string(kEurocHeader) + "# comment\n\n";
   for (int k = 0; k < 5000; ++k) {
     char line[200];
-    std::snprintf(line, sizeof(line), "%lld, %.17g,%.17g,%.17g ,%.17g,%.17g,%.17g%s\n",
-                  1000000000LL + 2500000LL * k, std::sin(k * 0.1), 1e-3 * k, -0.5,
-                  std::cos(k * 0.01), 1e-7 * k * k, 9.81 + 1e-3 * std::sin(k), k % 7 ? "" : "\r");
+    std::snprintf(line,
+                  sizeof(line),
+                  "%lld, %.17g,%.17g,%.17g ,%.17g,%.17g,%.17g%s\n",
+                  1000000000LL + 2500000LL * k,
+                  std::sin(k * 0.1),
+                  1e-3 * k,
+                  -0.5,
+                  std::cos(k * 0.01),
+                  1e-7 * k * k,
+                  9.81 + 1e-3 * std::sin(k),
+                  k % 7 ? "" : "\r");
     text += line;
     if (k % 1000 == 0) text += "# a comment line in the middle\n";
   }
@@ -144,15 +162,22 @@ TEST(ReadColumnStaticRecording, OneToThreeColumnsOfOneSensor) {
   const std::string six = dir.Write("six.csv", "1,2,3,4,5,6\n1,2,3,4,5,7\n");
   ExpectError([&] { ReadColumnStaticRecording(six, 50.0, ImuSensor::kGyroscope); },
               "six.csv:1: 6 columns are gyro xyz then accel xyz");
-  ExpectError([&] { ReadColumnStaticRecording(dir.Write("four.csv", "1 2 3 4\n"), 50.0,
-                                              ImuSensor::kGyroscope); },
-              "four.csv:1: expected 1, 2, 3 (one sensor) or 6");
-  ExpectError([&] { ReadColumnStaticRecording(dir.Write("ragged.csv", "1 2 3\n1 2\n"), 50.0,
-                                              ImuSensor::kGyroscope); },
-              "ragged.csv:2: expected 3 columns");
-  ExpectError([&] { ReadColumnStaticRecording(dir.Write("word.csv", "1 2\n3 x\n"), 50.0,
-                                              ImuSensor::kGyroscope); },
-              "word.csv:2:3: gyro y: expected a number, got 'x'");
+  ExpectError(
+      [&] {
+        ReadColumnStaticRecording(dir.Write("four.csv", "1 2 3 4\n"), 50.0, ImuSensor::kGyroscope);
+      },
+      "four.csv:1: expected 1, 2, 3 (one sensor) or 6");
+  ExpectError(
+      [&] {
+        ReadColumnStaticRecording(
+            dir.Write("ragged.csv", "1 2 3\n1 2\n"), 50.0, ImuSensor::kGyroscope);
+      },
+      "ragged.csv:2: expected 3 columns");
+  ExpectError(
+      [&] {
+        ReadColumnStaticRecording(dir.Write("word.csv", "1 2\n3 x\n"), 50.0, ImuSensor::kGyroscope);
+      },
+      "word.csv:2:3: gyro y: expected a number, got 'x'");
   ExpectError([&] { ReadColumnStaticRecording(path, 0.0, ImuSensor::kGyroscope); },
               "must be positive");
 }

@@ -1,7 +1,8 @@
 // Test helper: the static recording of one IMU axis in Kalibr's discrete noise model
 // (docs/conventions.md, "IMU model"), generated directly from a seeded std::mt19937_64:
 //
-//     y_k = offset + b_k + sigma * sqrt(f) * z_k,    b_0 = 0,   b_k = b_{k-1} + sigma_rw / sqrt(f) * w_k
+//     y_k = offset + b_k + sigma * sqrt(f) * z_k,    b_0 = 0,   b_k = b_{k-1} + sigma_rw / sqrt(f)
+//     * w_k
 //
 // with z_k, w_k independent N(0, 1). The unit draws are kept so that the same noise can be scaled
 // (the seed's 10x, 100x, 1000x experiment).

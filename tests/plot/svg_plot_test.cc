@@ -1,13 +1,13 @@
 #include "splinecal/plot/svg_plot.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <regex>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 namespace splinecal {
 namespace plot {
@@ -92,7 +92,8 @@ double LargestNumber(const std::string& text) {
   const std::regex number(R"(-?[0-9]+(\.[0-9]+)?(e[-+]?[0-9]+)?)");
   double largest = 0.0;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), number);
-       it != std::sregex_iterator(); ++it) {
+       it != std::sregex_iterator();
+       ++it) {
     largest = std::max(largest, std::abs(std::stod(it->str())));
   }
   return largest;

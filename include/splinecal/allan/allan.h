@@ -46,9 +46,9 @@ struct AllanOptions {
 
 struct AxisAllan {
   ImuSensor sensor = ImuSensor::kGyroscope;
-  int axis = 0;           // 0, 1, 2: x, y, z
-  std::string name;       // "gyro_x"
-  double mean = 0.0;      // mean reading (the bias plus gravity, for an accelerometer)
+  int axis = 0;       // 0, 1, 2: x, y, z
+  std::string name;   // "gyro_x"
+  double mean = 0.0;  // mean reading (the bias plus gravity, for an accelerometer)
   AllanCurve curve;
   AxisNoiseFit fit;
 };
@@ -68,7 +68,7 @@ struct AllanResult {
   int taus_per_decade = 0;
   double max_tau_fraction = 0.0;
   CombineAxes combine = CombineAxes::kMean;
-  std::vector<AxisAllan> axes;  // in the recording's order
+  std::vector<AxisAllan> axes;            // in the recording's order
   KalibrKey gyroscope_noise_density;      // [rad/s/sqrt(Hz)]
   KalibrKey gyroscope_random_walk;        // [rad/s^2/sqrt(Hz)]
   KalibrKey accelerometer_noise_density;  // [m/s^2/sqrt(Hz)]

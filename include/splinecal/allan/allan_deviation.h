@@ -5,7 +5,8 @@
 // tau = m tau_0) the overlapping Allan variance is [IEEE952, annex C], [Riley08, "overlapping
 // Allan variance"]
 //
-//     AVAR(tau) = 1 / (2 tau^2 (N - 2m + 1)) * sum_{k=0}^{N-2m} (theta_{k+2m} - 2 theta_{k+m} + theta_k)^2
+//     AVAR(tau) = 1 / (2 tau^2 (N - 2m + 1)) * sum_{k=0}^{N-2m} (theta_{k+2m} - 2 theta_{k+m} +
+//     theta_k)^2
 //
 // i.e. half the mean squared difference of the averages of adjacent clusters, taken at every
 // start sample. The deviation ADEV = sqrt(AVAR) is in the unit of y (rad/s, m/s^2).

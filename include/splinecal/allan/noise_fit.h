@@ -41,10 +41,9 @@
 #ifndef SPLINECAL_ALLAN_NOISE_FIT_H_
 #define SPLINECAL_ALLAN_NOISE_FIT_H_
 
+#include <Eigen/Core>
 #include <array>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "splinecal/allan/allan_deviation.h"
 
@@ -78,8 +77,8 @@ constexpr double kBiasInstabilityFloor = 0.6642824702679601;
 // One estimate and where it came from.
 struct TermEstimate {
   bool identified = false;
-  double value = 0.0;   // when identified
-  std::string reason;   // when not identified: why (one sentence)
+  double value = 0.0;  // when identified
+  std::string reason;  // when not identified: why (one sentence)
   // The averaging times the estimate used.
   double tau_min_s = 0.0;
   double tau_max_s = 0.0;
@@ -93,8 +92,8 @@ struct NoiseFitOptions {
   // so its threshold is lower; its points then overstate K by about 5% on average.
   double dominance = 0.9;              // white noise
   double random_walk_dominance = 0.8;  // random walk
-  double flat_dominance = 0.5;   // share for the bias-instability floor
-  int min_points = 3;            // averaging times needed in a region
+  double flat_dominance = 0.5;         // share for the bias-instability floor
+  int min_points = 3;                  // averaging times needed in a region
   // Floor of the relative error of a point, standing for model error (anti-alias filters,
   // temperature) that the counting error 1 / sqrt(2 (K - 1)) ignores at short tau.
   double min_relative_error = 0.01;

@@ -7,8 +7,8 @@
 //     6 columns are gyro xyz then accel xyz; 1 to 3 columns are the x (y, z) axes of one sensor.
 // Both read through the io layer's TextFileReader (blank lines, '#' comments, CRLF, a header row
 // without '#'); memory is 8 bytes per sample and axis: 10^8 rows of six axes need 4.8 GB. Large
-// EuRoC files take a parallel fast path first (StaticReadOptions::parallel_min_bytes). Readings are multiplied by gyro_scale / accel_scale (deg/s -> rad/s: pi / 180; g ->
-// m/s^2: 9.80665).
+// EuRoC files take a parallel fast path first (StaticReadOptions::parallel_min_bytes). Readings are
+// multiplied by gyro_scale / accel_scale (deg/s -> rad/s: pi / 180; g -> m/s^2: 9.80665).
 #ifndef SPLINECAL_ALLAN_STATIC_RECORDING_H_
 #define SPLINECAL_ALLAN_STATIC_RECORDING_H_
 

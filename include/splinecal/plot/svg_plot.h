@@ -51,10 +51,10 @@ struct Series {
   // axis) is clamped to the edge of the plot.
   std::vector<double> y_low;
   std::vector<double> y_high;
-  std::string color;         // "#rrggbb"; empty takes the next colour of the default palette
-  bool line = true;          // connect consecutive points
+  std::string color;  // "#rrggbb"; empty takes the next colour of the default palette
+  bool line = true;   // connect consecutive points
   bool dashed = false;
-  double line_width = 1.5;   // [px]
+  double line_width = 1.5;  // [px]
   Marker marker = Marker::kNone;
   double marker_size = 2.5;  // radius or half side [px]
 };
