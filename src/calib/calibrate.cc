@@ -15,7 +15,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <ceres/ceres.h>
-#include <ceres/covariance.h>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include "splinecal/calib/fit.h"
 #include "splinecal/calib/gravity_manifold.h"
@@ -33,15 +34,19 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // Time windows of the reprojection residuals reach this far beyond the current exposure range
 // [s]: the time offset may move this much during one solve before the windows are rebuilt.
-constexpr double kWindowMargin_s = 0.01;
+constexpr double kWindowMargin_s = 0.005;
 // A solve that ends with an exposure range within this of its window's edge [s] is re-solved
 // with new windows.
-constexpr double kWindowRebuildMargin_s = 0.005;
+constexpr double kWindowRebuildMargin_s = 0.002;
 // The pixel sigma is re-estimated after each solve; a change above this fraction triggers
 // another round.
 constexpr double kSigmaChangeForNewRound = 0.1;
 // 1.4826 x median absolute deviation = std of a Gaussian.
 constexpr double kMadToStd = 1.4826;
+// The diagonally scaled Schur complement of the calibration parameters must have eigenvalues
+// above this fraction of its largest: below, a parameter is not determined (its std would be
+// > ~1e6 x its scale) and no covariance is reported.
+constexpr double kMinCovarianceEigenvalue = 1e-12;
 // PnP poses whose reprojection RMS exceeds this [px] are not used for the initial guess (a
 // wrong detection or a strong rolling-shutter smear; the full problem still uses the frame).
 constexpr double kMaxPnpRmsPx = 10.0;
@@ -754,49 +759,111 @@ CalibrationResult CalibrationProblem::Run() {
 }
 
 void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
-  ceres::Covariance::Options covariance_options;
-  covariance_options.algorithm_type = ceres::SPARSE_QR;
-  covariance_options.num_threads = options_.num_threads;
-  covariance_options.apply_loss_function = true;
-  ceres::Covariance covariance(covariance_options);
-  std::vector<std::pair<const double*, const double*>> blocks;
+  // The marginal covariance of the calibration parameters: with J the weighted Jacobian at the
+  // solution (tangent spaces, robust weights inside the residuals), H = J^T J split into the
+  // nuisance parameters a (control poses, bias spline, gravity, inverse depths) and the wanted
+  // ones c (extrinsics, time offsets, line delays, constant biases),
+  //   Cov(c) = (H_cc - H_ca H_aa^-1 H_ac)^-1,
+  // H_aa by sparse Cholesky (banded: the spline's local support). Much cheaper than
+  // ceres::Covariance's QR of the whole Jacobian, and the same number.
+  std::vector<double*> wanted;
   for (size_t c = 0; c < cameras_.size(); ++c) {
-    const CameraState& cam = cameras_[c];
-    blocks.emplace_back(cam.extrinsic.data(), cam.extrinsic.data());
-    if (options_.estimate_time_offset) blocks.emplace_back(&cam.shift, &cam.shift);
-    if (options_.rolling_shutter) blocks.emplace_back(&cam.line_delay, &cam.line_delay);
+    wanted.push_back(cameras_[c].extrinsic.data());
+    if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].shift);
+    if (options_.rolling_shutter) wanted.push_back(&cameras_[c].line_delay);
   }
   if (num_bias_points_ == 1) {
-    blocks.emplace_back(gyro_bias(0), gyro_bias(0));
-    blocks.emplace_back(accel_bias(0), accel_bias(0));
+    wanted.push_back(gyro_bias(0));
+    wanted.push_back(accel_bias(0));
   }
-  if (!covariance.Compute(blocks, problem_.get())) {
+  std::vector<double*> all;
+  problem_->GetParameterBlocks(&all);
+  std::vector<double*> order;
+  for (double* block : all) {
+    if (problem_->IsParameterBlockConstant(block)) continue;
+    if (std::find(wanted.begin(), wanted.end(), block) != wanted.end()) continue;
+    order.push_back(block);
+  }
+  int num_nuisance = 0;
+  for (double* block : order) num_nuisance += problem_->ParameterBlockTangentSize(block);
+  std::map<const double*, int> offset;  // column of each wanted block within c
+  int num_wanted = 0;
+  for (double* block : wanted) {
+    offset[block] = num_wanted;
+    num_wanted += problem_->ParameterBlockTangentSize(block);
+    order.push_back(block);
+  }
+  ceres::Problem::EvaluateOptions evaluate_options;
+  evaluate_options.parameter_blocks = order;
+  evaluate_options.apply_loss_function = true;
+  evaluate_options.num_threads = options_.num_threads;
+  ceres::CRSMatrix crs;
+  if (!problem_->Evaluate(evaluate_options, nullptr, nullptr, nullptr, &crs)) {
+    result->warnings.push_back("the covariance could not be computed (evaluation failed)");
+    return;
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> J(crs.num_rows, crs.num_cols);
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(crs.values.size());
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) {
+      triplets.emplace_back(r, crs.cols[k], crs.values[k]);
+    }
+  }
+  J.setFromTriplets(triplets.begin(), triplets.end());
+  const Eigen::SparseMatrix<double> H = Eigen::SparseMatrix<double>(J.transpose() * J);
+  const int na = num_nuisance;
+  const Eigen::SparseMatrix<double> H_aa = H.topLeftCorner(na, na);
+  const Eigen::MatrixXd H_ac = Eigen::MatrixXd(H.topRightCorner(na, num_wanted));
+  const Eigen::MatrixXd H_cc = Eigen::MatrixXd(H.bottomRightCorner(num_wanted, num_wanted));
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H_aa);
+  Eigen::MatrixXd schur = H_cc;
+  bool ok = ldlt.info() == Eigen::Success && ldlt.vectorD().minCoeff() > 0.0;
+  if (ok) {
+    const Eigen::MatrixXd X = ldlt.solve(H_ac);
+    ok = ldlt.info() == Eigen::Success && X.allFinite();
+    schur -= H_ac.transpose() * X;
+  }
+  Eigen::MatrixXd cov;
+  if (ok) {
+    // Inverse through the eigen-decomposition of the diagonally scaled matrix: refuses a Schur
+    // complement that is numerically singular (a parameter the data does not determine).
+    const Eigen::VectorXd scale = schur.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd scaled = scale.asDiagonal() * schur * scale.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
+    const Eigen::VectorXd lambda = eigen.eigenvalues();
+    ok = lambda.minCoeff() > kMinCovarianceEigenvalue * lambda.maxCoeff();
+    if (ok) {
+      cov = scale.asDiagonal() *
+            (eigen.eigenvectors() * lambda.cwiseInverse().asDiagonal() *
+             eigen.eigenvectors().transpose()) *
+            scale.asDiagonal();
+    }
+  }
+  if (!ok) {
     result->warnings.push_back(
         "the covariance could not be computed (the problem is rank deficient: some parameter is "
         "not determined by the data); standard deviations are not reported");
     return;
   }
+  auto block = [&](const double* a, int rows) {
+    return Eigen::MatrixXd(cov.block(offset[a], offset[a], rows, rows));
+  };
   result->covariance_ok = true;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     CameraState& cam = cameras_[c];
     CameraEstimate& estimate = result->cameras[c];
-    Eigen::Matrix<double, 6, 6, Eigen::RowMajor> cov;
-    covariance.GetCovarianceBlockInTangentSpace(cam.extrinsic.data(), cam.extrinsic.data(),
-                                                cov.data());
+    const Eigen::MatrixXd cov6 = block(cam.extrinsic.data(), 6);
     const Eigen::Matrix3d R = PoseFromBlock(cam.extrinsic.data()).rotationMatrix();
-    const Eigen::Matrix3d cov_t = R * cov.topLeftCorner<3, 3>() * R.transpose();
+    const Eigen::Matrix3d cov_t = R * cov6.topLeftCorner<3, 3>() * R.transpose();
     estimate.translation_std_m = cov_t.diagonal().cwiseMax(0.0).cwiseSqrt();
     estimate.rotation_std_deg =
-        cov.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * (180.0 / kPi);
+        cov6.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * (180.0 / kPi);
     if (options_.estimate_time_offset) {
-      double v = 0.0;
-      covariance.GetCovarianceBlock(&cam.shift, &cam.shift, &v);
-      estimate.timeshift_std_s = std::sqrt(std::max(0.0, v));
+      estimate.timeshift_std_s = std::sqrt(std::max(0.0, block(&cam.shift, 1)(0, 0)));
     }
     if (options_.rolling_shutter) {
-      double v = 0.0;
-      covariance.GetCovarianceBlock(&cam.line_delay, &cam.line_delay, &v);
-      estimate.line_delay_std_s = std::sqrt(std::max(0.0, v));
+      estimate.line_delay_std_s = std::sqrt(std::max(0.0, block(&cam.line_delay, 1)(0, 0)));
     }
     const std::string name = "cam" + std::to_string(c);
     if (estimate.rotation_std_deg.maxCoeff() > options_.warn_rotation_std_deg) {
@@ -829,11 +896,8 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     }
   }
   if (num_bias_points_ == 1) {
-    Eigen::Matrix3d cov;
-    covariance.GetCovarianceBlock(gyro_bias(0), gyro_bias(0), cov.data());
-    result->gyro_bias_std = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
-    covariance.GetCovarianceBlock(accel_bias(0), accel_bias(0), cov.data());
-    result->accel_bias_std = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
+    result->gyro_bias_std = block(gyro_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
+    result->accel_bias_std = block(accel_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
   }
 }
 

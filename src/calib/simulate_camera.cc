@@ -251,4 +251,26 @@ PoseFitResult FitCalibrationTrajectory(const Eigen::Vector3d& target_centre_w,
   return FitControlPoses(poses, layout);
 }
 
+CalibrationSequence SimulateCalibrationSequence(const Camchain& camchain,
+                                                const CalibrationSequenceOptions& options) {
+  if (camchain.empty()) throw Error("calibration sequence: the camchain has no camera");
+  if (!(options.duration_s > 0.0) || !(options.knot_spacing_s > 0.0)) {
+    throw Error("calibration sequence: duration and knot spacing must be positive");
+  }
+  const int64_t end_ns = options.start_ns + std::llround(options.duration_s * 1e9);
+  const Eigen::Vector3d centre = options.camera.has_target
+                                     ? TargetCentre(options.camera.target, options.camera.T_w_t)
+                                     : Eigen::Vector3d::Zero();
+  const PoseFitResult fit = FitCalibrationTrajectory(
+      centre, camchain[0].T_cam_imu, options.start_ns, end_ns,
+      std::llround(options.knot_spacing_s * 1e9), options.trajectory_seed);
+  CalibrationSequence sequence;
+  sequence.spline = fit.MakeSpline();
+  SimulateImu(sequence.spline, options.start_ns, end_ns, options.imu, &sequence.imu,
+              &sequence.ground_truth);
+  sequence.cameras =
+      SimulateCameras(sequence.spline, camchain, options.start_ns, end_ns, options.camera);
+  return sequence;
+}
+
 }  // namespace splinecal

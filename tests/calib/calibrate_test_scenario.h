@@ -56,26 +56,24 @@ inline CalibrationScenario MakeCalibrationScenario(const ScenarioOptions& o) {
   given.timeshift_cam_imu_s = 0.0;
   given.line_delay_s = 0.0;
   s.start = {given};
-  const int64_t start_ns = 1'000'000'000;
-  const int64_t end_ns = start_ns + static_cast<int64_t>(o.duration_s * 1e9);
-  const PoseFitResult fit = FitCalibrationTrajectory(
-      TargetCentre(s.target, SE3d()), cam.T_cam_imu, start_ns, end_ns,
-      static_cast<int64_t>(o.knot_spacing_s * 1e9), o.seed - 1);
-  s.spline = fit.MakeSpline();
-  SimulationOptions imu_options;
-  imu_options.noise = ImuNoise::Adis16448();
-  imu_options.noise_free = !o.imu_noise;
-  imu_options.gyro_bias = s.gyro_bias;
-  imu_options.accel_bias = s.accel_bias;
-  imu_options.seed = o.seed;
-  SimulateImu(s.spline, start_ns, end_ns, imu_options, &s.imu, nullptr);
-  CameraSimulationOptions camera_options;
-  camera_options.pixel_noise_px = o.pixel_noise_px;
-  camera_options.seed = o.seed + 100;
-  camera_options.has_target = o.target;
-  camera_options.target = s.target;
-  camera_options.num_landmarks = o.num_landmarks;
-  s.camera_result = SimulateCameras(s.spline, s.truth, start_ns, end_ns, camera_options);
+  CalibrationSequenceOptions options;
+  options.duration_s = o.duration_s;
+  options.knot_spacing_s = o.knot_spacing_s;
+  options.trajectory_seed = o.seed - 1;
+  options.imu.noise = ImuNoise::Adis16448();
+  options.imu.noise_free = !o.imu_noise;
+  options.imu.gyro_bias = s.gyro_bias;
+  options.imu.accel_bias = s.accel_bias;
+  options.imu.seed = o.seed;
+  options.camera.pixel_noise_px = o.pixel_noise_px;
+  options.camera.seed = o.seed + 100;
+  options.camera.has_target = o.target;
+  options.camera.target = s.target;
+  options.camera.num_landmarks = o.num_landmarks;
+  const CalibrationSequence sequence = SimulateCalibrationSequence(s.truth, options);
+  s.spline = sequence.spline;
+  s.imu = sequence.imu;
+  s.camera_result = sequence.cameras;
   s.observations = s.camera_result.observations;
   return s;
 }

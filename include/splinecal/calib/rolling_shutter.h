@@ -13,7 +13,9 @@
 //
 // by Newton's method with the ANALYTIC time derivative dv/dt of the projection (the camera's
 // motion from the spline's body twist, calib/reprojection_cost.h), tau clamped to the frame's
-// readout [0, (height - 1) line_delay]. F' is 1 minus the ratio of the point's image speed to
+// readout [0, (height - 1) line_delay], stopping when a step is below the tolerance (the
+// solution is then the point where the step was computed: its row and rate are already known,
+// and it is within the tolerance of the root). F' is 1 minus the ratio of the point's image speed to
 // the shutter's sweep speed (1 / line_delay rows/s): for any real motion far from 0, so Newton
 // converges quadratically; from tau_0 = line_delay * (observed row) two or three iterations
 // reach 1e-12 s. (The seed's first-order correction, [seed002], is one step of this iteration.)
@@ -90,20 +92,19 @@ bool SolveExposureTime(const RowFunction& row_at,
     if (!(D > 0.0)) return false;
     const double F = tau - line_delay_s * v;
     const double next = std::clamp(tau - F / D, 0.0, tau_max);
-    const double step = next - tau;
-    tau = next;
-    if (std::abs(step) < options.tolerance_s) {
-      // Re-evaluate at the final tau so that row, rate and D belong to it.
-      if (!row_at(tau, &s.row, &s.row_rate)) return false;
+    if (std::abs(next - tau) < options.tolerance_s) {
+      // Converged: tau is within the step (< tolerance) of the root, and row, rate and D were
+      // evaluated at tau itself (no extra evaluation at `next`).
       s.tau_s = tau;
-      s.derivative = 1.0 - line_delay_s * s.row_rate;
-      if (!(s.derivative > 0.0)) return false;
-      const double residual = tau - line_delay_s * s.row;
-      s.at_lower_bound = tau == 0.0 && residual > 0.0;
-      s.at_upper_bound = tau == tau_max && residual < 0.0;
+      s.row = v;
+      s.row_rate = v_dot;
+      s.derivative = D;
+      s.at_lower_bound = tau == 0.0 && F > 0.0;
+      s.at_upper_bound = tau == tau_max && F < 0.0;
       *solution = s;
       return true;
     }
+    tau = next;
   }
   return false;
 }

@@ -38,6 +38,9 @@
 #include "splinecal/calib/observations.h"
 #include "splinecal/calib/pose_fit.h"
 #include "splinecal/calib/target.h"
+#include "splinecal/imu/imu_sample.h"
+#include "splinecal/imu/simulate.h"
+#include "splinecal/io/euroc.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/se3_spline.h"
@@ -106,6 +109,29 @@ PoseFitResult FitCalibrationTrajectory(const Eigen::Vector3d& target_centre_w,
                                        int64_t end_ns,
                                        int64_t knot_spacing_ns,
                                        uint64_t seed = 0);
+
+// A whole simulated calibration sequence (tests, benchmark, demo): the calibration trajectory
+// over the target (or over the origin without one), the IMU (imu/simulate.h) and the cameras.
+struct CalibrationSequenceOptions {
+  int64_t start_ns = 1'000'000'000;
+  double duration_s = 60.0;
+  double knot_spacing_s = 0.05;  // of the truth spline (use the same in `calibrate`)
+  uint64_t trajectory_seed = 0;  // CalibrationCameraPose's shape
+  SimulationOptions imu;         // rate, noise, biases, seed
+  CameraSimulationOptions camera;  // rate, pixel noise, target, landmarks, seed
+};
+
+struct CalibrationSequence {
+  SE3Splined spline = SE3Splined(std::vector<SE3d>(4), 0, 1);  // T_w_s, IMU clock
+  std::vector<ImuSample> imu;
+  std::vector<GroundTruthState> ground_truth;
+  CameraSimulationResult cameras;
+};
+
+// The trajectory is laid out for camchain[0]'s T_cam_imu. Throws splinecal::Error for bad
+// options (as SimulateImu and SimulateCameras).
+CalibrationSequence SimulateCalibrationSequence(const Camchain& camchain,
+                                                const CalibrationSequenceOptions& options);
 
 // The centre of a planar target's points in the world (T_w_t times the mean of the points).
 Eigen::Vector3d TargetCentre(const CalibrationTarget& target, const SE3d& T_w_t);
