@@ -84,6 +84,24 @@ class ProgressCallback : public ceres::IterationCallback {
   int round_;
 };
 
+// Stops a solve whose time offset or line delay is about to leave the time windows its
+// residuals were built with (Ceres then only sees failed evaluations beyond them); the caller
+// rebuilds the windows and solves again. Needs Solver::Options::update_state_every_iteration.
+class WindowGuard : public ceres::IterationCallback {
+ public:
+  explicit WindowGuard(std::function<bool()> windows_ok) : windows_ok_(std::move(windows_ok)) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    if (windows_ok_()) return ceres::SOLVER_CONTINUE;
+    triggered_ = true;
+    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+  }
+  bool triggered() const { return triggered_; }
+
+ private:
+  std::function<bool()> windows_ok_;
+  bool triggered_ = false;
+};
+
 double ImuRateHz(const std::vector<ImuSample>& imu) {
   std::vector<int64_t> periods;
   for (size_t k = 1; k < imu.size(); ++k) periods.push_back(imu[k].t_ns - imu[k - 1].t_ns);
@@ -328,6 +346,8 @@ class CalibrationProblem {
     double shift = 0.0;
     double line_delay = 0.0;
     double window_readout_s = 0.0;  // the readout the windows were built for
+    double window_before_s = 0.0;   // how far before the stamp + shift they reach
+    double built_shift = 0.0;       // the time offset they were built around
   };
 
   double* gyro_bias(int m) { return &gyro_bias_values_[3 * m]; }
@@ -368,7 +388,8 @@ class CalibrationProblem {
   bool FrameWindow(int cam, int64_t t_ns, double margin, ControlPoseWindow* window) const {
     const CameraState& c = cameras_[cam];
     const double t = TimeSinceT0(t_ns) + c.shift;
-    return WindowCovering(spline_layout_, t - margin, t + c.window_readout_s + margin, window);
+    return WindowCovering(spline_layout_, t - std::max(margin, c.window_before_s),
+                          t + c.window_readout_s + margin, window);
   }
   bool Contains(const ControlPoseWindow& outer, const ControlPoseWindow& inner) const {
     return inner.first_index >= outer.first_index && inner.last_index() <= outer.last_index();
@@ -378,6 +399,20 @@ class CalibrationProblem {
   void AddImuResiduals();
   double EstimatePixelSigma();
   bool WindowsStillValid();
+  // Cheap check for WindowGuard: every camera's time offset and readout are still inside what
+  // the windows were built for, less kWindowRebuildMargin_s.
+  bool TimesInsideWindows() const {
+    for (size_t c = 0; c < cameras_.size(); ++c) {
+      const CameraState& cam = cameras_[c];
+      const double moved = cam.shift - cam.built_shift;
+      const double readout = cam.line_delay * (camchain_[c].camera.height - 1);
+      if (moved < -(cam.window_before_s - kWindowRebuildMargin_s) ||
+          moved + readout > cam.window_readout_s + kWindowMargin_s - kWindowRebuildMargin_s) {
+        return false;
+      }
+    }
+    return true;
+  }
   void ComputeCovariance(CalibrationResult* result);
   void Collect(CalibrationResult* result);
 
@@ -503,6 +538,7 @@ void CalibrationProblem::BuildProblem() {
   for (size_t c = 0; c < cameras_.size(); ++c) {
     CameraState& cam = cameras_[c];
     const int height = camchain_[c].camera.height;
+    cam.built_shift = cam.shift;
     problem_->AddParameterBlock(cam.extrinsic.data(), 7, &se3_manifold_);
     problem_->AddParameterBlock(&cam.shift, 1);
     problem_->AddParameterBlock(&cam.line_delay, 1);
@@ -681,6 +717,10 @@ CalibrationResult CalibrationProblem::Run() {
     const int rows = camchain_[c].camera.height - 1;
     cameras_[c].window_readout_s =
         options_.rolling_shutter ? frame_periods_[c] : cameras_[c].line_delay * rows;
+    // An initial time offset from PnP poses of a rolling-shutter camera is late by about half
+    // the readout (the pose fits the middle rows): room to move back by up to half a frame.
+    cameras_[c].window_before_s =
+        kWindowMargin_s + (options_.rolling_shutter ? 0.5 * frame_periods_[c] : 0.0);
   }
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
@@ -690,6 +730,7 @@ CalibrationResult CalibrationProblem::Run() {
   solver_options.gradient_tolerance = 1e-12;
   solver_options.parameter_tolerance = 1e-10;
   solver_options.logging_type = ceres::SILENT;
+  solver_options.update_state_every_iteration = true;  // for WindowGuard
   ceres::Solver::Summary summary;
   for (int round = 1; round <= options_.max_rounds; ++round) {
     BuildProblem();
@@ -702,6 +743,8 @@ CalibrationResult CalibrationProblem::Run() {
       progress = std::make_unique<ProgressCallback>(options_.progress, round);
       round_options.callbacks.push_back(progress.get());
     }
+    WindowGuard guard([this]() { return TimesInsideWindows(); });
+    round_options.callbacks.push_back(&guard);
     const auto start = std::chrono::steady_clock::now();
     ceres::Solve(round_options, problem_.get(), &summary);
     result.solve_time_s +=
@@ -721,7 +764,7 @@ CalibrationResult CalibrationProblem::Run() {
       if (std::abs(sigma / sigma_px_ - 1.0) > kSigmaChangeForNewRound) again = true;
       sigma_px_ = sigma;
     }
-    const bool windows_valid = WindowsStillValid();
+    const bool windows_valid = !guard.triggered() && WindowsStillValid();
     if (!windows_valid) again = true;
     // Later rounds: windows sized to the estimate with room to grow.
     for (size_t c = 0; c < cameras_.size(); ++c) {
@@ -733,6 +776,7 @@ CalibrationResult CalibrationProblem::Run() {
           cameras_[c].window_readout_s = wanted;
         }
       }
+      cameras_[c].window_before_s = kWindowMargin_s;
     }
     if (!again) break;
     if (round < options_.max_rounds && options_.progress) {

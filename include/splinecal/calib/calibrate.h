@@ -81,7 +81,7 @@ struct CalibrateOptions {
   int min_corners_per_frame = 8;     // frames with fewer target corners are not used
   double min_rotation_rate_rad_s = 0.05;  // refuse data rotating less about its weakest axis
   int max_iterations = 50;
-  int max_rounds = 4;
+  int max_rounds = 6;
   int num_threads = 1;
   bool compute_covariance = true;
   // Warnings when a standard deviation exceeds these.
