@@ -137,6 +137,8 @@ void CheckOptions(const FitOptions& o) {
       !(o.initial_gravity_w->norm() > 0.0 && o.initial_gravity_w->allFinite())) {
     throw Error("fit: the initial gravity vector must be finite and nonzero");
   }
+  positive(o.initial_trust_region_radius, "initial trust region radius");
+  positive(o.max_residual_noise_ratio, "max residual/noise ratio");
   if (o.max_iterations < 1) throw Error("fit: max iterations must be >= 1");
   if (o.num_threads < 1) throw Error("fit: threads must be >= 1");
 }
@@ -910,6 +912,7 @@ FitResult FitProblem::Impl::Solve() {
   solver_options.gradient_tolerance = options.gradient_tolerance;
   solver_options.parameter_tolerance = options.parameter_tolerance;
   solver_options.logging_type = ceres::SILENT;
+  solver_options.initial_trust_region_radius = options.initial_trust_region_radius;
   std::unique_ptr<ProgressCallback> progress;
   if (options.progress) {
     progress = std::make_unique<ProgressCallback>(options.progress);
@@ -1154,6 +1157,9 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
     result->time_offset_std_s = nan;
     result->T_pose_imu_translation_std_m.setConstant(nan);
     result->T_pose_imu_rotation_std_rad.setConstant(nan);
+    result->not_determined = {"gyro_bias", "accel_bias", "gravity_w"};
+    if (options.estimate_time_offset) result->not_determined.push_back("time_offset_s");
+    if (options.estimate_extrinsic) result->not_determined.push_back("T_pose_imu");
     result->warnings.push_back(
         "the information matrix is singular: some parameters are not determined by this data at "
         "all, so no standard deviations are reported. Typical reasons: the IMU did not rotate "
@@ -1187,12 +1193,14 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   // Plain-words excitation warnings.
   auto max_of = [](const Eigen::Vector3d& v) { return v.maxCoeff(); };
   if (max_of(result->gyro_bias_std) > limit.gyro_bias_std_rad_s) {
+    result->not_determined.push_back("gyro_bias");
     result->warnings.push_back(
         "gyro_bias is not determined by this data (std up to " +
         Format("%.3g", max_of(result->gyro_bias_std)) +
         " rad/s): too little data, or poses too noisy to pin down the rotation");
   }
   if (max_of(result->accel_bias_std) > limit.accel_bias_std_m_s2) {
+    result->not_determined.push_back("accel_bias");
     result->warnings.push_back(
         "accel_bias is not determined by this data (std up to " +
         Format("%.3g", max_of(result->accel_bias_std)) +
@@ -1200,12 +1208,14 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
         "held in several orientations; rotate it about at least two axes");
   }
   if (result->gravity_direction_std_deg > limit.gravity_direction_std_deg) {
+    result->not_determined.push_back("gravity_w");
     result->warnings.push_back(
         "gravity_w's direction is not determined by this data (std " +
         Format("%.3g", result->gravity_direction_std_deg) +
         " deg): it trades off against the accelerometer bias unless the IMU rotates");
   }
   if (options.estimate_time_offset && result->time_offset_std_s > limit.time_offset_std_s) {
+    result->not_determined.push_back("time_offset_s");
     result->warnings.push_back(
         "time_offset_s is not determined by this data (std " +
         Format("%.3g", 1e3 * result->time_offset_std_s) +
@@ -1213,6 +1223,11 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
         "rotational accelerations");
   }
   if (options.estimate_extrinsic) {
+    if (max_of(result->T_pose_imu_translation_std_m) > limit.extrinsic_translation_std_m ||
+        max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg >
+            limit.extrinsic_rotation_std_deg) {
+      result->not_determined.push_back("T_pose_imu");
+    }
     if (max_of(result->T_pose_imu_translation_std_m) > limit.extrinsic_translation_std_m) {
       result->warnings.push_back(
           "the translation of T_pose_imu is not determined by this data (std up to " +

@@ -86,7 +86,8 @@ TEST(BiasRandomWalkCostFunction, AnalyticMatchesAutoDiffAndGradientChecker) {
       EXPECT_NEAR(J_a[j][k], J_b[j][k], 1e-9 * std::max(1.0, std::abs(J_b[j][k])));
     }
   }
-  ceres::GradientChecker checker(&analytic, nullptr, ceres::NumericDiffOptions());
+  const std::vector<const ceres::Manifold*> no_manifolds(4, nullptr);
+  ceres::GradientChecker checker(&analytic, &no_manifolds, ceres::NumericDiffOptions());
   ceres::GradientChecker::ProbeResults results;
   EXPECT_TRUE(checker.Probe(parameters, kGradientCheckerPrecision, &results)) << results.error_log;
 }

@@ -107,6 +107,11 @@ struct FitOptions {
   double function_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-10;
+  // Levenberg-Marquardt's first trust region (Ceres' default is 1e4). The residuals are weighted
+  // by their noise, so Gauss-Newton steps are good from the start: a large radius saves one or
+  // two iterations on the reference problem (docs/fit.md, "Speed"); a bad step is still rejected
+  // and the radius shrinks.
+  double initial_trust_region_radius = 1e6;
   ImuResidualLayout layout = ImuResidualLayout::kPerSegment;
   Differentiation differentiation = Differentiation::kAnalytic;
   bool share_knot_caches = true;  // calib/spline_evaluation_callback.h (analytic only)
@@ -114,7 +119,9 @@ struct FitOptions {
   bool compute_covariance = true;
   ExcitationThresholds excitation;
   // Residual RMS above this many times the noise std (gyro or accel) is a failed fit (Error).
-  double max_residual_noise_ratio = 30.0;
+  // EuRoC's MAV vibrations leave the accelerometer at ~30x its white noise: 100 keeps real data
+  // and catches wrong units, wrong trajectories and missed time offsets (typically 1000x).
+  double max_residual_noise_ratio = 100.0;
   // Keep per-sample predictions and residuals in FitResult (for residuals.csv / report.html).
   bool keep_samples = true;
   // One line per solver iteration (nullptr: silent).
@@ -207,6 +214,9 @@ struct FitResult {
   int solver_rounds = 0;    // > 1 when pose residuals were re-attached after a time-offset move
 
   std::vector<std::string> warnings;
+  // Quantities the data does not determine (std above ExcitationThresholds, or a singular
+  // information matrix): "gyro_bias", "accel_bias", "gravity_w", "time_offset_s", "T_pose_imu".
+  std::vector<std::string> not_determined;
 
   std::vector<FitImuSample> imu_samples;    // when FitOptions::keep_samples
   std::vector<FitPoseSample> pose_samples;  // when FitOptions::keep_samples

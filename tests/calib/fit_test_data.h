@@ -1,0 +1,150 @@
+// Simulated data for the `splinecal fit` tests (fit_test.cc, fit_slow_test.cc): a true spline
+// from an analytic trajectory, IMU readings predicted from it (imu/simulate.h), and poses of
+// the pose source sampled from it with an optional time offset, extrinsic, world tilt and noise.
+#ifndef SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
+#define SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
+
+#include <array>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "splinecal/calib/pose_fit.h"
+#include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_sample.h"
+#include "splinecal/imu/noise.h"
+#include "splinecal/imu/simulate.h"
+#include "splinecal/imu/trajectories.h"
+#include "splinecal/io/poses.h"
+#include "splinecal/lie/se3.h"
+#include "splinecal/spline/se3_spline.h"
+
+namespace splinecal {
+namespace testing {
+
+struct FitScenario {
+  std::string trajectory = "random";
+  uint64_t trajectory_seed = 3;
+  double duration_s = 20.0;
+  int64_t knot_spacing_ns = 100'000'000;
+  double pose_rate_hz = 10.0;
+  // IMU: noise densities (random walks 0 unless set), constant biases.
+  bool imu_noise = false;
+  ImuNoise noise = [] {
+    ImuNoise n = ImuNoise::Adis16448();
+    n.gyroscope_random_walk = 0.0;
+    n.accelerometer_random_walk = 0.0;
+    return n;
+  }();
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d(0.012, -0.021, 0.006);
+  Eigen::Vector3d accel_bias = Eigen::Vector3d(0.05, 0.11, -0.08);
+  uint64_t noise_seed = 5;
+  // Pose source: noise, time offset (t_imu = t_pose + offset), extrinsic T_m_s, and the rotation
+  // of its world relative to the simulator's gravity-aligned one (gravity then points along
+  // R_world (0, 0, -g)).
+  bool pose_noise = false;
+  double pose_sigma_m = 1e-3;
+  double pose_sigma_rad = 1e-3;
+  double time_offset_s = 0.0;
+  SE3d T_pose_imu;
+  SO3d R_world;
+};
+
+struct FitData {
+  SE3Splined truth = SE3Splined(std::vector<SE3d>(4), 0, 1);  // T_w_s in the pose world
+  std::vector<ImuSample> imu;
+  std::vector<StampedPose> poses;
+  Eigen::Vector3d gravity_w = Eigen::Vector3d::Zero();
+};
+
+// The named trajectories of imu/trajectories.h, plus "translation_only": sinusoidal motion with a
+// constant attitude (no rotation at all).
+inline AnalyticTrajectory ScenarioTrajectory(const FitScenario& scenario) {
+  if (scenario.trajectory != "translation_only") {
+    return MakeTrajectory(scenario.trajectory, scenario.trajectory_seed);
+  }
+  std::array<SinusoidChannel, 3> position;
+  const double periods[3] = {7.0, 5.0, 11.0};
+  for (int a = 0; a < 3; ++a) {
+    position[a].offset = 1.0;
+    position[a].terms.push_back({1.5, 2.0 * 3.14159265358979 / periods[a], 0.3 * a});
+  }
+  std::array<SinusoidChannel, 3> attitude;
+  attitude[0].offset = 0.1;
+  attitude[1].offset = -0.2;
+  attitude[2].offset = 0.7;
+  return AnalyticTrajectory("translation_only", position, attitude);
+}
+
+inline FitData MakeFitData(const FitScenario& scenario) {
+  constexpr int64_t kStartNs = 1'403'715'273'262'142'976;  // an EuRoC-like epoch
+  const int64_t end_ns = kStartNs + std::llround(scenario.duration_s * 1e9);
+  const SE3Splined spline =
+      FitAnalyticTrajectory(ScenarioTrajectory(scenario),
+                            kStartNs,
+                            end_ns,
+                            scenario.knot_spacing_ns)
+          .MakeSpline();
+  FitData data;
+  SimulationOptions simulation;
+  simulation.noise = scenario.noise;
+  simulation.noise_free = !scenario.imu_noise;
+  simulation.gyro_bias = scenario.gyro_bias;
+  simulation.accel_bias = scenario.accel_bias;
+  simulation.seed = scenario.noise_seed;
+  SimulateImu(spline, spline.start_time_ns(), spline.end_time_ns(), simulation, &data.imu, nullptr);
+
+  // The truth in the pose source's world.
+  const SE3d T_world(scenario.R_world, Eigen::Vector3d::Zero());
+  std::vector<SE3d> control = spline.control_poses();
+  for (SE3d& T : control) T = T_world * T;
+  data.truth = SE3Splined(control, spline.t0_ns(), spline.dt_ns());
+  data.gravity_w = scenario.R_world * Eigen::Vector3d(0.0, 0.0, -kDefaultGravity);
+
+  std::mt19937_64 rng(scenario.noise_seed + 1000);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const int64_t step_ns = std::llround(1e9 / scenario.pose_rate_hz);
+  const int64_t offset_ns = std::llround(scenario.time_offset_s * 1e9);
+  const SE3d T_s_m = scenario.T_pose_imu.inverse();
+  for (int64_t t = data.truth.start_time_ns(); t <= data.truth.end_time_ns(); t += step_ns) {
+    SE3d T_w_m = data.truth.PoseNs(t) * T_s_m;
+    if (scenario.pose_noise) {
+      Eigen::Vector3d dp;
+      Eigen::Vector3d dphi;
+      for (int a = 0; a < 3; ++a) dp[a] = scenario.pose_sigma_m * normal(rng);
+      for (int a = 0; a < 3; ++a) dphi[a] = scenario.pose_sigma_rad * normal(rng);
+      T_w_m = SE3d(T_w_m.so3() * SO3d::Exp(dphi), T_w_m.translation() + dp);
+    }
+    StampedPose pose;
+    pose.t_ns = t - offset_ns;
+    pose.p = T_w_m.translation();
+    pose.q = T_w_m.so3().quaternion();
+    data.poses.push_back(pose);
+  }
+  return data;
+}
+
+// Control poses perturbed by Exp(d), d ~ N(0, sigma_m^2) translation, N(0, sigma_rad^2) rotation.
+inline std::vector<SE3d> PerturbedControlPoses(const SE3Splined& spline,
+                                               double sigma_m,
+                                               double sigma_rad,
+                                               uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<SE3d> poses = spline.control_poses();
+  for (SE3d& T : poses) {
+    Vector6d d;
+    for (int k = 0; k < 3; ++k) d[k] = sigma_m * normal(rng);
+    for (int k = 3; k < 6; ++k) d[k] = sigma_rad * normal(rng);
+    T = T * SE3d::Exp(d);
+  }
+  return poses;
+}
+
+}  // namespace testing
+}  // namespace splinecal
+
+#endif  // SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
