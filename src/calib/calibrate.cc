@@ -791,6 +791,7 @@ CalibrationResult CalibrationProblem::Run() {
   }
   result.final_cost = summary.final_cost;
   result.termination = summary.message;
+  result.solver_report = summary.FullReport();
   result.pixel_sigma_px = sigma_px_;
   Collect(&result);
   if (options_.compute_covariance) {

@@ -163,6 +163,7 @@ struct CalibrationResult {
   double covariance_time_s = 0.0;
   double initialisation_time_s = 0.0;
   std::string termination;
+  std::string solver_report;  // Ceres' FullReport of the last round (timings per phase)
   bool covariance_ok = false;
   std::vector<std::string> warnings;
 
