@@ -46,13 +46,13 @@ const Sequence& GetSequence(int seconds) {
   s = std::make_unique<Sequence>();
   CameraCalibration cam;
   cam.camera = EurocCamera();
-  cam.T_cam_imu = SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)),
-                       Eigen::Vector3d(0.06, -0.02, 0.01));
+  cam.T_cam_imu =
+      SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)), Eigen::Vector3d(0.06, -0.02, 0.01));
   cam.timeshift_cam_imu_s = 0.0042;
   cam.line_delay_s = 3e-5;
   s->truth = {cam};
-  cam.T_cam_imu = cam.T_cam_imu * SE3d::Exp((Vector6d() << 0.02, -0.015, 0.01, 0.03, -0.035,
-                                             0.02).finished());
+  cam.T_cam_imu =
+      cam.T_cam_imu * SE3d::Exp((Vector6d() << 0.02, -0.015, 0.01, 0.03, -0.035, 0.02).finished());
   cam.timeshift_cam_imu_s = 0.0;
   cam.line_delay_s = 0.0;
   s->start = {cam};
@@ -88,7 +88,8 @@ void BM_Calibrate(benchmark::State& state) {
   state.counters["solve_s"] = result.solve_time_s;
   state.counters["covariance_s"] = result.covariance_time_s;
   state.counters["rms_px"] = result.reprojection_rms_px;
-  if (std::getenv("CALIBRATE_BENCH_REPORT") != nullptr) std::fprintf(stderr, "%s\n", result.solver_report.c_str());
+  if (std::getenv("CALIBRATE_BENCH_REPORT") != nullptr)
+    std::fprintf(stderr, "%s\n", result.solver_report.c_str());
 }
 BENCHMARK(BM_Calibrate)
     ->ArgNames({"seconds", "threads"})

@@ -1,5 +1,10 @@
 #include "splinecal/calib/calibrate.h"
 
+#include <ceres/ceres.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -12,11 +17,6 @@
 #include <tuple>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Eigenvalues>
-#include <ceres/ceres.h>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 
 #include "splinecal/calib/fit.h"
 #include "splinecal/calib/gravity_manifold.h"
@@ -70,11 +70,18 @@ class ProgressCallback : public ceres::IterationCallback {
       : progress_(std::move(progress)), round_(round) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     char line[256];
-    std::snprintf(line, sizeof(line),
+    std::snprintf(line,
+                  sizeof(line),
                   "calibrate: round %d iteration %2d  cost %.9e  change %+.3e  |gradient| %.3e  "
                   "|step| %.3e  %s  %.2f s",
-                  round_, s.iteration, s.cost, -s.cost_change, s.gradient_max_norm, s.step_norm,
-                  s.step_is_successful ? "accepted" : "rejected", s.cumulative_time_in_seconds);
+                  round_,
+                  s.iteration,
+                  s.cost,
+                  -s.cost_change,
+                  s.gradient_max_norm,
+                  s.step_norm,
+                  s.step_is_successful ? "accepted" : "rejected",
+                  s.cumulative_time_in_seconds);
     progress_(line);
     return ceres::SOLVER_CONTINUE;
   }
@@ -134,8 +141,8 @@ void CheckInputs(const std::vector<ImuSample>& imu,
   if (observations.empty()) throw Error("calibrate: no observations");
   for (const Observation& o : observations) {
     if (o.cam_id < 0 || o.cam_id >= static_cast<int>(camchain.size())) {
-      throw Error("calibrate: an observation of camera " + std::to_string(o.cam_id) +
-                  " (frame " + std::to_string(o.t_ns) + ") but the camchain describes " +
+      throw Error("calibrate: an observation of camera " + std::to_string(o.cam_id) + " (frame " +
+                  std::to_string(o.t_ns) + ") but the camchain describes " +
                   std::to_string(camchain.size()) + " camera(s): wrong camchain or cam_id column");
     }
   }
@@ -184,12 +191,14 @@ std::vector<Observation> ObservationsInsideImu(const std::vector<ImuSample>& imu
   }
   if (inside.empty()) {
     char text[512];
-    std::snprintf(text, sizeof(text),
+    std::snprintf(text,
+                  sizeof(text),
                   "calibrate: every observation is outside the IMU's time range: frames [%.9f, "
                   "%.9f] s (camera clock) vs IMU [%.9f, %.9f] s; the files are from different "
                   "recordings or use different time bases (seconds vs nanoseconds, another clock "
                   "origin), or timeshift_cam_imu is wrong",
-                  1e-9 * static_cast<double>(first), 1e-9 * static_cast<double>(last),
+                  1e-9 * static_cast<double>(first),
+                  1e-9 * static_cast<double>(last),
                   1e-9 * static_cast<double>(imu.front().t_ns),
                   1e-9 * static_cast<double>(imu.back().t_ns));
     throw Error(text);
@@ -222,7 +231,8 @@ void CheckRotationExcitation(const std::vector<ImuSample>& imu, double min_rate)
 }
 
 // The IMU samples inside [start_ns, end_ns].
-std::vector<ImuSample> ImuBetween(const std::vector<ImuSample>& imu, int64_t start_ns,
+std::vector<ImuSample> ImuBetween(const std::vector<ImuSample>& imu,
+                                  int64_t start_ns,
                                   int64_t end_ns) {
   std::vector<ImuSample> out;
   for (const ImuSample& s : imu) {
@@ -242,7 +252,8 @@ KnotLayout LayoutFor(const std::vector<ImuSample>& imu,
     const CameraCalibration& cam = camchain[o.cam_id];
     const int64_t t = o.t_ns + std::llround(cam.timeshift_cam_imu_s * 1e9);
     first = std::min(first, t);
-    last = std::max<int64_t>(last, t + std::llround(cam.line_delay_s * (cam.camera.height - 1) * 1e9));
+    last =
+        std::max<int64_t>(last, t + std::llround(cam.line_delay_s * (cam.camera.height - 1) * 1e9));
   }
   const int64_t start = std::max<int64_t>(imu.front().t_ns, first - kImuMarginNs);
   const int64_t end = std::min<int64_t>(imu.back().t_ns, last + kImuMarginNs);
@@ -272,7 +283,10 @@ class CalibrationProblem {
                      const CalibrateOptions& options,
                      const CalibrationInitialGuess& guess,
                      bool has_target)
-      : imu_(imu), camchain_(camchain), options_(options), layout_(guess.layout),
+      : imu_(imu),
+        camchain_(camchain),
+        options_(options),
+        layout_(guess.layout),
         has_target_(has_target) {
     dt_s_ = 1e-9 * static_cast<double>(layout_.dt_ns);
     spline_layout_.dt_s = dt_s_;
@@ -292,11 +306,13 @@ class CalibrationProblem {
     const int64_t t_first = layout_.t0_ns + layout_.dt_ns;
     const int64_t t_last = layout_.t0_ns + static_cast<int64_t>(n - 2) * layout_.dt_ns;
     if (options.bias_model == BiasModel::kSpline) {
-      const int per = std::max(1, static_cast<int>(std::lround(options.bias_knot_spacing_s / dt_s_)));
+      const int per =
+          std::max(1, static_cast<int>(std::lround(options.bias_knot_spacing_s / dt_s_)));
       bias_dt_ns_ = static_cast<int64_t>(per) * layout_.dt_ns;
       bias_t0_ns_ = t_first - bias_dt_ns_;
       const int64_t span = t_last - t_first;
-      num_bias_points_ = static_cast<int>(span / bias_dt_ns_ + (span % bias_dt_ns_ != 0 ? 1 : 0)) + 3;
+      num_bias_points_ =
+          static_cast<int>(span / bias_dt_ns_ + (span % bias_dt_ns_ != 0 ? 1 : 0)) + 3;
     } else {
       num_bias_points_ = 1;
     }
@@ -315,12 +331,14 @@ class CalibrationProblem {
       CameraState& cam = cameras_[c];
       PoseToBlock(init.T_cam_imu, cam.extrinsic.data());
       cam.shift = init.timeshift_cam_imu_s;
-      cam.line_delay = options.rolling_shutter ? std::max(0.0, init.line_delay_s) : init.line_delay_s;
+      cam.line_delay =
+          options.rolling_shutter ? std::max(0.0, init.line_delay_s) : init.line_delay_s;
     }
     PoseToBlock(SE3d(), T_w_t_.data());
-    callback_ = std::make_unique<SplineEvaluationCallback>(control_blocks_, layout_.t0_ns,
-                                                           layout_.dt_ns);
-    imu_ = ImuBetween(imu, layout_.t0_ns + layout_.dt_ns,
+    callback_ =
+        std::make_unique<SplineEvaluationCallback>(control_blocks_, layout_.t0_ns, layout_.dt_ns);
+    imu_ = ImuBetween(imu,
+                      layout_.t0_ns + layout_.dt_ns,
                       layout_.t0_ns + static_cast<int64_t>(n - 2) * layout_.dt_ns);
     if (imu_.size() < 2) throw Error("calibrate: fewer than 2 IMU samples inside the spline");
   }
@@ -362,7 +380,9 @@ class CalibrationProblem {
     int m = static_cast<int>((t_ns - bias_t0_ns_) / bias_dt_ns_);
     m = std::clamp(m, 1, num_bias_points_ - 3);
     const double u = std::clamp(static_cast<double>(t_ns - (bias_t0_ns_ + m * bias_dt_ns_)) /
-                                    static_cast<double>(bias_dt_ns_), 0.0, 1.0);
+                                    static_cast<double>(bias_dt_ns_),
+                                0.0,
+                                1.0);
     *segment = m;
     return BiasSplineWeights(u);
   }
@@ -371,7 +391,8 @@ class CalibrationProblem {
     const std::array<double, 4> w = BiasWeights(t_ns, &m);
     if (num_bias_points_ == 1) return Eigen::Map<const Eigen::Vector3d>(values.data());
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (int j = 0; j < 4; ++j) b += w[j] * Eigen::Map<const Eigen::Vector3d>(&values[3 * (m - 1 + j)]);
+    for (int j = 0; j < 4; ++j)
+      b += w[j] * Eigen::Map<const Eigen::Vector3d>(&values[3 * (m - 1 + j)]);
     return b;
   }
 
@@ -388,8 +409,10 @@ class CalibrationProblem {
   bool FrameWindow(int cam, int64_t t_ns, double margin, ControlPoseWindow* window) const {
     const CameraState& c = cameras_[cam];
     const double t = TimeSinceT0(t_ns) + c.shift;
-    return WindowCovering(spline_layout_, t - std::max(margin, c.window_before_s),
-                          t + c.window_readout_s + margin, window);
+    return WindowCovering(spline_layout_,
+                          t - std::max(margin, c.window_before_s),
+                          t + c.window_readout_s + margin,
+                          window);
   }
   bool Contains(const ControlPoseWindow& outer, const ControlPoseWindow& inner) const {
     return inner.first_index >= outer.first_index && inner.last_index() <= outer.last_index();
@@ -488,8 +511,8 @@ void CalibrationProblem::AddImuResiduals() {
         // Weights in the segment's bias segment (a pose segment lies inside one bias segment;
         // the end sample at u = 1 is clamped into it).
         const int64_t tb = bias_t0_ns_ + static_cast<int64_t>(bias_segment) * bias_dt_ns_;
-        const double ub = std::clamp(static_cast<double>(imu_[k].t_ns - tb) /
-                                         static_cast<double>(bias_dt_ns_), 0.0, 1.0);
+        const double ub = std::clamp(
+            static_cast<double>(imu_[k].t_ns - tb) / static_cast<double>(bias_dt_ns_), 0.0, 1.0);
         sample.bias_weights = BiasSplineWeights(ub);
       }
       sample.measured = imu_[k].gyro;
@@ -564,10 +587,12 @@ void CalibrationProblem::BuildProblem() {
     const double db = 1e-9 * static_cast<double>(bias_dt_ns_);
     for (int m = 1; m + 2 < num_bias_points_; ++m) {
       problem_->AddResidualBlock(
-          new BiasRandomWalkCostFunction(db, options_.noise.gyroscope_random_walk), nullptr,
+          new BiasRandomWalkCostFunction(db, options_.noise.gyroscope_random_walk),
+          nullptr,
           {gyro_bias(m - 1), gyro_bias(m), gyro_bias(m + 1), gyro_bias(m + 2)});
       problem_->AddResidualBlock(
-          new BiasRandomWalkCostFunction(db, options_.noise.accelerometer_random_walk), nullptr,
+          new BiasRandomWalkCostFunction(db, options_.noise.accelerometer_random_walk),
+          nullptr,
           {accel_bias(m - 1), accel_bias(m), accel_bias(m + 1), accel_bias(m + 2)});
     }
   }
@@ -579,7 +604,8 @@ void CalibrationProblem::BuildProblem() {
     if (!FrameWindow(frame.cam, frame.t_ns, kWindowMargin_s, &residual.window)) continue;
     CameraState& cam = cameras_[frame.cam];
     auto* cost = new TargetFrameCostFunction(Settings(frame.cam, sigma_px_, options_.huber_px),
-                                             residual.window, TimeSinceT0(frame.t_ns),
+                                             residual.window,
+                                             TimeSinceT0(frame.t_ns),
                                              frame.corners);
     std::vector<double*> blocks(control_blocks_.begin() + residual.window.first_index,
                                 control_blocks_.begin() + residual.window.last_index() + 1);
@@ -599,8 +625,8 @@ void CalibrationProblem::BuildProblem() {
       LandmarkResidual residual;
       residual.landmark = static_cast<int>(l);
       residual.observation = static_cast<int>(o);
-      if (!FrameWindow(landmark.cam, landmark.reference.t_ns, kWindowMargin_s,
-                       &residual.reference_window) ||
+      if (!FrameWindow(
+              landmark.cam, landmark.reference.t_ns, kWindowMargin_s, &residual.reference_window) ||
           !FrameWindow(obs.cam_id, obs.t_ns, kWindowMargin_s, &residual.window)) {
         continue;
       }
@@ -614,8 +640,8 @@ void CalibrationProblem::BuildProblem() {
       data.t_frame_s = TimeSinceT0(obs.t_ns);
       data.uv = obs.uv;
       CameraState& cam = cameras_[landmark.cam];
-      auto* cost = new LandmarkCostFunction(Settings(landmark.cam, sigma_px_, options_.huber_px),
-                                            indices, data);
+      auto* cost = new LandmarkCostFunction(
+          Settings(landmark.cam, sigma_px_, options_.huber_px), indices, data);
       std::vector<double*> blocks;
       for (int i : indices) blocks.push_back(control_blocks_[i]);
       blocks.push_back(cam.extrinsic.data());
@@ -636,8 +662,8 @@ double CalibrationProblem::EstimatePixelSigma() {
   for (const FrameResidual& r : frame_residuals_) {
     const TargetFrame& frame = target_frames_[r.frame];
     CameraState& cam = cameras_[frame.cam];
-    const TargetFrameCostFunction cost(Settings(frame.cam, 1.0, 0.0), r.window,
-                                       TimeSinceT0(frame.t_ns), frame.corners);
+    const TargetFrameCostFunction cost(
+        Settings(frame.cam, 1.0, 0.0), r.window, TimeSinceT0(frame.t_ns), frame.corners);
     std::vector<double*> blocks(control_blocks_.begin() + r.window.first_index,
                                 control_blocks_.begin() + r.window.last_index() + 1);
     blocks.push_back(cam.extrinsic.data());
@@ -659,7 +685,8 @@ double CalibrationProblem::EstimatePixelSigma() {
     data.reference_row = landmark.reference.uv.y();
     data.t_frame_s = TimeSinceT0(obs.t_ns);
     data.uv = obs.uv;
-    const std::vector<int> indices = LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window);
+    const std::vector<int> indices =
+        LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window);
     const LandmarkCostFunction cost(Settings(landmark.cam, 1.0, 0.0), indices, data);
     std::vector<double*> blocks;
     for (int i : indices) blocks.push_back(control_blocks_[i]);
@@ -912,10 +939,10 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     }
     const std::string name = "cam" + std::to_string(c);
     if (estimate.rotation_std_deg.maxCoeff() > options_.warn_rotation_std_deg) {
-      result->warnings.push_back(
-          name + ": the rotation of T_cam_imu is poorly determined (std up to " +
-          Format("%.3g", estimate.rotation_std_deg.maxCoeff()) +
-          " deg): rotate the rig more, about all three axes");
+      result->warnings.push_back(name +
+                                 ": the rotation of T_cam_imu is poorly determined (std up to " +
+                                 Format("%.3g", estimate.rotation_std_deg.maxCoeff()) +
+                                 " deg): rotate the rig more, about all three axes");
     }
     if (estimate.translation_std_m.maxCoeff() > options_.warn_translation_std_m) {
       result->warnings.push_back(
@@ -931,9 +958,9 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     if (options_.rolling_shutter && cam.line_delay > 0.0 &&
         estimate.line_delay_std_s > options_.warn_line_delay_relative_std * cam.line_delay &&
         cam.line_delay > 3.0 * estimate.line_delay_std_s) {
-      result->warnings.push_back(name + ": the line delay is poorly determined (std " +
-                                 Format("%.3g", 100.0 * estimate.line_delay_std_s / cam.line_delay) +
-                                 "% of its value)");
+      result->warnings.push_back(
+          name + ": the line delay is poorly determined (std " +
+          Format("%.3g", 100.0 * estimate.line_delay_std_s / cam.line_delay) + "% of its value)");
     }
     if (std::abs(cam.shift) > 0.99 * options_.max_time_offset_s && options_.estimate_time_offset) {
       result->warnings.push_back(name + ": the time offset ended at its bound +-" +
@@ -972,8 +999,8 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
     const Eigen::Vector3d b_a = BiasAt(accel_bias_values_, s.t_ns);
     Eigen::Vector3d gyro;
     Eigen::Vector3d accel;
-    PredictImu<double>(spline, spline.SegmentAtNs(s.t_ns), result->gravity_w, b_g, b_a, &gyro,
-                       &accel);
+    PredictImu<double>(
+        spline, spline.SegmentAtNs(s.t_ns), result->gravity_w, b_g, b_a, &gyro, &accel);
     gyro_sq += (gyro - s.gyro).squaredNorm();
     accel_sq += (accel - s.accel).squaredNorm();
     gyro_sum += b_g;
@@ -996,8 +1023,8 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   for (const FrameResidual& r : frame_residuals_) {
     const TargetFrame& frame = target_frames_[r.frame];
     CameraState& cam = cameras_[frame.cam];
-    const TargetFrameCostFunction cost(Settings(frame.cam, 1.0, 0.0), r.window,
-                                       TimeSinceT0(frame.t_ns), frame.corners);
+    const TargetFrameCostFunction cost(
+        Settings(frame.cam, 1.0, 0.0), r.window, TimeSinceT0(frame.t_ns), frame.corners);
     std::vector<double*> blocks(control_blocks_.begin() + r.window.first_index,
                                 control_blocks_.begin() + r.window.last_index() + 1);
     blocks.push_back(cam.extrinsic.data());
@@ -1058,9 +1085,11 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
     result->cameras[c].reprojection_rms_px = count > 0 ? std::sqrt(cam_sq[c] / count) : 0.0;
   }
   result->reprojection_rms_px = all_count > 0 ? std::sqrt(all_sq / all_count) : 0.0;
-  std::sort(result->reprojection_samples.begin(), result->reprojection_samples.end(),
+  std::sort(result->reprojection_samples.begin(),
+            result->reprojection_samples.end(),
             [](const ReprojectionSample& a, const ReprojectionSample& b) {
-              return std::tie(a.t_ns, a.cam_id, a.point_id) < std::tie(b.t_ns, b.cam_id, b.point_id);
+              return std::tie(a.t_ns, a.cam_id, a.point_id) <
+                     std::tie(b.t_ns, b.cam_id, b.point_id);
             });
 }
 
@@ -1124,8 +1153,8 @@ std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations
     bool ok = true;
     for (size_t k = 0; k < obs.size() && ok; ++k) {
       const CameraCalibration& c = camchain[obs[k].cam_id];
-      const double t = spline.TimeSinceT0(obs[k].t_ns) + c.timeshift_cam_imu_s +
-                       c.line_delay_s * obs[k].uv.y();
+      const double t =
+          spline.TimeSinceT0(obs[k].t_ns) + c.timeshift_cam_imu_s + c.line_delay_s * obs[k].uv.y();
       Eigen::Vector3d ray;
       if (!(t >= spline.start_time() && t <= spline.end_time()) ||
           !c.camera.Unproject(obs[k].uv, &ray)) {
@@ -1191,8 +1220,8 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
   if (static_cast<int>(poses.size()) < kMinPnpPoses) {
     throw Error("calibrate: the target gives a pose in only " + std::to_string(poses.size()) +
                 " of " + std::to_string(frames_tried) + " frames of cam0 with at least " +
-                std::to_string(options.min_corners_per_frame) +
-                " corners (need " + std::to_string(kMinPnpPoses) +
+                std::to_string(options.min_corners_per_frame) + " corners (need " +
+                std::to_string(kMinPnpPoses) +
                 "): check the target file (size, spacing, corner ids) and the intrinsics");
   }
   if (warnings != nullptr && static_cast<int>(poses.size()) < frames_tried) {
@@ -1264,10 +1293,11 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
     bool seen = false;
     for (const Observation& o : observations) seen = seen || target->Find(o.point_id) != nullptr;
     if (!seen) {
-      throw Error("calibrate: the target is never seen: no point id in the observations is a "
-                  "corner of the " + target->type + " target (" +
-                  std::to_string(target->points.size()) +
-                  " corners); wrong target file, or the detector numbers corners differently");
+      throw Error(
+          "calibrate: the target is never seen: no point id in the observations is a "
+          "corner of the " +
+          target->type + " target (" + std::to_string(target->points.size()) +
+          " corners); wrong target file, or the detector numbers corners differently");
     }
   }
   CheckRotationExcitation(imu, options.min_rotation_rate_rad_s);
@@ -1283,8 +1313,9 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
     if (options.progress) options.progress("calibrate: initial guess (PnP per frame, then fit)");
     initial = InitialGuessFromTarget(imu, observations, camchain, *target, options, &warnings);
   } else {
-    throw Error("calibrate: without a target the calibration needs an initial trajectory "
-                "(CalibrationInitialGuess; e.g. from `splinecal align` on SLAM poses)");
+    throw Error(
+        "calibrate: without a target the calibration needs an initial trajectory "
+        "(CalibrationInitialGuess; e.g. from `splinecal align` on SLAM poses)");
   }
   CalibrationProblem problem(imu, camchain, options, initial, target != nullptr);
   std::vector<ObservationFrame> frames = GroupIntoFrames(observations);
@@ -1292,7 +1323,8 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
   for (size_t c = 0; c < camchain.size(); ++c) periods.push_back(FramePeriod(frames, c));
   problem.SetFramePeriods(periods);
   if (target != nullptr) {
-    *problem.target_frames() = MakeTargetFrames(observations, *target, options.min_corners_per_frame);
+    *problem.target_frames() =
+        MakeTargetFrames(observations, *target, options.min_corners_per_frame);
   }
   *problem.landmarks() =
       MakeLandmarks(observations, target, initial.camchain, problem.Spline(), &warnings);

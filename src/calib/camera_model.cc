@@ -1,8 +1,7 @@
 #include "splinecal/calib/camera_model.h"
 
-#include <cmath>
-
 #include <Eigen/LU>
+#include <cmath>
 
 namespace splinecal {
 
@@ -83,8 +82,8 @@ void DistortWithJacobians(DistortionModel model,
       return;
     }
     case DistortionModel::kEquidistant: {
-      double s;            // theta_d / r
-      double ds_dr_over_r; // (ds/dr) / r
+      double s;                             // theta_d / r
+      double ds_dr_over_r;                  // (ds/dr) / r
       Eigen::Vector4d theta_powers_over_r;  // theta^(2i+1) / r, i = 1..4
       if (r2 < kEquidistantSeriesRSq) {
         // Series (header comment); theta ~ r to first order in the coefficient Jacobian.
@@ -97,7 +96,8 @@ void DistortWithJacobians(DistortionModel model,
         const double t2 = theta * theta;
         const double poly = 1.0 + t2 * (k(0) + t2 * (k(1) + t2 * (k(2) + t2 * k(3))));
         const double theta_d = theta * poly;
-        // d theta_d / d theta = 1 + 3 k1 t^2 + 5 k2 t^4 + 7 k3 t^6 + 9 k4 t^8; dtheta/dr = 1/(1+r^2).
+        // d theta_d / d theta = 1 + 3 k1 t^2 + 5 k2 t^4 + 7 k3 t^6 + 9 k4 t^8; dtheta/dr =
+        // 1/(1+r^2).
         const double dpoly =
             1.0 + t2 * (3.0 * k(0) + t2 * (5.0 * k(1) + t2 * (7.0 * k(2) + t2 * 9.0 * k(3))));
         const double dtheta_d_dr = dpoly / (1.0 + r2);
@@ -186,8 +186,8 @@ bool PinholeCamera::Unproject(const Eigen::Vector2d& uv,
       double theta = theta_d;
       for (int i = 0; i < kMaxUnprojectIterations; ++i) {
         const double t2 = theta * theta;
-        const double f = theta * (1.0 + t2 * (k(0) + t2 * (k(1) + t2 * (k(2) + t2 * k(3))))) -
-                         theta_d;
+        const double f =
+            theta * (1.0 + t2 * (k(0) + t2 * (k(1) + t2 * (k(2) + t2 * k(3))))) - theta_d;
         const double df =
             1.0 + t2 * (3.0 * k(0) + t2 * (5.0 * k(1) + t2 * (7.0 * k(2) + t2 * 9.0 * k(3))));
         if (!(df > 0.0)) return false;
@@ -214,8 +214,7 @@ bool PinholeCamera::Unproject(const Eigen::Vector2d& uv,
   Eigen::Vector2d d;
   Eigen::Matrix2d J_d_xy;
   Eigen::Matrix<double, 2, 4> J_d_k;
-  internal::DistortWithJacobians(
-      distortion, distortion_coeffs, p.x(), p.y(), &d, &J_d_xy, &J_d_k);
+  internal::DistortWithJacobians(distortion, distortion_coeffs, p.x(), p.y(), &d, &J_d_xy, &J_d_k);
   if (!((d - target).lpNorm<Eigen::Infinity>() < kUnprojectAcceptance)) return false;
   if (!(J_d_xy.determinant() > 0.0)) return false;
   if (ray != nullptr) *ray = Eigen::Vector3d(p.x(), p.y(), 1.0);

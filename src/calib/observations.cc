@@ -7,11 +7,10 @@
 namespace splinecal {
 
 void SortObservations(std::vector<Observation>* observations) {
-  std::stable_sort(observations->begin(), observations->end(),
-                   [](const Observation& a, const Observation& b) {
-                     return std::tie(a.t_ns, a.cam_id, a.point_id) <
-                            std::tie(b.t_ns, b.cam_id, b.point_id);
-                   });
+  std::stable_sort(
+      observations->begin(), observations->end(), [](const Observation& a, const Observation& b) {
+        return std::tie(a.t_ns, a.cam_id, a.point_id) < std::tie(b.t_ns, b.cam_id, b.point_id);
+      });
 }
 
 std::vector<ObservationFrame> GroupIntoFrames(std::vector<Observation> observations) {

@@ -1,10 +1,9 @@
 #include "splinecal/calib/pnp.h"
 
-#include <cmath>
-#include <vector>
-
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
+#include <cmath>
+#include <vector>
 
 namespace splinecal {
 
@@ -128,8 +127,11 @@ bool GeneralPose(const std::vector<Eigen::Vector3d>& p_t,
 }
 
 // Sum of squared pixel errors; false when a point does not project.
-bool Errors(const PinholeCamera& camera, const SE3d& T_c_t, const std::vector<Eigen::Vector3d>& p_t,
-            const std::vector<Eigen::Vector2d>& uv, double* cost) {
+bool Errors(const PinholeCamera& camera,
+            const SE3d& T_c_t,
+            const std::vector<Eigen::Vector3d>& p_t,
+            const std::vector<Eigen::Vector2d>& uv,
+            double* cost) {
   *cost = 0.0;
   for (size_t i = 0; i < p_t.size(); ++i) {
     Eigen::Vector2d pred;
@@ -151,8 +153,8 @@ PnpResult SolvePnp(const PinholeCamera& camera,
   for (const auto& p : p_t) planar = planar && p.z() == 0.0;
   const int needed = std::max(options.min_points, planar ? 4 : 6);
   if (n != static_cast<int>(uv.size()) || n < needed) {
-    result.message = "too few points (" + std::to_string(n) + ", need " + std::to_string(needed) +
-                     ")";
+    result.message =
+        "too few points (" + std::to_string(n) + ", need " + std::to_string(needed) + ")";
     return result;
   }
   std::vector<Eigen::Vector2d> m(n);
@@ -165,7 +167,8 @@ PnpResult SolvePnp(const PinholeCamera& camera,
     m[i] = ray.head<2>();
   }
   SE3d T;
-  if (!(planar ? PlanarPose(p_t, m, &T, &result.message) : GeneralPose(p_t, m, &T, &result.message))) {
+  if (!(planar ? PlanarPose(p_t, m, &T, &result.message)
+               : GeneralPose(p_t, m, &T, &result.message))) {
     return result;
   }
   // Levenberg-Marquardt on the pixel errors, right perturbation of T_c_t.
@@ -198,8 +201,7 @@ PnpResult SolvePnp(const PinholeCamera& camera,
       double candidate_cost = 0.0;
       if (step.allFinite() && Errors(camera, candidate, p_t, uv, &candidate_cost) &&
           candidate_cost < cost) {
-        const bool converged = cost - candidate_cost < 1e-12 * cost + 1e-20 ||
-                               step.norm() < 1e-12;
+        const bool converged = cost - candidate_cost < 1e-12 * cost + 1e-20 || step.norm() < 1e-12;
         T = candidate;
         cost = candidate_cost;
         lambda = std::max(lambda * 0.3, 1e-12);

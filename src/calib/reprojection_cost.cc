@@ -1,13 +1,13 @@
 #include "splinecal/calib/reprojection_cost.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
-
-#include <glog/logging.h>
 
 #include "splinecal/calib/pose_block_jacobian.h"
 #include "splinecal/lie/se3_manifold.h"
@@ -30,7 +30,9 @@ bool SegmentIndexAt(const SplineLayout& layout, double t_s, int* index, double* 
   return true;
 }
 
-bool WindowCovering(const SplineLayout& layout, double t_lo_s, double t_hi_s,
+bool WindowCovering(const SplineLayout& layout,
+                    double t_lo_s,
+                    double t_hi_s,
                     ControlPoseWindow* window) {
   int i_lo = 0;
   int i_hi = 0;
@@ -48,8 +50,8 @@ namespace internal {
 
 BodyState EvaluateBodyState(const SegmentKnots<double>& knots, const Segment<double>& segment) {
   BodyState state;
-  EvaluateSegmentBody(knots, segment, &state.T_w_s, nullptr, &state.w_s, nullptr, &state.v_s,
-                      nullptr);
+  EvaluateSegmentBody(
+      knots, segment, &state.T_w_s, nullptr, &state.w_s, nullptr, &state.v_s, nullptr);
   return state;
 }
 
@@ -135,8 +137,8 @@ class WindowKnots {
     }
     const int cache = first - pose_indices_.front();
     if (!ready_[cache]) {
-      views_[cache] = internal::SegmentKnotsFor(settings_.shared, first, parameters_ + slot,
-                                                with_jacobians_, &local_[cache]);
+      views_[cache] = internal::SegmentKnotsFor(
+          settings_.shared, first, parameters_ + slot, with_jacobians_, &local_[cache]);
       ready_[cache] = true;
     }
     return &views_[cache];
@@ -162,7 +164,9 @@ struct ExposureState {
 };
 
 // Evaluates the body state at t_s (seconds since t0, IMU clock) from the window.
-bool StateAt(const ReprojectionSettings& settings, WindowKnots* knots, double t_s,
+bool StateAt(const ReprojectionSettings& settings,
+             WindowKnots* knots,
+             double t_s,
              ExposureState* state) {
   int index = 0;
   double u = 0.0;
@@ -197,8 +201,8 @@ bool SolveAndProject(const ReprojectionSettings& settings,
     *v_dot = projection->uv_dot.y();
     return true;
   };
-  return SolveExposureTime(row_at, line_delay_s, camera.height, tau0_s, solution,
-                           settings.exposure);
+  return SolveExposureTime(
+      row_at, line_delay_s, camera.height, tau0_s, solution, settings.exposure);
 }
 
 // Zeroes every requested Jacobian block of a cost function.
@@ -281,8 +285,17 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
     internal::ExposureState state;
     internal::PointProjection projection;
     const double tau0 = line_delay * corner.uv.y();
-    if (!internal::SolveAndProject(settings_, &knots, T_c_s, t_frame_s_ + shift, line_delay, tau0,
-                                   x_w, 1.0, &solution, &state, &projection)) {
+    if (!internal::SolveAndProject(settings_,
+                                   &knots,
+                                   T_c_s,
+                                   t_frame_s_ + shift,
+                                   line_delay,
+                                   tau0,
+                                   x_w,
+                                   1.0,
+                                   &solution,
+                                   &state,
+                                   &projection)) {
       return false;
     }
     Eigen::Vector2d r = (projection.uv - corner.uv) * inv_sigma;
@@ -297,8 +310,7 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
     residuals[row] = r.x();
     residuals[row + 1] = r.y();
     internal::ProjectPoint(*settings_.camera, T_c_s, state.body, x_w, 1.0, true, &projection);
-    const Eigen::Matrix2d M =
-        RollingShutterCorrection(solution, line_delay, projection.uv_dot);
+    const Eigen::Matrix2d M = RollingShutterCorrection(solution, line_delay, projection.uv_dot);
     const Eigen::Matrix2d F = inv_sigma * S * M;  // applied to every partial at fixed tau
     // Control poses of the exposure segment.
     ControlPoseJacobian<6> J_pose;
@@ -364,8 +376,8 @@ bool LandmarkCostFunction::Evaluate(double const* const* parameters,
   if (!(line_delay >= 0.0) || !std::isfinite(shift) || !std::isfinite(rho)) return false;
   internal::WindowKnots knots(settings_, pose_indices_, parameters, jacobians != nullptr);
   // Reference: explicit exposure time (its row is observed).
-  const double t_r = observation_.t_reference_frame_s + shift +
-                     line_delay * observation_.reference_row;
+  const double t_r =
+      observation_.t_reference_frame_s + shift + line_delay * observation_.reference_row;
   internal::ExposureState reference;
   if (!internal::StateAt(settings_, &knots, t_r, &reference)) return false;
   const SE3d T_s_c = T_c_s.inverse();
@@ -377,9 +389,17 @@ bool LandmarkCostFunction::Evaluate(double const* const* parameters,
   ExposureSolution solution;
   internal::ExposureState state;
   internal::PointProjection projection;
-  if (!internal::SolveAndProject(settings_, &knots, T_c_s, observation_.t_frame_s + shift,
-                                 line_delay, line_delay * observation_.uv.y(), x_w, rho,
-                                 &solution, &state, &projection)) {
+  if (!internal::SolveAndProject(settings_,
+                                 &knots,
+                                 T_c_s,
+                                 observation_.t_frame_s + shift,
+                                 line_delay,
+                                 line_delay * observation_.uv.y(),
+                                 x_w,
+                                 rho,
+                                 &solution,
+                                 &state,
+                                 &projection)) {
     return false;
   }
   const double inv_sigma = 1.0 / settings_.sigma_px;

@@ -30,8 +30,8 @@ struct PointView {
     const Segment<double> segment = spline->SegmentAt(t);
     const internal::BodyState state = internal::EvaluateBodyState(spline->Knots(segment), segment);
     internal::PointProjection projection;
-    if (!internal::ProjectPoint(camera->camera, camera->T_cam_imu, state, p_w, 1.0, false,
-                                &projection)) {
+    if (!internal::ProjectPoint(
+            camera->camera, camera->T_cam_imu, state, p_w, 1.0, false, &projection)) {
       return false;
     }
     *v = projection.uv.y();
@@ -41,13 +41,19 @@ struct PointView {
 };
 
 // Checks of the file comment at the solved exposure time; the noise-free pixel on success.
-bool Observe(const PointView& view, const CameraSimulationOptions& options, bool target_point,
-             const Eigen::Vector3d& p_t, Eigen::Vector2d* uv) {
+bool Observe(const PointView& view,
+             const CameraSimulationOptions& options,
+             bool target_point,
+             const Eigen::Vector3d& p_t,
+             Eigen::Vector2d* uv) {
   const CameraCalibration& cam = *view.camera;
   ExposureSolution solution;
   auto row = [&](double tau, double* v, double* v_dot) { return view.Row(tau, v, v_dot); };
-  if (!SolveExposureTime(row, cam.line_delay_s, cam.camera.height,
-                         0.5 * cam.line_delay_s * cam.camera.height, &solution)) {
+  if (!SolveExposureTime(row,
+                         cam.line_delay_s,
+                         cam.camera.height,
+                         0.5 * cam.line_delay_s * cam.camera.height,
+                         &solution)) {
     return false;
   }
   if (solution.at_lower_bound || solution.at_upper_bound) return false;  // row outside image
@@ -103,13 +109,14 @@ CameraSimulationResult SimulateCameras(const SE3Splined& spline,
       Eigen::Vector3d ray;
       Eigen::Vector2d uv;
       for (int attempt = 0; attempt < 100; ++attempt) {
-        uv = Eigen::Vector2d(uniform() * (cam.camera.width - 1), uniform() * (cam.camera.height - 1));
+        uv = Eigen::Vector2d(uniform() * (cam.camera.width - 1),
+                             uniform() * (cam.camera.height - 1));
         if (cam.camera.Unproject(uv, &ray)) break;
       }
-      const double t = spline.start_time() +
-                       uniform() * (spline.end_time() - spline.start_time());
-      const double depth = options.landmark_min_depth_m +
-                           uniform() * (options.landmark_max_depth_m - options.landmark_min_depth_m);
+      const double t = spline.start_time() + uniform() * (spline.end_time() - spline.start_time());
+      const double depth =
+          options.landmark_min_depth_m +
+          uniform() * (options.landmark_max_depth_m - options.landmark_min_depth_m);
       const SE3d T_w_c = spline.Pose(t) * cam.T_cam_imu.inverse();
       result.landmarks_w[kLandmarkIdBase + k] = T_w_c * (ray.normalized() * depth);
     }
@@ -123,8 +130,8 @@ CameraSimulationResult SimulateCameras(const SE3Splined& spline,
     const int64_t first_ns = start_ns - shift_ns;  // camera clock
     for (int64_t k = 0;; ++k) {
       const int64_t t_cam_ns =
-          first_ns + static_cast<int64_t>(std::llround(static_cast<double>(k) * 1e9 /
-                                                       options.camera_rate_hz));
+          first_ns +
+          static_cast<int64_t>(std::llround(static_cast<double>(k) * 1e9 / options.camera_rate_hz));
       if (t_cam_ns + shift_ns + readout_ns + 1 > end_ns) break;
       if (k > 0 && period_ns <= 0) break;
       ++result.num_frames;
@@ -210,12 +217,12 @@ SE3d CalibrationCameraPose(double t_s, const Eigen::Vector3d& target_centre_w, u
   auto wave = [&](int i, double amplitude, double period_s) {
     return amplitude * std::sin(2.0 * kPi * t_s / (period_s * scale[i]) + phase[i]);
   };
-  const Eigen::Vector3d p = target_centre_w +
-                            Eigen::Vector3d(wave(0, 0.30, 5.1) + wave(1, 0.06, 1.3),
-                                            wave(2, 0.22, 4.3) + wave(3, 0.05, 1.1),
-                                            1.0 + wave(4, 0.15, 3.7));
-  const Eigen::Vector3d look = target_centre_w + Eigen::Vector3d(wave(5, 0.15, 1.7),
-                                                                 wave(6, 0.12, 2.3), 0.0);
+  const Eigen::Vector3d p =
+      target_centre_w + Eigen::Vector3d(wave(0, 0.30, 5.1) + wave(1, 0.06, 1.3),
+                                        wave(2, 0.22, 4.3) + wave(3, 0.05, 1.1),
+                                        1.0 + wave(4, 0.15, 3.7));
+  const Eigen::Vector3d look =
+      target_centre_w + Eigen::Vector3d(wave(5, 0.15, 1.7), wave(6, 0.12, 2.3), 0.0);
   const Eigen::Vector3d z = (look - p).normalized();
   const Eigen::Vector3d x0 = (Eigen::Vector3d::UnitX() - z.x() * z).normalized();
   const Eigen::Vector3d y0 = z.cross(x0);
@@ -261,12 +268,19 @@ CalibrationSequence SimulateCalibrationSequence(const Camchain& camchain,
   const Eigen::Vector3d centre = options.camera.has_target
                                      ? TargetCentre(options.camera.target, options.camera.T_w_t)
                                      : Eigen::Vector3d::Zero();
-  const PoseFitResult fit = FitCalibrationTrajectory(
-      centre, camchain[0].T_cam_imu, options.start_ns, end_ns,
-      std::llround(options.knot_spacing_s * 1e9), options.trajectory_seed);
+  const PoseFitResult fit = FitCalibrationTrajectory(centre,
+                                                     camchain[0].T_cam_imu,
+                                                     options.start_ns,
+                                                     end_ns,
+                                                     std::llround(options.knot_spacing_s * 1e9),
+                                                     options.trajectory_seed);
   CalibrationSequence sequence;
   sequence.spline = fit.MakeSpline();
-  SimulateImu(sequence.spline, options.start_ns, end_ns, options.imu, &sequence.imu,
+  SimulateImu(sequence.spline,
+              options.start_ns,
+              end_ns,
+              options.imu,
+              &sequence.imu,
               &sequence.ground_truth);
   sequence.cameras =
       SimulateCameras(sequence.spline, camchain, options.start_ns, end_ns, options.camera);

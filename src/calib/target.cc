@@ -14,7 +14,9 @@ bool CalibrationTarget::IsPlanar() const {
   return true;
 }
 
-CalibrationTarget MakeAprilGrid(int tag_cols, int tag_rows, double tag_size_m,
+CalibrationTarget MakeAprilGrid(int tag_cols,
+                                int tag_rows,
+                                double tag_size_m,
                                 double tag_spacing_ratio) {
   if (tag_cols < 1 || tag_rows < 1) {
     throw Error("aprilgrid: tagCols and tagRows must be >= 1, got " + std::to_string(tag_cols) +
@@ -40,8 +42,7 @@ CalibrationTarget MakeAprilGrid(int tag_cols, int tag_rows, double tag_size_m,
   return target;
 }
 
-CalibrationTarget MakeCheckerboard(int cols, int rows, double col_spacing_m,
-                                   double row_spacing_m) {
+CalibrationTarget MakeCheckerboard(int cols, int rows, double col_spacing_m, double row_spacing_m) {
   if (cols < 2 || rows < 2) {
     throw Error("checkerboard: targetCols and targetRows must be >= 2, got " +
                 std::to_string(cols) + " x " + std::to_string(rows));

@@ -64,11 +64,20 @@ std::string HtmlEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -94,10 +103,11 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
 
 std::string ResultYaml(const CalibrationResult& r, const CalibrateOptions& options) {
   YamlWriter yaml;
-  yaml.Comment("splinecal calibrate: cam0's estimates at the top level (every camera under "
-               "cameras); T_cam_imu maps IMU points into the camera; t_imu = t_cam + "
-               "timeshift_cam_imu; row r is exposed at t_frame + r * line_delay; stds in the "
-               "right tangent of T_cam_imu (rotation, IMU frame) and of t_cam_imu (camera frame)");
+  yaml.Comment(
+      "splinecal calibrate: cam0's estimates at the top level (every camera under "
+      "cameras); T_cam_imu maps IMU points into the camera; t_imu = t_cam + "
+      "timeshift_cam_imu; row r is exposed at t_frame + r * line_delay; stds in the "
+      "right tangent of T_cam_imu (rotation, IMU frame) and of t_cam_imu (camera frame)");
   WriteCameraYaml(r.cameras[0], &yaml);
   yaml.Vector("gyro_bias", r.gyro_bias);
   yaml.Vector("gyro_bias_std", r.gyro_bias_std);
@@ -265,9 +275,8 @@ std::string ReportHtml(const CalibrationResult& r, const std::string& title) {
   }
   html << "<tr><th>gyro bias [rad/s]</th><td colspan=2>" << Fmt("%.3e", r.gyro_bias.x()) << ", "
        << Fmt("%.3e", r.gyro_bias.y()) << ", " << Fmt("%.3e", r.gyro_bias.z()) << "</td></tr>\n";
-  html << "<tr><th>accel bias [m/s^2]</th><td colspan=2>" << Fmt("%.3e", r.accel_bias.x())
-       << ", " << Fmt("%.3e", r.accel_bias.y()) << ", " << Fmt("%.3e", r.accel_bias.z())
-       << "</td></tr>\n";
+  html << "<tr><th>accel bias [m/s^2]</th><td colspan=2>" << Fmt("%.3e", r.accel_bias.x()) << ", "
+       << Fmt("%.3e", r.accel_bias.y()) << ", " << Fmt("%.3e", r.accel_bias.z()) << "</td></tr>\n";
   html << "<tr><th>IMU residual RMS</th><td colspan=2>gyro " << Fmt("%.3e", r.gyro_rms)
        << " rad/s, accel " << Fmt("%.3e", r.accel_rms) << " m/s^2</td></tr>\n";
   html << "<tr><th>pixel sigma [px]</th><td colspan=2>" << Fmt("%.3f", r.pixel_sigma_px)
@@ -308,7 +317,8 @@ int RunCalibrate() {
 
   const Camchain camchain = ReadCamchainYaml(camchain_path);
   std::unique_ptr<CalibrationTarget> target;
-  if (!FLAGS_target.empty()) target = std::make_unique<CalibrationTarget>(ReadTargetYaml(FLAGS_target));
+  if (!FLAGS_target.empty())
+    target = std::make_unique<CalibrationTarget>(ReadTargetYaml(FLAGS_target));
   const std::vector<Observation> observations = ReadObservationsCsv(observations_path);
   const std::vector<ImuSample> imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
   OutputDir output(out_dir);
@@ -318,8 +328,7 @@ int RunCalibrate() {
   Progress("calibrate: " + std::to_string(observations.size()) + " observations, " +
            std::to_string(imu.size()) + " IMU samples, " + std::to_string(camchain.size()) +
            " camera(s)");
-  const CalibrationResult result =
-      Calibrate(imu, observations, camchain, target.get(), options);
+  const CalibrationResult result = Calibrate(imu, observations, camchain, target.get(), options);
 
   output.WriteFile("camchain-imucam.yaml", CamchainYamlText(result.camchain));
   output.WriteFile("result.yaml", ResultYaml(result, options));
@@ -338,19 +347,29 @@ int RunCalibrate() {
       std::printf("  [%12.9f %12.9f %12.9f %12.9f]\n", T(row, 0), T(row, 1), T(row, 2), T(row, 3));
     }
     std::printf("  rotation std [%.4f %.4f %.4f] deg, translation std [%.2f %.2f %.2f] mm\n",
-                e.rotation_std_deg.x(), e.rotation_std_deg.y(), e.rotation_std_deg.z(),
-                1e3 * e.translation_std_m.x(), 1e3 * e.translation_std_m.y(),
+                e.rotation_std_deg.x(),
+                e.rotation_std_deg.y(),
+                e.rotation_std_deg.z(),
+                1e3 * e.translation_std_m.x(),
+                1e3 * e.translation_std_m.y(),
                 1e3 * e.translation_std_m.z());
     std::printf("  timeshift_cam_imu %.6f ms (std %.4f ms)%s\n",
-                1e3 * e.calibration.timeshift_cam_imu_s, 1e3 * e.timeshift_std_s,
+                1e3 * e.calibration.timeshift_cam_imu_s,
+                1e3 * e.timeshift_std_s,
                 e.timeshift_estimated ? "" : " (fixed)");
-    std::printf("  line_delay %.4f us/row (std %.4f us)%s\n", 1e6 * e.calibration.line_delay_s,
-                1e6 * e.line_delay_std_s, e.line_delay_estimated ? "" : " (fixed)");
+    std::printf("  line_delay %.4f us/row (std %.4f us)%s\n",
+                1e6 * e.calibration.line_delay_s,
+                1e6 * e.line_delay_std_s,
+                e.line_delay_estimated ? "" : " (fixed)");
     std::printf("  reprojection RMS %.3f px over %d points in %d frames\n",
-                e.reprojection_rms_px, e.num_observations, e.num_frames);
+                e.reprojection_rms_px,
+                e.num_observations,
+                e.num_frames);
   }
   std::printf("gyro RMS %.3e rad/s, accel RMS %.3e m/s^2, pixel sigma %.3f px%s\n",
-              result.gyro_rms, result.accel_rms, result.pixel_sigma_px,
+              result.gyro_rms,
+              result.accel_rms,
+              result.pixel_sigma_px,
               result.pixel_sigma_estimated ? " (estimated)" : "");
   for (const std::string& w : result.warnings) std::printf("warning: %s\n", w.c_str());
   std::printf("wrote %s/camchain-imucam.yaml, result.yaml, report.html\n", out_dir.c_str());
@@ -377,12 +396,15 @@ Command CalibrateCommand() {
           "warnings, report.html, spline.csv and reprojection_errors.csv. See docs/calibrate.md.",
           {{"imu", ""},
            {"observations", ""},
-           {"camchain", "Camera rig, Kalibr camchain.yaml: intrinsics, distortion, resolution; "
-                        "T_cam_imu, timeshift_cam_imu, line_delay as the starting point [path]"},
-           {"target", "Calibration target: Kalibr aprilgrid/checkerboard YAML or target_type: "
-                      "points [path]; point ids not in it are natural landmarks"},
-           {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; weights the IMU residuals "
-                        "(default: ADIS16448)"},
+           {"camchain",
+            "Camera rig, Kalibr camchain.yaml: intrinsics, distortion, resolution; "
+            "T_cam_imu, timeshift_cam_imu, line_delay as the starting point [path]"},
+           {"target",
+            "Calibration target: Kalibr aprilgrid/checkerboard YAML or target_type: "
+            "points [path]; point ids not in it are natural landmarks"},
+           {"imu_yaml",
+            "IMU noise densities, Kalibr imu.yaml [path]; weights the IMU residuals "
+            "(default: ADIS16448)"},
            {"rolling_shutter", ""},
            {"no_time_offset", ""},
            {"knot_spacing", "Spline knot spacing [s]; 0 = 0.05 s"},

@@ -1,10 +1,9 @@
 #include "splinecal/io/camchain_yaml.h"
 
+#include <Eigen/Core>
 #include <cmath>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/error.h"
 #include "splinecal/io/yaml_document.h"
@@ -25,9 +24,10 @@ DistortionModel ParseDistortionModel(const YamlDocument& yaml, const std::string
   if (name == "radtan") return DistortionModel::kRadTan;
   if (name == "equidistant") return DistortionModel::kEquidistant;
   if (name == "none") return DistortionModel::kNone;
-  throw Error(yaml.path(), 0,
-              key + ": unsupported distortion model '" + name +
-                  "' (supported: radtan, equidistant, none)");
+  throw Error(
+      yaml.path(),
+      0,
+      key + ": unsupported distortion model '" + name + "' (supported: radtan, equidistant, none)");
 }
 
 SE3d ParseRigidTransform(const YamlDocument& yaml, const std::string& key) {
@@ -40,15 +40,17 @@ SE3d ParseRigidTransform(const YamlDocument& yaml, const std::string& key) {
     for (int c = 0; c < 4; ++c) T(r, c) = rows[r][c];
   }
   const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-  const double bottom = std::abs(T(3, 0)) + std::abs(T(3, 1)) + std::abs(T(3, 2)) +
-                        std::abs(T(3, 3) - 1.0);
+  const double bottom =
+      std::abs(T(3, 0)) + std::abs(T(3, 1)) + std::abs(T(3, 2)) + std::abs(T(3, 3) - 1.0);
   if (bottom > kMaxOrthonormalityError ||
       (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() >
           kMaxOrthonormalityError ||
       R.determinant() < 0.0) {
-    throw Error(yaml.path(), 0,
-                key + ": not a rigid transform (the rotation block must be orthonormal with "
-                      "determinant +1 and the last row 0 0 0 1)");
+    throw Error(yaml.path(),
+                0,
+                key +
+                    ": not a rigid transform (the rotation block must be orthonormal with "
+                    "determinant +1 and the last row 0 0 0 1)");
   }
   return SE3d(SO3d::FromMatrix(R), T.topRightCorner<3, 1>());
 }
@@ -58,13 +60,15 @@ CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
   PinholeCamera& camera = calibration.camera;
   const std::string model = yaml.String(cam + "/camera_model");
   if (model != "pinhole") {
-    throw Error(yaml.path(), 0,
+    throw Error(yaml.path(),
+                0,
                 cam + "/camera_model: unsupported camera model '" + model +
                     "' (supported: pinhole with radtan, equidistant or none)");
   }
   const std::vector<double> intrinsics = yaml.Numbers(cam + "/intrinsics");
   if (intrinsics.size() != 4) {
-    throw Error(yaml.path(), 0,
+    throw Error(yaml.path(),
+                0,
                 cam + "/intrinsics: expected 4 numbers [fu, fv, pu, pv], got " +
                     std::to_string(intrinsics.size()));
   }
@@ -82,10 +86,11 @@ CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
   if (yaml.Has(cam + "/distortion_coeffs")) coeffs = yaml.Numbers(cam + "/distortion_coeffs");
   const size_t expected = camera.distortion == DistortionModel::kNone ? 0 : 4;
   // `none` with four zeros is what some tools write: accept zeros.
-  const bool zeros_for_none = camera.distortion == DistortionModel::kNone &&
-                              coeffs.size() == 4 && coeffs == std::vector<double>(4, 0.0);
+  const bool zeros_for_none = camera.distortion == DistortionModel::kNone && coeffs.size() == 4 &&
+                              coeffs == std::vector<double>(4, 0.0);
   if (coeffs.size() != expected && !zeros_for_none) {
-    throw Error(yaml.path(), 0,
+    throw Error(yaml.path(),
+                0,
                 cam + "/distortion_coeffs: the " + DistortionModelName(camera.distortion) +
                     " model takes " + std::to_string(expected) + " coefficients, got " +
                     std::to_string(coeffs.size()));
@@ -95,7 +100,8 @@ CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
   if (resolution.size() != 2 || !(resolution[0] >= 1.0) || !(resolution[1] >= 1.0) ||
       resolution[0] != std::floor(resolution[0]) || resolution[1] != std::floor(resolution[1]) ||
       resolution[0] > kMaxResolution || resolution[1] > kMaxResolution) {
-    throw Error(yaml.path(), 0,
+    throw Error(yaml.path(),
+                0,
                 cam + "/resolution: expected two positive integers [width, height] in pixels");
   }
   camera.width = static_cast<int>(resolution[0]);
@@ -131,8 +137,7 @@ Camchain ReadCamchainYaml(const std::string& path) {
     if (key.rfind("cam", 0) == 0 && key.size() > 3 &&
         key.find_first_not_of("0123456789", 3) == std::string::npos &&
         std::stoll(key.substr(3)) >= static_cast<long long>(camchain.size())) {
-      throw Error(path, 0,
-                  "'" + key + "': cameras must be numbered cam0, cam1, ... without gaps");
+      throw Error(path, 0, "'" + key + "': cameras must be numbered cam0, cam1, ... without gaps");
     }
   }
   return camchain;

@@ -48,7 +48,8 @@ std::vector<Observation> ReadObservationsCsv(const std::string& path) {
     observations.push_back(o);
     lines.push_back(reader.line_number());
   }
-  if (observations.empty()) throw Error(path, 0, "no observations (expected t_ns,cam_id,point_id,u,v rows)");
+  if (observations.empty())
+    throw Error(path, 0, "no observations (expected t_ns,cam_id,point_id,u,v rows)");
   // Sort by (t, cam, point), keeping line numbers, then refuse duplicates naming both lines.
   std::vector<size_t> order(observations.size());
   std::iota(order.begin(), order.end(), 0);
@@ -66,7 +67,8 @@ std::vector<Observation> ReadObservationsCsv(const std::string& path) {
       if (prev.t_ns == o.t_ns && prev.cam_id == o.cam_id && prev.point_id == o.point_id) {
         const int64_t first = std::min(lines[order[k - 1]], lines[order[k]]);
         const int64_t second = std::max(lines[order[k - 1]], lines[order[k]]);
-        throw Error(path, second,
+        throw Error(path,
+                    second,
                     "point " + std::to_string(o.point_id) + " of camera " +
                         std::to_string(o.cam_id) + " appears twice in frame " +
                         std::to_string(o.t_ns) + " (also on line " + std::to_string(first) + ")");

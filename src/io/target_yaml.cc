@@ -21,7 +21,8 @@ constexpr double kMaxPointId = 9007199254740992.0;
 int GridCount(const YamlDocument& yaml, const std::string& key) {
   const int64_t n = yaml.Integer(key);
   if (n < 1 || n > kMaxGridSide) {
-    throw Error(yaml.path(), 0,
+    throw Error(yaml.path(),
+                0,
                 "'" + key + "' must be an integer in [1, " + std::to_string(kMaxGridSide) + "]");
   }
   return static_cast<int>(n);
@@ -36,11 +37,14 @@ CalibrationTarget ReadTargetYaml(const std::string& path) {
     if (type == "aprilgrid") {
       const double spacing = yaml.Number("tagSpacing");
       if (spacing < 0.0) throw Error(path, 0, "'tagSpacing' must be >= 0 (a ratio of tagSize)");
-      return MakeAprilGrid(GridCount(yaml, "tagCols"), GridCount(yaml, "tagRows"),
-                           yaml.PositiveNumber("tagSize"), spacing);
+      return MakeAprilGrid(GridCount(yaml, "tagCols"),
+                           GridCount(yaml, "tagRows"),
+                           yaml.PositiveNumber("tagSize"),
+                           spacing);
     }
     if (type == "checkerboard") {
-      return MakeCheckerboard(GridCount(yaml, "targetCols"), GridCount(yaml, "targetRows"),
+      return MakeCheckerboard(GridCount(yaml, "targetCols"),
+                              GridCount(yaml, "targetRows"),
                               yaml.PositiveNumber("colSpacingMeters"),
                               yaml.PositiveNumber("rowSpacingMeters"));
     }
@@ -49,9 +53,10 @@ CalibrationTarget ReadTargetYaml(const std::string& path) {
     throw Error(path, 0, e.message());
   }
   if (type != "points") {
-    throw Error(path, 0,
-                "unsupported target_type '" + type +
-                    "' (supported: aprilgrid, checkerboard, points)");
+    throw Error(
+        path,
+        0,
+        "unsupported target_type '" + type + "' (supported: aprilgrid, checkerboard, points)");
   }
   CalibrationTarget target;
   target.type = "points";
@@ -60,8 +65,10 @@ CalibrationTarget ReadTargetYaml(const std::string& path) {
     const std::vector<double>& row = rows[i];
     const std::string where = "points[" + std::to_string(i) + "]";
     if (row.size() != 4) {
-      throw Error(path, 0, where + ": expected [id, x, y, z], got " + std::to_string(row.size()) +
-                               " numbers");
+      throw Error(
+          path,
+          0,
+          where + ": expected [id, x, y, z], got " + std::to_string(row.size()) + " numbers");
     }
     if (row[0] < 0.0 || row[0] != std::floor(row[0]) || row[0] > kMaxPointId) {
       throw Error(path, 0, where + ": the id must be an integer >= 0");
@@ -72,8 +79,10 @@ CalibrationTarget ReadTargetYaml(const std::string& path) {
     }
   }
   if (target.points.size() < 4) {
-    throw Error(path, 0, "a points target needs at least 4 points, got " +
-                             std::to_string(target.points.size()));
+    throw Error(
+        path,
+        0,
+        "a points target needs at least 4 points, got " + std::to_string(target.points.size()));
   }
   return target;
 }

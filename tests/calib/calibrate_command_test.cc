@@ -1,11 +1,11 @@
 // `splinecal calibrate` driven as a user runs it (tests/testing/run_tool.h). Skipped until the
 // command is registered in src/cli/commands.cc.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/io/camchain_yaml.h"
@@ -43,8 +43,20 @@ class CalibrateCommand : public ::testing::Test {
   }
 
   std::vector<std::string> Args(const std::string& out) {
-    return {"calibrate", "--imu", imu_, "--observations", observations_, "--camchain", camchain_,
-            "--target", target_, "--rolling-shutter", "--threads", "2", "--out", out};
+    return {"calibrate",
+            "--imu",
+            imu_,
+            "--observations",
+            observations_,
+            "--camchain",
+            camchain_,
+            "--target",
+            target_,
+            "--rolling-shutter",
+            "--threads",
+            "2",
+            "--out",
+            out};
   }
 
   testing::TempDir dir_;
@@ -61,10 +73,19 @@ TEST_F(CalibrateCommand, WritesKalibrCamchainResultAndReport) {
   ASSERT_EQ(estimated.size(), 1u);
   EXPECT_GT(estimated[0].line_delay_s, 2e-5);
   const std::string result = testing::ReadFileText(out + "/result.yaml");
-  for (const char* key : {"T_cam_imu:", "rotation_std_deg:", "translation_std_m:",
-                          "timeshift_cam_imu:", "timeshift_std_s:", "line_delay:",
-                          "line_delay_std:", "gyro_bias:", "accel_bias:", "reprojection_rms_px:",
-                          "gyro_rms:", "accel_rms:", "warnings:"}) {
+  for (const char* key : {"T_cam_imu:",
+                          "rotation_std_deg:",
+                          "translation_std_m:",
+                          "timeshift_cam_imu:",
+                          "timeshift_std_s:",
+                          "line_delay:",
+                          "line_delay_std:",
+                          "gyro_bias:",
+                          "accel_bias:",
+                          "reprojection_rms_px:",
+                          "gyro_rms:",
+                          "accel_rms:",
+                          "warnings:"}) {
     EXPECT_THAT(result, HasSubstr(key));
   }
   const std::string report = testing::ReadFileText(out + "/report.html");
@@ -101,8 +122,9 @@ TEST_F(CalibrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
   EXPECT_THAT(r.err, HasSubstr("missing.yaml"));
   // The target never seen.
   args = Args(out);
-  args[8] = dir_.Write("points.yaml", "target_type: points\npoints:\n  - [9000, 0, 0, 0]\n"
-                                      "  - [9001, 1, 0, 0]\n  - [9002, 0, 1, 0]\n  - [9003, 1, 1, 0]\n");
+  args[8] = dir_.Write("points.yaml",
+                       "target_type: points\npoints:\n  - [9000, 0, 0, 0]\n"
+                       "  - [9001, 1, 0, 0]\n  - [9002, 0, 1, 0]\n  - [9003, 1, 1, 0]\n");
   r = testing::RunTool(args);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("never seen"));

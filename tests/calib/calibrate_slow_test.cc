@@ -3,10 +3,10 @@
 // with the ADIS16448 noise, lively motion over the target. Plus the shutter-model comparison of
 // docs/calibrate.md: global-shutter data calibrated with --rolling-shutter, and rolling-shutter
 // data calibrated without it.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
-
-#include <gtest/gtest.h>
 
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/calib/calibrate.h"
@@ -30,8 +30,10 @@ struct Errors {
   double line_delay_s;
 };
 
-Errors CalibrateAndCompare(const testing::CalibrationScenario& s, bool rolling_shutter, const char* name,
-           CalibrationResult* result) {
+Errors CalibrateAndCompare(const testing::CalibrationScenario& s,
+                           bool rolling_shutter,
+                           const char* name,
+                           CalibrationResult* result) {
   CalibrateOptions options;
   options.rolling_shutter = rolling_shutter;
   options.num_threads = 2;
@@ -44,17 +46,31 @@ Errors CalibrateAndCompare(const testing::CalibrationScenario& s, bool rolling_s
   e.timeshift_s = est.timeshift_cam_imu_s - truth.timeshift_cam_imu_s;
   e.line_delay_s = est.line_delay_s - truth.line_delay_s;
   const CameraEstimate& c = result->cameras[0];
-  std::printf("%s: rotation error %.4f deg (std %.4f %.4f %.4f), translation error %.3f mm (std "
-              "%.3f %.3f %.3f), time offset error %.4f ms (std %.4f), line delay %.4f us/row "
-              "(truth %.4f, std %.4f), rms %.3f px, %d iterations, %d rounds, init %.1f s, solve "
-              "%.1f s, covariance %.1f s\n",
-              name, e.rotation_deg.norm(), c.rotation_std_deg.x(), c.rotation_std_deg.y(),
-              c.rotation_std_deg.z(), 1e3 * e.translation_m.norm(), 1e3 * c.translation_std_m.x(),
-              1e3 * c.translation_std_m.y(), 1e3 * c.translation_std_m.z(), 1e3 * e.timeshift_s,
-              1e3 * c.timeshift_std_s, 1e6 * est.line_delay_s, 1e6 * truth.line_delay_s,
-              1e6 * c.line_delay_std_s, result->reprojection_rms_px, result->iterations,
-              result->rounds, result->initialisation_time_s, result->solve_time_s,
-              result->covariance_time_s);
+  std::printf(
+      "%s: rotation error %.4f deg (std %.4f %.4f %.4f), translation error %.3f mm (std "
+      "%.3f %.3f %.3f), time offset error %.4f ms (std %.4f), line delay %.4f us/row "
+      "(truth %.4f, std %.4f), rms %.3f px, %d iterations, %d rounds, init %.1f s, solve "
+      "%.1f s, covariance %.1f s\n",
+      name,
+      e.rotation_deg.norm(),
+      c.rotation_std_deg.x(),
+      c.rotation_std_deg.y(),
+      c.rotation_std_deg.z(),
+      1e3 * e.translation_m.norm(),
+      1e3 * c.translation_std_m.x(),
+      1e3 * c.translation_std_m.y(),
+      1e3 * c.translation_std_m.z(),
+      1e3 * e.timeshift_s,
+      1e3 * c.timeshift_std_s,
+      1e6 * est.line_delay_s,
+      1e6 * truth.line_delay_s,
+      1e6 * c.line_delay_std_s,
+      result->reprojection_rms_px,
+      result->iterations,
+      result->rounds,
+      result->initialisation_time_s,
+      result->solve_time_s,
+      result->covariance_time_s);
   return e;
 }
 
@@ -86,7 +102,8 @@ TEST(CalibrateSlow, GlobalShutterDataGivesALineDelayConsistentWithZero) {
   o.line_delay_s = 0.0;
   const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
   CalibrationResult r;
-  const Errors e = CalibrateAndCompare(s, true, "global-shutter data with --rolling-shutter, 30 s", &r);
+  const Errors e =
+      CalibrateAndCompare(s, true, "global-shutter data with --rolling-shutter, 30 s", &r);
   const CameraEstimate& c = r.cameras[0];
   // The line delay is bounded below by 0, so its estimate is >= 0: consistent with 0 means
   // within 3 std of it, and far below any real rolling shutter (1% of 30 us/row).
@@ -105,7 +122,8 @@ TEST(CalibrateSlow, RollingShutterDataWithoutTheModelIsBiased) {
   o.duration_s = 30.0;
   const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
   CalibrationResult r;
-  const Errors e = CalibrateAndCompare(s, false, "rolling-shutter data without --rolling-shutter, 30 s", &r);
+  const Errors e =
+      CalibrateAndCompare(s, false, "rolling-shutter data without --rolling-shutter, 30 s", &r);
   // Measured (seed 1): time offset 7.4 ms off (the half readout is 7.2 ms), rotation 0.15 deg
   // (~20 std), translation 1.7 mm (~10 std), RMS 0.91 px against 0.71 px with the model.
   const CameraEstimate& c = r.cameras[0];

@@ -1,11 +1,11 @@
 #include "splinecal/calib/calibrate.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <random>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/error.h"
@@ -35,18 +35,35 @@ Errors ErrorsOf(const CameraCalibration& estimate, const CameraCalibration& trut
 
 void Print(const char* name, const CalibrationResult& r, const Errors& e) {
   const CameraEstimate& c = r.cameras[0];
-  std::printf("%s: rotation error [%.4f %.4f %.4f] deg (std %.4f %.4f %.4f), translation error "
-              "[%.2f %.2f %.2f] mm (std %.2f %.2f %.2f), time offset error %.4f ms (std %.4f), "
-              "line delay error %.3f%% (std %.3f us), rms %.3f px, sigma %.3f px, %d iterations, "
-              "%d rounds, init %.1f s, solve %.1f s, covariance %.1f s\n",
-              name, e.rotation_deg.x(), e.rotation_deg.y(), e.rotation_deg.z(),
-              c.rotation_std_deg.x(), c.rotation_std_deg.y(), c.rotation_std_deg.z(),
-              1e3 * e.translation_m.x(), 1e3 * e.translation_m.y(), 1e3 * e.translation_m.z(),
-              1e3 * c.translation_std_m.x(), 1e3 * c.translation_std_m.y(),
-              1e3 * c.translation_std_m.z(), 1e3 * e.timeshift_s, 1e3 * c.timeshift_std_s,
-              100.0 * e.line_delay_s / 3e-5, 1e6 * c.line_delay_std_s, r.reprojection_rms_px,
-              r.pixel_sigma_px, r.iterations, r.rounds, r.initialisation_time_s, r.solve_time_s,
-              r.covariance_time_s);
+  std::printf(
+      "%s: rotation error [%.4f %.4f %.4f] deg (std %.4f %.4f %.4f), translation error "
+      "[%.2f %.2f %.2f] mm (std %.2f %.2f %.2f), time offset error %.4f ms (std %.4f), "
+      "line delay error %.3f%% (std %.3f us), rms %.3f px, sigma %.3f px, %d iterations, "
+      "%d rounds, init %.1f s, solve %.1f s, covariance %.1f s\n",
+      name,
+      e.rotation_deg.x(),
+      e.rotation_deg.y(),
+      e.rotation_deg.z(),
+      c.rotation_std_deg.x(),
+      c.rotation_std_deg.y(),
+      c.rotation_std_deg.z(),
+      1e3 * e.translation_m.x(),
+      1e3 * e.translation_m.y(),
+      1e3 * e.translation_m.z(),
+      1e3 * c.translation_std_m.x(),
+      1e3 * c.translation_std_m.y(),
+      1e3 * c.translation_std_m.z(),
+      1e3 * e.timeshift_s,
+      1e3 * c.timeshift_std_s,
+      100.0 * e.line_delay_s / 3e-5,
+      1e6 * c.line_delay_std_s,
+      r.reprojection_rms_px,
+      r.pixel_sigma_px,
+      r.iterations,
+      r.rounds,
+      r.initialisation_time_s,
+      r.solve_time_s,
+      r.covariance_time_s);
   for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
 }
 
@@ -189,34 +206,39 @@ TEST_F(CalibrateRefuses, TooLittleRotation) {
   // The same data with the gyro rotating about z only.
   std::vector<ImuSample> imu = scenario_->imu;
   for (ImuSample& s : imu) s.gyro.head<2>() *= 1e-3;
-  ExpectError(imu, scenario_->observations, scenario_->start, &scenario_->target,
-              "too little rotation");
+  ExpectError(
+      imu, scenario_->observations, scenario_->start, &scenario_->target, "too little rotation");
 }
 
 TEST_F(CalibrateRefuses, ATargetNeverSeen) {
   CalibrationTarget other;
   other.type = "points";
   for (int i = 0; i < 10; ++i) other.points[5000 + i] = Eigen::Vector3d(0.1 * i, 0.0, 0.0);
-  ExpectError(scenario_->imu, scenario_->observations, scenario_->start, &other,
+  ExpectError(scenario_->imu,
+              scenario_->observations,
+              scenario_->start,
+              &other,
               "the target is never seen");
 }
 
 TEST_F(CalibrateRefuses, ObservationsOutsideTheImuTimeRange) {
   std::vector<Observation> obs = scenario_->observations;
   for (Observation& o : obs) o.t_ns += 1'000'000'000'000;  // 1000 s later
-  ExpectError(scenario_->imu, obs, scenario_->start, &scenario_->target,
-              "outside the IMU's time range");
+  ExpectError(
+      scenario_->imu, obs, scenario_->start, &scenario_->target, "outside the IMU's time range");
 }
 
 TEST_F(CalibrateRefuses, ACameraMissingFromTheCamchain) {
   std::vector<Observation> obs = scenario_->observations;
   obs[10].cam_id = 1;
-  ExpectError(scenario_->imu, obs, scenario_->start, &scenario_->target,
-              "observation of camera 1");
+  ExpectError(scenario_->imu, obs, scenario_->start, &scenario_->target, "observation of camera 1");
 }
 
 TEST_F(CalibrateRefuses, LandmarksWithoutAnInitialGuess) {
-  ExpectError(scenario_->imu, scenario_->observations, scenario_->start, nullptr,
+  ExpectError(scenario_->imu,
+              scenario_->observations,
+              scenario_->start,
+              nullptr,
               "needs an initial trajectory");
 }
 

@@ -17,8 +17,8 @@ namespace splinecal {
 namespace testing {
 
 struct CalibrationScenario {
-  Camchain truth;     // the rig that made the data
-  Camchain start;     // what the calibration is given (perturbed extrinsic, no offset/delay)
+  Camchain truth;  // the rig that made the data
+  Camchain start;  // what the calibration is given (perturbed extrinsic, no offset/delay)
   CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
   SE3Splined spline = SE3Splined(std::vector<SE3d>(4), 0, 1);
   Eigen::Vector3d gyro_bias = Eigen::Vector3d(0.002, -0.001, 0.0015);
@@ -44,15 +44,15 @@ inline CalibrationScenario MakeCalibrationScenario(const ScenarioOptions& o) {
   CalibrationScenario s;
   CameraCalibration cam;
   cam.camera = EurocCamera();
-  cam.T_cam_imu = SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)),
-                       Eigen::Vector3d(0.06, -0.02, 0.01));
+  cam.T_cam_imu =
+      SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)), Eigen::Vector3d(0.06, -0.02, 0.01));
   cam.timeshift_cam_imu_s = o.timeshift_s;
   cam.line_delay_s = o.line_delay_s;
   s.truth = {cam};
   CameraCalibration given = cam;
   // 3 degrees and 3 cm off, no time offset, global shutter.
-  given.T_cam_imu = cam.T_cam_imu * SE3d::Exp((Vector6d() << 0.02, -0.015, 0.01, 0.03, -0.035,
-                                               0.02).finished());
+  given.T_cam_imu =
+      cam.T_cam_imu * SE3d::Exp((Vector6d() << 0.02, -0.015, 0.01, 0.03, -0.035, 0.02).finished());
   given.timeshift_cam_imu_s = 0.0;
   given.line_delay_s = 0.0;
   s.start = {given};

@@ -1,9 +1,9 @@
 #include "splinecal/io/camchain_yaml.h"
 
-#include <string>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "splinecal/error.h"
 #include "testing/temp_dir.h"
@@ -73,8 +73,8 @@ TEST(ReadCamchainYaml, DefaultsWithoutImuKeys) {
 TEST(CamchainYamlText, RoundTripsExactly) {
   testing::TempDir dir;
   Camchain camchain = ReadCamchainYaml(dir.Write("in.yaml", kKalibrCamchain));
-  camchain[0].T_cam_imu = camchain[0].T_cam_imu * SE3d::Exp((Vector6d() << 0.01, -0.02, 0.03,
-                                                                0.1, 0.2, -0.3).finished());
+  camchain[0].T_cam_imu = camchain[0].T_cam_imu *
+                          SE3d::Exp((Vector6d() << 0.01, -0.02, 0.03, 0.1, 0.2, -0.3).finished());
   camchain[0].timeshift_cam_imu_s = -1.0 / 3.0;
   camchain[0].line_delay_s = 1.0 / 30000.0;
   const std::string text = CamchainYamlText(camchain);

@@ -1,10 +1,10 @@
 #include "splinecal/calib/camera_model.h"
 
-#include <cmath>
-#include <vector>
-
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
 
 #include "testing/numeric_diff.h"
 
@@ -53,15 +53,14 @@ PinholeCamera Undistorted() {
   return c;
 }
 
-std::vector<PinholeCamera> AllCameras() { return {Undistorted(), EurocRadTan(), TumViEquidistant()}; }
+std::vector<PinholeCamera> AllCameras() {
+  return {Undistorted(), EurocRadTan(), TumViEquidistant()};
+}
 
 // Points from the optical axis (exactly, and 1e-9 off it) to wide angles.
 std::vector<Eigen::Vector3d> TestPoints(const PinholeCamera& camera) {
-  std::vector<Eigen::Vector3d> points = {{0.0, 0.0, 2.0},
-                                         {1e-9, -2e-9, 1.0},
-                                         {0.1, -0.05, 1.5},
-                                         {-0.4, 0.3, 1.2},
-                                         {0.3, 0.25, 0.8}};
+  std::vector<Eigen::Vector3d> points = {
+      {0.0, 0.0, 2.0}, {1e-9, -2e-9, 1.0}, {0.1, -0.05, 1.5}, {-0.4, 0.3, 1.2}, {0.3, 0.25, 0.8}};
   if (camera.distortion == DistortionModel::kEquidistant) {
     points.push_back({1.5, -1.0, 0.7});  // ~68 degrees off the axis
   }
@@ -82,7 +81,8 @@ TEST(PinholeCamera, ProjectPointJacobianMatchesNumeric) {
             CHECK(camera.Project(q, &out));
             return out;
           },
-          p, options);
+          p,
+          options);
       EXPECT_LT((J - J_num).cwiseAbs().maxCoeff(), kJacobianTolerance)
           << DistortionModelName(camera.distortion) << " at " << p.transpose() << "\n"
           << J << "\nvs\n"
@@ -106,7 +106,8 @@ TEST(PinholeCamera, ProjectIntrinsicsJacobianMatchesNumeric) {
             CHECK(c.Project(p, &out));
             return out;
           },
-          camera.intrinsics(), options);
+          camera.intrinsics(),
+          options);
       EXPECT_LT((J - J_num).cwiseAbs().maxCoeff(), kJacobianTolerance)
           << DistortionModelName(camera.distortion) << " at " << p.transpose() << "\n"
           << J << "\nvs\n"
@@ -171,10 +172,13 @@ TEST(PinholeCamera, UnprojectJacobiansMatchNumeric) {
             CHECK(camera.Unproject(q, &ray));
             return ray;
           },
-          uv, options);
+          uv,
+          options);
       // Normalised coordinates per pixel are ~1/f ~ 2e-3: scale the tolerance accordingly.
       EXPECT_LT((J_uv - J_uv_num).cwiseAbs().maxCoeff(), 1e-9)
-          << DistortionModelName(camera.distortion) << "\n" << J_uv << "\nvs\n" << J_uv_num;
+          << DistortionModelName(camera.distortion) << "\n"
+          << J_uv << "\nvs\n"
+          << J_uv_num;
       options.initial_step = 1e-4;
       const Eigen::MatrixXd J_k_num = testutil::RiddersJacobian(
           [&](const Eigen::VectorXd& intrinsics) -> Eigen::Vector3d {
@@ -184,9 +188,12 @@ TEST(PinholeCamera, UnprojectJacobiansMatchNumeric) {
             CHECK(c.Unproject(uv, &ray));
             return ray;
           },
-          camera.intrinsics(), options);
+          camera.intrinsics(),
+          options);
       EXPECT_LT((J_k - J_k_num).cwiseAbs().maxCoeff(), 1e-8)
-          << DistortionModelName(camera.distortion) << "\n" << J_k << "\nvs\n" << J_k_num;
+          << DistortionModelName(camera.distortion) << "\n"
+          << J_k << "\nvs\n"
+          << J_k_num;
     }
   }
 }

@@ -4,12 +4,11 @@
 #ifndef SPLINECAL_TESTS_CALIB_CAMERA_TEST_SCENE_H_
 #define SPLINECAL_TESTS_CALIB_CAMERA_TEST_SCENE_H_
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/calib/camera_model.h"
 #include "splinecal/calib/target.h"
@@ -37,8 +36,8 @@ struct CameraTestScene {
   PinholeCamera camera = EurocCamera();
   std::vector<std::array<double, 7>> poses;  // control-pose blocks T_w_s
   std::array<double, 7> T_c_s{};
-  double shift = 0.004;        // [s]
-  double line_delay = 3e-5;    // [s/row]
+  double shift = 0.004;      // [s]
+  double line_delay = 3e-5;  // [s/row]
   std::array<double, 7> T_w_t{};
   CalibrationTarget target = MakeAprilGrid(4, 4, 0.04, 0.3);
   double dt_s = 0.1;
@@ -57,12 +56,13 @@ struct CameraTestScene {
       poses.push_back(block);
     }
     // Camera looking down: R_s_c = Rx(pi) times a small rotation; a lever arm of a few cm.
-    const SO3d R_c_s = SO3d::Exp(Eigen::Vector3d(0.02, -0.03, 0.01)) *
-                       SO3d::Exp(Eigen::Vector3d(M_PI, 0.0, 0.0));
+    const SO3d R_c_s =
+        SO3d::Exp(Eigen::Vector3d(0.02, -0.03, 0.01)) * SO3d::Exp(Eigen::Vector3d(M_PI, 0.0, 0.0));
     PoseToBlock(SE3d(R_c_s, Eigen::Vector3d(0.05, -0.02, 0.01)), T_c_s.data());
     // Target centred below the spline, slightly rotated.
-    PoseToBlock(SE3d(SO3d::Exp(Eigen::Vector3d(0.05, -0.02, 0.4)), Eigen::Vector3d(-0.1, -0.1, 0.0)),
-                T_w_t.data());
+    PoseToBlock(
+        SE3d(SO3d::Exp(Eigen::Vector3d(0.05, -0.02, 0.4)), Eigen::Vector3d(-0.1, -0.1, 0.0)),
+        T_w_t.data());
   }
 
   SE3Splined Spline() const {

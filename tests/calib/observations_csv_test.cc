@@ -1,9 +1,9 @@
 #include "splinecal/io/observations_csv.h"
 
-#include <sstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <sstream>
 
 #include "splinecal/error.h"
 #include "testing/temp_dir.h"
@@ -15,15 +15,15 @@ using ::testing::HasSubstr;
 
 TEST(ReadObservationsCsv, ReadsSortsAndToleratesFormatting) {
   testing::TempDir dir;
-  const std::vector<Observation> obs = ReadObservationsCsv(dir.Write(
-      "obs.csv",
-      "#t_ns,cam_id,point_id,u,v\r\n"
-      "1403715273262142976, 0, 17, 412.25, 233.5\r\n"
-      "\r\n"
-      "# a comment\n"
-      "1403715273212142976,0,3,1.5e2,2\n"
-      "1403715273262142976,0,2,10,20\n"
-      "1403715273262142976,1,2,11,21\n"));
+  const std::vector<Observation> obs =
+      ReadObservationsCsv(dir.Write("obs.csv",
+                                    "#t_ns,cam_id,point_id,u,v\r\n"
+                                    "1403715273262142976, 0, 17, 412.25, 233.5\r\n"
+                                    "\r\n"
+                                    "# a comment\n"
+                                    "1403715273212142976,0,3,1.5e2,2\n"
+                                    "1403715273262142976,0,2,10,20\n"
+                                    "1403715273262142976,1,2,11,21\n"));
   ASSERT_EQ(obs.size(), 4u);
   EXPECT_EQ(obs[0].t_ns, 1403715273212142976);  // exact int64, never through a double
   EXPECT_EQ(obs[0].point_id, 3);

@@ -1,11 +1,11 @@
 #include "splinecal/calib/pnp.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "calib/camera_test_scene.h"
 #include "splinecal/calib/target.h"
@@ -22,8 +22,11 @@ struct Views {
   std::vector<Eigen::Vector2d> uv;
 };
 
-Views Project(const PinholeCamera& camera, const SE3d& T_c_t,
-              const std::map<int64_t, Eigen::Vector3d>& points, double noise_px, unsigned seed) {
+Views Project(const PinholeCamera& camera,
+              const SE3d& T_c_t,
+              const std::map<int64_t, Eigen::Vector3d>& points,
+              double noise_px,
+              unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal(0.0, noise_px > 0.0 ? noise_px : 1.0);
   Views v;
@@ -39,7 +42,8 @@ Views Project(const PinholeCamera& camera, const SE3d& T_c_t,
 
 SE3d TestPose(double tilt) {
   // Target about 0.8 m in front, tilted.
-  return SE3d(SO3d::Exp(Eigen::Vector3d(tilt, -0.5 * tilt, 0.3)), Eigen::Vector3d(-0.2, -0.15, 0.8));
+  return SE3d(SO3d::Exp(Eigen::Vector3d(tilt, -0.5 * tilt, 0.3)),
+              Eigen::Vector3d(-0.2, -0.15, 0.8));
 }
 
 TEST(SolvePnp, PlanarTargetNoiseFreeIsExact) {

@@ -1,12 +1,12 @@
 #include "splinecal/calib/reprojection_cost.h"
 
+#include <ceres/manifold.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
-
-#include <ceres/manifold.h>
-#include <gtest/gtest.h>
 
 #include "calib/camera_test_scene.h"
 #include "splinecal/lie/se3_manifold.h"
@@ -17,9 +17,10 @@ namespace {
 
 // Analytic vs numeric Jacobians in the tangent spaces (Ridders' extrapolation through the
 // blocks' manifolds, what ceres::GradientChecker does; written out here because the checker's
-// central differences step a line delay of 0 to a negative, invalid value). Per block, the largest error must be below this fraction of the block's
-// largest entry: Ridders reaches ~1e-9 relative here (the time solve converges to ~1e-16 s, far
-// below its steps), and a wrong term would be O(1) relative.
+// central differences step a line delay of 0 to a negative, invalid value). Per block, the largest
+// error must be below this fraction of the block's largest entry: Ridders reaches ~1e-9 relative
+// here (the time solve converges to ~1e-16 s, far below its steps), and a wrong term would be O(1)
+// relative.
 constexpr double kRelativeJacobianTolerance = 1e-6;
 // The cost's forward model against the independent reference below (pose from SE3Spline::Pose,
 // exposure time by bisection) [px].
@@ -27,8 +28,13 @@ constexpr double kModelTolerancePx = 1e-8;
 
 // Pixel of X_w = (x_w, w) at the exposure time, found by bisection on the spline's Pose (an
 // implementation independent of the cost functions').
-bool ReferencePixel(const SE3Splined& spline, const PinholeCamera& camera, const SE3d& T_c_s,
-                    double t_base, double line_delay, const Eigen::Vector3d& x_w, double w,
+bool ReferencePixel(const SE3Splined& spline,
+                    const PinholeCamera& camera,
+                    const SE3d& T_c_s,
+                    double t_base,
+                    double line_delay,
+                    const Eigen::Vector3d& x_w,
+                    double w,
                     Eigen::Vector2d* uv) {
   auto pixel = [&](double tau, Eigen::Vector2d* out) {
     const SE3d T_w_s = spline.Pose(t_base + tau);
@@ -93,7 +99,8 @@ class ReprojectionCostTest : public ::testing::Test {
       }
       const Eigen::MatrixXd analytic =
           Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-              J_ambient[i].data(), rows, sizes[i]) * plus;
+              J_ambient[i].data(), rows, sizes[i]) *
+          plus;
       const std::vector<double> x0(blocks.parameters[i], blocks.parameters[i] + sizes[i]);
       const bool one_sided = manifold == nullptr && sizes[i] == 1 && x0[0] == 0.0;
       auto f = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
@@ -111,8 +118,10 @@ class ReprojectionCostTest : public ::testing::Test {
       };
       Eigen::MatrixXd numeric;
       testutil::RiddersOptions options;
-      options.initial_step = 1e-3 * std::max(1e-6, Eigen::Map<const Eigen::VectorXd>(
-                                                        x0.data(), sizes[i]).cwiseAbs().maxCoeff());
+      options.initial_step =
+          1e-3 *
+          std::max(1e-6,
+                   Eigen::Map<const Eigen::VectorXd>(x0.data(), sizes[i]).cwiseAbs().maxCoeff());
       if (manifold != nullptr) options.initial_step = 1e-3;
       if (one_sided) {
         // Forward differences: (f(h) - f(0)) / h, Richardson-extrapolated over h.
@@ -123,7 +132,8 @@ class ReprojectionCostTest : public ::testing::Test {
         }
         for (int m = 1; m < 6; ++m) {  // error c1 h + c2 h^2 + ...: remove one power per level
           const double factor = std::pow(2.0, m);
-          for (int k = 5; k >= m; --k) level[k] = (factor * level[k] - level[k - 1]) / (factor - 1.0);
+          for (int k = 5; k >= m; --k)
+            level[k] = (factor * level[k] - level[k - 1]) / (factor - 1.0);
         }
         numeric = level[5];
       } else {
@@ -164,14 +174,20 @@ class ReprojectionCostTest : public ::testing::Test {
     std::vector<TargetCornerObservation> corners;
     for (const auto& [id, p_t] : scene_.target.points) {
       Eigen::Vector2d uv;
-      if (!ReferencePixel(spline, scene_.camera, T_c_s, t_frame + scene_.shift,
-                          scene_.line_delay, T_w_t * p_t, 1.0, &uv) ||
+      if (!ReferencePixel(spline,
+                          scene_.camera,
+                          T_c_s,
+                          t_frame + scene_.shift,
+                          scene_.line_delay,
+                          T_w_t * p_t,
+                          1.0,
+                          &uv) ||
           !scene_.camera.InImage(uv)) {
         continue;
       }
       Eigen::Vector2d offset(normal(rng), normal(rng));
-      while (settings_.huber_px > 0.0 && std::abs(offset.norm() - settings_.huber_px) <
-                                             0.3 * settings_.huber_px) {
+      while (settings_.huber_px > 0.0 &&
+             std::abs(offset.norm() - settings_.huber_px) < 0.3 * settings_.huber_px) {
         offset = Eigen::Vector2d(normal(rng), normal(rng));
       }
       corners.push_back({p_t, uv + offset});
@@ -231,8 +247,12 @@ TEST_F(ReprojectionCostTest, TargetEvaluationOutsideTheWindowFails) {
 class LandmarkCostTest : public ReprojectionCostTest {
  protected:
   // A landmark first seen in the frame at t_ref at pixel (u, v) and depth `depth`.
-  LandmarkObservation Observe(double t_ref, const Eigen::Vector2d& uv_ref, double depth,
-                              double t_frame, double offset_px, double* rho) {
+  LandmarkObservation Observe(double t_ref,
+                              const Eigen::Vector2d& uv_ref,
+                              double depth,
+                              double t_frame,
+                              double offset_px,
+                              double* rho) {
     const SE3Splined spline = scene_.Spline();
     const SE3d T_c_s = PoseFromBlock(scene_.T_c_s.data());
     LandmarkObservation o;
@@ -244,8 +264,8 @@ class LandmarkCostTest : public ReprojectionCostTest {
     const Eigen::Vector3d p_w = spline.Pose(t_r) * (T_c_s.inverse() * (o.ray * depth));
     o.t_frame_s = t_frame;
     Eigen::Vector2d uv;
-    CHECK(ReferencePixel(spline, scene_.camera, T_c_s, t_frame + scene_.shift, scene_.line_delay,
-                         p_w, 1.0, &uv));
+    CHECK(ReferencePixel(
+        spline, scene_.camera, T_c_s, t_frame + scene_.shift, scene_.line_delay, p_w, 1.0, &uv));
     o.uv = uv + Eigen::Vector2d(offset_px, -0.5 * offset_px);
     return o;
   }

@@ -1,9 +1,9 @@
 #include "splinecal/calib/rolling_shutter.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "calib/camera_test_scene.h"
 #include "splinecal/calib/reprojection_cost.h"
@@ -25,8 +25,7 @@ struct SplineRow {
 
   bool operator()(double tau, double* v, double* v_dot) const {
     const Segment<double> segment = spline->SegmentAt(t_base_s + tau);
-    const internal::BodyState state =
-        internal::EvaluateBodyState(spline->Knots(segment), segment);
+    const internal::BodyState state = internal::EvaluateBodyState(spline->Knots(segment), segment);
     internal::PointProjection projection;
     if (!internal::ProjectPoint(*camera, T_c_s, state, p_w, 1.0, false, &projection)) {
       return false;
@@ -76,8 +75,8 @@ TEST(SolveExposureTime, MatchesBisectionOnASpline) {
     const SplineRow row{&spline, &scene.camera, T_c_s, t_frame, p_w};
     ExposureSolution solution;
     const double observed_row = 240.0;  // a deliberately poor start
-    ASSERT_TRUE(SolveExposureTime(row, line_delay, scene.camera.height,
-                                  line_delay * observed_row, &solution));
+    ASSERT_TRUE(SolveExposureTime(
+        row, line_delay, scene.camera.height, line_delay * observed_row, &solution));
     const double reference = Bisect(row, line_delay, scene.camera.height);
     EXPECT_NEAR(solution.tau_s, reference, kTimeTolerance) << "trial " << trial;
     if (!solution.at_lower_bound && !solution.at_upper_bound) {
@@ -87,14 +86,17 @@ TEST(SolveExposureTime, MatchesBisectionOnASpline) {
     }
     max_iterations = std::max(max_iterations, solution.iterations);
   }
-  EXPECT_GT(solved, 150);           // most points fall inside the readout
-  EXPECT_LE(max_iterations, 6);     // quadratic convergence from a poor start
+  EXPECT_GT(solved, 150);        // most points fall inside the readout
+  EXPECT_LE(max_iterations, 6);  // quadratic convergence from a poor start
 }
 
 TEST(SolveExposureTime, GlobalShutterIsExactlyTheStamp) {
   const testing::CameraTestScene scene;
   const SE3Splined spline = scene.Spline();
-  const SplineRow row{&spline, &scene.camera, PoseFromBlock(scene.T_c_s.data()), 0.5,
+  const SplineRow row{&spline,
+                      &scene.camera,
+                      PoseFromBlock(scene.T_c_s.data()),
+                      0.5,
                       Eigen::Vector3d(0.0, 0.0, 0.0)};
   ExposureSolution solution;
   ASSERT_TRUE(SolveExposureTime(row, 0.0, scene.camera.height, 1.0, &solution));

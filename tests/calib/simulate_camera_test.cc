@@ -1,10 +1,10 @@
 #include "splinecal/calib/simulate_camera.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <map>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "calib/camera_test_scene.h"
 #include "splinecal/calib/reprojection_cost.h"
@@ -21,7 +21,8 @@ constexpr int64_t kKnotSpacingNs = 50'000'000;  // 0.05 s
 Camchain RollingShutterRig() {
   CameraCalibration c;
   c.camera = testing::EurocCamera();
-  c.T_cam_imu = SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)), Eigen::Vector3d(0.06, -0.02, 0.01));
+  c.T_cam_imu =
+      SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)), Eigen::Vector3d(0.06, -0.02, 0.01));
   c.timeshift_cam_imu_s = 0.0042;
   c.line_delay_s = 3e-5;
   return {c};
@@ -31,8 +32,8 @@ class SimulateCamerasTest : public ::testing::Test {
  protected:
   SimulateCamerasTest()
       : rig_(RollingShutterRig()),
-        fit_(FitCalibrationTrajectory(TargetCentre(Target(), SE3d()), rig_[0].T_cam_imu, kStartNs,
-                                      kEndNs, kKnotSpacingNs)),
+        fit_(FitCalibrationTrajectory(
+            TargetCentre(Target(), SE3d()), rig_[0].T_cam_imu, kStartNs, kEndNs, kKnotSpacingNs)),
         spline_(fit_.MakeSpline()) {
     options_.has_target = true;
     options_.target = Target();
@@ -89,15 +90,16 @@ TEST_F(SimulateCamerasTest, NoiseFreeObservationsAreTheReprojectionModel) {
   for (size_t f = 0; f < frames.size(); f += 7) {
     const double t_frame = spline_.TimeSinceT0(frames[f].t_ns);
     ControlPoseWindow window;
-    ASSERT_TRUE(WindowCovering(settings.layout, t_frame + shift,
-                               t_frame + shift + line_delay * 480, &window));
+    ASSERT_TRUE(WindowCovering(
+        settings.layout, t_frame + shift, t_frame + shift + line_delay * 480, &window));
     std::vector<TargetCornerObservation> corners;
     for (const Observation& o : frames[f].observations) {
       corners.push_back({*options_.target.Find(o.point_id), o.uv});
     }
     const TargetFrameCostFunction cost(settings, window, t_frame, corners);
     std::vector<double*> parameters;
-    for (int i = 0; i < window.num_poses; ++i) parameters.push_back(blocks[window.first_index + i].data());
+    for (int i = 0; i < window.num_poses; ++i)
+      parameters.push_back(blocks[window.first_index + i].data());
     parameters.push_back(T_c_s.data());
     parameters.push_back(&shift);
     parameters.push_back(&line_delay);

@@ -33,9 +33,10 @@ TEST(ReadTargetYaml, AprilGridCornersAsKalibrNumbersThem) {
 
 TEST(ReadTargetYaml, Checkerboard) {
   testing::TempDir dir;
-  const CalibrationTarget target = ReadTargetYaml(
-      dir.Write("cb.yaml", "target_type: checkerboard\ntargetCols: 7\ntargetRows: 6\n"
-                           "rowSpacingMeters: 0.06\ncolSpacingMeters: 0.05\n"));
+  const CalibrationTarget target =
+      ReadTargetYaml(dir.Write("cb.yaml",
+                               "target_type: checkerboard\ntargetCols: 7\ntargetRows: 6\n"
+                               "rowSpacingMeters: 0.06\ncolSpacingMeters: 0.05\n"));
   ASSERT_EQ(target.points.size(), 42u);
   EXPECT_NEAR((*target.Find(8) - Eigen::Vector3d(0.05, 0.06, 0.0)).norm(), 0.0, 1e-15);
 }

@@ -45,14 +45,13 @@
 #ifndef SPLINECAL_CALIB_CALIBRATE_H_
 #define SPLINECAL_CALIB_CALIBRATE_H_
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/calib/bias_costs.h"
 #include "splinecal/calib/camchain.h"
@@ -72,13 +71,13 @@ struct CalibrateOptions {
   double gravity_m_s2 = kDefaultGravity;
   ImuNoise noise;  // Kalibr densities (the weights use the measured IMU rate)
   BiasModel bias_model = BiasModel::kSpline;
-  double bias_knot_spacing_s = 1.0;  // rounded to a multiple of dt
-  bool rolling_shutter = false;      // estimate line_delay (else fixed at the camchain's)
-  bool estimate_time_offset = true;  // else timeshift_cam_imu fixed at the camchain's
-  double max_time_offset_s = 0.1;    // |timeshift_cam_imu| bound and correlation search range
-  double pixel_sigma_px = 0.0;       // pixel noise std [px]; 0 = estimated from the residuals
-  double huber_px = 2.0;             // Huber threshold [px]; 0 = plain least squares
-  int min_corners_per_frame = 8;     // frames with fewer target corners are not used
+  double bias_knot_spacing_s = 1.0;       // rounded to a multiple of dt
+  bool rolling_shutter = false;           // estimate line_delay (else fixed at the camchain's)
+  bool estimate_time_offset = true;       // else timeshift_cam_imu fixed at the camchain's
+  double max_time_offset_s = 0.1;         // |timeshift_cam_imu| bound and correlation search range
+  double pixel_sigma_px = 0.0;            // pixel noise std [px]; 0 = estimated from the residuals
+  double huber_px = 2.0;                  // Huber threshold [px]; 0 = plain least squares
+  int min_corners_per_frame = 8;          // frames with fewer target corners are not used
   double min_rotation_rate_rad_s = 0.05;  // refuse data rotating less about its weakest axis
   int max_iterations = 50;
   int max_rounds = 6;
@@ -96,19 +95,21 @@ struct CalibrateOptions {
 // A starting point for the whole state (required without a target; optional otherwise).
 struct CalibrationInitialGuess {
   KnotLayout layout;
-  std::vector<SE3d> control_poses;   // T_w_s at the layout's knots
+  std::vector<SE3d> control_poses;  // T_w_s at the layout's knots
   Eigen::Vector3d gravity_w = Eigen::Vector3d(0.0, 0.0, -kDefaultGravity);
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
-  Camchain camchain;                  // T_cam_imu, timeshift_cam_imu, line_delay per camera
+  Camchain camchain;  // T_cam_imu, timeshift_cam_imu, line_delay per camera
 };
 
 struct CameraEstimate {
   CameraCalibration calibration;  // the estimates (intrinsics as given)
   // Standard deviations: rotation of T_cam_imu in its right tangent (per axis, IMU frame) [deg],
   // translation t_cam_imu per axis (camera frame) [m]; NaN when not computed.
-  Eigen::Vector3d rotation_std_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  Eigen::Vector3d translation_std_m = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d rotation_std_deg =
+      Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d translation_std_m =
+      Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   double timeshift_std_s = std::numeric_limits<double>::quiet_NaN();
   double line_delay_std_s = std::numeric_limits<double>::quiet_NaN();
   bool timeshift_estimated = false;
@@ -144,10 +145,12 @@ struct CalibrationResult {
   // Biases: constant, or the time average of the bias spline; std per axis (NaN if unknown).
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
-  Eigen::Vector3d gyro_bias_std = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  Eigen::Vector3d accel_bias_std = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d gyro_bias_std =
+      Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d accel_bias_std =
+      Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 
-  double pixel_sigma_px = 1.0;       // the weight used in the last round
+  double pixel_sigma_px = 1.0;  // the weight used in the last round
   bool pixel_sigma_estimated = false;
   double reprojection_rms_px = 0.0;  // all cameras
   double gyro_rms = 0.0;             // per-axis RMS of the IMU residuals [rad/s]

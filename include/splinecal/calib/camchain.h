@@ -23,10 +23,10 @@ namespace splinecal {
 
 struct CameraCalibration {
   PinholeCamera camera;
-  SE3d T_cam_imu;                   // identity when the file has none
+  SE3d T_cam_imu;  // identity when the file has none
   double timeshift_cam_imu_s = 0.0;
   double line_delay_s = 0.0;
-  std::string rostopic;             // kept from the input, written back when not empty
+  std::string rostopic;  // kept from the input, written back when not empty
 
   // Exposure time of image row `row` of a frame stamped t_cam_ns, in the IMU clock, relative to
   // the stamp: timeshift + row * line_delay [s].

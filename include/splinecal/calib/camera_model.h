@@ -38,10 +38,9 @@
 #ifndef SPLINECAL_CALIB_CAMERA_MODEL_H_
 #define SPLINECAL_CALIB_CAMERA_MODEL_H_
 
+#include <Eigen/Core>
 #include <cmath>
 #include <string>
-
-#include <Eigen/Core>
 
 namespace splinecal {
 
@@ -80,8 +79,7 @@ Eigen::Matrix<T, 2, 1> Distort(DistortionModel model, const T* k, const T& x, co
     const T r = sqrt(r2);
     const T theta = atan(r);
     const T t2 = theta * theta;
-    const T theta_d =
-        theta * (T(1.0) + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3]))));
+    const T theta_d = theta * (T(1.0) + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3]))));
     s = theta_d / r;
   }
   return Eigen::Matrix<T, 2, 1>(s * x, s * y);
@@ -100,7 +98,7 @@ struct PinholeCamera {
   double pv = 0.0;
   DistortionModel distortion = DistortionModel::kNone;
   Eigen::Vector4d distortion_coeffs = Eigen::Vector4d::Zero();  // radtan k1 k2 p1 p2; equi k1..k4
-  int width = 0;   // [px]
+  int width = 0;                                                // [px]
   int height = 0;  // [px] (rows; the rolling shutter reads them top to bottom)
 
   IntrinsicsVector intrinsics() const;

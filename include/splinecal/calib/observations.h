@@ -6,10 +6,9 @@
 #ifndef SPLINECAL_CALIB_OBSERVATIONS_H_
 #define SPLINECAL_CALIB_OBSERVATIONS_H_
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace splinecal {
 

@@ -18,10 +18,9 @@
 #ifndef SPLINECAL_CALIB_PNP_H_
 #define SPLINECAL_CALIB_PNP_H_
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/calib/camera_model.h"
 #include "splinecal/lie/se3.h"

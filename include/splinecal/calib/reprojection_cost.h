@@ -58,11 +58,11 @@
 #ifndef SPLINECAL_CALIB_REPROJECTION_COST_H_
 #define SPLINECAL_CALIB_REPROJECTION_COST_H_
 
-#include <cstdint>
-#include <vector>
+#include <ceres/cost_function.h>
 
 #include <Eigen/Core>
-#include <ceres/cost_function.h>
+#include <cstdint>
+#include <vector>
 
 #include "splinecal/calib/camera_model.h"
 #include "splinecal/calib/rolling_shutter.h"
@@ -81,8 +81,8 @@ struct ControlPoseWindow {
 
 // The spline's knot layout as the cost functions see it.
 struct SplineLayout {
-  double dt_s = 0.1;           // knot spacing [s]
-  int num_control_poses = 0;   // n; valid times [dt, (n-2) dt] relative to t0
+  double dt_s = 0.1;          // knot spacing [s]
+  int num_control_poses = 0;  // n; valid times [dt, (n-2) dt] relative to t0
 };
 
 // The segment index i and u of t_s (seconds since t0), exactly as SE3Spline::SegmentAt computes
@@ -91,15 +91,17 @@ bool SegmentIndexAt(const SplineLayout& layout, double t_s, int* index, double* 
 
 // The smallest window whose segments cover every time in [t_lo_s, t_hi_s] (seconds since t0),
 // clipped to the spline; false when [t_lo_s, t_hi_s] is not inside the valid range.
-bool WindowCovering(const SplineLayout& layout, double t_lo_s, double t_hi_s,
+bool WindowCovering(const SplineLayout& layout,
+                    double t_lo_s,
+                    double t_hi_s,
                     ControlPoseWindow* window);
 
 // What every reprojection residual of one camera shares.
 struct ReprojectionSettings {
   const PinholeCamera* camera = nullptr;  // not owned
   SplineLayout layout;
-  double sigma_px = 1.0;   // pixel noise std [px]: residuals are divided by it
-  double huber_px = 0.0;   // Huber threshold [px]; 0 = plain least squares
+  double sigma_px = 1.0;  // pixel noise std [px]: residuals are divided by it
+  double huber_px = 0.0;  // Huber threshold [px]; 0 = plain least squares
   ExposureSolveOptions exposure;
   // Optional knot caches for this evaluation point (not owned; may be nullptr).
   const SplineEvaluationCallback* shared = nullptr;
@@ -107,8 +109,8 @@ struct ReprojectionSettings {
 
 // One observed target corner.
 struct TargetCornerObservation {
-  Eigen::Vector3d p_t = Eigen::Vector3d::Zero();   // corner in the target frame [m]
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();    // observed pixel [px]
+  Eigen::Vector3d p_t = Eigen::Vector3d::Zero();  // corner in the target frame [m]
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();   // observed pixel [px]
 };
 
 // Every target corner of one frame: 2 rows per corner.
@@ -141,8 +143,8 @@ class TargetFrameCostFunction : public ceres::CostFunction {
 struct LandmarkObservation {
   double t_reference_frame_s = 0.0;  // reference frame stamp, seconds since t0 (camera clock)
   Eigen::Vector3d ray = Eigen::Vector3d(0.0, 0.0, 1.0);  // reference ray (x, y, 1)
-  double reference_row = 0.0;        // observed v of the reference observation [px]
-  double t_frame_s = 0.0;            // observing frame stamp, seconds since t0 (camera clock)
+  double reference_row = 0.0;  // observed v of the reference observation [px]
+  double t_frame_s = 0.0;      // observing frame stamp, seconds since t0 (camera clock)
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();  // observed pixel [px]
 };
 

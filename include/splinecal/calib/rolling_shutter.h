@@ -15,8 +15,8 @@
 // motion from the spline's body twist, calib/reprojection_cost.h), tau clamped to the frame's
 // readout [0, (height - 1) line_delay], stopping when a step is below the tolerance (the
 // solution is then the point where the step was computed: its row and rate are already known,
-// and it is within the tolerance of the root). F' is 1 minus the ratio of the point's image speed to
-// the shutter's sweep speed (1 / line_delay rows/s): for any real motion far from 0, so Newton
+// and it is within the tolerance of the root). F' is 1 minus the ratio of the point's image speed
+// to the shutter's sweep speed (1 / line_delay rows/s): for any real motion far from 0, so Newton
 // converges quadratically; from tau_0 = line_delay * (observed row) two or three iterations
 // reach 1e-12 s. (The seed's first-order correction, [seed002], is one step of this iteration.)
 //
@@ -34,10 +34,9 @@
 #ifndef SPLINECAL_CALIB_ROLLING_SHUTTER_H_
 #define SPLINECAL_CALIB_ROLLING_SHUTTER_H_
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Core>
 
 namespace splinecal {
 

@@ -28,11 +28,10 @@
 #ifndef SPLINECAL_CALIB_SIMULATE_CAMERA_H_
 #define SPLINECAL_CALIB_SIMULATE_CAMERA_H_
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/calib/camchain.h"
 #include "splinecal/calib/observations.h"
@@ -71,10 +70,10 @@ struct CameraSimulationOptions {
 };
 
 struct CameraSimulationResult {
-  std::vector<Observation> observations;  // sorted (t_ns, cam_id, point_id)
+  std::vector<Observation> observations;           // sorted (t_ns, cam_id, point_id)
   std::map<int64_t, Eigen::Vector3d> landmarks_w;  // id -> position in the world [m]
-  int num_frames = 0;                 // frames taken (all cameras)
-  int num_frames_with_target = 0;     // frames with at least one target corner
+  int num_frames = 0;                              // frames taken (all cameras)
+  int num_frames_with_target = 0;                  // frames with at least one target corner
   int num_target_observations = 0;
   int num_landmark_observations = 0;
 };
@@ -115,9 +114,9 @@ PoseFitResult FitCalibrationTrajectory(const Eigen::Vector3d& target_centre_w,
 struct CalibrationSequenceOptions {
   int64_t start_ns = 1'000'000'000;
   double duration_s = 60.0;
-  double knot_spacing_s = 0.05;  // of the truth spline (use the same in `calibrate`)
-  uint64_t trajectory_seed = 0;  // CalibrationCameraPose's shape
-  SimulationOptions imu;         // rate, noise, biases, seed
+  double knot_spacing_s = 0.05;    // of the truth spline (use the same in `calibrate`)
+  uint64_t trajectory_seed = 0;    // CalibrationCameraPose's shape
+  SimulationOptions imu;           // rate, noise, biases, seed
   CameraSimulationOptions camera;  // rate, pixel noise, target, landmarks, seed
 };
 

@@ -15,16 +15,15 @@
 #ifndef SPLINECAL_CALIB_TARGET_H_
 #define SPLINECAL_CALIB_TARGET_H_
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <map>
 #include <string>
 
-#include <Eigen/Core>
-
 namespace splinecal {
 
 struct CalibrationTarget {
-  std::string type;                          // "aprilgrid", "checkerboard" or "points"
+  std::string type;                           // "aprilgrid", "checkerboard" or "points"
   std::map<int64_t, Eigen::Vector3d> points;  // id -> p_t [m]
 
   // The point of `id`, or nullptr when the target has no such id.
@@ -37,10 +36,11 @@ struct CalibrationTarget {
 };
 
 // Throws splinecal::Error for non-positive counts or sizes or a negative spacing.
-CalibrationTarget MakeAprilGrid(int tag_cols, int tag_rows, double tag_size_m,
+CalibrationTarget MakeAprilGrid(int tag_cols,
+                                int tag_rows,
+                                double tag_size_m,
                                 double tag_spacing_ratio);
-CalibrationTarget MakeCheckerboard(int cols, int rows, double col_spacing_m,
-                                   double row_spacing_m);
+CalibrationTarget MakeCheckerboard(int cols, int rows, double col_spacing_m, double row_spacing_m);
 
 }  // namespace splinecal
 
