@@ -55,6 +55,10 @@ constexpr int kMinPnpPoses = 10;
 // Pose-source noise assumed for PnP poses in the initial fit [m], [rad].
 constexpr double kPnpSigmaM = 0.003;
 constexpr double kPnpSigmaRad = 0.003;
+// Noise assumed for user-supplied initial IMU poses (SLAM after alignment) [m], [rad]: loose, as
+// they only start the solve.
+constexpr double kInitialPoseSigmaM = 0.01;
+constexpr double kInitialPoseSigmaRad = 0.01;
 // The initial spline extends this far beyond the camera's time span into the IMU data [ns].
 constexpr int64_t kImuMarginNs = 200'000'000;
 
@@ -1276,6 +1280,59 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
   guess.camchain = camchain;
   guess.camchain[0].T_cam_imu = fit.T_pose_imu;
   guess.camchain[0].timeshift_cam_imu_s = fit.time_offset_s;
+  return guess;
+}
+
+namespace {
+
+// The fitted spline re-sampled onto `layout` (dt / 10 steps over its valid range).
+std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layout) {
+  std::vector<StampedPose> samples;
+  const int64_t step = std::max<int64_t>(1, layout.dt_ns / 10);
+  for (int64_t t = fitted.start_time_ns(); t <= fitted.end_time_ns(); t += step) {
+    const SE3d T = fitted.PoseNs(t);
+    samples.push_back({t, T.translation(), T.so3().quaternion()});
+  }
+  return FitControlPoses(samples, layout).control_poses;
+}
+
+}  // namespace
+
+CalibrationInitialGuess InitialGuessFromImuPoses(const std::vector<ImuSample>& imu,
+                                                 const std::vector<StampedPose>& poses,
+                                                 const std::vector<Observation>& observations,
+                                                 const Camchain& camchain,
+                                                 const CalibrateOptions& options,
+                                                 std::vector<std::string>* warnings) {
+  FitOptions fit_options;
+  fit_options.knot_spacing_s = options.knot_spacing_s;
+  fit_options.gravity_m_s2 = options.gravity_m_s2;
+  fit_options.noise = options.noise;
+  fit_options.pose_sigma_m = kInitialPoseSigmaM;
+  fit_options.pose_sigma_rad = kInitialPoseSigmaRad;
+  fit_options.compute_covariance = false;
+  fit_options.keep_samples = false;
+  fit_options.max_residual_noise_ratio = 1e9;
+  fit_options.max_iterations = 30;
+  fit_options.num_threads = options.num_threads;
+  FitResult fit;
+  try {
+    fit = Fit(imu, poses, fit_options);
+  } catch (const Error& e) {
+    std::string message = e.what();
+    if (message.rfind("fit: ", 0) == 0) message = message.substr(5);
+    throw Error("calibrate: initial guess from the initial poses failed: " + message);
+  }
+  if (warnings != nullptr) {
+    for (const std::string& w : fit.warnings) warnings->push_back("initial guess: " + w);
+  }
+  CalibrationInitialGuess guess;
+  guess.layout = LayoutFor(imu, observations, camchain, options.knot_spacing_s);
+  guess.control_poses = ResampleOnto(fit.MakeSpline(), guess.layout);
+  guess.gravity_w = fit.gravity_w;
+  guess.gyro_bias = fit.gyro_bias;
+  guess.accel_bias = fit.accel_bias;
+  guess.camchain = camchain;
   return guess;
 }
 

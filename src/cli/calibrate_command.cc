@@ -22,6 +22,7 @@
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
+#include "splinecal/io/poses.h"
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/io/yaml_writer.h"
@@ -44,6 +45,11 @@ DEFINE_double(pixel_sigma,
               "residuals (robustly) and solves again");
 DEFINE_double(huber, 2.0, "Huber threshold of the reprojection residuals [px]; 0 disables it");
 DEFINE_int32(min_corners, 8, "Frames with fewer target corners are not used");
+DEFINE_string(initial_poses,
+              "",
+              "Initial IMU trajectory T_w_s in the IMU clock, EuRoC ground-truth or TUM format "
+              "(e.g. aligned_poses.csv of `splinecal align` on SLAM poses) [path]; needed without "
+              "--target, optional with it");
 
 namespace splinecal {
 namespace cli {
@@ -328,7 +334,30 @@ int RunCalibrate() {
   Progress("calibrate: " + std::to_string(observations.size()) + " observations, " +
            std::to_string(imu.size()) + " IMU samples, " + std::to_string(camchain.size()) +
            " camera(s)");
-  const CalibrationResult result = Calibrate(imu, observations, camchain, target.get(), options);
+  std::vector<std::string> guess_warnings;
+  std::unique_ptr<CalibrationInitialGuess> guess;
+  CalibrationResult result;
+  try {
+    if (!FLAGS_initial_poses.empty()) {
+      const std::vector<StampedPose> poses = ReadPoses(FLAGS_initial_poses);
+      Progress("calibrate: initial guess from " + std::to_string(poses.size()) + " initial poses");
+      guess = std::make_unique<CalibrationInitialGuess>(
+          InitialGuessFromImuPoses(imu, poses, observations, camchain, options, &guess_warnings));
+    } else if (target == nullptr) {
+      throw Error(
+          "without --target, --initial-poses is needed (the IMU trajectory, e.g. "
+          "`splinecal align` on SLAM poses)");
+    }
+    result = Calibrate(imu, observations, camchain, target.get(), options, guess.get());
+  } catch (const Error& e) {
+    // The library's messages start with "calibrate: "; the front end names the command already.
+    const std::string prefix = "calibrate: ";
+    if (e.path().empty() && e.message().rfind(prefix, 0) == 0) {
+      throw Error(e.message().substr(prefix.size()));
+    }
+    throw;
+  }
+  result.warnings.insert(result.warnings.begin(), guess_warnings.begin(), guess_warnings.end());
 
   output.WriteFile("camchain-imucam.yaml", CamchainYamlText(result.camchain));
   output.WriteFile("result.yaml", ResultYaml(result, options));
@@ -383,7 +412,8 @@ Command CalibrateCommand() {
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
           "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE] "
-          "[--imu-yaml FILE] [--rolling-shutter] [--no-time-offset] [--knot-spacing S] "
+          "[--initial-poses FILE] [--imu-yaml FILE] [--rolling-shutter] [--no-time-offset] "
+          "[--knot-spacing S] "
           "[--threads N] --out DIR",
           "Fits camera observations (a calibration target's corners and/or natural landmarks,\n"
           "one row per detected point in observations.csv) and IMU readings jointly on one\n"
@@ -391,7 +421,8 @@ Command CalibrateCommand() {
           "with --rolling-shutter, the line delay (row r exposed at t_frame + r * line_delay),\n"
           "plus the trajectory, IMU biases and gravity. The camchain's intrinsics are kept; its\n"
           "T_cam_imu, time offset and line delay are the starting point. The target gives the\n"
-          "initial guess (PnP per frame, then the fit of `splinecal fit`). Writes\n"
+          "initial guess (PnP per frame, then the fit of `splinecal fit`); without a target,\n"
+          "--initial-poses does (e.g. `splinecal align` on SLAM poses). Writes\n"
           "camchain-imucam.yaml (Kalibr's keys), result.yaml with standard deviations and\n"
           "warnings, report.html, spline.csv and reprojection_errors.csv. See docs/calibrate.md.",
           {{"imu", ""},
@@ -402,6 +433,7 @@ Command CalibrateCommand() {
            {"target",
             "Calibration target: Kalibr aprilgrid/checkerboard YAML or target_type: "
             "points [path]; point ids not in it are natural landmarks"},
+           {"initial_poses", ""},
            {"imu_yaml",
             "IMU noise densities, Kalibr imu.yaml [path]; weights the IMU residuals "
             "(default: ADIS16448)"},

@@ -27,8 +27,8 @@
 // then least squares) estimated: it gives the trajectory, the biases, gravity, T_cam_imu and the
 // time offset; the full problem refines them together with the line delay. Landmarks are
 // initialised from their reference observation and a depth triangulated from the initial
-// trajectory. Without a target the caller supplies the initial guess
-// (CalibrationInitialGuess) -- e.g. from `splinecal align`.
+// trajectory. Without a target the caller supplies the initial guess (CalibrationInitialGuess),
+// e.g. InitialGuessFromImuPoses on `splinecal align`'s output.
 //
 // Time windows: each residual holds the control poses of its possible exposure times
 // (calib/reprojection_cost.h); after a solve in which the time offset or line delay moved them
@@ -61,6 +61,7 @@
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
+#include "splinecal/io/poses.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/se3_spline.h"
 
@@ -191,6 +192,18 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
                                                const CalibrationTarget& target,
                                                const CalibrateOptions& options,
                                                std::vector<std::string>* warnings);
+
+// The initial guess from IMU poses T_w_s in the IMU clock (e.g. `splinecal align`'s
+// aligned_poses.csv from SLAM poses, or a motion-capture trajectory mapped to the IMU): the
+// continuous-time fit of those poses and the IMU (calib/fit.h) gives the trajectory, biases and
+// gravity; T_cam_imu, the time offset and the line delay start from the camchain. This is the
+// way to calibrate from natural landmarks alone. Throws splinecal::Error like Calibrate.
+CalibrationInitialGuess InitialGuessFromImuPoses(const std::vector<ImuSample>& imu,
+                                                 const std::vector<StampedPose>& poses,
+                                                 const std::vector<Observation>& observations,
+                                                 const Camchain& camchain,
+                                                 const CalibrateOptions& options,
+                                                 std::vector<std::string>* warnings);
 
 }  // namespace splinecal
 
