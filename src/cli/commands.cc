@@ -12,6 +12,8 @@ const std::vector<Command>& AllCommands() {
       AllanCommand(),
       EvaluateCommand(),
       AlignCommand(),
+      FitCommand(),
+      CalibrateCommand(),
   };
   return commands;
 }

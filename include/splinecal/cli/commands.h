@@ -12,6 +12,8 @@ Command SimulateCommand();
 Command IntegrateCommand();
 Command AllanCommand();
 Command AlignCommand();
+Command FitCommand();
+Command CalibrateCommand();
 
 }  // namespace cli
 }  // namespace splinecal
