@@ -1,11 +1,15 @@
 #include "splinecal/calib/fit.h"
 
 #include <algorithm>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numeric>
 #include <sstream>
@@ -14,6 +18,8 @@
 #include <ceres/ceres.h>
 #include <ceres/covariance.h>
 #include <Eigen/SVD>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <glog/logging.h>
 
 #include "splinecal/calib/bias_costs.h"
@@ -183,6 +189,236 @@ class ProgressCallback : public ceres::IterationCallback {
 
  private:
   std::function<void(const std::string&)> progress_;
+};
+
+// r = R [d_0; d_1; ...]: a linear residual over Euclidean (tangent) blocks d_k.
+class LinearCostFunction : public ceres::CostFunction {
+ public:
+  LinearCostFunction(Eigen::MatrixXd R, const std::vector<int>& block_sizes) : R_(std::move(R)) {
+    set_num_residuals(static_cast<int>(R_.rows()));
+    *mutable_parameter_block_sizes() = block_sizes;
+  }
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    Eigen::Map<Eigen::VectorXd> r(residuals, R_.rows());
+    r.setZero();
+    int column = 0;
+    const std::vector<int32_t>& sizes = parameter_block_sizes();
+    for (size_t k = 0; k < sizes.size(); ++k) {
+      r += R_.middleCols(column, sizes[k]) *
+           Eigen::Map<const Eigen::VectorXd>(parameters[k], sizes[k]);
+      if (jacobians != nullptr && jacobians[k] != nullptr) {
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
+            jacobians[k], R_.rows(), sizes[k]);
+        J = R_.middleCols(column, sizes[k]);
+      }
+      column += sizes[k];
+    }
+    return true;
+  }
+
+ private:
+  Eigen::MatrixXd R_;
+};
+
+// The Gauss-Newton information J^T J of `problem` at its current values, compressed into an
+// equivalent linear problem over tangent-space blocks: residual blocks are grouped (by their
+// first parameter block: the segment of an IMU or pose residual), each group's information
+// H = sum J_tangent^T J_tangent over the union of its blocks is factored as H = R^T R (R from
+// the eigen-decomposition, zero eigenvalues dropped), and one residual R [d...] replaces the
+// group. The compressed problem has exactly the same J^T J, hence the same covariance, with
+// ~4x fewer rows at 200 Hz and dt = 0.1 s. tangent_blocks[p] is the tangent block of p.
+class CompressedInformation {
+ public:
+  explicit CompressedInformation(ceres::Problem* problem) {
+    std::vector<ceres::ResidualBlockId> residual_blocks;
+    problem->GetResidualBlocks(&residual_blocks);
+    std::vector<double*> blocks;
+    std::vector<std::vector<double>> jacobians;
+    std::vector<double*> jacobian_pointers;
+    std::vector<double> residuals;
+    for (ceres::ResidualBlockId id : residual_blocks) {
+      const ceres::CostFunction* cost = problem->GetCostFunctionForResidualBlock(id);
+      problem->GetParameterBlocksForResidualBlock(id, &blocks);
+      const int rows = cost->num_residuals();
+      residuals.resize(rows);
+      jacobians.resize(blocks.size());
+      jacobian_pointers.resize(blocks.size());
+      for (size_t k = 0; k < blocks.size(); ++k) {
+        if (problem->IsParameterBlockConstant(blocks[k])) {
+          jacobian_pointers[k] = nullptr;
+          continue;
+        }
+        jacobians[k].resize(static_cast<size_t>(rows) * problem->ParameterBlockSize(blocks[k]));
+        jacobian_pointers[k] = jacobians[k].data();
+      }
+      CHECK(cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data()));
+      Group& group = groups_[blocks[0]];
+      // Tangent Jacobians of this residual block, column-stacked in the group's block order.
+      std::vector<std::pair<int, Eigen::MatrixXd>> parts;
+      for (size_t k = 0; k < blocks.size(); ++k) {
+        if (jacobian_pointers[k] == nullptr) continue;
+        const int ambient = problem->ParameterBlockSize(blocks[k]);
+        const int tangent = problem->ParameterBlockTangentSize(blocks[k]);
+        Eigen::MatrixXd J = Eigen::Map<
+            const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+            jacobians[k].data(), rows, ambient);
+        const ceres::Manifold* manifold = problem->GetManifold(blocks[k]);
+        if (manifold != nullptr) {
+          Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> plus(ambient,
+                                                                                      tangent);
+          CHECK(manifold->PlusJacobian(blocks[k], plus.data()));
+          J = J * plus;
+        }
+        block_sizes_[blocks[k]] = tangent;
+        parts.emplace_back(group.Index(blocks[k], tangent), std::move(J));
+      }
+      group.Resize();
+      for (const auto& [a, J_a] : parts) {
+        for (const auto& [b, J_b] : parts) {
+          group.H.block(group.offsets[a], group.offsets[b], J_a.cols(), J_b.cols()) +=
+              J_a.transpose() * J_b;
+        }
+      }
+    }
+  }
+
+  // Entries of the compressed Jacobian (sum of the groups' squared dimensions).
+  double CompressedEntries() const {
+    double entries = 0.0;
+    for (const auto& [key, group] : groups_) entries += static_cast<double>(group.H.size());
+    return entries;
+  }
+
+  // The compressed problem over tangent blocks: one linear residual R [d...] per group with
+  // H = R^T R (eigen-decomposition; zero eigenvalues dropped). Consumes the groups.
+  void BuildCeresProblem() {
+    ceres::Problem::Options options;
+    options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+    compressed_ = std::make_unique<ceres::Problem>(options);
+    for (auto it = groups_.begin(); it != groups_.end(); it = groups_.erase(it)) {
+      const Group& group = it->second;
+      std::vector<double*> tangent_blocks;
+      for (size_t k = 0; k < group.blocks.size(); ++k) {
+        std::vector<double>& storage = tangent_blocks_[group.blocks[k]];
+        storage.assign(group.sizes[k], 0.0);
+        tangent_blocks.push_back(storage.data());
+      }
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(group.H);
+      const Eigen::VectorXd& lambda = eigen.eigenvalues();
+      const double floor = 1e-14 * std::max(0.0, lambda.maxCoeff());
+      int rank = 0;
+      for (int k = 0; k < lambda.size(); ++k) rank += lambda[k] > floor ? 1 : 0;
+      if (rank == 0) continue;
+      Eigen::MatrixXd R(rank, group.H.cols());
+      int row = 0;
+      for (int k = 0; k < lambda.size(); ++k) {
+        if (lambda[k] <= floor) continue;
+        R.row(row++) = std::sqrt(lambda[k]) * eigen.eigenvectors().col(k).transpose();
+      }
+      compressed_->AddResidualBlock(new LinearCostFunction(std::move(R), group.sizes),
+                                    nullptr,
+                                    tangent_blocks);
+    }
+  }
+
+  // The same covariance without ceres::Covariance, for problems whose Jacobian copies would not
+  // fit in memory: the tangent-space information H = sum of the groups' H (sparse, banded plus
+  // the global columns) is factored by a sparse Cholesky (Eigen, AMD ordering) and
+  // H Y = E solved for the columns E of the requested blocks; the covariance is E^T Y.
+  // Returns false when H is not positive definite (the data leaves a direction undetermined).
+  // Consumes the groups.
+  bool MarginalCovariance(const std::vector<const double*>& requested,
+                          Eigen::MatrixXd* covariance) {
+    std::map<const double*, int> offsets;
+    int size = 0;
+    for (const auto& [key, group] : groups_) {
+      for (size_t k = 0; k < group.blocks.size(); ++k) {
+        if (offsets.emplace(group.blocks[k], size).second) size += group.sizes[k];
+      }
+    }
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (auto it = groups_.begin(); it != groups_.end(); it = groups_.erase(it)) {
+      const Group& group = it->second;
+      for (size_t a = 0; a < group.blocks.size(); ++a) {
+        const int row0 = offsets[group.blocks[a]];
+        for (size_t b = 0; b < group.blocks.size(); ++b) {
+          const int col0 = offsets[group.blocks[b]];
+          for (int r = 0; r < group.sizes[a]; ++r) {
+            for (int c = 0; c < group.sizes[b]; ++c) {
+              if (row0 + r < col0 + c) continue;  // lower triangle
+              triplets.emplace_back(row0 + r, col0 + c,
+                                    group.H(group.offsets[a] + r, group.offsets[b] + c));
+            }
+          }
+        }
+      }
+    }
+    Eigen::SparseMatrix<double> H(size, size);
+    H.setFromTriplets(triplets.begin(), triplets.end());  // sums duplicates
+    std::vector<Eigen::Triplet<double>>().swap(triplets);
+    const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky(H);
+    if (cholesky.info() != Eigen::Success) return false;
+    int requested_size = 0;
+    std::vector<std::pair<int, int>> columns;  // (offset in H, tangent size)
+    for (const double* block : requested) {
+      const auto found = offsets.find(block);
+      if (found == offsets.end()) return false;
+      columns.emplace_back(found->second, block_sizes_.at(block));
+      requested_size += columns.back().second;
+    }
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(size, requested_size);
+    int column = 0;
+    for (const auto& [offset, block_size] : columns) {
+      for (int c = 0; c < block_size; ++c) E(offset + c, column++) = 1.0;
+    }
+    const Eigen::MatrixXd Y = cholesky.solve(E);
+    if (cholesky.info() != Eigen::Success) return false;
+    covariance->resize(requested_size, requested_size);
+    column = 0;
+    for (const auto& [offset, block_size] : columns) {
+      covariance->middleRows(column, block_size) = Y.middleRows(offset, block_size);
+      column += block_size;
+    }
+    return covariance->allFinite();
+  }
+
+  ceres::Problem* problem() { return compressed_.get(); }
+  // The tangent block standing for `block` (nullptr if it appears in no residual).
+  const double* TangentBlock(const double* block) const {
+    const auto it = tangent_blocks_.find(block);
+    return it == tangent_blocks_.end() ? nullptr : it->second.data();
+  }
+
+ private:
+  struct Group {
+    std::vector<const double*> blocks;
+    std::vector<int> sizes;
+    std::vector<int> offsets;
+    Eigen::MatrixXd H;
+    int Index(const double* block, int size) {
+      for (size_t k = 0; k < blocks.size(); ++k) {
+        if (blocks[k] == block) return static_cast<int>(k);
+      }
+      blocks.push_back(block);
+      sizes.push_back(size);
+      offsets.push_back(offsets.empty() ? 0 : offsets.back() + sizes[sizes.size() - 2]);
+      return static_cast<int>(blocks.size()) - 1;
+    }
+    void Resize() {
+      const int n = offsets.empty() ? 0 : offsets.back() + sizes.back();
+      if (H.rows() == n) return;
+      Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(n, n);
+      bigger.topLeftCorner(H.rows(), H.cols()) = H;
+      H = std::move(bigger);
+    }
+  };
+
+  std::map<const double*, Group> groups_;  // by the first parameter block of their residuals
+  std::map<const double*, int> block_sizes_;  // tangent sizes
+  std::map<const double*, std::vector<double>> tangent_blocks_;
+  std::unique_ptr<ceres::Problem> compressed_;
 };
 
 }  // namespace
@@ -789,6 +1025,9 @@ void FitProblem::Impl::AddImuResiduals() {
     accel_segment.sigma = sigma_a;
     std::vector<ImuResidualSample> gyro_samples;
     std::vector<ImuResidualSample> accel_samples;
+    const size_t expected = static_cast<size_t>(dt_s * imu_rate_hz) + 2;
+    gyro_samples.reserve(expected);
+    accel_samples.reserve(expected);
     int bias_segment = 0;
     for (; k < imu.size(); ++k) {
       int i = 0;
@@ -920,6 +1159,11 @@ FitResult FitProblem::Impl::Solve() {
   }
 
   ceres::Solver::Summary summary;
+#ifdef __GLIBC__
+  // Return what the initialisation freed (the pose fit's solver) before the main solve, whose
+  // Jacobian is the peak memory of long recordings (docs/performance.md).
+  malloc_trim(0);
+#endif
   for (int round = 0; round < kMaxSolverRounds; ++round) {
     const auto start = std::chrono::steady_clock::now();
     ceres::Solve(solver_options, problem.get(), &summary);
@@ -1070,6 +1314,11 @@ FitResult FitProblem::Impl::Solve() {
   warn_ratio(result.residual_rms.position_m / options.pose_sigma_m, "pose position");
   warn_ratio(result.residual_rms.rotation_rad / options.pose_sigma_rad, "pose rotation");
 
+#ifdef __GLIBC__
+  // The solver's Jacobian is gone: give its pages back before the covariance allocates (the
+  // peak memory of long recordings, docs/performance.md).
+  malloc_trim(0);
+#endif
   if (options.compute_covariance) ComputeCovariance(&result);
   result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
   return result;
@@ -1141,10 +1390,34 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   covariance_options.num_threads = options.num_threads;
   covariance_options.algorithm_type = ceres::SPARSE_QR;
   ceres::Covariance covariance(covariance_options);
-  bool ok = covariance.Compute(blocks, problem.get());
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> full(tangent_total,
                                                                               tangent_total);
-  if (ok) ok = covariance.GetCovarianceMatrixInTangentSpace(blocks, full.data());
+  bool ok = false;
+  if (options.compressed_covariance) {
+    // The same J^T J as the problem, with fewer rows (CompressedInformation).
+    CompressedInformation compressed(problem.get());
+    if (compressed.CompressedEntries() <= options.max_ceres_covariance_entries) {
+      result->covariance_method = "ceres::Covariance (SPARSE_QR) on the compressed problem";
+      compressed.BuildCeresProblem();
+      std::vector<const double*> tangent_blocks;
+      ok = true;
+      for (const double* block : blocks) {
+        tangent_blocks.push_back(compressed.TangentBlock(block));
+        ok = ok && tangent_blocks.back() != nullptr;
+      }
+      if (ok) ok = covariance.Compute(tangent_blocks, compressed.problem());
+      if (ok) ok = covariance.GetCovarianceMatrixInTangentSpace(tangent_blocks, full.data());
+    } else {
+      result->covariance_method = "sparse Cholesky of the compressed information (large problem)";
+      Eigen::MatrixXd marginal;
+      ok = compressed.MarginalCovariance(blocks, &marginal);
+      if (ok) full = marginal;
+    }
+  } else {
+    result->covariance_method = "ceres::Covariance (SPARSE_QR) on the fit's problem";
+    ok = covariance.Compute(blocks, problem.get());
+    if (ok) ok = covariance.GetCovarianceMatrixInTangentSpace(blocks, full.data());
+  }
   if (ok) ok = full.allFinite();
   const ExcitationThresholds& limit = options.excitation;
   if (!ok) {

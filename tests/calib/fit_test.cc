@@ -171,6 +171,48 @@ TEST(Fit, AutoDiffPerSampleAndUnsharedPathsReachTheSameSolution) {
   }
 }
 
+TEST(Fit, TheThreeCovarianceComputationsAgree) {
+  // ceres::Covariance on the fit's problem, on the compressed problem, and the sparse Cholesky
+  // of the compressed information compute the same (J^T J)^-1 block: equal to rounding times
+  // the condition number (8 s of data leave the extrinsic translation weakly determined, and its
+  // variance agrees to ~1e-8 only).
+  constexpr double kSameCovarianceTolerance = 1e-6;  // relative to sqrt(C_rr C_cc)
+  FitScenario scenario;
+  scenario.duration_s = 8.0;
+  scenario.imu_noise = true;
+  scenario.pose_noise = true;
+  scenario.pose_rate_hz = 20.0;
+  const FitData data = MakeFitData(scenario);
+  FitOptions options = QuietOptions();
+  options.noise = scenario.noise;
+  options.estimate_time_offset = true;
+  options.estimate_extrinsic = true;
+  options.bias_model = BiasModel::kSpline;
+  options.noise.gyroscope_random_walk = ImuNoise::Adis16448().gyroscope_random_walk;
+  options.noise.accelerometer_random_walk = ImuNoise::Adis16448().accelerometer_random_walk;
+  options.compressed_covariance = false;
+  const FitResult direct = Fit(data.imu, data.poses, options);
+  options.compressed_covariance = true;
+  const FitResult compressed = Fit(data.imu, data.poses, options);
+  options.max_ceres_covariance_entries = 0.0;
+  const FitResult cholesky = Fit(data.imu, data.poses, options);
+  ASSERT_TRUE(direct.covariance_ok);
+  ASSERT_TRUE(compressed.covariance_ok);
+  ASSERT_TRUE(cholesky.covariance_ok);
+  EXPECT_THAT(cholesky.covariance_method, HasSubstr("Cholesky"));
+  const Eigen::MatrixXd& C = direct.covariance;
+  ASSERT_EQ(C.rows(), 8 + 1 + 6);
+  for (const FitResult* other : {&compressed, &cholesky}) {
+    for (int r = 0; r < C.rows(); ++r) {
+      for (int c = 0; c < C.cols(); ++c) {
+        const double scale = std::sqrt(C(r, r) * C(c, c));
+        EXPECT_NEAR(other->covariance(r, c), C(r, c), kSameCovarianceTolerance * scale)
+            << direct.covariance_labels[r] << ", " << direct.covariance_labels[c];
+      }
+    }
+  }
+}
+
 TEST(Fit, BiasSplineFollowsADriftingBias) {
   FitScenario scenario;
   scenario.duration_s = 30.0;

@@ -117,6 +117,16 @@ struct FitOptions {
   bool share_knot_caches = true;  // calib/spline_evaluation_callback.h (analytic only)
   // Uncertainty and diagnostics.
   bool compute_covariance = true;
+  // ceres::Covariance on an equivalent compressed problem: per segment, the information
+  // J^T J of its residuals factored into at most as many rows as it has tangent parameters (the
+  // same J^T J, so the same covariance; ~4x fewer rows, much less memory). false: on the fit's
+  // own problem.
+  bool compressed_covariance = true;
+  // ceres::Covariance keeps several copies of the Jacobian (CRS, CHOLMOD, SuiteSparseQR). Above
+  // this many compressed Jacobian entries (~13 minutes at 200 Hz and dt = 0.1 s) the same
+  // covariance is computed by a sparse Cholesky of the compressed information instead (Eigen),
+  // to stay within memory (docs/fit.md, "Uncertainty").
+  double max_ceres_covariance_entries = 8e6;
   ExcitationThresholds excitation;
   // Residual RMS above this many times the noise std (gyro or accel) is a failed fit (Error).
   // EuRoC's MAV vibrations leave the accelerometer at ~30x its white noise: 100 keeps real data
@@ -197,6 +207,7 @@ struct FitResult {
   bool covariance_ok = false;
   Eigen::MatrixXd covariance;
   std::vector<std::string> covariance_labels;
+  std::string covariance_method;  // which of the (equivalent) computations ran
 
   ResidualStats residual_rms;
   ResidualStats noise_std;  // what the weights assume (sigma per axis)
