@@ -8,7 +8,8 @@
 //   faster than our autodiff path (BM_FitReference/autodiff) to the same final cost.
 //
 //   Scale: 1, 10 and 60 minutes of 200 Hz IMU with 20 Hz poses (noise, 0.1 s knots), the whole
-//   Fit() (initialisation, solve, covariance; per-sample outputs not kept) with 2 threads.
+//   Fit() (initialisation, solve, covariance; per-sample outputs not kept) with 2 threads and the
+//   default options (FitLinearSolver::kAuto: SPARSE_SCHUR above ~11 minutes).
 //   Target for 60 min: <= 60 s and <= 2 GB peak (counter peak_rss_mb: the process's peak so far,
 //   so run the sizes in increasing order, as registered, or one per process with
 //   --benchmark_filter).
@@ -90,7 +91,7 @@ double PeakRssMb() {
   return usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-enum class Path { kAnalytic, kAnalyticPerSample, kAnalyticUnshared, kAutoDiff };
+enum class Path { kAnalytic, kAnalyticPerSample, kAnalyticUnshared, kAnalyticSchur, kAutoDiff };
 
 void BM_FitReference(benchmark::State& state, Path path) {
   const Dataset& data = ReferenceData();
@@ -103,6 +104,8 @@ void BM_FitReference(benchmark::State& state, Path path) {
   options.function_tolerance = 1e-6;
   options.gradient_tolerance = 1e-10;
   options.parameter_tolerance = 1e-8;
+  options.linear_solver = path == Path::kAnalyticSchur ? FitLinearSolver::kSparseSchur
+                                                       : FitLinearSolver::kSparseNormalCholesky;
   options.layout = path == Path::kAnalyticPerSample ? ImuResidualLayout::kPerSample
                                                     : ImuResidualLayout::kPerSegment;
   options.share_knot_caches = path != Path::kAnalyticUnshared;
@@ -152,6 +155,9 @@ BENCHMARK_CAPTURE(BM_FitReference, analytic_per_sample_blocks, Path::kAnalyticPe
 BENCHMARK_CAPTURE(BM_FitReference, analytic_unshared_knots, Path::kAnalyticUnshared)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
+BENCHMARK_CAPTURE(BM_FitReference, analytic_sparse_schur, Path::kAnalyticSchur)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK_CAPTURE(BM_FitReference, autodiff, Path::kAutoDiff)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
@@ -177,6 +183,7 @@ void BM_FitScale(benchmark::State& state) {
   state.counters["iterations"] = result.iterations;
   state.counters["imu_samples"] = result.num_imu_samples;
   state.counters["peak_rss_mb"] = PeakRssMb();
+  state.SetLabel(result.linear_solver + ", covariance: " + result.covariance_method);
   state.counters["gyro_bias_err"] = (result.gyro_bias - data.gyro_bias).norm();
   state.counters["accel_bias_err"] = (result.accel_bias - data.accel_bias).norm();
 }

@@ -1144,7 +1144,16 @@ std::string FitProblem::Impl::LikelyCauses(double gyro_ratio, double accel_ratio
 FitResult FitProblem::Impl::Solve() {
   FitResult result;
   ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  // Jacobian entries: 3 rows per gyro/accel sample times their tangent columns, 6 per pose.
+  const double jacobian_entries =
+      3.0 * static_cast<double>(imu.size()) *
+          (2.0 * 24.0 + 6.0 * bias_blocks_per_residual + 2.0) +
+      6.0 * static_cast<double>(used_poses.size()) * 31.0;
+  const bool schur = options.linear_solver == FitLinearSolver::kSparseSchur ||
+                     (options.linear_solver == FitLinearSolver::kAuto &&
+                      jacobian_entries > options.max_normal_cholesky_jacobian_entries);
+  solver_options.linear_solver_type = schur ? ceres::SPARSE_SCHUR : ceres::SPARSE_NORMAL_CHOLESKY;
+  result.linear_solver = schur ? "SPARSE_SCHUR" : "SPARSE_NORMAL_CHOLESKY";
   solver_options.num_threads = options.num_threads;
   solver_options.max_num_iterations = options.max_iterations;
   solver_options.function_tolerance = options.function_tolerance;

@@ -122,6 +122,8 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   yaml.Scalar("solve_time_s", r.solve_time_s);
   yaml.Scalar("covariance_time_s", r.covariance_time_s);
   yaml.Scalar("termination", r.termination);
+  yaml.Scalar("linear_solver", r.linear_solver);
+  yaml.Scalar("covariance_method", r.covariance_method);
   yaml.Scalar("knot_spacing_s", r.knot_spacing_s);
   yaml.Scalar("knot_spacing_rule", r.knot_spacing_rule);
   yaml.Scalar("num_control_poses", r.layout.num_control_poses);

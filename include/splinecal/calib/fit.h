@@ -57,6 +57,18 @@ enum class ImuResidualLayout {
   kPerSample,   // one gyro and one accel block per IMU sample
 };
 
+// Ceres' linear solver for the Levenberg-Marquardt steps.
+enum class FitLinearSolver {
+  // kSparseNormalCholesky, or kSparseSchur when the Jacobian would exceed
+  // FitOptions::max_normal_cholesky_jacobian_entries (recordings over ~3 minutes).
+  kAuto,
+  // SPARSE_NORMAL_CHOLESKY (SuiteSparse). Ceres 2.1 appends the LM diagonal to the Jacobian
+  // by reallocating it on the first step: for a moment it holds two copies of J.
+  kSparseNormalCholesky,
+  // SPARSE_SCHUR: eliminates an independent set of control poses; no copy of J, similar speed.
+  kSparseSchur,
+};
+
 enum class Differentiation {
   kAnalytic,  // calib/imu_costs.h, calib/pose_cost.h analytic Jacobians (default)
   kAutoDiff,  // their ceres::AutoDiffCostFunction twins, one block per sample (tests, bench)
@@ -112,6 +124,11 @@ struct FitOptions {
   // two iterations on the reference problem (docs/fit.md, "Speed"); a bad step is still rejected
   // and the radius shrinks.
   double initial_trust_region_radius = 1e6;
+  FitLinearSolver linear_solver = FitLinearSolver::kAuto;
+  // kAuto switches to SPARSE_SCHUR above this many Jacobian entries (8e6: 64 MB, ~2.7 minutes
+  // at 200 Hz), where SPARSE_NORMAL_CHOLESKY's transient second copy of J starts to dominate the
+  // peak memory; both are about as fast (docs/fit.md, "Speed").
+  double max_normal_cholesky_jacobian_entries = 8e6;
   ImuResidualLayout layout = ImuResidualLayout::kPerSegment;
   Differentiation differentiation = Differentiation::kAnalytic;
   bool share_knot_caches = true;  // calib/spline_evaluation_callback.h (analytic only)
@@ -123,10 +140,10 @@ struct FitOptions {
   // own problem.
   bool compressed_covariance = true;
   // ceres::Covariance keeps several copies of the Jacobian (CRS, CHOLMOD, SuiteSparseQR). Above
-  // this many compressed Jacobian entries (~13 minutes at 200 Hz and dt = 0.1 s) the same
+  // this many compressed Jacobian entries (~5 minutes at dt = 0.1 s, ~2.5 at 0.05 s) the same
   // covariance is computed by a sparse Cholesky of the compressed information instead (Eigen),
-  // to stay within memory (docs/fit.md, "Uncertainty").
-  double max_ceres_covariance_entries = 8e6;
+  // which needs a fraction of the memory and time (docs/fit.md, "Uncertainty").
+  double max_ceres_covariance_entries = 3e6;
   ExcitationThresholds excitation;
   // Residual RMS above this many times the noise std (gyro or accel) is a failed fit (Error).
   // EuRoC's MAV vibrations leave the accelerometer at ~30x its white noise: 100 keeps real data
@@ -222,6 +239,7 @@ struct FitResult {
   double covariance_time_s = 0.0;
   std::string termination;  // Ceres' termination message
   std::string solver_report;  // Ceres' FullReport of the last solve (timings per phase)
+  std::string linear_solver;  // the Ceres linear solver used
   int solver_rounds = 0;    // > 1 when pose residuals were re-attached after a time-offset move
 
   std::vector<std::string> warnings;
