@@ -60,8 +60,12 @@ Dataset MakeDataset(int64_t duration_ns, int64_t pose_step_ns) {
   simulation.gyro_bias = data.gyro_bias;
   simulation.accel_bias = data.accel_bias;
   simulation.seed = 5;
-  SimulateImu(data.truth, data.truth.start_time_ns(), data.truth.end_time_ns(), simulation,
-              &data.imu, nullptr);
+  SimulateImu(data.truth,
+              data.truth.start_time_ns(),
+              data.truth.end_time_ns(),
+              simulation,
+              &data.imu,
+              nullptr);
   std::mt19937_64 rng(7);
   std::normal_distribution<double> normal(0.0, 1e-3);
   auto add_pose = [&](int64_t t) {
@@ -69,8 +73,8 @@ Dataset MakeDataset(int64_t duration_ns, int64_t pose_step_ns) {
     StampedPose pose;
     pose.t_ns = t;
     pose.p = T.translation() + Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
-    pose.q = (T.so3() * SO3d::Exp(Eigen::Vector3d(normal(rng), normal(rng), normal(rng))))
-                 .quaternion();
+    pose.q =
+        (T.so3() * SO3d::Exp(Eigen::Vector3d(normal(rng), normal(rng), normal(rng)))).quaternion();
     data.poses.push_back(pose);
   };
   int64_t t = data.truth.start_time_ns();

@@ -1,9 +1,9 @@
 #include "splinecal/calib/bias_costs.h"
 
-#include <cmath>
+#include <glog/logging.h>
 
 #include <Eigen/Eigenvalues>
-#include <glog/logging.h>
+#include <cmath>
 
 namespace splinecal {
 
@@ -49,7 +49,8 @@ bool BiasRandomWalkCostFunction::Evaluate(double const* const* parameters,
                                           double* residuals,
                                           double** jacobians) const {
   Eigen::Matrix<double, 12, 1> c;
-  for (int j = 0; j < 4; ++j) c.segment<3>(3 * j) = Eigen::Map<const Eigen::Vector3d>(parameters[j]);
+  for (int j = 0; j < 4; ++j)
+    c.segment<3>(3 * j) = Eigen::Map<const Eigen::Vector3d>(parameters[j]);
   Eigen::Map<Eigen::Matrix<double, 9, 1>> r(residuals);
   r = jacobian_ * c;
   if (jacobians == nullptr) return true;
@@ -62,7 +63,7 @@ bool BiasRandomWalkCostFunction::Evaluate(double const* const* parameters,
 }
 
 BiasRandomWalkResidual::BiasRandomWalkResidual(double knot_spacing_s, double random_walk_density)
-    : weights(BiasRandomWalkSqrtInformation() /
-              (random_walk_density * std::sqrt(knot_spacing_s))) {}
+    : weights(BiasRandomWalkSqrtInformation() / (random_walk_density * std::sqrt(knot_spacing_s))) {
+}
 
 }  // namespace splinecal

@@ -4,6 +4,13 @@
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
+#include <ceres/ceres.h>
+#include <ceres/covariance.h>
+#include <glog/logging.h>
+
+#include <Eigen/SVD>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -14,13 +21,6 @@
 #include <numeric>
 #include <sstream>
 #include <utility>
-
-#include <ceres/ceres.h>
-#include <ceres/covariance.h>
-#include <Eigen/SVD>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
-#include <glog/logging.h>
 
 #include "splinecal/calib/bias_costs.h"
 #include "splinecal/calib/gravity_manifold.h"
@@ -89,12 +89,11 @@ double ImuRateHz(const std::vector<ImuSample>& imu) {
   return period > 0 ? 1e9 / static_cast<double>(period) : 0.0;
 }
 
-SE3d PoseOf(const StampedPose& pose) {
-  return SE3d(SO3d::FromQuaternion(pose.q), pose.p);
-}
+SE3d PoseOf(const StampedPose& pose) { return SE3d(SO3d::FromQuaternion(pose.q), pose.p); }
 
 void CheckIncreasing(const std::vector<ImuSample>& imu, const std::vector<StampedPose>& poses) {
-  if (imu.size() < 2) throw Error("fit: needs at least 2 IMU samples, got " + std::to_string(imu.size()));
+  if (imu.size() < 2)
+    throw Error("fit: needs at least 2 IMU samples, got " + std::to_string(imu.size()));
   if (poses.size() < 2) {
     throw Error("fit: needs at least 2 poses, got " + std::to_string(poses.size()));
   }
@@ -153,8 +152,8 @@ void CheckOptions(const FitOptions& o) {
 // exact exponentials; bias not removed (used for initial guesses only).
 SO3d IntegrateGyro(const std::vector<ImuSample>& imu, int64_t a_ns, int64_t b_ns) {
   SO3d R;
-  auto it = std::upper_bound(imu.begin(), imu.end(), a_ns,
-                             [](int64_t t, const ImuSample& s) { return t < s.t_ns; });
+  auto it = std::upper_bound(
+      imu.begin(), imu.end(), a_ns, [](int64_t t, const ImuSample& s) { return t < s.t_ns; });
   size_t k = it == imu.begin() ? 0 : static_cast<size_t>(it - imu.begin()) - 1;
   int64_t t = a_ns;
   while (t < b_ns && k < imu.size()) {
@@ -317,9 +316,8 @@ class CompressedInformation {
         if (lambda[k] <= floor) continue;
         R.row(row++) = std::sqrt(lambda[k]) * eigen.eigenvectors().col(k).transpose();
       }
-      compressed_->AddResidualBlock(new LinearCostFunction(std::move(R), group.sizes),
-                                    nullptr,
-                                    tangent_blocks);
+      compressed_->AddResidualBlock(
+          new LinearCostFunction(std::move(R), group.sizes), nullptr, tangent_blocks);
     }
   }
 
@@ -348,8 +346,8 @@ class CompressedInformation {
           for (int r = 0; r < group.sizes[a]; ++r) {
             for (int c = 0; c < group.sizes[b]; ++c) {
               if (row0 + r < col0 + c) continue;  // lower triangle
-              triplets.emplace_back(row0 + r, col0 + c,
-                                    group.H(group.offsets[a] + r, group.offsets[b] + c));
+              triplets.emplace_back(
+                  row0 + r, col0 + c, group.H(group.offsets[a] + r, group.offsets[b] + c));
             }
           }
         }
@@ -415,7 +413,7 @@ class CompressedInformation {
     }
   };
 
-  std::map<const double*, Group> groups_;  // by the first parameter block of their residuals
+  std::map<const double*, Group> groups_;     // by the first parameter block of their residuals
   std::map<const double*, int> block_sizes_;  // tangent sizes
   std::map<const double*, std::vector<double>> tangent_blocks_;
   std::unique_ptr<ceres::Problem> compressed_;
@@ -446,8 +444,7 @@ double ChooseKnotSpacing(const std::vector<ImuSample>& imu,
   const double noise_variance =
       noise.gyroscope_noise_density * noise.gyroscope_noise_density * rate_hz;
   const double signal_variance = std::max(0.0, variance - noise_variance);
-  const double allowed =
-      std::max(kKnotSpacingUnexplainedShare * signal_variance, noise_variance);
+  const double allowed = std::max(kKnotSpacingUnexplainedShare * signal_variance, noise_variance);
   const double min_spacing = 2.0 / rate_hz;
 
   double chosen = 0.0;
@@ -540,7 +537,9 @@ bool EstimateTimeOffsetByCorrelation(const std::vector<ImuSample>& imu,
   }
   auto integral_to = [&](int64_t t) -> Eigen::Vector3d {  // t in [t_0, t_last]
     size_t k = static_cast<size_t>(
-        std::upper_bound(imu.begin(), imu.end(), t,
+        std::upper_bound(imu.begin(),
+                         imu.end(),
+                         t,
                          [](int64_t value, const ImuSample& s) { return value < s.t_ns; }) -
         imu.begin());
     k = std::clamp<size_t>(k, 1, imu.size() - 1) - 1;  // t in [t_k, t_k+1]
@@ -618,10 +617,10 @@ bool EstimateTimeOffsetByCorrelation(const std::vector<ImuSample>& imu,
 
 struct FitProblem::Impl {
   FitOptions options;
-  std::vector<ImuSample> imu;          // samples inside the spline's valid range
-  std::vector<StampedPose> poses;      // every input pose (pose clock)
-  std::vector<int> used_poses;         // indices into poses with residuals
-  std::vector<int> pose_segments;      // attached segment of each used pose
+  std::vector<ImuSample> imu;      // samples inside the spline's valid range
+  std::vector<StampedPose> poses;  // every input pose (pose clock)
+  std::vector<int> used_poses;     // indices into poses with residuals
+  std::vector<int> pose_segments;  // attached segment of each used pose
   double imu_rate_hz = 0.0;
   double sigma_g = 0.0;
   double sigma_a = 0.0;
@@ -632,12 +631,12 @@ struct FitProblem::Impl {
 
   std::vector<double> control_values;  // 7 per control pose
   std::vector<double*> control_blocks;
-  int bias_blocks_per_residual = 1;    // 1 (constant) or 4 (spline)
+  int bias_blocks_per_residual = 1;  // 1 (constant) or 4 (spline)
   int num_bias_points = 1;
   int pose_knots_per_bias_knot = 1;
   int64_t bias_t0_ns = 0;
   int64_t bias_dt_ns = 0;
-  std::vector<double> gyro_bias_values;   // 3 per control point
+  std::vector<double> gyro_bias_values;  // 3 per control point
   std::vector<double> accel_bias_values;
   std::array<double, 3> gravity = {0.0, 0.0, 0.0};
   double time_offset = 0.0;
@@ -694,7 +693,8 @@ struct FitProblem::Impl {
       return Eigen::Map<const Eigen::Vector3d>(values.data());
     }
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (int j = 0; j < 4; ++j) b += w[j] * Eigen::Map<const Eigen::Vector3d>(&values[3 * (m - 1 + j)]);
+    for (int j = 0; j < 4; ++j)
+      b += w[j] * Eigen::Map<const Eigen::Vector3d>(&values[3 * (m - 1 + j)]);
     return b;
   }
 
@@ -745,24 +745,30 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
     const double range = options.estimate_time_offset ? options.max_time_offset_s : 0.1;
     double offset = 0.0;
     bool at_edge = false;
-    if (EstimateTimeOffsetByCorrelation(
-            all_imu, all_poses, options.estimate_time_offset ? 0.0 : time_offset, range, &offset,
-            &at_edge)) {
+    if (EstimateTimeOffsetByCorrelation(all_imu,
+                                        all_poses,
+                                        options.estimate_time_offset ? 0.0 : time_offset,
+                                        range,
+                                        &offset,
+                                        &at_edge)) {
       correlation_offset_s = offset;
       correlation_at_edge = at_edge;
       if (options.estimate_time_offset) {
         if (at_edge) {
-          throw Error("fit: the time offset between IMU and poses appears to be beyond the search "
-                      "range +-" + Format("%.3g", options.max_time_offset_s) +
-                      " s (the best alignment of gyro and pose rotation rates is at its edge): "
-                      "raise --max-time-offset or check that both files use the same clock");
+          throw Error(
+              "fit: the time offset between IMU and poses appears to be beyond the search "
+              "range +-" +
+              Format("%.3g", options.max_time_offset_s) +
+              " s (the best alignment of gyro and pose rotation rates is at its edge): "
+              "raise --max-time-offset or check that both files use the same clock");
         }
         time_offset = offset;
       } else if (std::abs(offset - time_offset) > 2.5 / imu_rate_hz && !at_edge) {
-        warnings.push_back("the gyro and the poses' rotation rates line up best with a time "
-                           "offset of " + Format("%.1f", 1e3 * offset) + " ms, not the " +
-                           Format("%.1f", 1e3 * time_offset) +
-                           " ms used: consider --estimate-time-offset");
+        warnings.push_back(
+            "the gyro and the poses' rotation rates line up best with a time "
+            "offset of " +
+            Format("%.1f", 1e3 * offset) + " ms, not the " + Format("%.1f", 1e3 * time_offset) +
+            " ms used: consider --estimate-time-offset");
       }
     }
   }
@@ -819,8 +825,8 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
     if (t - margin_ns >= start && t + margin_ns <= end) ++poses_inside;
   }
   if (end - start < min_span_ns || poses_inside < kMinPoses) {
-    throw Error("fit: the data is too short for knot spacing " + Format("%.6g", dt_s) + " s: " +
-                Format("%.6g", overlap_s) + " s of overlapping IMU and pose data with " +
+    throw Error("fit: the data is too short for knot spacing " + Format("%.6g", dt_s) +
+                " s: " + Format("%.6g", overlap_s) + " s of overlapping IMU and pose data with " +
                 std::to_string(poses_inside) + " poses inside; needs at least " +
                 Format("%.6g", 1e-9 * static_cast<double>(min_span_ns)) + " s (" +
                 std::to_string(kMinKnotIntervals) + " knot intervals" +
@@ -836,7 +842,8 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   const int64_t t_last = layout.t0_ns + static_cast<int64_t>(layout.num_control_poses - 2) * dt_ns;
   for (size_t j = 0; j < poses.size(); ++j) {
     const int64_t t = poses[j].t_ns + offset_ns;
-    if (t - margin_ns >= t_first && t + margin_ns <= t_last) used_poses.push_back(static_cast<int>(j));
+    if (t - margin_ns >= t_first && t + margin_ns <= t_last)
+      used_poses.push_back(static_cast<int>(j));
   }
 
   // Extrinsic: the given value, its rotation from hand-eye when estimated.
@@ -926,8 +933,8 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   spline.Evaluate(spline.SegmentAtNs(imu.front().t_ns), &ignored, nullptr, nullptr, &v_start);
   spline.Evaluate(spline.SegmentAtNs(imu.back().t_ns), &ignored, nullptr, nullptr, &v_end);
   const double duration = 1e-9 * static_cast<double>(imu.back().t_ns - imu.front().t_ns);
-  const Eigen::Vector3d mean_a = duration > 0.0 ? Eigen::Vector3d((v_end - v_start) / duration)
-                                                : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d mean_a =
+      duration > 0.0 ? Eigen::Vector3d((v_end - v_start) / duration) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d g_estimate = mean_a - mean_Rf;  // f = R^T (a - g)  =>  g = a - R f
   const double g_ratio = g_estimate.norm() / options.gravity_m_s2;
   if (g_ratio > kMaxGravityRatio || g_ratio < 1.0 / kMaxGravityRatio) {
@@ -1100,9 +1107,9 @@ void FitProblem::Impl::AddPoseResiduals() {
     data.sigma_rad = options.pose_sigma_rad;
     data.shared = callback.get();
     pose_segments.push_back(data.segment_index);
-    ceres::CostFunction* cost =
-        analytic() ? static_cast<ceres::CostFunction*>(new PoseCostFunction(data))
-                   : NewAutoDiffPoseCost(data);
+    ceres::CostFunction* cost = analytic()
+                                    ? static_cast<ceres::CostFunction*>(new PoseCostFunction(data))
+                                    : NewAutoDiffPoseCost(data);
     const int i = data.segment_index;
     problem->AddResidualBlock(cost,
                               nullptr,
@@ -1124,15 +1131,18 @@ std::string FitProblem::Impl::LikelyCauses(double gyro_ratio, double accel_ratio
   if (!options.estimate_time_offset && std::isfinite(correlation_offset_s) &&
       std::abs(correlation_offset_s - time_offset) > 2.5 / imu_rate_hz) {
     causes.push_back("an unestimated time offset (the rotation rates line up best at " +
-                     Format("%.1f", 1e3 * correlation_offset_s) + " ms; try --estimate-time-offset)");
+                     Format("%.1f", 1e3 * correlation_offset_s) +
+                     " ms; try --estimate-time-offset)");
   }
   if (gyro_ratio > options.max_residual_noise_ratio) {
-    causes.push_back("gyro readings that do not match the poses' rotation (wrong --gyro-unit, "
-                     "an extrinsic rotation that was not estimated, or poses of another body)");
+    causes.push_back(
+        "gyro readings that do not match the poses' rotation (wrong --gyro-unit, "
+        "an extrinsic rotation that was not estimated, or poses of another body)");
   }
   if (accel_ratio > options.max_residual_noise_ratio) {
-    causes.push_back("accelerometer readings that do not match the poses' motion (wrong "
-                     "--accel-unit or --gravity, or an extrinsic that was not estimated)");
+    causes.push_back(
+        "accelerometer readings that do not match the poses' motion (wrong "
+        "--accel-unit or --gravity, or an extrinsic that was not estimated)");
   }
   causes.push_back("noise densities in --imu-yaml far below the sensor's");
   causes.push_back("too little excitation (the IMU barely moved or rotated)");
@@ -1146,8 +1156,7 @@ FitResult FitProblem::Impl::Solve() {
   ceres::Solver::Options solver_options;
   // Jacobian entries: 3 rows per gyro/accel sample times their tangent columns, 6 per pose.
   const double jacobian_entries =
-      3.0 * static_cast<double>(imu.size()) *
-          (2.0 * 24.0 + 6.0 * bias_blocks_per_residual + 2.0) +
+      3.0 * static_cast<double>(imu.size()) * (2.0 * 24.0 + 6.0 * bias_blocks_per_residual + 2.0) +
       6.0 * static_cast<double>(used_poses.size()) * 31.0;
   const bool schur = options.linear_solver == FitLinearSolver::kSparseSchur ||
                      (options.linear_solver == FitLinearSolver::kAuto &&
@@ -1182,8 +1191,8 @@ FitResult FitProblem::Impl::Solve() {
     if (round == 0) result.initial_cost = summary.initial_cost;
     ++result.solver_rounds;
     if (summary.termination_type == ceres::FAILURE || !summary.IsSolutionUsable()) {
-      throw Error("fit: the solver failed (" + summary.message + "); likely causes: " +
-                  LikelyCauses(0.0, 0.0));
+      throw Error("fit: the solver failed (" + summary.message +
+                  "); likely causes: " + LikelyCauses(0.0, 0.0));
     }
     if (!options.estimate_time_offset) break;
     bool moved = false;
@@ -1193,7 +1202,8 @@ FitResult FitProblem::Impl::Solve() {
       }
     }
     if (!moved) break;
-    if (options.progress) options.progress("fit: time offset moved poses across knots; solving again");
+    if (options.progress)
+      options.progress("fit: time offset moved poses across knots; solving again");
     BuildProblem();
   }
   result.final_cost = summary.final_cost;
@@ -1299,15 +1309,17 @@ FitResult FitProblem::Impl::Solve() {
   if (options.estimate_time_offset &&
       std::abs(time_offset) >= (1.0 - kEdgeFraction) * options.max_time_offset_s) {
     throw Error("fit: the time offset reached the edge of its search range (" +
-                Format("%.6g", time_offset) + " s of +-" + Format("%.6g", options.max_time_offset_s) +
+                Format("%.6g", time_offset) + " s of +-" +
+                Format("%.6g", options.max_time_offset_s) +
                 " s): the true offset is probably beyond it; raise --max-time-offset or check that "
                 "IMU and poses share a clock");
   }
   if (gyro_ratio > options.max_residual_noise_ratio ||
       accel_ratio > options.max_residual_noise_ratio) {
-    throw Error("fit: the solution does not explain the data: residual RMS is " +
-                Format("%.3g", gyro_ratio) + "x the gyro noise and " + Format("%.3g", accel_ratio) +
-                "x the accelerometer noise; likely causes: " + LikelyCauses(gyro_ratio, accel_ratio));
+    throw Error(
+        "fit: the solution does not explain the data: residual RMS is " +
+        Format("%.3g", gyro_ratio) + "x the gyro noise and " + Format("%.3g", accel_ratio) +
+        "x the accelerometer noise; likely causes: " + LikelyCauses(gyro_ratio, accel_ratio));
   }
   auto warn_ratio = [&](double ratio, const std::string& what) {
     if (ratio > kWarnResidualNoiseRatio) {
@@ -1358,7 +1370,8 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
     tangent_sizes.push_back(6);
   }
   const int tangent_total = std::accumulate(tangent_sizes.begin(), tangent_sizes.end(), 0);
-  const int reported = 8 + (options.estimate_time_offset ? 1 : 0) + (options.estimate_extrinsic ? 6 : 0);
+  const int reported =
+      8 + (options.estimate_time_offset ? 1 : 0) + (options.estimate_extrinsic ? 6 : 0);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(reported, tangent_total);
   // Bias averages: mean over the samples of sum_j w_j c_{m-1+j}.
   if (options.bias_model == BiasModel::kConstant) {
@@ -1384,13 +1397,22 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   const int extra = tangent_total - column;
   A.block(row, column, extra, extra).setIdentity();
 
-  result->covariance_labels = {"gyro_bias_x", "gyro_bias_y", "gyro_bias_z", "accel_bias_x",
-                               "accel_bias_y", "accel_bias_z", "gravity_direction_1",
+  result->covariance_labels = {"gyro_bias_x",
+                               "gyro_bias_y",
+                               "gyro_bias_z",
+                               "accel_bias_x",
+                               "accel_bias_y",
+                               "accel_bias_z",
+                               "gravity_direction_1",
                                "gravity_direction_2"};
   if (options.estimate_time_offset) result->covariance_labels.push_back("time_offset");
   if (options.estimate_extrinsic) {
-    for (const char* label : {"T_pose_imu_rho_x", "T_pose_imu_rho_y", "T_pose_imu_rho_z",
-                              "T_pose_imu_phi_x", "T_pose_imu_phi_y", "T_pose_imu_phi_z"}) {
+    for (const char* label : {"T_pose_imu_rho_x",
+                              "T_pose_imu_rho_y",
+                              "T_pose_imu_rho_z",
+                              "T_pose_imu_phi_x",
+                              "T_pose_imu_phi_y",
+                              "T_pose_imu_phi_z"}) {
       result->covariance_labels.push_back(label);
     }
   }
@@ -1517,7 +1539,8 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
           " m): it shows only through lever-arm accelerations; rotate faster about at least two "
           "axes");
     }
-    if (max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg > limit.extrinsic_rotation_std_deg) {
+    if (max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg >
+        limit.extrinsic_rotation_std_deg) {
       result->warnings.push_back(
           "the rotation of T_pose_imu is not determined by this data (std up to " +
           Format("%.3g", max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg) +

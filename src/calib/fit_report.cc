@@ -27,11 +27,20 @@ std::string HtmlEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -74,8 +83,9 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   yaml.Comment("splinecal fit: IMU biases, gravity, time offset and extrinsic from IMU + poses");
   yaml.Scalar("imu", inputs.imu_path);
   yaml.Scalar("poses", inputs.poses_path);
-  yaml.Scalar("imu_yaml", inputs.imu_yaml_path.empty() ? std::string("(ADIS16448 defaults)")
-                                                        : inputs.imu_yaml_path);
+  yaml.Scalar(
+      "imu_yaml",
+      inputs.imu_yaml_path.empty() ? std::string("(ADIS16448 defaults)") : inputs.imu_yaml_path);
   yaml.Scalar("bias_model", BiasModelName(r.bias_model));
   if (r.bias_model == BiasModel::kSpline) {
     yaml.Comment("bias spline: gyro_bias / accel_bias are its time averages over the IMU samples");
@@ -158,8 +168,9 @@ std::string FitResidualsCsv(const FitResult& r) {
 }
 
 std::string FitPoseResidualsCsv(const FitResult& r) {
-  std::string csv = "#t_ns,position_err_x,position_err_y,position_err_z,"
-                    "rotation_err_x,rotation_err_y,rotation_err_z\n";
+  std::string csv =
+      "#t_ns,position_err_x,position_err_y,position_err_z,"
+      "rotation_err_x,rotation_err_y,rotation_err_z\n";
   for (const FitPoseSample& s : r.pose_samples) {
     std::string row = std::to_string(s.t_ns);
     Append3(s.position_error_m, &row);
@@ -185,9 +196,9 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
     for (int a = 0; a < 3; ++a) {
       plot::Panel& panel = figure.panels.emplace_back();
       panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
-      panel.y = {std::string(gyro ? "gyro " : "accel ") + kAxisNames[a] +
-                     (gyro ? " [rad/s]" : " [m/s^2]"),
-                 plot::Scale::kLinear};
+      panel.y = {
+          std::string(gyro ? "gyro " : "accel ") + kAxisNames[a] + (gyro ? " [rad/s]" : " [m/s^2]"),
+          plot::Scale::kLinear};
       plot::Series& measured = panel.series.emplace_back();
       measured.label = "measured";
       measured.color = "#999999";
@@ -246,8 +257,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
       for (size_t i : keep_poses) {
         const FitPoseSample& s = r.pose_samples[i];
         series.x.push_back(seconds(s.t_ns));
-        series.y.push_back(kind == 0 ? s.position_error_m[a]
-                                     : kRadToDeg * s.rotation_error_rad[a]);
+        series.y.push_back(kind == 0 ? s.position_error_m[a] : kRadToDeg * s.rotation_error_rad[a]);
       }
     }
   }
@@ -290,27 +300,35 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   };
   row("gyro bias [rad/s]", VectorText(r.gyro_bias, 6), VectorText(r.gyro_bias_std, 3));
   row("accel bias [m/s^2]", VectorText(r.accel_bias, 6), VectorText(r.accel_bias_std, 3));
-  row("gravity_w [m/s^2]", VectorText(r.gravity_w, 6),
+  row("gravity_w [m/s^2]",
+      VectorText(r.gravity_w, 6),
       Fixed(r.gravity_direction_std_deg, 3) + " deg (direction)");
   if (r.time_offset_estimated) {
     row("time offset [ms]", Fixed(1e3 * r.time_offset_s, 6), Fixed(1e3 * r.time_offset_std_s, 3));
   }
   if (r.extrinsic_estimated) {
-    row("T_pose_imu translation [m]", VectorText(r.T_pose_imu.translation(), 6),
+    row("T_pose_imu translation [m]",
+        VectorText(r.T_pose_imu.translation(), 6),
         VectorText(r.T_pose_imu_translation_std_m, 3));
-    row("T_pose_imu rotation vector [deg]", VectorText(kRadToDeg * r.T_pose_imu.so3().Log(), 6),
+    row("T_pose_imu rotation vector [deg]",
+        VectorText(kRadToDeg * r.T_pose_imu.so3().Log(), 6),
         VectorText(kRadToDeg * r.T_pose_imu_rotation_std_rad, 3));
   }
-  row("residual RMS gyro [rad/s]", Fixed(r.residual_rms.gyro_rad_s, 4),
+  row("residual RMS gyro [rad/s]",
+      Fixed(r.residual_rms.gyro_rad_s, 4),
       "noise " + Fixed(r.noise_std.gyro_rad_s, 4));
-  row("residual RMS accel [m/s^2]", Fixed(r.residual_rms.accel_m_s2, 4),
+  row("residual RMS accel [m/s^2]",
+      Fixed(r.residual_rms.accel_m_s2, 4),
       "noise " + Fixed(r.noise_std.accel_m_s2, 4));
-  row("residual RMS position [m]", Fixed(r.residual_rms.position_m, 4),
+  row("residual RMS position [m]",
+      Fixed(r.residual_rms.position_m, 4),
       "noise " + Fixed(r.noise_std.position_m, 4));
-  row("residual RMS rotation [rad]", Fixed(r.residual_rms.rotation_rad, 4),
+  row("residual RMS rotation [rad]",
+      Fixed(r.residual_rms.rotation_rad, 4),
       "noise " + Fixed(r.noise_std.rotation_rad, 4));
   row("knot spacing [s]", Fixed(r.knot_spacing_s, 6), r.knot_spacing_rule);
-  row("solver", std::to_string(r.iterations) + " iterations, " + Fixed(r.solve_time_s, 3) + " s",
+  row("solver",
+      std::to_string(r.iterations) + " iterations, " + Fixed(r.solve_time_s, 3) + " s",
       r.termination);
   html += "</table>\n";
   if (!r.warnings.empty()) {

@@ -16,7 +16,8 @@ bool PoseCostFunction::Evaluate(double const* const* parameters,
   const SegmentKnots<double> knots = internal::SegmentKnotsFor(
       data_.shared, data_.segment_index - 1, parameters, pose_jacobians, &local);
   const double time_offset = parameters[4][0];
-  const double u = (data_.t_s + time_offset) / data_.dt_s - static_cast<double>(data_.segment_index);
+  const double u =
+      (data_.t_s + time_offset) / data_.dt_s - static_cast<double>(data_.segment_index);
   const Segment<double> segment = MakeSegment(data_.segment_index, u, data_.dt_s);
 
   SE3d T_w_s;
@@ -61,8 +62,7 @@ bool PoseCostFunction::Evaluate(double const* const* parameters,
 }
 
 ceres::CostFunction* NewAutoDiffPoseCost(const PoseResidualData& data) {
-  return new ceres::AutoDiffCostFunction<PoseResidual, 6, 7, 7, 7, 7, 1, 7>(
-      new PoseResidual(data));
+  return new ceres::AutoDiffCostFunction<PoseResidual, 6, 7, 7, 7, 7, 1, 7>(new PoseResidual(data));
 }
 
 }  // namespace splinecal

@@ -2,11 +2,11 @@
 // biases, gravity, optionally the time offset and the extrinsic, with standard deviations and
 // plain-words warnings. Writes result.yaml, spline.csv, residuals.csv, pose_residuals.csv and
 // report.html (calib/fit_report.h, docs/fit.md).
+#include <gflags/gflags.h>
+
 #include <cstdio>
 #include <sstream>
 #include <string>
-
-#include <gflags/gflags.h>
 
 #include "splinecal/calib/fit.h"
 #include "splinecal/calib/fit_report.h"
@@ -84,29 +84,50 @@ int RunFit() {
   output.Commit();
 
   std::printf("gyro_bias   [%.6f %.6f %.6f] rad/s   std [%.2g %.2g %.2g]\n",
-              result.gyro_bias.x(), result.gyro_bias.y(), result.gyro_bias.z(),
-              result.gyro_bias_std.x(), result.gyro_bias_std.y(), result.gyro_bias_std.z());
+              result.gyro_bias.x(),
+              result.gyro_bias.y(),
+              result.gyro_bias.z(),
+              result.gyro_bias_std.x(),
+              result.gyro_bias_std.y(),
+              result.gyro_bias_std.z());
   std::printf("accel_bias  [%.6f %.6f %.6f] m/s^2   std [%.2g %.2g %.2g]\n",
-              result.accel_bias.x(), result.accel_bias.y(), result.accel_bias.z(),
-              result.accel_bias_std.x(), result.accel_bias_std.y(), result.accel_bias_std.z());
+              result.accel_bias.x(),
+              result.accel_bias.y(),
+              result.accel_bias.z(),
+              result.accel_bias_std.x(),
+              result.accel_bias_std.y(),
+              result.accel_bias_std.z());
   std::printf("gravity_w   [%.6f %.6f %.6f] m/s^2   direction std %.2g deg\n",
-              result.gravity_w.x(), result.gravity_w.y(), result.gravity_w.z(),
+              result.gravity_w.x(),
+              result.gravity_w.y(),
+              result.gravity_w.z(),
               result.gravity_direction_std_deg);
   if (result.time_offset_estimated) {
-    std::printf("time_offset %.6f ms   std %.2g ms\n", 1e3 * result.time_offset_s,
+    std::printf("time_offset %.6f ms   std %.2g ms\n",
+                1e3 * result.time_offset_s,
                 1e3 * result.time_offset_std_s);
   }
   if (result.extrinsic_estimated) {
     const Eigen::Vector3d t = result.T_pose_imu.translation();
     const Eigen::Vector3d r = result.T_pose_imu.so3().Log() * 57.295779513082320876;
-    std::printf("T_pose_imu  t [%.5f %.5f %.5f] m, rotation vector [%.4f %.4f %.4f] deg\n", t.x(),
-                t.y(), t.z(), r.x(), r.y(), r.z());
+    std::printf("T_pose_imu  t [%.5f %.5f %.5f] m, rotation vector [%.4f %.4f %.4f] deg\n",
+                t.x(),
+                t.y(),
+                t.z(),
+                r.x(),
+                r.y(),
+                r.z());
   }
-  std::printf("residual RMS gyro %.3g rad/s (noise %.3g), accel %.3g m/s^2 (noise %.3g); "
-              "%d iterations, %.3f s; knot spacing %.6g s\n",
-              result.residual_rms.gyro_rad_s, result.noise_std.gyro_rad_s,
-              result.residual_rms.accel_m_s2, result.noise_std.accel_m_s2, result.iterations,
-              result.solve_time_s, result.knot_spacing_s);
+  std::printf(
+      "residual RMS gyro %.3g rad/s (noise %.3g), accel %.3g m/s^2 (noise %.3g); "
+      "%d iterations, %.3f s; knot spacing %.6g s\n",
+      result.residual_rms.gyro_rad_s,
+      result.noise_std.gyro_rad_s,
+      result.residual_rms.accel_m_s2,
+      result.noise_std.accel_m_s2,
+      result.iterations,
+      result.solve_time_s,
+      result.knot_spacing_s);
   for (const std::string& warning : result.warnings) std::printf("warning: %s\n", warning.c_str());
   std::printf("wrote %s/{result.yaml,spline.csv,residuals.csv,pose_residuals.csv,report.html}\n",
               out_dir.c_str());
@@ -116,36 +137,37 @@ int RunFit() {
 }  // namespace
 
 Command FitCommand() {
-  return {"fit",
-          "fit IMU biases, gravity, time offset and extrinsic to IMU data and poses",
-          "splinecal fit --imu FILE --poses FILE --out DIR [--imu-yaml FILE] [--knot-spacing S]\n"
-          "    [--pose-sigma-m M] [--pose-sigma-rad R] [--estimate-time-offset]\n"
-          "    [--estimate-extrinsic] [--bias-model constant|spline] [--gravity M_S2] [--threads N]",
-          "Fits a continuous-time spline T_w_s(t) of the IMU to its readings and to a pose source\n"
-          "(motion capture, EuRoC ground truth or a TUM trajectory), with the gyro and\n"
-          "accelerometer biases, the gravity direction and optionally the time offset\n"
-          "(t_imu = t_pose + offset) and the extrinsic T_pose_imu. Standard deviations come from\n"
-          "the solver's covariance; a parameter the data does not excite is named in plain words\n"
-          "instead. Writes result.yaml, spline.csv, residuals.csv, pose_residuals.csv and\n"
-          "report.html. See docs/fit.md.",
-          {{"imu", ""},
-           {"poses", ""},
-           {"out", ""},
-           {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; default ADIS16448"},
-           {"knot_spacing", "Spline knot spacing dt [s]; 0 (default) chooses it from the data"},
-           {"pose_sigma_m", ""},
-           {"pose_sigma_rad", ""},
-           {"estimate_time_offset", ""},
-           {"max_time_offset", ""},
-           {"estimate_extrinsic", ""},
-           {"bias_model", ""},
-           {"bias_knot_spacing", ""},
-           {"gravity", ""},
-           {"accel_unit", ""},
-           {"gyro_unit", ""},
-           {"threads", ""},
-           {"quiet", ""}},
-          &RunFit};
+  return {
+      "fit",
+      "fit IMU biases, gravity, time offset and extrinsic to IMU data and poses",
+      "splinecal fit --imu FILE --poses FILE --out DIR [--imu-yaml FILE] [--knot-spacing S]\n"
+      "    [--pose-sigma-m M] [--pose-sigma-rad R] [--estimate-time-offset]\n"
+      "    [--estimate-extrinsic] [--bias-model constant|spline] [--gravity M_S2] [--threads N]",
+      "Fits a continuous-time spline T_w_s(t) of the IMU to its readings and to a pose source\n"
+      "(motion capture, EuRoC ground truth or a TUM trajectory), with the gyro and\n"
+      "accelerometer biases, the gravity direction and optionally the time offset\n"
+      "(t_imu = t_pose + offset) and the extrinsic T_pose_imu. Standard deviations come from\n"
+      "the solver's covariance; a parameter the data does not excite is named in plain words\n"
+      "instead. Writes result.yaml, spline.csv, residuals.csv, pose_residuals.csv and\n"
+      "report.html. See docs/fit.md.",
+      {{"imu", ""},
+       {"poses", ""},
+       {"out", ""},
+       {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; default ADIS16448"},
+       {"knot_spacing", "Spline knot spacing dt [s]; 0 (default) chooses it from the data"},
+       {"pose_sigma_m", ""},
+       {"pose_sigma_rad", ""},
+       {"estimate_time_offset", ""},
+       {"max_time_offset", ""},
+       {"estimate_extrinsic", ""},
+       {"bias_model", ""},
+       {"bias_knot_spacing", ""},
+       {"gravity", ""},
+       {"accel_unit", ""},
+       {"gyro_unit", ""},
+       {"threads", ""},
+       {"quiet", ""}},
+      &RunFit};
 }
 
 }  // namespace cli

@@ -59,7 +59,8 @@ TEST(BiasRandomWalkCostFunction, RampCostsTheWienerPathIntegral) {
   const BiasRandomWalkCostFunction cost(db, sigma);
   Eigen::Matrix<double, 9, 1> r;
   ASSERT_TRUE(cost.Evaluate(parameters, r.data(), nullptr));
-  EXPECT_NEAR(r.squaredNorm(), v.squaredNorm() / (sigma * sigma * db),
+  EXPECT_NEAR(r.squaredNorm(),
+              v.squaredNorm() / (sigma * sigma * db),
               1e-12 * v.squaredNorm() / (sigma * sigma * db));
 }
 

@@ -1,11 +1,11 @@
 // `splinecal fit` end to end: the binary on simulated files, and the EuRoC excerpt.
-#include <filesystem>
-#include <sstream>
-#include <string>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
 
 #include "calib/fit_test_data.h"
 #include "splinecal/io/euroc.h"
@@ -15,10 +15,10 @@
 namespace splinecal {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::CountLines;
 using testing::FitData;
 using testing::FitScenario;
+using ::testing::HasSubstr;
 using testing::MakeFitData;
 using testing::ReadFileText;
 using testing::RunTool;
@@ -56,20 +56,37 @@ TEST(FitCommand, WritesEveryOutputAndTheEstimates) {
   scenario.pose_noise = true;
   const FitData data = MakeFitData(scenario);
   const Files files = WriteScenario(dir, data);
-  const auto result = RunTool({"fit", "--imu", files.imu, "--poses", files.poses, "--out",
-                               dir.File("out"), "--knot-spacing", "0.1"});
+  const auto result = RunTool({"fit",
+                               "--imu",
+                               files.imu,
+                               "--poses",
+                               files.poses,
+                               "--out",
+                               dir.File("out"),
+                               "--knot-spacing",
+                               "0.1"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_THAT(result.err, HasSubstr("fit: iteration"));  // progress on stderr
   EXPECT_THAT(result.out, HasSubstr("gyro_bias"));
   const YAML::Node yaml = YAML::LoadFile(dir.File("out/result.yaml"));
-  for (const char* key : {"gyro_bias", "gyro_bias_std", "accel_bias", "accel_bias_std",
-                          "gravity_w", "gravity_w_std", "time_offset_s", "residual_rms",
-                          "iterations", "final_cost", "solve_time_s", "knot_spacing_s",
+  for (const char* key : {"gyro_bias",
+                          "gyro_bias_std",
+                          "accel_bias",
+                          "accel_bias_std",
+                          "gravity_w",
+                          "gravity_w_std",
+                          "time_offset_s",
+                          "residual_rms",
+                          "iterations",
+                          "final_cost",
+                          "solve_time_s",
+                          "knot_spacing_s",
                           "warnings"}) {
     EXPECT_TRUE(yaml[key]) << key;
   }
   for (int a = 0; a < 3; ++a) {
-    EXPECT_NEAR(yaml["gyro_bias"][a].as<double>(), scenario.gyro_bias[a],
+    EXPECT_NEAR(yaml["gyro_bias"][a].as<double>(),
+                scenario.gyro_bias[a],
                 3.0 * yaml["gyro_bias_std"][a].as<double>());
   }
   EXPECT_EQ(CountLines(ReadFileText(dir.File("out/residuals.csv"))),
@@ -88,8 +105,16 @@ TEST(FitCommand, QuietSilencesProgress) {
   FitScenario scenario;
   scenario.duration_s = 5.0;
   const Files files = WriteScenario(dir, MakeFitData(scenario));
-  const auto result = RunTool({"fit", "--imu", files.imu, "--poses", files.poses, "--out",
-                               dir.File("out"), "--knot-spacing", "0.1", "--quiet"});
+  const auto result = RunTool({"fit",
+                               "--imu",
+                               files.imu,
+                               "--poses",
+                               files.poses,
+                               "--out",
+                               dir.File("out"),
+                               "--knot-spacing",
+                               "0.1",
+                               "--quiet"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.err, "");
 }
@@ -105,11 +130,18 @@ TEST(FitCommand, BadInputIsOneLineExitTwoAndNoOutput) {
   const std::vector<std::vector<std::string>> cases = {
       {"fit", "--imu", files.imu, "--poses", files.poses, "--out", dir.File("out")},
       {"fit", "--imu", files.imu, "--out", dir.File("out")},
-      {"fit", "--imu", files.imu, "--poses", files.imu, "--out", dir.File("out"),
-       "--bias-model", "wiggly"},
+      {"fit",
+       "--imu",
+       files.imu,
+       "--poses",
+       files.imu,
+       "--out",
+       dir.File("out"),
+       "--bias-model",
+       "wiggly"},
   };
-  const std::vector<std::string> messages = {"do not overlap", "--poses is required",
-                                             "--bias-model"};
+  const std::vector<std::string> messages = {
+      "do not overlap", "--poses is required", "--bias-model"};
   for (size_t c = 0; c < cases.size(); ++c) {
     const auto result = RunTool(cases[c]);
     EXPECT_EQ(result.exit_code, 2) << result.err;

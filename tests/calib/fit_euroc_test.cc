@@ -1,9 +1,9 @@
 // The fit on real data: EuRoC V1_01_easy's IMU with its ground truth as the pose source
 // (../shared/data/euroc_v1_01_easy; skipped when absent).
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "splinecal/calib/fit.h"
 #include "splinecal/io/euroc.h"
@@ -16,8 +16,8 @@ namespace {
 // The bounds against the ground truth's mean biases (the dataset's own batch estimate,
 // which drifts over the sequence: its gyro bias moves by ~1e-3 rad/s, its accel bias by ~0.03
 // m/s^2). Measured: 2.4e-4 rad/s and 7.4e-3 m/s^2 (docs/fit.md).
-constexpr double kGyroBiasTolerance = 0.002;   // [rad/s]
-constexpr double kAccelBiasTolerance = 0.05;   // [m/s^2]
+constexpr double kGyroBiasTolerance = 0.002;  // [rad/s]
+constexpr double kAccelBiasTolerance = 0.05;  // [m/s^2]
 
 TEST(FitEuroc, V101EasyBiasesMatchTheGroundTruth) {
   const std::string dir = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/";

@@ -1,9 +1,9 @@
 // Monte-Carlo check that the fit's covariance is honest (issue: "the normalised estimation error
 // squared for the 6-D bias is inside its 95% chi-square interval"). Slow-labelled.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "calib/fit_test_data.h"
 #include "splinecal/calib/fit.h"
@@ -65,7 +65,10 @@ TEST(FitMonteCarlo, BiasNeesIsInsideItsNinetyFivePercentInterval) {
   EXPECT_GE(nees_sum, low) << "mean NEES " << nees_sum / kRuns << ": covariance too pessimistic";
   EXPECT_LE(nees_sum, high) << "mean NEES " << nees_sum / kRuns << ": covariance overconfident";
   std::printf("Monte Carlo: %d runs, mean 6-D bias NEES %.3f, 95%% interval [%.3f, %.3f]\n",
-              kRuns, nees_sum / kRuns, low / kRuns, high / kRuns);
+              kRuns,
+              nees_sum / kRuns,
+              low / kRuns,
+              high / kRuns);
 }
 
 }  // namespace

@@ -15,9 +15,9 @@ namespace splinecal {
 namespace {
 
 using ::testing::AllOf;
-using ::testing::HasSubstr;
 using testing::FitData;
 using testing::FitScenario;
+using ::testing::HasSubstr;
 using testing::MakeFitData;
 using testing::PerturbedControlPoses;
 
@@ -27,8 +27,8 @@ constexpr double kRadToDeg = 180.0 / kPi;
 // The issue's noise-free recovery bounds. Noise-free data generated from a spline with the same
 // knots is fitted exactly: the minimum has zero cost, and the solver stops at cost ~1e-17 where
 // parameter errors are ~1e-11.
-constexpr double kNoiseFreeControlPoseTolerance = 1e-6;   // |Log(T_true^-1 T)| [m, rad]
-constexpr double kNoiseFreeBiasTolerance = 1e-8;          // [rad/s, m/s^2]
+constexpr double kNoiseFreeControlPoseTolerance = 1e-6;  // |Log(T_true^-1 T)| [m, rad]
+constexpr double kNoiseFreeBiasTolerance = 1e-8;         // [rad/s, m/s^2]
 constexpr double kNoiseFreeGravityToleranceDeg = 1e-6;
 // "Within 3 reported standard deviations" (issue).
 constexpr double kSigmaBound = 3.0;
@@ -98,9 +98,11 @@ TEST(Fit, NoisyEstimatesLieWithinThreeReportedStandardDeviations) {
   ASSERT_TRUE(result.covariance_ok);
   for (int a = 0; a < 3; ++a) {
     EXPECT_LE(std::abs(result.gyro_bias[a] - scenario.gyro_bias[a]),
-              kSigmaBound * result.gyro_bias_std[a]) << "axis " << a;
+              kSigmaBound * result.gyro_bias_std[a])
+        << "axis " << a;
     EXPECT_LE(std::abs(result.accel_bias[a] - scenario.accel_bias[a]),
-              kSigmaBound * result.accel_bias_std[a]) << "axis " << a;
+              kSigmaBound * result.accel_bias_std[a])
+        << "axis " << a;
   }
   EXPECT_LE(AngleDeg(result.gravity_w, data.gravity_w),
             kSigmaBound * result.gravity_direction_std_deg);
@@ -118,7 +120,7 @@ TEST(Fit, RecoversTimeOffsetAndExtrinsicWithinThreeStandardDeviations) {
   scenario.pose_rate_hz = 20.0;
   scenario.time_offset_s = 0.005;  // 5 ms
   const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 2.0, -1.0).normalized();
-  scenario.T_pose_imu = SE3d(SO3d::Exp(5.0 / kRadToDeg * axis),   // 5 degrees
+  scenario.T_pose_imu = SE3d(SO3d::Exp(5.0 / kRadToDeg * axis),    // 5 degrees
                              Eigen::Vector3d(0.06, -0.05, 0.06));  // ~10 cm
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
@@ -184,8 +186,8 @@ TEST(Fit, AutoDiffPerSampleUnsharedAndSchurPathsReachTheSameSolution) {
   variants[3].linear_solver = FitLinearSolver::kSparseSchur;
   for (const FitOptions& variant : variants) {
     const FitResult result = Fit(data.imu, data.poses, variant);
-    EXPECT_NEAR(result.final_cost, reference.final_cost,
-                kSameSolutionCostTolerance * reference.final_cost);
+    EXPECT_NEAR(
+        result.final_cost, reference.final_cost, kSameSolutionCostTolerance * reference.final_cost);
     EXPECT_LE((result.gyro_bias - reference.gyro_bias).cwiseAbs().maxCoeff(),
               kSameSolutionBiasTolerance);
     EXPECT_LE((result.accel_bias - reference.accel_bias).cwiseAbs().maxCoeff(),
@@ -256,7 +258,8 @@ TEST(Fit, BiasSplineFollowsADriftingBias) {
   // model's are not.
   EXPECT_LT(spline_fit.residual_rms.gyro_rad_s / spline_fit.noise_std.gyro_rad_s, 1.05);
   EXPECT_GT(constant_fit.residual_rms.gyro_rad_s / constant_fit.noise_std.gyro_rad_s, 1.2);
-  EXPECT_EQ(spline_fit.gyro_bias_control_points.size(), spline_fit.accel_bias_control_points.size());
+  EXPECT_EQ(spline_fit.gyro_bias_control_points.size(),
+            spline_fit.accel_bias_control_points.size());
   EXPECT_GT(spline_fit.gyro_bias_control_points.size(), 30u);
   ASSERT_TRUE(spline_fit.covariance_ok);
   EXPECT_GT(spline_fit.gyro_bias_std.minCoeff(), 0.0);
@@ -369,7 +372,8 @@ TEST(FitErrors, SolverFailureNamesTheLikelyCauses) {
   options.noise.gyroscope_noise_density *= 1e-3;
   options.noise.accelerometer_noise_density *= 1e-3;
   EXPECT_THAT(FitError(data.imu, data.poses, options),
-              AllOf(HasSubstr("does not explain the data"), HasSubstr("likely causes"),
+              AllOf(HasSubstr("does not explain the data"),
+                    HasSubstr("likely causes"),
                     HasSubstr("noise densities")));
 }
 

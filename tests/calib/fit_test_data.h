@@ -4,13 +4,12 @@
 #ifndef SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
 #define SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/calib/pose_fit.h"
 #include "splinecal/imu/imu_model.h"
@@ -83,10 +82,8 @@ inline FitData MakeFitData(const FitScenario& scenario) {
   constexpr int64_t kStartNs = 1'403'715'273'262'142'976;  // an EuRoC-like epoch
   const int64_t end_ns = kStartNs + std::llround(scenario.duration_s * 1e9);
   const SE3Splined spline =
-      FitAnalyticTrajectory(ScenarioTrajectory(scenario),
-                            kStartNs,
-                            end_ns,
-                            scenario.knot_spacing_ns)
+      FitAnalyticTrajectory(
+          ScenarioTrajectory(scenario), kStartNs, end_ns, scenario.knot_spacing_ns)
           .MakeSpline();
   FitData data;
   SimulationOptions simulation;

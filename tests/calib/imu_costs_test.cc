@@ -195,9 +195,9 @@ double MaxTangentJacobianError(const ceres::CostFunction& cost,
       manifolds[i]->PlusJacobian(parameters[i], pj.data());
       plus_jacobian = pj;
     }
-    const Eigen::MatrixXd J_ambient = Eigen::Map<
-        const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-        analytic.jacobians[i].data(), rows, ambient);
+    const Eigen::MatrixXd J_ambient =
+        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+            analytic.jacobians[i].data(), rows, ambient);
     const Eigen::MatrixXd J_tangent = J_ambient * plus_jacobian;
     Eigen::MatrixXd J_numeric(rows, tangent);
     const std::vector<double> original(parameters[i], parameters[i] + ambient);
@@ -291,15 +291,16 @@ TEST(ImuSegmentCostFunctions, StackTheSampleResidualsRowByRow) {
         Evaluate(GyroCostFunction<4>(segment, samples[s]), blocks.Pointers(4, false));
     const Evaluation accel_one =
         Evaluate(AccelCostFunction<4>(segment, samples[s]), blocks.Pointers(4, true));
-    for (const auto& [all, one] : {std::pair(&gyro_all, &gyro_one), std::pair(&accel_all, &accel_one)}) {
+    for (const auto& [all, one] :
+         {std::pair(&gyro_all, &gyro_one), std::pair(&accel_all, &accel_one)}) {
       for (int r = 0; r < 3; ++r) {
         EXPECT_NEAR(all->residuals[3 * s + r], one->residuals[r], kSameArithmeticTolerance);
       }
       for (size_t i = 0; i < one->jacobians.size(); ++i) {
         const size_t size = one->jacobians[i].size() / 3;
         for (size_t c = 0; c < 3 * size; ++c) {
-          EXPECT_NEAR(all->jacobians[i][3 * s * size + c], one->jacobians[i][c],
-                      kSameArithmeticTolerance);
+          EXPECT_NEAR(
+              all->jacobians[i][3 * s * size + c], one->jacobians[i][c], kSameArithmeticTolerance);
         }
       }
     }

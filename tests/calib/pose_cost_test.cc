@@ -30,8 +30,12 @@ struct PoseBlocks {
   std::array<double, 1> time_offset = {0.0};
   std::array<double, 7> T_m_s;
   std::vector<double*> Pointers() {
-    return {control[0].data(), control[1].data(), control[2].data(), control[3].data(),
-            time_offset.data(), T_m_s.data()};
+    return {control[0].data(),
+            control[1].data(),
+            control[2].data(),
+            control[3].data(),
+            time_offset.data(),
+            T_m_s.data()};
   }
 };
 
@@ -103,22 +107,22 @@ const double kTimes[] = {0.705, 0.7, 0.8, 0.77, 0.64, 0.86};
 TEST(PoseCostFunction, AnalyticMatchesAutoDiffAtLargeResiduals) {
   for (double t_s : kTimes) {
     for (double residual_size : {0.0, 0.1, 1.0}) {
-     for (double offset : {0.004, -0.08}) {
-      PoseBlocks blocks = MakeBlocks(3, offset);
-      const PoseResidualData data = MakeData(t_s - offset, 4, residual_size);
-      const PoseCostFunction analytic(data);
-      std::unique_ptr<ceres::CostFunction> autodiff(NewAutoDiffPoseCost(data));
-      const Evaluation a = Evaluate(analytic, &blocks);
-      const Evaluation b = Evaluate(*autodiff, &blocks);
-      EXPECT_LE(MaxRelativeDifference(a.residuals.data(), b.residuals.data(), 6),
-                kAutoDiffTolerance);
-      for (int i = 0; i < 6; ++i) {
-        EXPECT_LE(MaxRelativeDifference(a.jacobians[i].data(), b.jacobians[i].data(),
-                                        a.jacobians[i].size()),
-                  kAutoDiffTolerance)
-            << "t = " << t_s << ", block " << i;
+      for (double offset : {0.004, -0.08}) {
+        PoseBlocks blocks = MakeBlocks(3, offset);
+        const PoseResidualData data = MakeData(t_s - offset, 4, residual_size);
+        const PoseCostFunction analytic(data);
+        std::unique_ptr<ceres::CostFunction> autodiff(NewAutoDiffPoseCost(data));
+        const Evaluation a = Evaluate(analytic, &blocks);
+        const Evaluation b = Evaluate(*autodiff, &blocks);
+        EXPECT_LE(MaxRelativeDifference(a.residuals.data(), b.residuals.data(), 6),
+                  kAutoDiffTolerance);
+        for (int i = 0; i < 6; ++i) {
+          EXPECT_LE(MaxRelativeDifference(
+                        a.jacobians[i].data(), b.jacobians[i].data(), a.jacobians[i].size()),
+                    kAutoDiffTolerance)
+              << "t = " << t_s << ", block " << i;
+        }
       }
-     }
     }
   }
 }

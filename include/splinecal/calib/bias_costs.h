@@ -26,11 +26,11 @@
 #ifndef SPLINECAL_CALIB_BIAS_COSTS_H_
 #define SPLINECAL_CALIB_BIAS_COSTS_H_
 
-#include <array>
-#include <cmath>
+#include <ceres/sized_cost_function.h>
 
 #include <Eigen/Core>
-#include <ceres/sized_cost_function.h>
+#include <array>
+#include <cmath>
 
 #include "splinecal/spline/basis.h"
 

@@ -31,14 +31,13 @@
 #ifndef SPLINECAL_CALIB_FIT_H_
 #define SPLINECAL_CALIB_FIT_H_
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "splinecal/calib/bias_costs.h"
 #include "splinecal/calib/pose_fit.h"
@@ -237,10 +236,10 @@ struct FitResult {
   double final_cost = 0.0;
   double solve_time_s = 0.0;  // wall time in ceres::Solve
   double covariance_time_s = 0.0;
-  std::string termination;  // Ceres' termination message
+  std::string termination;    // Ceres' termination message
   std::string solver_report;  // Ceres' FullReport of the last solve (timings per phase)
   std::string linear_solver;  // the Ceres linear solver used
-  int solver_rounds = 0;    // > 1 when pose residuals were re-attached after a time-offset move
+  int solver_rounds = 0;      // > 1 when pose residuals were re-attached after a time-offset move
 
   std::vector<std::string> warnings;
   // Quantities the data does not determine (std above ExcitationThresholds, or a singular

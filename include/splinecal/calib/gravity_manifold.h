@@ -22,10 +22,10 @@
 #ifndef SPLINECAL_CALIB_GRAVITY_MANIFOLD_H_
 #define SPLINECAL_CALIB_GRAVITY_MANIFOLD_H_
 
-#include <cmath>
+#include <ceres/manifold.h>
 
 #include <Eigen/Core>
-#include <ceres/manifold.h>
+#include <cmath>
 
 #include "splinecal/calib/gravity_tangent.h"
 

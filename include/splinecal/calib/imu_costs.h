@@ -39,14 +39,14 @@
 #ifndef SPLINECAL_CALIB_IMU_COSTS_H_
 #define SPLINECAL_CALIB_IMU_COSTS_H_
 
-#include <array>
-#include <optional>
-#include <vector>
-
-#include <Eigen/Core>
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/cost_function.h>
 #include <ceres/sized_cost_function.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <vector>
 
 #include "splinecal/calib/pose_block_jacobian.h"
 #include "splinecal/calib/spline_evaluation_callback.h"
@@ -111,11 +111,8 @@ inline void PrepareSegmentEvaluation(const ImuResidualSegment& segment,
                                      double const* const* parameters,
                                      bool pose_jacobians,
                                      SegmentEvaluation* evaluation) {
-  evaluation->knots = SegmentKnotsFor(segment.shared,
-                                      segment.segment_index - 1,
-                                      parameters,
-                                      pose_jacobians,
-                                      &evaluation->local);
+  evaluation->knots = SegmentKnotsFor(
+      segment.shared, segment.segment_index - 1, parameters, pose_jacobians, &evaluation->local);
   if (pose_jacobians) {
     for (int k = 0; k < kSplineOrder; ++k) {
       evaluation->lifts[k] = MakePoseBlockLift(parameters[k]);
@@ -279,8 +276,7 @@ class AccelCostFunction : public internal::AccelCostBase<kBiasBlocks>::Type {
 template <int kBiasBlocks>
 class GyroSegmentCostFunction : public ceres::CostFunction {
  public:
-  GyroSegmentCostFunction(const ImuResidualSegment& segment,
-                          std::vector<ImuResidualSample> samples)
+  GyroSegmentCostFunction(const ImuResidualSegment& segment, std::vector<ImuResidualSample> samples)
       : segment_(segment), samples_(std::move(samples)) {
     CHECK(!samples_.empty());
     set_num_residuals(3 * static_cast<int>(samples_.size()));
@@ -438,13 +434,8 @@ struct AccelResidual {
   }
 
   template <typename T>
-  bool operator()(const T* p0,
-                  const T* p1,
-                  const T* p2,
-                  const T* p3,
-                  const T* b0,
-                  const T* g,
-                  T* r) const {
+  bool operator()(
+      const T* p0, const T* p1, const T* p2, const T* p3, const T* b0, const T* g, T* r) const {
     const T* blocks[] = {p0, p1, p2, p3, b0, g};
     return Compute(blocks, r);
   }

@@ -29,8 +29,8 @@ namespace internal {
 
 // The two non-zero blocks of SE3Manifold::MinusJacobian at a pose block.
 struct PoseBlockLift {
-  Eigen::Matrix3d Rt;                    // R^T (translation columns)
-  Eigen::Matrix<double, 3, 4> dphi_dq;   // 2 [w I - [v]x, -v] (quaternion columns)
+  Eigen::Matrix3d Rt;                   // R^T (translation columns)
+  Eigen::Matrix<double, 3, 4> dphi_dq;  // 2 [w I - [v]x, -v] (quaternion columns)
 };
 
 inline PoseBlockLift MakePoseBlockLift(const double* pose_block) {

@@ -23,20 +23,21 @@
 // and solves again (docs/fit.md, "Time offset").
 //
 // Jacobians (RIGHT perturbations, lie/se3.h). With e the right-tangent change of T_pred:
-//   dr / de        = blockdiag(R_pred / sigma_m, Jr^-1(phi_r) / sigma_rad),  phi_r = Log(R_m^T R_pred)
-//   control pose k: e = Ad(T_m_s) J_T,k d_k          (T Exp(e_T) X = T X Exp(Ad(X^-1) e_T), X = T_m_s^-1;
-//                                                     J_T,k from spline/segment_jacobians.h)
-//   time offset:    e = Ad(T_m_s) xi dtau,  xi = [v_s; w_s] = vee(T^-1 dT/dt) the body twist
-//   extrinsic:      e = -Ad(T_m_s) delta             (T_m_s Exp(delta): X -> Exp(-delta) X)
+//   dr / de         = blockdiag(R_pred / sigma_m, Jr^-1(phi_r) / sigma_rad),
+//                     phi_r = Log(R_m^T R_pred)
+//   control pose k: e = Ad(T_m_s) J_T,k d_k     (T Exp(e_T) X = T X Exp(Ad(X^-1) e_T) with
+//                                                X = T_m_s^-1; J_T,k: spline/segment_jacobians.h)
+//   time offset:    e = Ad(T_m_s) xi dtau,      xi = [v_s; w_s] = vee(T^-1 dT/dt), the body twist
+//   extrinsic:      e = -Ad(T_m_s) delta        (T_m_s Exp(delta): X -> Exp(-delta) X)
 // and pose blocks are lifted to the ambient block exactly (calib/pose_block_jacobian.h).
 #ifndef SPLINECAL_CALIB_POSE_COST_H_
 #define SPLINECAL_CALIB_POSE_COST_H_
 
-#include <optional>
-
-#include <Eigen/Core>
 #include <ceres/cost_function.h>
 #include <ceres/sized_cost_function.h>
+
+#include <Eigen/Core>
+#include <optional>
 
 #include "splinecal/calib/pose_block_jacobian.h"
 #include "splinecal/calib/spline_evaluation_callback.h"
@@ -53,8 +54,8 @@ struct PoseResidualData {
   // t_pose - t0 [s]: the pose's stamp on the pose source's clock relative to the spline's first
   // knot time (subtract in int64 ns first). u = (t_s + time_offset) / dt - i.
   double t_s = 0.0;
-  SE3d T_w_m;             // measured pose
-  double sigma_m = 1e-3;  // position std [m]
+  SE3d T_w_m;               // measured pose
+  double sigma_m = 1e-3;    // position std [m]
   double sigma_rad = 1e-3;  // rotation std [rad]
   // Optional knot caches for this evaluation point (not owned).
   const SplineEvaluationCallback* shared = nullptr;

@@ -25,12 +25,12 @@
 #ifndef SPLINECAL_CALIB_SPLINE_EVALUATION_CALLBACK_H_
 #define SPLINECAL_CALIB_SPLINE_EVALUATION_CALLBACK_H_
 
+#include <ceres/evaluation_callback.h>
+
 #include <cstdint>
 #include <cstring>
 #include <optional>
 #include <vector>
-
-#include <ceres/evaluation_callback.h>
 
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"
