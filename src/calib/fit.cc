@@ -93,18 +93,18 @@ SE3d PoseOf(const StampedPose& pose) { return SE3d(SO3d::FromQuaternion(pose.q),
 
 void CheckIncreasing(const std::vector<ImuSample>& imu, const std::vector<StampedPose>& poses) {
   if (imu.size() < 2)
-    throw Error("fit: needs at least 2 IMU samples, got " + std::to_string(imu.size()));
+    throw Error("needs at least 2 IMU samples, got " + std::to_string(imu.size()));
   if (poses.size() < 2) {
-    throw Error("fit: needs at least 2 poses, got " + std::to_string(poses.size()));
+    throw Error("needs at least 2 poses, got " + std::to_string(poses.size()));
   }
   for (size_t k = 1; k < imu.size(); ++k) {
     if (imu[k].t_ns <= imu[k - 1].t_ns) {
-      throw Error("fit: IMU timestamps must increase strictly (sample " + std::to_string(k) + ")");
+      throw Error("IMU timestamps must increase strictly (sample " + std::to_string(k) + ")");
     }
   }
   for (size_t k = 1; k < poses.size(); ++k) {
     if (poses[k].t_ns <= poses[k - 1].t_ns) {
-      throw Error("fit: pose timestamps must increase strictly (pose " + std::to_string(k) + ")");
+      throw Error("pose timestamps must increase strictly (pose " + std::to_string(k) + ")");
     }
   }
 }
@@ -112,11 +112,11 @@ void CheckIncreasing(const std::vector<ImuSample>& imu, const std::vector<Stampe
 void CheckOptions(const FitOptions& o) {
   auto positive = [](double value, const std::string& name) {
     if (!(value > 0.0) || !std::isfinite(value)) {
-      throw Error("fit: " + name + " must be a positive number, got " + std::to_string(value));
+      throw Error(name + " must be a positive number, got " + std::to_string(value));
     }
   };
   if (!(o.knot_spacing_s >= 0.0) || !std::isfinite(o.knot_spacing_s)) {
-    throw Error("fit: knot spacing must be >= 0 s (0: automatic), got " +
+    throw Error("knot spacing must be >= 0 s (0: automatic), got " +
                 std::to_string(o.knot_spacing_s));
   }
   positive(o.gravity_m_s2, "gravity");
@@ -130,22 +130,22 @@ void CheckOptions(const FitOptions& o) {
              "accelerometer_random_walk (needed by the bias spline)");
     positive(o.bias_knot_spacing_s, "bias knot spacing");
   }
-  if (!std::isfinite(o.time_offset_s)) throw Error("fit: time offset must be finite");
+  if (!std::isfinite(o.time_offset_s)) throw Error("time offset must be finite");
   if (o.estimate_time_offset) {
     positive(o.max_time_offset_s, "max time offset");
     if (std::abs(o.time_offset_s) >= o.max_time_offset_s) {
-      throw Error("fit: the initial time offset " + Format("%.6g", o.time_offset_s) +
+      throw Error("the initial time offset " + Format("%.6g", o.time_offset_s) +
                   " s is outside the search range +-" + Format("%.6g", o.max_time_offset_s) + " s");
     }
   }
   if (o.initial_gravity_w.has_value() &&
       !(o.initial_gravity_w->norm() > 0.0 && o.initial_gravity_w->allFinite())) {
-    throw Error("fit: the initial gravity vector must be finite and nonzero");
+    throw Error("the initial gravity vector must be finite and nonzero");
   }
   positive(o.initial_trust_region_radius, "initial trust region radius");
   positive(o.max_residual_noise_ratio, "max residual/noise ratio");
-  if (o.max_iterations < 1) throw Error("fit: max iterations must be >= 1");
-  if (o.num_threads < 1) throw Error("fit: threads must be >= 1");
+  if (o.max_iterations < 1) throw Error("max iterations must be >= 1");
+  if (o.num_threads < 1) throw Error("threads must be >= 1");
 }
 
 // Product of the gyro's rotations over [a_ns, b_ns] (IMU clock), piecewise constant rates with
@@ -756,7 +756,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
       if (options.estimate_time_offset) {
         if (at_edge) {
           throw Error(
-              "fit: the time offset between IMU and poses appears to be beyond the search "
+              "the time offset between IMU and poses appears to be beyond the search "
               "range +-" +
               Format("%.3g", options.max_time_offset_s) +
               " s (the best alignment of gyro and pose rotation rates is at its edge): "
@@ -786,7 +786,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   if (end <= start) {
     std::ostringstream message;
     message.precision(12);
-    message << "fit: the IMU data [" << 1e-9 * imu_start << ", " << 1e-9 * imu_end
+    message << "the IMU data [" << 1e-9 * imu_start << ", " << 1e-9 * imu_end
             << "] s and the poses [" << 1e-9 * pose_start << ", " << 1e-9 * pose_end
             << "] s (IMU clock, time offset " << time_offset
             << " s) do not overlap: the files are from different recordings or use different "
@@ -803,7 +803,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
     if (s.t_ns >= start && s.t_ns <= end) overlap_imu.push_back(s);
   }
   if (overlap_imu.size() < 2) {
-    throw Error("fit: fewer than 2 IMU samples fall inside the pose data's time range");
+    throw Error("fewer than 2 IMU samples fall inside the pose data's time range");
   }
   if (options.knot_spacing_s > 0.0) {
     dt_s = options.knot_spacing_s;
@@ -814,7 +814,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   const int64_t dt_ns = std::llround(dt_s * 1e9);
   dt_s = 1e-9 * static_cast<double>(dt_ns);
   if (static_cast<double>(dt_ns) < 2e9 / imu_rate_hz * (1.0 - 1e-6)) {
-    throw Error("fit: knot spacing " + Format("%.6g", dt_s) + " s is below two IMU periods (" +
+    throw Error("knot spacing " + Format("%.6g", dt_s) + " s is below two IMU periods (" +
                 Format("%.6g", 2.0 / imu_rate_hz) + " s): some segments would hold no IMU data");
   }
   const double overlap_s = 1e-9 * static_cast<double>(end - start);
@@ -825,7 +825,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
     if (t - margin_ns >= start && t + margin_ns <= end) ++poses_inside;
   }
   if (end - start < min_span_ns || poses_inside < kMinPoses) {
-    throw Error("fit: the data is too short for knot spacing " + Format("%.6g", dt_s) +
+    throw Error("the data is too short for knot spacing " + Format("%.6g", dt_s) +
                 " s: " + Format("%.6g", overlap_s) + " s of overlapping IMU and pose data with " +
                 std::to_string(poses_inside) + " poses inside; needs at least " +
                 Format("%.6g", 1e-9 * static_cast<double>(min_span_ns)) + " s (" +
@@ -920,7 +920,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
       } else {
         hint = ": wrong gyro units, or the poses are not this IMU's trajectory";
       }
-      throw Error("fit: the gyro's rotation rate (RMS " + Format("%.4g", gyro_rms) +
+      throw Error("the gyro's rotation rate (RMS " + Format("%.4g", gyro_rms) +
                   " rad/s) and the poses' (RMS " + Format("%.4g", pose_rms) +
                   " rad/s) differ by a factor " + Format("%.3g", gyro_rate_ratio) + hint);
     }
@@ -942,7 +942,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
     if (g_ratio > 1.0 / 12.0 && g_ratio < 1.0 / 8.0) {
       hint = ": the accelerometer seems to be in units of g (use --accel-unit g)";
     }
-    throw Error("fit: the mean specific force in the world frame has magnitude " +
+    throw Error("the mean specific force in the world frame has magnitude " +
                 Format("%.4g", g_estimate.norm()) + " m/s^2 but gravity is " +
                 Format("%.4g", options.gravity_m_s2) + " m/s^2" + hint);
   }
@@ -1191,7 +1191,7 @@ FitResult FitProblem::Impl::Solve() {
     if (round == 0) result.initial_cost = summary.initial_cost;
     ++result.solver_rounds;
     if (summary.termination_type == ceres::FAILURE || !summary.IsSolutionUsable()) {
-      throw Error("fit: the solver failed (" + summary.message +
+      throw Error("the solver failed (" + summary.message +
                   "); likely causes: " + LikelyCauses(0.0, 0.0));
     }
     if (!options.estimate_time_offset) break;
@@ -1308,7 +1308,7 @@ FitResult FitProblem::Impl::Solve() {
   const double accel_ratio = result.residual_rms.accel_m_s2 / sigma_a;
   if (options.estimate_time_offset &&
       std::abs(time_offset) >= (1.0 - kEdgeFraction) * options.max_time_offset_s) {
-    throw Error("fit: the time offset reached the edge of its search range (" +
+    throw Error("the time offset reached the edge of its search range (" +
                 Format("%.6g", time_offset) + " s of +-" +
                 Format("%.6g", options.max_time_offset_s) +
                 " s): the true offset is probably beyond it; raise --max-time-offset or check that "
@@ -1317,8 +1317,8 @@ FitResult FitProblem::Impl::Solve() {
   if (gyro_ratio > options.max_residual_noise_ratio ||
       accel_ratio > options.max_residual_noise_ratio) {
     throw Error(
-        "fit: the solution does not explain the data: residual RMS is " +
-        Format("%.3g", gyro_ratio) + "x the gyro noise and " + Format("%.3g", accel_ratio) +
+        "the solution does not explain the data: residual RMS is " + Format("%.3g", gyro_ratio) +
+        "x the gyro noise and " + Format("%.3g", accel_ratio) +
         "x the accelerometer noise; likely causes: " + LikelyCauses(gyro_ratio, accel_ratio));
   }
   auto warn_ratio = [&](double ratio, const std::string& what) {
