@@ -80,6 +80,19 @@ double ScaleOf(const AxisSeries& axis, const StaticReadOptions& options) {
   return axis.sensor == ImuSensor::kGyroscope ? options.gyro_scale : options.accel_scale;
 }
 
+// One reading in the file's unit, scaled; refused beyond the input layer's plausibility limits
+// (io/text_file.h), like every other IMU reader.
+double ParseReading(std::string_view field,
+                    const TextFileReader& reader,
+                    const std::string& name,
+                    const AxisSeries& axis,
+                    const StaticReadOptions& options) {
+  const double scale = ScaleOf(axis, options);
+  const bool gyro = axis.sensor == ImuSensor::kGyroscope;
+  const double limit = (gyro ? kMaxAngularRate : kMaxAcceleration) / scale;
+  return scale * ParseBoundedDouble(field, reader, name, limit, gyro ? "rad/s" : "m/s^2");
+}
+
 void CheckScales(const StaticReadOptions& options) {
   if (!(std::isfinite(options.gyro_scale) && options.gyro_scale > 0.0)) {
     throw Error("gyro scale must be positive and finite, got " +
@@ -187,7 +200,9 @@ bool ParseEurocRow(const char* p, const char* end, int64_t* t_ns, double* values
     ++p;
     while (p < end && IsBlank(*p)) ++p;
     const auto parsed = std::from_chars(p, end, values[a]);
-    if (parsed.ec != std::errc() || !std::isfinite(values[a])) return false;
+    // Non-finite or large readings go to the TextFileReader path, which checks the exact
+    // plausibility limit and reports the line.
+    if (parsed.ec != std::errc() || !(std::abs(values[a]) <= 1e3)) return false;
     p = parsed.ptr;
   }
   return p == end;
@@ -353,8 +368,8 @@ StaticRecording ReadEurocStaticRecording(const std::string& path,
     }
     last_t_ns = t_ns;
     for (size_t a = 0; a < 6; ++a) {
-      recording.axes[a].samples.push_back(ScaleOf(recording.axes[a], options) *
-                                          ParseFiniteDouble(fields[1 + a], reader, names[a]));
+      recording.axes[a].samples.push_back(
+          ParseReading(fields[1 + a], reader, names[a], recording.axes[a], options));
     }
     ++rows;
     planner.AddRow(reader.line(), &recording.axes);
@@ -424,8 +439,8 @@ StaticRecording ReadColumnStaticRecording(const std::string& path,
     internal::CheckColumnCount(
         reader, fields, columns, columns == 6 ? "gyro xyz, accel xyz" : "one sensor's axes");
     for (size_t a = 0; a < columns; ++a) {
-      recording.axes[a].samples.push_back(ScaleOf(recording.axes[a], options) *
-                                          ParseFiniteDouble(fields[a], reader, names[a]));
+      recording.axes[a].samples.push_back(
+          ParseReading(fields[a], reader, names[a], recording.axes[a], options));
     }
     planner.AddRow(reader.line(), &recording.axes);
   }

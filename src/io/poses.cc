@@ -52,6 +52,8 @@ std::vector<StampedPose> Read(const std::string& path, const PoseFormat* forced_
   internal::TimestampChecker timestamps(&reader);
   bool have_format = forced_format != nullptr;
   PoseFormat format = have_format ? *forced_format : PoseFormat::kTum;
+  // EuRoC ground truth may carry 8 columns (t, p, q) or more (v, biases); every row as the first.
+  size_t first_row_columns = 0;
   while (reader.NextLine()) {
     SplitFields(reader.line(), &fields);
     if (internal::IsHeaderRow(reader, fields)) continue;
@@ -60,7 +62,12 @@ std::vector<StampedPose> Read(const std::string& path, const PoseFormat* forced_
                                                                   : PoseFormat::kTum;
       have_format = true;
     }
+    if (!poses.empty() && fields.size() != first_row_columns) {
+      reader.Fail("expected " + std::to_string(first_row_columns) +
+                  " columns like the first row, found " + std::to_string(fields.size()));
+    }
     const StampedPose pose = ParseRow(reader, fields, format);
+    if (poses.empty()) first_row_columns = fields.size();
     timestamps.Add(pose.t_ns, fields[0]);
     poses.push_back(pose);
   }

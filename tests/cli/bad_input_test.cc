@@ -173,6 +173,11 @@ const std::vector<CommandCase>& CommandCases() {
          false,
          {{"TimestampsEqual", ":5:1: knot spacing is not uniform"},
           {"TimestampsBackwards", ":5:1: knot spacing is not uniform"}}}}},
+      {"simulate", {}, {{"--trajectory-file", ValidGroundTruth}}},
+      {"integrate", {}, {{"--imu", ValidImu, true}, {"--groundtruth", ValidGroundTruth}}},
+      {"allan", {}, {{"--imu", ValidImu, true}}},
+      {"fit", {}, {{"--imu", ValidImu, true}, {"--poses", ValidGroundTruth}}},
+      {"align", {}, {{"--imu", ValidImu, true}, {"--camera-poses", ValidGroundTruth}}},
   };
   return cases;
 }
