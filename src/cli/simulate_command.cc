@@ -12,21 +12,26 @@
 #include <vector>
 
 #include "splinecal/calib/pose_fit.h"
+#include "splinecal/calib/simulate_camera.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
 #include "splinecal/imu/simulate.h"
 #include "splinecal/imu/trajectories.h"
+#include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/spline_csv.h"
+#include "splinecal/io/target_yaml.h"
 #include "splinecal/io/yaml_writer.h"
 
 DEFINE_string(trajectory,
               "vio_course",
-              "Analytic trajectory: vio_course, figure8 or random (seeded by --seed)");
+              "Trajectory: vio_course, figure8, random (seeded by --seed) or calibration (a lively "
+              "motion over --target for camera-IMU calibration; needs --camchain)");
 DEFINE_string(trajectory_file,
               "",
               "Recorded trajectory to simulate instead, TUM or EuRoC ground truth [path]; its "
@@ -36,6 +41,9 @@ DEFINE_double(duration,
               "Duration [s] (simulate: default 20 s, or the whole --trajectory-file; integrate: "
               "default until the end of the data)");
 DEFINE_double(imu_rate, 200.0, "IMU sample rate [Hz]");
+DEFINE_double(camera_rate, 20.0, "Camera frame rate with --camchain [Hz]");
+DEFINE_double(pixel_noise, 0.5, "Pixel noise with --camchain, std per coordinate [px]");
+DEFINE_int32(landmarks, 0, "Natural landmarks to simulate with --camchain [count]");
 DEFINE_bool(noise_free, false, "No white noise and no bias random walk (initial biases kept)");
 DEFINE_double(gyroscope_noise_density, 1.6968e-4, "Gyro white noise density [rad/s/sqrt(Hz)]");
 DEFINE_double(gyroscope_random_walk, 1.9393e-5, "Gyro bias random walk [rad/s^2/sqrt(Hz)]");
@@ -100,6 +108,32 @@ int RunSimulate() {
   options.seed = static_cast<uint64_t>(static_cast<int64_t>(FLAGS_seed));
   options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
 
+  // Cameras (optional): read every input before any work.
+  Camchain camchain;
+  CameraSimulationOptions camera_options;
+  Eigen::Vector3d target_centre_w = Eigen::Vector3d::Zero();
+  if (!FLAGS_camchain.empty()) {
+    camchain = ReadCamchainYaml(FLAGS_camchain);
+    camera_options.camera_rate_hz = PositiveFlag("camera-rate", FLAGS_camera_rate);
+    camera_options.pixel_noise_px = NonNegativeFlag("pixel-noise", FLAGS_pixel_noise);
+    camera_options.seed = options.seed + 100;
+    if (FLAGS_landmarks < 0 || FLAGS_landmarks > 1000000) {
+      throw Error("--landmarks: expected 0 to 1000000, got " + std::to_string(FLAGS_landmarks));
+    }
+    camera_options.num_landmarks = FLAGS_landmarks;
+    if (!FLAGS_target.empty()) {
+      camera_options.has_target = true;
+      camera_options.target = ReadTargetYaml(FLAGS_target);
+      camera_options.T_w_t = SE3d();  // the target lies in the world's z = 0 plane, at the origin
+      target_centre_w = TargetCentre(camera_options.target, camera_options.T_w_t);
+    }
+    if (!camera_options.has_target && camera_options.num_landmarks == 0) {
+      throw Error("--camchain needs --target FILE and/or --landmarks N: nothing to observe");
+    }
+  } else if (!FLAGS_target.empty() || FLAGS_landmarks != 0) {
+    throw Error("--target and --landmarks need --camchain (the cameras that observe them)");
+  }
+
   PoseFitOptions fit_options;
   fit_options.progress = [](const std::string& line) { Progress(line); };
   PoseFitResult fit;
@@ -132,6 +166,27 @@ int RunSimulate() {
     fit =
         FitControlPoses(poses, KnotLayoutCovering(start_ns, end_ns, knot_spacing_ns), fit_options);
   } else {
+    if (FLAGS_trajectory == "calibration") {
+      // The lively target-viewing motion of calib/simulate_camera.h, laid out for cam0.
+      if (camchain.empty()) throw Error("--trajectory calibration needs --camchain");
+      if (duration_s * rate_hz > kMaxSamples) {
+        throw Error("--duration " + std::to_string(duration_s) + " s at " +
+                    std::to_string(rate_hz) + " Hz is more than 2e7 IMU samples: shorten it");
+      }
+      source = "calibration";
+      start_ns = 1'000'000'000;
+      end_ns = start_ns + SecondsToNs(duration_s);
+      Progress("simulate: fitting the calibration trajectory (" + std::to_string(duration_s) +
+               " s, knots every " + std::to_string(knot_spacing_s) + " s)");
+      fit = FitCalibrationTrajectory(target_centre_w,
+                                     camchain.front().T_cam_imu,
+                                     start_ns,
+                                     end_ns,
+                                     knot_spacing_ns,
+                                     options.seed);
+    }
+  }
+  if (fit.layout.num_control_poses == 0) {
     if (duration_s * rate_hz > kMaxSamples) {
       throw Error("--duration " + std::to_string(duration_s) + " s at " + std::to_string(rate_hz) +
                   " Hz is more than 2e7 IMU samples: shorten it");
@@ -160,7 +215,21 @@ int RunSimulate() {
   std::vector<GroundTruthState> truth;
   SimulateImu(spline, start_ns, end_ns, options, &imu, &truth);
 
+  CameraSimulationResult cameras;
+  if (!camchain.empty()) {
+    cameras = SimulateCameras(spline, camchain, start_ns, end_ns, camera_options);
+    Progress("simulate: " + std::to_string(cameras.num_frames) + " camera frames, " +
+             std::to_string(cameras.num_target_observations) + " target and " +
+             std::to_string(cameras.num_landmark_observations) + " landmark observations");
+  }
+
   OutputDir output(out_dir);
+  if (!camchain.empty()) {
+    std::ostringstream observations_csv;
+    WriteObservationsCsv(cameras.observations, &observations_csv);
+    output.WriteFile("observations.csv", observations_csv.str());
+    output.WriteFile("camchain.yaml", CamchainYamlText(camchain));
+  }
   std::ostringstream imu_csv, truth_csv, spline_csv;
   WriteEurocImu(imu, &imu_csv);
   WriteEurocGroundTruth(truth, &truth_csv);
@@ -205,6 +274,9 @@ int RunSimulate() {
   yaml.Scalar("fit_max_rotation_error_deg", fit.max_rotation_error_deg);
   yaml.Scalar("fit_converged", fit.converged);
   yaml.EndMap();
+  if (!camchain.empty()) {
+    WriteCameraSimulationTruth(camchain, camera_options, cameras, &yaml);
+  }
   output.WriteFile("result.yaml", yaml.str());
   output.Commit();
 
@@ -254,6 +326,15 @@ Command SimulateCommand() {
        {"accelerometer_noise_density", ""},
        {"accelerometer_random_walk", ""},
        {"noise_free", ""},
+       {"camchain",
+        "Cameras to simulate, Kalibr camchain.yaml (intrinsics, T_cam_imu, timeshift_cam_imu, "
+        "line_delay) [path]; writes observations.csv"},
+       {"target",
+        "Calibration target seen by the cameras, Kalibr aprilgrid YAML or points YAML "
+        "[path]; it lies in the world's z = 0 plane at the origin"},
+       {"landmarks", ""},
+       {"camera_rate", ""},
+       {"pixel_noise", ""},
        {"gyro_bias", "Initial gyro bias b_g, x,y,z [rad/s]"},
        {"accel_bias", "Initial accelerometer bias b_a, x,y,z [m/s^2]"},
        {"out", ""}},
