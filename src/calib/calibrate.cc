@@ -159,6 +159,14 @@ void CheckInputs(const std::vector<ImuSample>& imu,
     }
   };
   positive(options.knot_spacing_s, "the knot spacing");
+  // Refused before anything is allocated: a spacing below two IMU periods leaves segments with
+  // no IMU data and, taken to the extreme (1 ns), would ask for billions of control poses.
+  const double imu_rate_hz = ImuRateHz(imu);
+  if (options.knot_spacing_s < 2.0 / imu_rate_hz * (1.0 - 1e-6)) {
+    throw Error("calibrate: knot spacing " + Format("%.6g", options.knot_spacing_s) +
+                " s is below two IMU periods (" + Format("%.6g", 2.0 / imu_rate_hz) +
+                " s): some segments would hold no IMU data");
+  }
   positive(options.gravity_m_s2, "gravity");
   positive(options.bias_knot_spacing_s, "the bias knot spacing");
   positive(options.max_time_offset_s, "the time-offset range");

@@ -234,6 +234,19 @@ TEST_F(CalibrateRefuses, ACameraMissingFromTheCamchain) {
   ExpectError(scenario_->imu, obs, scenario_->start, &scenario_->target, "observation of camera 1");
 }
 
+TEST_F(CalibrateRefuses, AKnotSpacingThatWouldExhaustMemory) {
+  // 1 ns knots over 4 s would be 4e9 control poses: refused before anything is allocated.
+  CalibrateOptions options = FastOptions();
+  options.knot_spacing_s = 1e-9;
+  try {
+    Calibrate(scenario_->imu, scenario_->observations, scenario_->start, &scenario_->target,
+              options);
+    ADD_FAILURE() << "no error for a 1 ns knot spacing";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("below two IMU periods"));
+  }
+}
+
 TEST_F(CalibrateRefuses, LandmarksWithoutAnInitialGuess) {
   ExpectError(scenario_->imu,
               scenario_->observations,
