@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -11,10 +10,10 @@
 
 #include "splinecal/error.h"
 #include "splinecal/imu/noise.h"
-#include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/plot/svg_plot.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
@@ -48,12 +47,6 @@ const Units& UnitsOf(ImuSensor sensor) {
 }
 
 const char* const kAxisLetters[] = {"x", "y", "z"};
-
-std::string Format3(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3g", value);
-  return text;
-}
 
 // Combines one key over the axes of `sensor`.
 KalibrKey Combine(const std::vector<AxisAllan>& axes,
@@ -152,20 +145,17 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   if (static_cast<int>(sizes.size()) < kMinAveragingTimes) {
     const int64_t needed = MinimumSamplesForAveragingTimes(
         kMinAveragingTimes, options.taus_per_decade, options.max_tau_fraction);
-    char message[320];
-    std::snprintf(message,
-                  sizeof(message),
-                  "too few samples for the averaging times: %lld samples (%.4g s at %.6g Hz) give "
-                  "%d averaging time(s) up to %g of the record; the noise fit needs at least %d, "
-                  "i.e. at least %lld samples",
-                  static_cast<long long>(n),
-                  n / recording.rate_hz,
-                  recording.rate_hz,
-                  static_cast<int>(sizes.size()),
-                  options.max_tau_fraction,
-                  kMinAveragingTimes,
-                  static_cast<long long>(needed));
-    throw fail(message);
+    throw fail(StringPrintf(
+        "too few samples for the averaging times: %lld samples (%.4g s at %.6g Hz) give "
+        "%d averaging time(s) up to %g of the record; the noise fit needs at least %d, "
+        "i.e. at least %lld samples",
+        static_cast<long long>(n),
+        n / recording.rate_hz,
+        recording.rate_hz,
+        static_cast<int>(sizes.size()),
+        options.max_tau_fraction,
+        kMinAveragingTimes,
+        static_cast<long long>(needed)));
   }
 
   AllanResult result;
@@ -205,8 +195,8 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
       if (options.progress) {
         const std::lock_guard<std::mutex> lock(progress_mutex);
         options.progress("allan: " + axis.name + " done (" + std::to_string(sizes.size()) +
-                         " averaging times, " + Format3(axis.curve.tau_s.front()) + " to " +
-                         Format3(axis.curve.tau_s.back()) + " s)");
+                         " averaging times, " + StringPrintf("%.3g", axis.curve.tau_s.front()) +
+                         " to " + StringPrintf("%.3g", axis.curve.tau_s.back()) + " s)");
       }
     }
   };
@@ -348,14 +338,10 @@ std::string AllanImuYamlText(const AllanResult& result) {
 
 std::string AllanSvgText(const AllanResult& result) {
   plot::Figure figure;
-  char title[160];
-  std::snprintf(title,
-                sizeof(title),
-                "Allan deviation: %lld samples, %.6g s at %.6g Hz",
-                static_cast<long long>(result.num_samples),
-                result.num_samples / result.rate_hz,
-                result.rate_hz);
-  figure.title = title;
+  figure.title = StringPrintf("Allan deviation: %lld samples, %.6g s at %.6g Hz",
+                              static_cast<long long>(result.num_samples),
+                              result.num_samples / result.rate_hz,
+                              result.rate_hz);
   int gyro_axes = 0;
   int accel_axes = 0;
   for (const AxisAllan& axis : result.axes) {
@@ -421,7 +407,8 @@ std::string AllanSvgText(const AllanResult& result) {
     if (axis.fit.noise_density.identified) {
       const double n = axis.fit.noise_density.value;
       plot::Series& line = panel.series.emplace_back();
-      line.label = "N = " + Format3(n) + " " + units.density_svg + " (slope -1/2, τ = 1 s)";
+      line.label =
+          "N = " + StringPrintf("%.3g", n) + " " + units.density_svg + " (slope -1/2, τ = 1 s)";
       line.color = "#d62728";
       line.dashed = true;
       line.x = {tau_lo, tau_hi};
@@ -432,7 +419,8 @@ std::string AllanSvgText(const AllanResult& result) {
     if (axis.fit.random_walk.identified) {
       const double k = axis.fit.random_walk.value;
       plot::Series& line = panel.series.emplace_back();
-      line.label = "K = " + Format3(k) + " " + units.walk_svg + " (slope +1/2, τ = 3 s)";
+      line.label =
+          "K = " + StringPrintf("%.3g", k) + " " + units.walk_svg + " (slope +1/2, τ = 3 s)";
       line.color = "#2ca02c";
       line.dashed = true;
       line.x = {tau_lo, tau_hi};
@@ -443,7 +431,7 @@ std::string AllanSvgText(const AllanResult& result) {
     if (axis.fit.bias_instability.identified) {
       const double b = axis.fit.bias_instability.value;
       plot::Series& line = panel.series.emplace_back();
-      line.label = "B = " + Format3(b) + " " + units.adev_svg + " (floor / 0.664)";
+      line.label = "B = " + StringPrintf("%.3g", b) + " " + units.adev_svg + " (floor / 0.664)";
       line.color = "#ff7f0e";
       line.dashed = true;
       line.x = {tau_lo, tau_hi};

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "splinecal/error.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
@@ -40,17 +41,9 @@ const char* TermName(NoiseTerm term) {
   return "?";
 }
 
-std::string Percent(double fraction) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.0f%%", 100.0 * fraction);
-  return text;
-}
+std::string Percent(double fraction) { return StringPrintf("%.0f%%", 100.0 * fraction); }
 
-std::string Seconds(double tau_s) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3g s", tau_s);
-  return text;
-}
+std::string Seconds(double tau_s) { return StringPrintf("%.3g s", tau_s); }
 
 // The averaging times where `term` holds at least `share` of the model variance.
 std::vector<int> Region(const std::vector<std::array<double, kNumNoiseTerms>>& shares,

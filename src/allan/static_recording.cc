@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string_view>
@@ -17,6 +16,7 @@
 #include "splinecal/error.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
@@ -121,13 +121,11 @@ void CheckAccelUnits(const std::string& path,
   }
   const double magnitude = std::sqrt(squared);
   if (count == 3 && magnitude > kGravityInGLow && magnitude < kGravityInGHigh) {
-    char message[200];
-    std::snprintf(message,
-                  sizeof(message),
-                  "mean accelerometer reading has magnitude %.3f: the data looks like units of "
-                  "g, expected m/s^2 (pass --accel-scale 9.80665)",
-                  magnitude);
-    throw Error(path, 0, message);
+    throw Error(path,
+                0,
+                StringPrintf("mean accelerometer reading has magnitude %.3f: the data looks like "
+                             "units of g, expected m/s^2 (pass --accel-scale 9.80665)",
+                             magnitude));
   }
 }
 
@@ -378,15 +376,14 @@ StaticRecording ReadEurocStaticRecording(const std::string& path,
   const double mean_period_s = 1e-9 * static_cast<double>(last_t_ns - first_t_ns) / (rows - 1);
   recording.rate_hz = 1.0 / mean_period_s;
   if (1e-9 * largest_step_ns > options.max_gap_periods * mean_period_s) {
-    char message[240];
-    std::snprintf(message,
-                  sizeof(message),
-                  "gap of %.6g s before this row, more than %g mean sample periods (%.6g s): the "
-                  "Allan variance needs uniformly sampled data (cut the file at the gap)",
-                  1e-9 * largest_step_ns,
-                  options.max_gap_periods,
-                  mean_period_s);
-    throw Error(path, largest_step_line, message);
+    throw Error(path,
+                largest_step_line,
+                StringPrintf("gap of %.6g s before this row, more than %g mean sample periods "
+                             "(%.6g s): the Allan variance needs uniformly sampled data (cut the "
+                             "file at the gap)",
+                             1e-9 * largest_step_ns,
+                             options.max_gap_periods,
+                             mean_period_s));
   }
   CheckAccelUnits(path, recording.axes, options);
   return recording;

@@ -6,14 +6,13 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 #include <limits>
 #include <utility>
 
 #include "splinecal/calib/gravity_tangent.h"
 #include "splinecal/calib/hand_eye.h"
 #include "splinecal/error.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
@@ -30,15 +29,6 @@ constexpr double kStallRatio = 0.5;
 constexpr double kRelinearizeBias = 1e-6;
 
 using NormalEquations = AlignmentProblem::NormalEquations;
-
-std::string Format(const char* format, ...) {
-  char buffer[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof(buffer), format, args);
-  va_end(args);
-  return buffer;
-}
 
 bool Converged(double step, double previous_step, double tolerance) {
   return step < tolerance || (step < kStallStep && step > kStallRatio * previous_step);
@@ -443,11 +433,11 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   }
   if (frames.size() < 3) {
     throw Error(
-        Format("alignment: need at least 3 camera poses inside the IMU data's time span "
-               "[%.9f, %.9f] s, found %d",
-               imu.front().t_ns * 1e-9,
-               imu.back().t_ns * 1e-9,
-               static_cast<int>(frames.size())));
+        StringPrintf("alignment: need at least 3 camera poses inside the IMU data's time span "
+                     "[%.9f, %.9f] s, found %d",
+                     imu.front().t_ns * 1e-9,
+                     imu.back().t_ns * 1e-9,
+                     static_cast<int>(frames.size())));
   }
 
   // Step 1: camera-IMU rotation by hand-eye.
@@ -481,7 +471,7 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   result.gyro_bias_iterations = bias.iterations;
   result.rms_rotation_residual_rad = bias.rms_rotation_residual_rad;
   if (!bias.converged) {
-    result.message = Format(
+    result.message = StringPrintf(
         "the gyro bias did not converge in %d iterations (rotation residual "
         "%.3g rad RMS): the camera rotations do not match the gyro (check "
         "T_cam_imu, the time offset and the gyro units)",
@@ -503,14 +493,14 @@ AlignResult Align(const std::vector<ImuSample>& imu,
       "rotation, e.g. a figure eight; constant velocity or a pure rotation is not enough)";
   result.condition_number = free.condition_number;
   if (!(result.condition_number <= options.max_condition_number)) {
-    result.message = Format("not enough excitation: condition number %.3g exceeds %.3g; ",
-                            result.condition_number,
-                            options.max_condition_number) +
+    result.message = StringPrintf("not enough excitation: condition number %.3g exceeds %.3g; ",
+                                  result.condition_number,
+                                  options.max_condition_number) +
                      excitation_advice;
     return result;
   }
   if (!(free.scale > 0.0)) {
-    result.message = Format(
+    result.message = StringPrintf(
         "the scale came out %s (%.6g): the camera trajectory does not match "
         "the IMU motion (check that the poses are T_c0_c and not their "
         "inverses, T_cam_imu, and the time offset)",
@@ -520,7 +510,7 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   }
   const double norm_error = std::abs(free.gravity_c0.norm() - G);
   if (!(norm_error <= options.max_gravity_norm_error_m_s2)) {
-    result.message = Format(
+    result.message = StringPrintf(
                          "the gravity estimated without its known norm is %.4g m/s^2, %.3g "
                          "m/s^2 from the expected %.4g m/s^2 (allowed %.3g): ",
                          free.gravity_c0.norm(),
@@ -541,12 +531,12 @@ AlignResult Align(const std::vector<ImuSample>& imu,
     return result;
   }
   if (!refined.converged) {
-    result.message =
-        Format("the gravity refinement did not converge in %d iterations", refined.iterations);
+    result.message = StringPrintf("the gravity refinement did not converge in %d iterations",
+                                  refined.iterations);
     return result;
   }
   if (!(refined.scale > 0.0)) {
-    result.message = Format(
+    result.message = StringPrintf(
         "the refined scale came out %.6g (not positive): the camera "
         "trajectory does not match the IMU motion",
         refined.scale);
@@ -573,7 +563,7 @@ AlignResult Align(const std::vector<ImuSample>& imu,
     result.states_w.push_back(state);
   }
   result.success = true;
-  result.message = Format(
+  result.message = StringPrintf(
       "aligned %d camera frames: scale %.6g, gravity refined in %d "
       "iterations, condition number %.3g",
       static_cast<int>(frames.size()),
@@ -581,8 +571,8 @@ AlignResult Align(const std::vector<ImuSample>& imu,
       result.iterations,
       result.condition_number);
   if (result.num_ignored_frames > 0) {
-    result.message +=
-        Format("; %d camera poses outside the IMU data were ignored", result.num_ignored_frames);
+    result.message += StringPrintf("; %d camera poses outside the IMU data were ignored",
+                                   result.num_ignored_frames);
   }
   return result;
 }

@@ -9,7 +9,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <memory>
 #include <set>
@@ -23,9 +22,11 @@
 #include "splinecal/calib/imu_costs.h"
 #include "splinecal/calib/pnp.h"
 #include "splinecal/calib/reprojection_cost.h"
+#include "splinecal/calib/solver_progress.h"
 #include "splinecal/calib/spline_evaluation_callback.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 
@@ -61,39 +62,6 @@ constexpr double kInitialPoseSigmaM = 0.01;
 constexpr double kInitialPoseSigmaRad = 0.01;
 // The initial spline extends this far beyond the camera's time span into the IMU data [ns].
 constexpr int64_t kImuMarginNs = 200'000'000;
-
-std::string Format(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
-class ProgressCallback : public ceres::IterationCallback {
- public:
-  ProgressCallback(std::function<void(const std::string&)> progress, int round)
-      : progress_(std::move(progress)), round_(round) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-    char line[256];
-    std::snprintf(line,
-                  sizeof(line),
-                  "calibrate: round %d iteration %2d  cost %.9e  change %+.3e  |gradient| %.3e  "
-                  "|step| %.3e  %s  %.2f s",
-                  round_,
-                  s.iteration,
-                  s.cost,
-                  -s.cost_change,
-                  s.gradient_max_norm,
-                  s.step_norm,
-                  s.step_is_successful ? "accepted" : "rejected",
-                  s.cumulative_time_in_seconds);
-    progress_(line);
-    return ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  std::function<void(const std::string&)> progress_;
-  int round_;
-};
 
 // Stops a solve whose time offset or line delay is about to leave the time windows its
 // residuals were built with (Ceres then only sees failed evaluations beyond them); the caller
@@ -163,8 +131,8 @@ void CheckInputs(const std::vector<ImuSample>& imu,
   // no IMU data and, taken to the extreme (1 ns), would ask for billions of control poses.
   const double imu_rate_hz = ImuRateHz(imu);
   if (options.knot_spacing_s < 2.0 / imu_rate_hz * (1.0 - 1e-6)) {
-    throw Error("calibrate: knot spacing " + Format("%.6g", options.knot_spacing_s) +
-                " s is below two IMU periods (" + Format("%.6g", 2.0 / imu_rate_hz) +
+    throw Error("calibrate: knot spacing " + StringPrintf("%.6g", options.knot_spacing_s) +
+                " s is below two IMU periods (" + StringPrintf("%.6g", 2.0 / imu_rate_hz) +
                 " s): some segments would hold no IMU data");
   }
   positive(options.gravity_m_s2, "gravity");
@@ -202,18 +170,15 @@ std::vector<Observation> ObservationsInsideImu(const std::vector<ImuSample>& imu
     }
   }
   if (inside.empty()) {
-    char text[512];
-    std::snprintf(text,
-                  sizeof(text),
-                  "calibrate: every observation is outside the IMU's time range: frames [%.9f, "
-                  "%.9f] s (camera clock) vs IMU [%.9f, %.9f] s; the files are from different "
-                  "recordings or use different time bases (seconds vs nanoseconds, another clock "
-                  "origin), or timeshift_cam_imu is wrong",
-                  1e-9 * static_cast<double>(first),
-                  1e-9 * static_cast<double>(last),
-                  1e-9 * static_cast<double>(imu.front().t_ns),
-                  1e-9 * static_cast<double>(imu.back().t_ns));
-    throw Error(text);
+    throw Error(StringPrintf(
+        "calibrate: every observation is outside the IMU's time range: frames [%.9f, "
+        "%.9f] s (camera clock) vs IMU [%.9f, %.9f] s; the files are from different "
+        "recordings or use different time bases (seconds vs nanoseconds, another clock "
+        "origin), or timeshift_cam_imu is wrong",
+        1e-9 * static_cast<double>(first),
+        1e-9 * static_cast<double>(last),
+        1e-9 * static_cast<double>(imu.front().t_ns),
+        1e-9 * static_cast<double>(imu.back().t_ns)));
   }
   if (!dropped_frames.empty()) {
     warnings->push_back(std::to_string(dropped_frames.size()) + " of " +
@@ -235,8 +200,9 @@ void CheckRotationExcitation(const std::vector<ImuSample>& imu, double min_rate)
   const Eigen::Vector3d rms = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   if (rms(0) < min_rate) {
     throw Error("calibrate: too little rotation: the gyro's RMS rate about its weakest axis is " +
-                Format("%.3g", rms(0)) + " rad/s (about the others " + Format("%.3g", rms(1)) +
-                " and " + Format("%.3g", rms(2)) + " rad/s), below " + Format("%.3g", min_rate) +
+                StringPrintf("%.3g", rms(0)) + " rad/s (about the others " +
+                StringPrintf("%.3g", rms(1)) + " and " + StringPrintf("%.3g", rms(2)) +
+                " rad/s), below " + StringPrintf("%.3g", min_rate) +
                 " rad/s; T_cam_imu's rotation and the time offset cannot be determined. Record "
                 "again rotating the rig about all three axes");
   }
@@ -776,10 +742,11 @@ CalibrationResult CalibrationProblem::Run() {
     if (frame_residuals_.empty() && landmark_residuals_.empty()) {
       throw Error("calibrate: no frame lies inside the spline's time range");
     }
-    std::unique_ptr<ProgressCallback> progress;
+    std::unique_ptr<SolverProgressCallback> progress;
     ceres::Solver::Options round_options = solver_options;
     if (options_.progress) {
-      progress = std::make_unique<ProgressCallback>(options_.progress, round);
+      progress = std::make_unique<SolverProgressCallback>(
+          options_.progress, StringPrintf("calibrate: round %d ", round));
       round_options.callbacks.push_back(progress.get());
     }
     WindowGuard guard([this]() { return TimesInsideWindows(); });
@@ -819,7 +786,7 @@ CalibrationResult CalibrationProblem::Run() {
     }
     if (!again) break;
     if (round < options_.max_rounds && options_.progress) {
-      options_.progress("calibrate: pixel sigma " + Format("%.4g", sigma_px_) +
+      options_.progress("calibrate: pixel sigma " + StringPrintf("%.4g", sigma_px_) +
                         " px; time windows " + (windows_valid ? "valid" : "moved") +
                         ": solving again");
     }
@@ -953,18 +920,18 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     if (estimate.rotation_std_deg.maxCoeff() > options_.warn_rotation_std_deg) {
       result->warnings.push_back(name +
                                  ": the rotation of T_cam_imu is poorly determined (std up to " +
-                                 Format("%.3g", estimate.rotation_std_deg.maxCoeff()) +
+                                 StringPrintf("%.3g", estimate.rotation_std_deg.maxCoeff()) +
                                  " deg): rotate the rig more, about all three axes");
     }
     if (estimate.translation_std_m.maxCoeff() > options_.warn_translation_std_m) {
       result->warnings.push_back(
           name + ": the translation of T_cam_imu is poorly determined (std up to " +
-          Format("%.3g", 1e3 * estimate.translation_std_m.maxCoeff()) +
+          StringPrintf("%.3g", 1e3 * estimate.translation_std_m.maxCoeff()) +
           " mm): it shows only through rotational accelerations; rotate faster and longer");
     }
     if (options_.estimate_time_offset && estimate.timeshift_std_s > options_.warn_timeshift_std_s) {
       result->warnings.push_back(name + ": the time offset is poorly determined (std " +
-                                 Format("%.3g", 1e3 * estimate.timeshift_std_s) +
+                                 StringPrintf("%.3g", 1e3 * estimate.timeshift_std_s) +
                                  " ms): the motion is too slow or too smooth");
     }
     if (options_.rolling_shutter && cam.line_delay > 0.0 &&
@@ -972,11 +939,12 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
         cam.line_delay > 3.0 * estimate.line_delay_std_s) {
       result->warnings.push_back(
           name + ": the line delay is poorly determined (std " +
-          Format("%.3g", 100.0 * estimate.line_delay_std_s / cam.line_delay) + "% of its value)");
+          StringPrintf("%.3g", 100.0 * estimate.line_delay_std_s / cam.line_delay) +
+          "% of its value)");
     }
     if (std::abs(cam.shift) > 0.99 * options_.max_time_offset_s && options_.estimate_time_offset) {
       result->warnings.push_back(name + ": the time offset ended at its bound +-" +
-                                 Format("%.3g", options_.max_time_offset_s) + " s");
+                                 StringPrintf("%.3g", options_.max_time_offset_s) + " s");
     }
   }
   if (num_bias_points_ == 1) {

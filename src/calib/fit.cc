@@ -14,7 +14,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <memory>
@@ -27,9 +26,11 @@
 #include "splinecal/calib/hand_eye.h"
 #include "splinecal/calib/imu_costs.h"
 #include "splinecal/calib/pose_cost.h"
+#include "splinecal/calib/solver_progress.h"
 #include "splinecal/calib/spline_evaluation_callback.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 
@@ -66,12 +67,6 @@ constexpr double kEdgeFraction = 0.01;
 
 // At most this many solves when pose residuals must be re-attached after a time-offset move.
 constexpr int kMaxSolverRounds = 4;
-
-std::string Format(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), format, value);
-  return buffer;
-}
 
 int64_t MedianPeriodNs(const std::vector<int64_t>& times) {
   std::vector<int64_t> periods;
@@ -134,8 +129,9 @@ void CheckOptions(const FitOptions& o) {
   if (o.estimate_time_offset) {
     positive(o.max_time_offset_s, "max time offset");
     if (std::abs(o.time_offset_s) >= o.max_time_offset_s) {
-      throw Error("the initial time offset " + Format("%.6g", o.time_offset_s) +
-                  " s is outside the search range +-" + Format("%.6g", o.max_time_offset_s) + " s");
+      throw Error("the initial time offset " + StringPrintf("%.6g", o.time_offset_s) +
+                  " s is outside the search range +-" + StringPrintf("%.6g", o.max_time_offset_s) +
+                  " s");
     }
   }
   if (o.initial_gravity_w.has_value() &&
@@ -164,31 +160,6 @@ SO3d IntegrateGyro(const std::vector<ImuSample>& imu, int64_t a_ns, int64_t b_ns
   }
   return R;
 }
-
-class ProgressCallback : public ceres::IterationCallback {
- public:
-  explicit ProgressCallback(std::function<void(const std::string&)> progress)
-      : progress_(std::move(progress)) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-    char line[256];
-    std::snprintf(line,
-                  sizeof(line),
-                  "fit: iteration %2d  cost %.9e  change %+.3e  |gradient| %.3e  |step| %.3e  "
-                  "%s  %.2f s",
-                  s.iteration,
-                  s.cost,
-                  -s.cost_change,
-                  s.gradient_max_norm,
-                  s.step_norm,
-                  s.step_is_successful ? "accepted" : "rejected",
-                  s.cumulative_time_in_seconds);
-    progress_(line);
-    return ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  std::function<void(const std::string&)> progress_;
-};
 
 // r = R [d_0; d_1; ...]: a linear residual over Euclidean (tangent) blocks d_k.
 class LinearCostFunction : public ceres::CostFunction {
@@ -495,7 +466,7 @@ double ChooseKnotSpacing(const std::vector<ImuSample>& imu,
               "noise variance) unexplained";
     }
     const double share = signal_variance > 0.0 ? chosen_unexplained / signal_variance : 0.0;
-    text << " (" << Format("%.2g", 100.0 * share) << "% of the gyro signal variance left)";
+    text << " (" << StringPrintf("%.2g", 100.0 * share) << "% of the gyro signal variance left)";
     *rule = text.str();
   }
   return chosen;
@@ -732,9 +703,9 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   sigma_a = options.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz);
   if (options.noise.update_rate_hz > 0.0 &&
       std::abs(options.noise.update_rate_hz - imu_rate_hz) > 0.1 * imu_rate_hz) {
-    warnings.push_back("the IMU file's sample rate is " + Format("%.1f", imu_rate_hz) +
+    warnings.push_back("the IMU file's sample rate is " + StringPrintf("%.1f", imu_rate_hz) +
                        " Hz but the noise file says " +
-                       Format("%.1f", options.noise.update_rate_hz) +
+                       StringPrintf("%.1f", options.noise.update_rate_hz) +
                        " Hz; the weights use the measured rate");
   }
 
@@ -758,7 +729,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
           throw Error(
               "the time offset between IMU and poses appears to be beyond the search "
               "range +-" +
-              Format("%.3g", options.max_time_offset_s) +
+              StringPrintf("%.3g", options.max_time_offset_s) +
               " s (the best alignment of gyro and pose rotation rates is at its edge): "
               "raise --max-time-offset or check that both files use the same clock");
         }
@@ -767,8 +738,8 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
         warnings.push_back(
             "the gyro and the poses' rotation rates line up best with a time "
             "offset of " +
-            Format("%.1f", 1e3 * offset) + " ms, not the " + Format("%.1f", 1e3 * time_offset) +
-            " ms used: consider --estimate-time-offset");
+            StringPrintf("%.1f", 1e3 * offset) + " ms, not the " +
+            StringPrintf("%.1f", 1e3 * time_offset) + " ms used: consider --estimate-time-offset");
       }
     }
   }
@@ -814,8 +785,9 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   const int64_t dt_ns = std::llround(dt_s * 1e9);
   dt_s = 1e-9 * static_cast<double>(dt_ns);
   if (static_cast<double>(dt_ns) < 2e9 / imu_rate_hz * (1.0 - 1e-6)) {
-    throw Error("knot spacing " + Format("%.6g", dt_s) + " s is below two IMU periods (" +
-                Format("%.6g", 2.0 / imu_rate_hz) + " s): some segments would hold no IMU data");
+    throw Error("knot spacing " + StringPrintf("%.6g", dt_s) + " s is below two IMU periods (" +
+                StringPrintf("%.6g", 2.0 / imu_rate_hz) +
+                " s): some segments would hold no IMU data");
   }
   const double overlap_s = 1e-9 * static_cast<double>(end - start);
   const int64_t min_span_ns = kMinKnotIntervals * dt_ns + 2 * margin_ns;
@@ -825,14 +797,14 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
     if (t - margin_ns >= start && t + margin_ns <= end) ++poses_inside;
   }
   if (end - start < min_span_ns || poses_inside < kMinPoses) {
-    throw Error("the data is too short for knot spacing " + Format("%.6g", dt_s) +
-                " s: " + Format("%.6g", overlap_s) + " s of overlapping IMU and pose data with " +
-                std::to_string(poses_inside) + " poses inside; needs at least " +
-                Format("%.6g", 1e-9 * static_cast<double>(min_span_ns)) + " s (" +
-                std::to_string(kMinKnotIntervals) + " knot intervals" +
-                (margin_ns > 0 ? " plus the time-offset search range at both ends" : "") +
-                ") and " + std::to_string(kMinPoses) +
-                " poses: record longer or use a smaller --knot-spacing");
+    throw Error(
+        "the data is too short for knot spacing " + StringPrintf("%.6g", dt_s) +
+        " s: " + StringPrintf("%.6g", overlap_s) + " s of overlapping IMU and pose data with " +
+        std::to_string(poses_inside) + " poses inside; needs at least " +
+        StringPrintf("%.6g", 1e-9 * static_cast<double>(min_span_ns)) + " s (" +
+        std::to_string(kMinKnotIntervals) + " knot intervals" +
+        (margin_ns > 0 ? " plus the time-offset search range at both ends" : "") + ") and " +
+        std::to_string(kMinPoses) + " poses: record longer or use a smaller --knot-spacing");
   }
   layout = KnotLayoutCovering(start, end, dt_ns);
   imu = std::move(overlap_imu);
@@ -920,9 +892,9 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
       } else {
         hint = ": wrong gyro units, or the poses are not this IMU's trajectory";
       }
-      throw Error("the gyro's rotation rate (RMS " + Format("%.4g", gyro_rms) +
-                  " rad/s) and the poses' (RMS " + Format("%.4g", pose_rms) +
-                  " rad/s) differ by a factor " + Format("%.3g", gyro_rate_ratio) + hint);
+      throw Error("the gyro's rotation rate (RMS " + StringPrintf("%.4g", gyro_rms) +
+                  " rad/s) and the poses' (RMS " + StringPrintf("%.4g", pose_rms) +
+                  " rad/s) differ by a factor " + StringPrintf("%.3g", gyro_rate_ratio) + hint);
     }
   }
   mean_Rf /= static_cast<double>(imu.size());
@@ -943,8 +915,8 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
       hint = ": the accelerometer seems to be in units of g (use --accel-unit g)";
     }
     throw Error("the mean specific force in the world frame has magnitude " +
-                Format("%.4g", g_estimate.norm()) + " m/s^2 but gravity is " +
-                Format("%.4g", options.gravity_m_s2) + " m/s^2" + hint);
+                StringPrintf("%.4g", g_estimate.norm()) + " m/s^2 but gravity is " +
+                StringPrintf("%.4g", options.gravity_m_s2) + " m/s^2" + hint);
   }
   Eigen::Vector3d g_init =
       options.initial_gravity_w.has_value() ? *options.initial_gravity_w : g_estimate;
@@ -1131,7 +1103,7 @@ std::string FitProblem::Impl::LikelyCauses(double gyro_ratio, double accel_ratio
   if (!options.estimate_time_offset && std::isfinite(correlation_offset_s) &&
       std::abs(correlation_offset_s - time_offset) > 2.5 / imu_rate_hz) {
     causes.push_back("an unestimated time offset (the rotation rates line up best at " +
-                     Format("%.1f", 1e3 * correlation_offset_s) +
+                     StringPrintf("%.1f", 1e3 * correlation_offset_s) +
                      " ms; try --estimate-time-offset)");
   }
   if (gyro_ratio > options.max_residual_noise_ratio) {
@@ -1170,9 +1142,9 @@ FitResult FitProblem::Impl::Solve() {
   solver_options.parameter_tolerance = options.parameter_tolerance;
   solver_options.logging_type = ceres::SILENT;
   solver_options.initial_trust_region_radius = options.initial_trust_region_radius;
-  std::unique_ptr<ProgressCallback> progress;
+  std::unique_ptr<SolverProgressCallback> progress;
   if (options.progress) {
-    progress = std::make_unique<ProgressCallback>(options.progress);
+    progress = std::make_unique<SolverProgressCallback>(options.progress, "fit: ");
     solver_options.callbacks.push_back(progress.get());
   }
 
@@ -1309,21 +1281,21 @@ FitResult FitProblem::Impl::Solve() {
   if (options.estimate_time_offset &&
       std::abs(time_offset) >= (1.0 - kEdgeFraction) * options.max_time_offset_s) {
     throw Error("the time offset reached the edge of its search range (" +
-                Format("%.6g", time_offset) + " s of +-" +
-                Format("%.6g", options.max_time_offset_s) +
+                StringPrintf("%.6g", time_offset) + " s of +-" +
+                StringPrintf("%.6g", options.max_time_offset_s) +
                 " s): the true offset is probably beyond it; raise --max-time-offset or check that "
                 "IMU and poses share a clock");
   }
   if (gyro_ratio > options.max_residual_noise_ratio ||
       accel_ratio > options.max_residual_noise_ratio) {
-    throw Error(
-        "the solution does not explain the data: residual RMS is " + Format("%.3g", gyro_ratio) +
-        "x the gyro noise and " + Format("%.3g", accel_ratio) +
-        "x the accelerometer noise; likely causes: " + LikelyCauses(gyro_ratio, accel_ratio));
+    throw Error("the solution does not explain the data: residual RMS is " +
+                StringPrintf("%.3g", gyro_ratio) + "x the gyro noise and " +
+                StringPrintf("%.3g", accel_ratio) + "x the accelerometer noise; likely causes: " +
+                LikelyCauses(gyro_ratio, accel_ratio));
   }
   auto warn_ratio = [&](double ratio, const std::string& what) {
     if (ratio > kWarnResidualNoiseRatio) {
-      result.warnings.push_back(what + " residuals are " + Format("%.2g", ratio) +
+      result.warnings.push_back(what + " residuals are " + StringPrintf("%.2g", ratio) +
                                 "x the assumed noise: the reported standard deviations assume "
                                 "that noise and are too small by about that factor (unmodelled "
                                 "vibration, noise densities that are too low, or a time offset "
@@ -1500,14 +1472,14 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
     result->not_determined.push_back("gyro_bias");
     result->warnings.push_back(
         "gyro_bias is not determined by this data (std up to " +
-        Format("%.3g", max_of(result->gyro_bias_std)) +
+        StringPrintf("%.3g", max_of(result->gyro_bias_std)) +
         " rad/s): too little data, or poses too noisy to pin down the rotation");
   }
   if (max_of(result->accel_bias_std) > limit.accel_bias_std_m_s2) {
     result->not_determined.push_back("accel_bias");
     result->warnings.push_back(
         "accel_bias is not determined by this data (std up to " +
-        Format("%.3g", max_of(result->accel_bias_std)) +
+        StringPrintf("%.3g", max_of(result->accel_bias_std)) +
         " m/s^2): the accelerometer bias can only be told apart from gravity when the IMU is "
         "held in several orientations; rotate it about at least two axes");
   }
@@ -1515,14 +1487,14 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
     result->not_determined.push_back("gravity_w");
     result->warnings.push_back(
         "gravity_w's direction is not determined by this data (std " +
-        Format("%.3g", result->gravity_direction_std_deg) +
+        StringPrintf("%.3g", result->gravity_direction_std_deg) +
         " deg): it trades off against the accelerometer bias unless the IMU rotates");
   }
   if (options.estimate_time_offset && result->time_offset_std_s > limit.time_offset_std_s) {
     result->not_determined.push_back("time_offset_s");
     result->warnings.push_back(
         "time_offset_s is not determined by this data (std " +
-        Format("%.3g", 1e3 * result->time_offset_std_s) +
+        StringPrintf("%.3g", 1e3 * result->time_offset_std_s) +
         " ms): the clocks are aligned by changes of the rotation rate; the motion needs "
         "rotational accelerations");
   }
@@ -1535,7 +1507,7 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
     if (max_of(result->T_pose_imu_translation_std_m) > limit.extrinsic_translation_std_m) {
       result->warnings.push_back(
           "the translation of T_pose_imu is not determined by this data (std up to " +
-          Format("%.3g", max_of(result->T_pose_imu_translation_std_m)) +
+          StringPrintf("%.3g", max_of(result->T_pose_imu_translation_std_m)) +
           " m): it shows only through lever-arm accelerations; rotate faster about at least two "
           "axes");
     }
@@ -1543,7 +1515,7 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
         limit.extrinsic_rotation_std_deg) {
       result->warnings.push_back(
           "the rotation of T_pose_imu is not determined by this data (std up to " +
-          Format("%.3g", max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg) +
+          StringPrintf("%.3g", max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg) +
           " deg): rotate about at least two axes");
     }
   }
@@ -1557,9 +1529,9 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
       if (!(denominator > 0.0)) continue;
       const double rho = C(a, b) / denominator;
       if (std::abs(rho) > limit.max_correlation) {
-        result->warnings.push_back(labels[a] + " and " + labels[b] +
-                                   " are almost perfectly correlated (" + Format("%.4f", rho) +
-                                   "): this data cannot tell them apart");
+        result->warnings.push_back(
+            labels[a] + " and " + labels[b] + " are almost perfectly correlated (" +
+            StringPrintf("%.4f", rho) + "): this data cannot tell them apart");
       }
     }
   }

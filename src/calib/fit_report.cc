@@ -1,13 +1,12 @@
 #include "splinecal/calib/fit_report.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
 #include <vector>
 
-#include "splinecal/io/euroc.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/plot/svg_plot.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 
@@ -46,11 +45,7 @@ std::string HtmlEscape(const std::string& text) {
   return out;
 }
 
-std::string Fixed(double value, int digits) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*g", digits, value);
-  return text;
-}
+std::string Fixed(double value, int digits) { return StringPrintf("%.*g", digits, value); }
 
 std::string VectorText(const Eigen::Vector3d& v, int digits) {
   return "[" + Fixed(v[0], digits) + ", " + Fixed(v[1], digits) + ", " + Fixed(v[2], digits) + "]";

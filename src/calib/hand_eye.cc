@@ -4,7 +4,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <cstdio>
+
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
@@ -38,12 +39,6 @@ Eigen::Matrix4d RightProductMatrix(const Eigen::Vector4d& q) {
   return m;
 }
 
-std::string Format(const char* format, double a, double b) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof(buffer), format, a, b);
-  return buffer;
-}
-
 }  // namespace
 
 HandEyeRotationResult EstimateHandEyeRotation(const std::vector<SO3d>& R_ck_ck1,
@@ -74,16 +69,15 @@ HandEyeRotationResult EstimateHandEyeRotation(const std::vector<SO3d>& R_ck_ck1,
   }
   if (result.second_axis_ratio < options.min_second_axis_ratio ||
       sigma_3 < options.min_second_axis_rotation_rad) {
-    result.message =
-        "cannot estimate the camera-IMU rotation: the rig rotated about one axis only " +
-        Format("(rotation about other axes: ratio %.3g, minimum %.3g; ",
-               result.second_axis_ratio,
-               options.min_second_axis_ratio) +
-        Format(
-            "%.3g rad in total, minimum %.3g rad). Rotate about at least two axes, or give "
-            "T_cam_imu with --camchain",
-            sigma_3,
-            options.min_second_axis_rotation_rad);
+    result.message = StringPrintf(
+        "cannot estimate the camera-IMU rotation: the rig rotated about one axis only "
+        "(rotation about other axes: ratio %.3g, minimum %.3g; %.3g rad in total, "
+        "minimum %.3g rad). Rotate about at least two axes, or give T_cam_imu with "
+        "--camchain",
+        result.second_axis_ratio,
+        options.min_second_axis_ratio,
+        sigma_3,
+        options.min_second_axis_rotation_rad);
     return result;
   }
   result.ok = true;

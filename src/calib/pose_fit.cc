@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <utility>
 
@@ -15,6 +14,7 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 
@@ -148,15 +148,11 @@ class ProgressCallback : public ceres::IterationCallback {
       : progress_(std::move(progress)) {}
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
-    char line[160];
-    std::snprintf(line,
-                  sizeof(line),
-                  "pose fit: iteration %d, cost %.6e, |gradient| %.3e, |step| %.3e",
-                  summary.iteration,
-                  summary.cost,
-                  summary.gradient_max_norm,
-                  summary.step_norm);
-    progress_(line);
+    progress_(StringPrintf("pose fit: iteration %d, cost %.6e, |gradient| %.3e, |step| %.3e",
+                           summary.iteration,
+                           summary.cost,
+                           summary.gradient_max_norm,
+                           summary.step_norm));
     return ceres::SOLVER_CONTINUE;
   }
 

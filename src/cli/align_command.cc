@@ -20,6 +20,7 @@
 #include "splinecal/io/poses.h"
 #include "splinecal/io/yaml_document.h"
 #include "splinecal/io/yaml_writer.h"
+#include "splinecal/string_printf.h"
 
 DEFINE_string(camera_poses,
               "",
@@ -116,19 +117,16 @@ int RunAlign() {
   const AlignResult result = Align(imu, poses, options);
   if (!result.success) throw Error("alignment refused: " + result.message);
 
-  char line[512];
-  std::snprintf(line,
-                sizeof(line),
-                "align: gyro bias [%.6g %.6g %.6g] rad/s (%d iterations), free gravity %.6g m/s^2, "
-                "refined in %d iterations, condition number %.3g",
-                result.gyro_bias.x(),
-                result.gyro_bias.y(),
-                result.gyro_bias.z(),
-                result.gyro_bias_iterations,
-                result.free_gravity_c0.norm(),
-                result.iterations,
-                result.condition_number);
-  Progress(line);
+  Progress(StringPrintf(
+      "align: gyro bias [%.6g %.6g %.6g] rad/s (%d iterations), free gravity %.6g m/s^2, "
+      "refined in %d iterations, condition number %.3g",
+      result.gyro_bias.x(),
+      result.gyro_bias.y(),
+      result.gyro_bias.z(),
+      result.gyro_bias_iterations,
+      result.free_gravity_c0.norm(),
+      result.iterations,
+      result.condition_number));
 
   YamlWriter yaml;
   yaml.Comment(

@@ -15,6 +15,7 @@
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
 #include "splinecal/io/output_dir.h"
+#include "splinecal/string_printf.h"
 
 DEFINE_int32(taus_per_decade, 10, "Averaging times per decade (before de-duplication)");
 DEFINE_double(max_tau_fraction,
@@ -39,15 +40,11 @@ namespace {
 
 std::string Summary(const char* name, const KalibrKey& key, const char* unit) {
   if (!key.present) return "";
-  char line[256];
-  std::snprintf(line,
-                sizeof(line),
-                "allan: %-28s %.6g %s%s\n",
-                name,
-                key.value,
-                unit,
-                key.upper_bound ? " (upper bound: not identifiable, see result.yaml)" : "");
-  return line;
+  return StringPrintf("allan: %-28s %.6g %s%s\n",
+                      name,
+                      key.value,
+                      unit,
+                      key.upper_bound ? " (upper bound: not identifiable, see result.yaml)" : "");
 }
 
 int RunAllan() {
@@ -100,15 +97,11 @@ int RunAllan() {
     recording = ReadColumnStaticRecording(FLAGS_columns, rate_hz, sensor, read);
   }
   OutputDir output(out_dir);
-  char line[256];
-  std::snprintf(line,
-                sizeof(line),
-                "allan: %zu axes, %zu samples at %.6g Hz (%.6g s)",
-                recording.axes.size(),
-                recording.axes.front().samples.size(),
-                recording.rate_hz,
-                recording.axes.front().samples.size() / recording.rate_hz);
-  Progress(line);
+  Progress(StringPrintf("allan: %zu axes, %zu samples at %.6g Hz (%.6g s)",
+                        recording.axes.size(),
+                        recording.axes.front().samples.size(),
+                        recording.rate_hz,
+                        recording.axes.front().samples.size() / recording.rate_hz));
 
   const AllanResult result = ComputeAllan(std::move(recording), options);
   output.WriteFile("allan.csv", AllanCsvText(result));

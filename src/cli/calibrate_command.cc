@@ -27,6 +27,7 @@
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/plot/svg_plot.h"
+#include "splinecal/string_printf.h"
 
 DEFINE_string(observations,
               "",
@@ -59,12 +60,6 @@ constexpr double kDefaultCalibrateKnotSpacingS = 0.05;
 constexpr double kPi = 3.14159265358979323846;
 // At most this many points per series in report.html (the file stays a few MB).
 constexpr size_t kMaxPlotPoints = 6000;
-
-std::string Fmt(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
 
 std::string HtmlEscape(const std::string& text) {
   std::string out;
@@ -261,31 +256,35 @@ std::string ReportHtml(const CalibrationResult& r, const std::string& title) {
     const Eigen::Vector3d rpy = e.calibration.T_cam_imu.so3().Log() * 180.0 / kPi;
     const Eigen::Vector3d t = e.calibration.T_cam_imu.translation();
     html << "<tr><th colspan=3>cam" << c << "</th></tr>\n";
-    html << "<tr><th>T_cam_imu rotation vector [deg]</th><td>" << Fmt("%.4f", rpy.x()) << ", "
-         << Fmt("%.4f", rpy.y()) << ", " << Fmt("%.4f", rpy.z()) << "</td><td>std "
-         << Fmt("%.4f", e.rotation_std_deg.x()) << ", " << Fmt("%.4f", e.rotation_std_deg.y())
-         << ", " << Fmt("%.4f", e.rotation_std_deg.z()) << "</td></tr>\n";
-    html << "<tr><th>T_cam_imu translation [mm]</th><td>" << Fmt("%.2f", 1e3 * t.x()) << ", "
-         << Fmt("%.2f", 1e3 * t.y()) << ", " << Fmt("%.2f", 1e3 * t.z()) << "</td><td>std "
-         << Fmt("%.2f", 1e3 * e.translation_std_m.x()) << ", "
-         << Fmt("%.2f", 1e3 * e.translation_std_m.y()) << ", "
-         << Fmt("%.2f", 1e3 * e.translation_std_m.z()) << "</td></tr>\n";
+    html << "<tr><th>T_cam_imu rotation vector [deg]</th><td>" << StringPrintf("%.4f", rpy.x())
+         << ", " << StringPrintf("%.4f", rpy.y()) << ", " << StringPrintf("%.4f", rpy.z())
+         << "</td><td>std " << StringPrintf("%.4f", e.rotation_std_deg.x()) << ", "
+         << StringPrintf("%.4f", e.rotation_std_deg.y()) << ", "
+         << StringPrintf("%.4f", e.rotation_std_deg.z()) << "</td></tr>\n";
+    html << "<tr><th>T_cam_imu translation [mm]</th><td>" << StringPrintf("%.2f", 1e3 * t.x())
+         << ", " << StringPrintf("%.2f", 1e3 * t.y()) << ", " << StringPrintf("%.2f", 1e3 * t.z())
+         << "</td><td>std " << StringPrintf("%.2f", 1e3 * e.translation_std_m.x()) << ", "
+         << StringPrintf("%.2f", 1e3 * e.translation_std_m.y()) << ", "
+         << StringPrintf("%.2f", 1e3 * e.translation_std_m.z()) << "</td></tr>\n";
     html << "<tr><th>timeshift_cam_imu [ms]</th><td>"
-         << Fmt("%.4f", 1e3 * e.calibration.timeshift_cam_imu_s) << "</td><td>std "
-         << Fmt("%.4f", 1e3 * e.timeshift_std_s) << "</td></tr>\n";
-    html << "<tr><th>line_delay [us/row]</th><td>" << Fmt("%.4f", 1e6 * e.calibration.line_delay_s)
-         << "</td><td>std " << Fmt("%.4f", 1e6 * e.line_delay_std_s) << "</td></tr>\n";
-    html << "<tr><th>reprojection RMS [px]</th><td>" << Fmt("%.3f", e.reprojection_rms_px)
+         << StringPrintf("%.4f", 1e3 * e.calibration.timeshift_cam_imu_s) << "</td><td>std "
+         << StringPrintf("%.4f", 1e3 * e.timeshift_std_s) << "</td></tr>\n";
+    html << "<tr><th>line_delay [us/row]</th><td>"
+         << StringPrintf("%.4f", 1e6 * e.calibration.line_delay_s) << "</td><td>std "
+         << StringPrintf("%.4f", 1e6 * e.line_delay_std_s) << "</td></tr>\n";
+    html << "<tr><th>reprojection RMS [px]</th><td>" << StringPrintf("%.3f", e.reprojection_rms_px)
          << "</td><td>" << e.num_observations << " points in " << e.num_frames
          << " frames</td></tr>\n";
   }
-  html << "<tr><th>gyro bias [rad/s]</th><td colspan=2>" << Fmt("%.3e", r.gyro_bias.x()) << ", "
-       << Fmt("%.3e", r.gyro_bias.y()) << ", " << Fmt("%.3e", r.gyro_bias.z()) << "</td></tr>\n";
-  html << "<tr><th>accel bias [m/s^2]</th><td colspan=2>" << Fmt("%.3e", r.accel_bias.x()) << ", "
-       << Fmt("%.3e", r.accel_bias.y()) << ", " << Fmt("%.3e", r.accel_bias.z()) << "</td></tr>\n";
-  html << "<tr><th>IMU residual RMS</th><td colspan=2>gyro " << Fmt("%.3e", r.gyro_rms)
-       << " rad/s, accel " << Fmt("%.3e", r.accel_rms) << " m/s^2</td></tr>\n";
-  html << "<tr><th>pixel sigma [px]</th><td colspan=2>" << Fmt("%.3f", r.pixel_sigma_px)
+  html << "<tr><th>gyro bias [rad/s]</th><td colspan=2>" << StringPrintf("%.3e", r.gyro_bias.x())
+       << ", " << StringPrintf("%.3e", r.gyro_bias.y()) << ", "
+       << StringPrintf("%.3e", r.gyro_bias.z()) << "</td></tr>\n";
+  html << "<tr><th>accel bias [m/s^2]</th><td colspan=2>" << StringPrintf("%.3e", r.accel_bias.x())
+       << ", " << StringPrintf("%.3e", r.accel_bias.y()) << ", "
+       << StringPrintf("%.3e", r.accel_bias.z()) << "</td></tr>\n";
+  html << "<tr><th>IMU residual RMS</th><td colspan=2>gyro " << StringPrintf("%.3e", r.gyro_rms)
+       << " rad/s, accel " << StringPrintf("%.3e", r.accel_rms) << " m/s^2</td></tr>\n";
+  html << "<tr><th>pixel sigma [px]</th><td colspan=2>" << StringPrintf("%.3f", r.pixel_sigma_px)
        << (r.pixel_sigma_estimated ? " (estimated)" : " (given)") << "</td></tr>\n";
   html << "</table>\n";
   if (!r.warnings.empty()) {

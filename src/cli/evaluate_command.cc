@@ -1,22 +1,22 @@
 // `splinecal evaluate`: reads a spline.csv and evaluates it - pose, body angular velocity, world
 // velocity and acceleration, and the IMU reading it predicts - at evenly spaced times (printed)
 // and optionally at a fixed rate over the whole valid range (written to evaluation.csv).
+#include <gflags/gflags.h>
+
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
-
-#include <gflags/gflags.h>
 
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_model.h"
-#include "splinecal/io/euroc.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/yaml_writer.h"
+#include "splinecal/string_printf.h"
 
 DEFINE_string(spline, "", "Control poses, spline.csv [path]");
 DEFINE_int32(samples, 5, "Evenly spaced times to print, ends included [count]");

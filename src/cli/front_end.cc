@@ -1,4 +1,7 @@
 // splinecal's command-line front end: dispatch, flag parsing, help and the one error report.
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -8,12 +11,10 @@
 #include <string>
 #include <vector>
 
-#include <gflags/gflags.h>
-#include <glog/logging.h>
-
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
+#include "splinecal/string_printf.h"
 
 #ifndef SPLINECAL_VERSION
 #define SPLINECAL_VERSION "unknown"
@@ -81,9 +82,9 @@ void PrintCommandHelp(const Command& command, std::FILE* out) {
     if (info.type == "string") {
       default_text = info.default_value.empty() ? "" : " (default: " + info.default_value + ")";
     } else if (info.type == "double") {
-      char shown[32];  // gflags prints 17 digits (9.8100000000000005); show the value as typed
-      std::snprintf(shown, sizeof(shown), "%.10g", std::strtod(info.default_value.c_str(), nullptr));
-      default_text = std::string(" (default: ") + shown + ")";
+      // gflags prints 17 digits (9.8100000000000005); show the value as typed.
+      default_text =
+          StringPrintf(" (default: %.10g)", std::strtod(info.default_value.c_str(), nullptr));
     } else {
       default_text = " (default: " + info.default_value + ")";
     }

@@ -27,6 +27,7 @@
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/io/yaml_writer.h"
+#include "splinecal/string_printf.h"
 
 DEFINE_string(trajectory,
               "vio_course",
@@ -200,15 +201,12 @@ int RunSimulate() {
              " s, knots every " + std::to_string(knot_spacing_s) + " s)");
     fit = FitAnalyticTrajectory(trajectory, start_ns, end_ns, knot_spacing_ns, 0, fit_options);
   }
-  char line[256];
-  std::snprintf(line,
-                sizeof(line),
-                "simulate: spline fit position RMS %.3g m, rotation RMS %.3g deg (%d control "
-                "poses)",
-                fit.position_rms_m,
-                fit.rotation_rms_deg,
-                fit.layout.num_control_poses);
-  Progress(line);
+  Progress(
+      StringPrintf("simulate: spline fit position RMS %.3g m, rotation RMS %.3g deg (%d "
+                   "control poses)",
+                   fit.position_rms_m,
+                   fit.rotation_rms_deg,
+                   fit.layout.num_control_poses));
 
   const SE3Splined spline = fit.MakeSpline();
   std::vector<ImuSample> imu;

@@ -3,19 +3,13 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
-#include <cstdio>
 
 #include "splinecal/error.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
-
-std::string FormatDouble(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", value);
-  return text;
-}
 
 std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOptions& options) {
   static const char* const kNames[] = {"timestamp", "gyro x", "gyro y", "gyro z",
@@ -50,12 +44,11 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
     std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
     const double median = norms[norms.size() / 2];
     if (median > 0.5 && median < 1.5) {
-      char message[200];
-      std::snprintf(message, sizeof(message),
-                    "accelerometer magnitude is about %.2f: the data looks like units of g, "
-                    "expected m/s^2 (pass --accel-unit g)",
-                    median);
-      throw Error(path, 0, message);
+      throw Error(path,
+                  0,
+                  StringPrintf("accelerometer magnitude is about %.2f: the data looks like units "
+                               "of g, expected m/s^2 (pass --accel-unit g)",
+                               median));
     }
   }
   return samples;
@@ -64,13 +57,15 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
 void WriteEurocImu(const std::vector<ImuSample>& samples, std::ostream* out) {
   *out << "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
           "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n";
-  char line[512];
   for (const ImuSample& s : samples) {
-    std::snprintf(line, sizeof(line),
-                  "%" PRId64 ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                  s.t_ns, s.gyro.x(), s.gyro.y(), s.gyro.z(), s.accel.x(), s.accel.y(),
-                  s.accel.z());
-    *out << line;
+    *out << StringPrintf("%" PRId64 ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                         s.t_ns,
+                         s.gyro.x(),
+                         s.gyro.y(),
+                         s.gyro.z(),
+                         s.accel.x(),
+                         s.accel.y(),
+                         s.accel.z());
   }
 }
 
@@ -117,17 +112,28 @@ void WriteEurocGroundTruth(const std::vector<GroundTruthState>& states, std::ost
           "q_RS_z [],v_RS_R_x [m s^-1],v_RS_R_y [m s^-1],v_RS_R_z [m s^-1],"
           "b_w_RS_S_x [rad s^-1],b_w_RS_S_y [rad s^-1],b_w_RS_S_z [rad s^-1],"
           "b_a_RS_S_x [m s^-2],b_a_RS_S_y [m s^-2],b_a_RS_S_z [m s^-2]\n";
-  char line[1024];
   for (const GroundTruthState& s : states) {
-    std::snprintf(line, sizeof(line),
-                  "%" PRId64
-                  ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                  "%.17g,%.17g,%.17g\n",
-                  s.t_ns, s.p_w_s.x(), s.p_w_s.y(), s.p_w_s.z(), s.q_w_s.w(), s.q_w_s.x(),
-                  s.q_w_s.y(), s.q_w_s.z(), s.v_w.x(), s.v_w.y(), s.v_w.z(), s.gyro_bias.x(),
-                  s.gyro_bias.y(), s.gyro_bias.z(), s.accel_bias.x(), s.accel_bias.y(),
-                  s.accel_bias.z());
-    *out << line;
+    *out << StringPrintf(
+        "%" PRId64
+        ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+        "%.17g,%.17g,%.17g\n",
+        s.t_ns,
+        s.p_w_s.x(),
+        s.p_w_s.y(),
+        s.p_w_s.z(),
+        s.q_w_s.w(),
+        s.q_w_s.x(),
+        s.q_w_s.y(),
+        s.q_w_s.z(),
+        s.v_w.x(),
+        s.v_w.y(),
+        s.v_w.z(),
+        s.gyro_bias.x(),
+        s.gyro_bias.y(),
+        s.gyro_bias.z(),
+        s.accel_bias.x(),
+        s.accel_bias.y(),
+        s.accel_bias.z());
   }
 }
 

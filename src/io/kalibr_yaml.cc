@@ -1,7 +1,7 @@
 #include "splinecal/io/kalibr_yaml.h"
 
-#include "splinecal/io/euroc.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "splinecal/error.h"
-#include "splinecal/io/euroc.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 

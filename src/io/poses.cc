@@ -1,11 +1,11 @@
 #include "splinecal/io/poses.h"
 
 #include <cinttypes>
-#include <cstdio>
 
 #include "splinecal/error.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
@@ -88,17 +88,22 @@ std::vector<StampedPose> ReadPoses(const std::string& path) { return Read(path, 
 
 void WriteTumTrajectory(const std::vector<StampedPose>& poses, std::ostream* out) {
   *out << "# t_s tx ty tz qx qy qz qw\n";
-  char line[512];
   for (const StampedPose& pose : poses) {
     // Seconds printed from the integer nanoseconds, digit-exact.
     const int64_t t = pose.t_ns;
     const char* sign = t < 0 ? "-" : "";
     const int64_t magnitude = t < 0 ? -t : t;
-    std::snprintf(line, sizeof(line),
-                  "%s%" PRId64 ".%09" PRId64 " %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", sign,
-                  magnitude / 1'000'000'000, magnitude % 1'000'000'000, pose.p.x(), pose.p.y(),
-                  pose.p.z(), pose.q.x(), pose.q.y(), pose.q.z(), pose.q.w());
-    *out << line;
+    *out << StringPrintf("%s%" PRId64 ".%09" PRId64 " %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n",
+                         sign,
+                         magnitude / 1'000'000'000,
+                         magnitude % 1'000'000'000,
+                         pose.p.x(),
+                         pose.p.y(),
+                         pose.p.z(),
+                         pose.q.x(),
+                         pose.q.y(),
+                         pose.q.z(),
+                         pose.q.w());
   }
 }
 

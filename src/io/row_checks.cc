@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "splinecal/error.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace internal {
@@ -36,10 +36,9 @@ Eigen::Quaterniond CheckedUnitQuaternion(const TextFileReader& reader,
   const Eigen::Quaterniond q(w, x, y, z);
   const double norm = q.norm();
   if (std::abs(norm - 1.0) > kNormTolerance) {
-    char message[160];
-    std::snprintf(message, sizeof(message),
-                  "quaternion has norm %.6g, expected 1 (columns in the wrong order?)", norm);
-    reader.Fail(message, first_field);
+    reader.Fail(
+        StringPrintf("quaternion has norm %.6g, expected 1 (columns in the wrong order?)", norm),
+        first_field);
   }
   // Leave a quaternion that is unit to rounding untouched, so that files we wrote read back
   // bit-exactly; renormalise anything further off.
@@ -69,11 +68,13 @@ void TimestampChecker::CheckGaps(double max_periods) const {
   const double median = static_cast<double>(sorted[sorted.size() / 2]);
   for (size_t i = 0; i < periods.size(); ++i) {
     if (periods[i] > max_periods * median) {
-      char message[200];
-      std::snprintf(message, sizeof(message),
-                    "gap of %.6g s before this row (%.4g times the median period of %.6g s)",
-                    periods[i] * 1e-9, periods[i] / median, median * 1e-9);
-      throw Error(reader_->path(), lines_[i + 1], message);
+      throw Error(reader_->path(),
+                  lines_[i + 1],
+                  StringPrintf("gap of %.6g s before this row (%.4g times the median period of "
+                               "%.6g s)",
+                               periods[i] * 1e-9,
+                               periods[i] / median,
+                               median * 1e-9));
     }
   }
 }

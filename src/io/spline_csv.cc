@@ -1,12 +1,12 @@
 #include "splinecal/io/spline_csv.h"
 
 #include <cinttypes>
-#include <cstdio>
 #include <cstdlib>
 
 #include "splinecal/error.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 
@@ -57,14 +57,19 @@ SE3Splined ReadSplineCsv(const std::string& path) {
 
 void WriteSplineCsv(const SE3Splined& spline, std::ostream* out) {
   *out << "#t_ns,px,py,pz,qw,qx,qy,qz\n";
-  char line[512];
   for (int i = 0; i < spline.num_control_poses(); ++i) {
     const SE3d& T = spline.control_pose(i);
     const Eigen::Quaterniond& q = T.so3().quaternion();
     const Eigen::Vector3d& p = T.translation();
-    std::snprintf(line, sizeof(line), "%" PRId64 ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                  spline.knot_time_ns(i), p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z());
-    *out << line;
+    *out << StringPrintf("%" PRId64 ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                         spline.knot_time_ns(i),
+                         p.x(),
+                         p.y(),
+                         p.z(),
+                         q.w(),
+                         q.x(),
+                         q.y(),
+                         q.z());
   }
 }
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "splinecal/error.h"
-#include "splinecal/io/euroc.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 

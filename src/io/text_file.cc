@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "splinecal/error.h"
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
@@ -175,10 +176,8 @@ double ParseBoundedDouble(std::string_view field,
                           const char* unit) {
   const double value = ParseFiniteDouble(field, at, what);
   if (std::abs(value) > max_abs) {
-    char message[160];
-    std::snprintf(message, sizeof(message), ": value %.6g is beyond the plausible %g %s", value,
-                  max_abs, unit);
-    at.Fail(what + message, field);
+    at.Fail(what + StringPrintf(": value %.6g is beyond the plausible %g %s", value, max_abs, unit),
+            field);
   }
   return value;
 }

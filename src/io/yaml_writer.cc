@@ -1,18 +1,17 @@
 #include "splinecal/io/yaml_writer.h"
 
-#include <cmath>
-#include <cstdio>
-
 #include <glog/logging.h>
+
+#include <cmath>
+
+#include "splinecal/string_printf.h"
 
 namespace splinecal {
 
 std::string YamlNumber(double value) {
   if (std::isnan(value)) return ".nan";
   if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", value);
-  return text;
+  return FormatDouble(value);
 }
 
 std::string YamlString(const std::string& value) {
@@ -25,9 +24,7 @@ std::string YamlString(const std::string& value) {
       case '\t': quoted += "\\t"; break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
-          char escaped[8];
-          std::snprintf(escaped, sizeof(escaped), "\\x%02x", static_cast<unsigned char>(c));
-          quoted += escaped;
+          quoted += StringPrintf("\\x%02x", static_cast<unsigned char>(c));
         } else {
           quoted += c;
         }

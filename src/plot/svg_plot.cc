@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "splinecal/string_printf.h"
+
 namespace splinecal {
 namespace plot {
 namespace {
@@ -52,10 +54,8 @@ constexpr int kPaletteSize = sizeof(kPalette) / sizeof(kPalette[0]);
 // A pixel coordinate with two decimals; "-0.00" printed as "0.00" so output does not depend on
 // the sign of a zero.
 std::string Px(double value) {
-  char text[40];
-  std::snprintf(text, sizeof(text), "%.2f", value);
-  if (std::string(text) == "-0.00") return "0.00";
-  return text;
+  const std::string text = StringPrintf("%.2f", value);
+  return text == "-0.00" ? "0.00" : text;
 }
 
 std::string Escape(const std::string& text) {
@@ -127,18 +127,15 @@ double NiceStep(double range) {
 
 std::string LinearLabel(double value, double step, double largest) {
   if (std::abs(value) < step * 1e-6) value = 0.0;
-  char text[48];
   const int step_exponent = static_cast<int>(std::floor(std::log10(step) + kTickSlack));
   if (largest >= 1e6 || step < 1e-4) {
     const int largest_exponent =
         static_cast<int>(std::floor(std::log10(std::max(largest, step)) + kTickSlack));
     const int digits = std::clamp(largest_exponent - step_exponent + 1, 1, 17);
-    std::snprintf(text, sizeof(text), "%.*g", digits, value);
-  } else {
-    const int decimals = std::max(0, -step_exponent);
-    std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+    return StringPrintf("%.*g", digits, value);
   }
-  return text;
+  const int decimals = std::max(0, -step_exponent);
+  return StringPrintf("%.*f", decimals, value);
 }
 
 std::string DecadeLabel(int exponent) { return "10^" + std::to_string(exponent); }
@@ -644,13 +641,7 @@ std::vector<Tick> AxisTicks(double lo, double hi, Scale scale) {
         const double value = j * Pow10(d);
         const double log_value = std::log10(value);
         if (log_value < log_lo - kTickSlack || log_value > log_hi + kTickSlack) continue;
-        std::string label;
-        if (label_minor) {
-          char text[32];
-          std::snprintf(text, sizeof(text), "%g", value);
-          label = text;
-        }
-        ticks.push_back({value, label, false});
+        ticks.push_back({value, label_minor ? StringPrintf("%g", value) : std::string(), false});
       }
     }
     std::sort(

@@ -17,6 +17,7 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/string_printf.h"
 #include "testing/run_tool.h"
 #include "testing/temp_dir.h"
 

@@ -49,10 +49,6 @@ struct GroundTruthState {
 std::vector<GroundTruthState> ReadEurocGroundTruth(const std::string& path);
 void WriteEurocGroundTruth(const std::vector<GroundTruthState>& states, std::ostream* out);
 
-// Formats a double with 17 significant digits (round-trips exactly), the one number format of
-// every splinecal output.
-std::string FormatDouble(double value);
-
 }  // namespace splinecal
 
 #endif  // SPLINECAL_IO_EUROC_H_
