@@ -190,7 +190,7 @@ struct ChunkScan {
 // TextFileReader path then reports.
 bool ParseEurocRow(const char* p, const char* end, int64_t* t_ns, double* values) {
   auto result = std::from_chars(p, end, *t_ns);
-  if (result.ec != std::errc()) return false;
+  if (result.ec != std::errc() || *t_ns > kMaxTimestampNs || *t_ns < -kMaxTimestampNs) return false;
   p = result.ptr;
   for (int a = 0; a < 6; ++a) {
     while (p < end && IsBlank(*p)) ++p;
@@ -348,7 +348,7 @@ StaticRecording ReadEurocStaticRecording(const std::string& path,
     SplitFields(reader.line(), &fields);
     if (internal::IsHeaderRow(reader, fields)) continue;
     internal::CheckColumnCount(reader, fields, 7, "EuRoC IMU (t_ns, gyro xyz, accel xyz)");
-    const int64_t t_ns = ParseInt64(fields[0], reader, timestamp_name);
+    const int64_t t_ns = ParseTimestampNs(fields[0], reader, timestamp_name);
     if (rows > 0) {
       if (t_ns <= last_t_ns) {
         reader.Fail(

@@ -14,11 +14,11 @@
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
+#include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/poses.h"
-#include "splinecal/io/yaml_document.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/string_printf.h"
 
@@ -42,46 +42,6 @@ namespace splinecal {
 namespace cli {
 namespace {
 
-// A rotation block this far from orthonormal (max |R^T R - I|) is not a rotation: the file has
-// another layout (e.g. T_imu_cam with a typo) rather than rounding in its digits.
-constexpr double kMaxOrthonormalityError = 1e-6;
-
-struct Camchain {
-  SE3d T_cam_imu;
-  double timeshift_cam_imu_s = 0.0;
-};
-
-Camchain ReadCamchain(const std::string& path) {
-  Camchain camchain;
-  const YamlDocument yaml(path);
-  if (yaml.Has("cam0/T_cam_imu")) {
-    const std::vector<std::vector<double>> rows = yaml.Rows("cam0/T_cam_imu");
-    if (rows.size() != 4 || rows[0].size() != 4) {
-      throw Error(path, 0, "cam0/T_cam_imu: expected a 4x4 matrix (4 rows of 4 numbers)");
-    }
-    Eigen::Matrix4d T;
-    for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) T(r, c) = rows[r][c];
-    }
-    const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-    if (std::abs(T(3, 0)) + std::abs(T(3, 1)) + std::abs(T(3, 2)) + std::abs(T(3, 3) - 1.0) >
-            kMaxOrthonormalityError ||
-        (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() >
-            kMaxOrthonormalityError ||
-        R.determinant() < 0.0) {
-      throw Error(path,
-                  0,
-                  "cam0/T_cam_imu: not a rigid transform (the rotation block must be orthonormal "
-                  "with determinant +1 and the last row 0 0 0 1)");
-    }
-    camchain.T_cam_imu = SE3d(SO3d::FromMatrix(R), T.topRightCorner<3, 1>());
-  }
-  if (yaml.Has("cam0/timeshift_cam_imu")) {
-    camchain.timeshift_cam_imu_s = yaml.Number("cam0/timeshift_cam_imu");
-  }
-  return camchain;
-}
-
 Eigen::VectorXd QuaternionWxyz(const SO3d& R) {
   const Eigen::Quaterniond& q = R.quaternion();
   Eigen::VectorXd v(4);
@@ -90,11 +50,19 @@ Eigen::VectorXd QuaternionWxyz(const SO3d& R) {
   return v;
 }
 
-int RunAlign() {
+// What align reads and checks before aligning anything (Command::read_inputs).
+struct AlignInputs {
+  AlignOptions options;
+  std::vector<ImuSample> imu;
+  std::vector<StampedPose> poses;
+};
+
+AlignInputs ReadAlignInputs() {
   const std::string& imu_path = RequiredFlag("imu", FLAGS_imu);
   const std::string& poses_path = RequiredFlag("camera-poses", FLAGS_camera_poses);
-  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
-  AlignOptions options;
+  RequiredFlag("out", FLAGS_out);
+  AlignInputs in;
+  AlignOptions& options = in.options;
   options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
   options.estimate_rotation_extrinsic = FLAGS_estimate_rotation_extrinsic;
   if (!FLAGS_imu_yaml.empty()) options.noise = ReadImuYaml(FLAGS_imu_yaml);
@@ -104,12 +72,21 @@ int RunAlign() {
   options.camera_noise.rotation_std_rad =
       PositiveFlag("camera-rotation-std", FLAGS_camera_rotation_std);
   if (!FLAGS_camchain.empty()) {
-    const Camchain camchain = ReadCamchain(FLAGS_camchain);
-    options.T_cam_imu = camchain.T_cam_imu;
-    options.timeshift_cam_imu_s = camchain.timeshift_cam_imu_s;
+    const CameraCalibration cam0 = ReadCam0Extrinsics(FLAGS_camchain);
+    options.T_cam_imu = cam0.T_cam_imu;
+    options.timeshift_cam_imu_s = cam0.timeshift_cam_imu_s;
   }
-  const std::vector<ImuSample> imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
-  const std::vector<StampedPose> poses = ReadPoses(poses_path);
+  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  in.poses = ReadPoses(poses_path);
+  return in;
+}
+
+int RunAlign() {
+  const AlignInputs in = ReadAlignInputs();
+  const std::string& out_dir = FLAGS_out;
+  const AlignOptions& options = in.options;
+  const std::vector<ImuSample>& imu = in.imu;
+  const std::vector<StampedPose>& poses = in.poses;
   OutputDir output(out_dir);
 
   Progress("align: " + std::to_string(poses.size()) + " camera poses, " +
@@ -212,7 +189,8 @@ Command AlignCommand() {
            {"accel_unit", ""},
            {"gyro_unit", ""},
            {"out", ""}},
-          &RunAlign};
+          &RunAlign,
+          [] { ReadAlignInputs(); }};
 }
 
 }  // namespace cli

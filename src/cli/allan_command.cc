@@ -47,14 +47,21 @@ std::string Summary(const char* name, const KalibrKey& key, const char* unit) {
                       key.upper_bound ? " (upper bound: not identifiable, see result.yaml)" : "");
 }
 
-int RunAllan() {
-  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
+// What allan reads and checks before computing anything (Command::read_inputs).
+struct AllanInputs {
+  AllanOptions options;
+  StaticRecording recording;
+};
+
+AllanInputs ReadAllanInputs() {
+  RequiredFlag("out", FLAGS_out);
   if (FLAGS_imu.empty() == FLAGS_columns.empty()) {
     throw Error(
         "give the static recording as --imu FILE (EuRoC imu0/data.csv) or as --columns "
         "FILE --rate HZ, not both");
   }
-  AllanOptions options;
+  AllanInputs in;
+  AllanOptions& options = in.options;
   options.taus_per_decade = FLAGS_taus_per_decade;
   options.max_tau_fraction = FLAGS_max_tau_fraction;
   if (FLAGS_combine == "mean") {
@@ -76,7 +83,7 @@ int RunAllan() {
   read.accel_scale = units.accel_scale * PositiveFlag("accel-scale", FLAGS_accel_scale);
   read.check_accel_units = units.check_accel_units;
 
-  StaticRecording recording;
+  StaticRecording& recording = in.recording;
   if (!FLAGS_imu.empty()) {
     if (FLAGS_rate != 0.0 || !FLAGS_sensor.empty()) {
       throw Error("--rate and --sensor are for --columns; EuRoC files carry timestamps");
@@ -96,14 +103,20 @@ int RunAllan() {
     Progress("allan: reading " + FLAGS_columns);
     recording = ReadColumnStaticRecording(FLAGS_columns, rate_hz, sensor, read);
   }
-  OutputDir output(out_dir);
+  return in;
+}
+
+int RunAllan() {
+  AllanInputs in = ReadAllanInputs();
+  StaticRecording& recording = in.recording;
+  OutputDir output(FLAGS_out);
   Progress(StringPrintf("allan: %zu axes, %zu samples at %.6g Hz (%.6g s)",
                         recording.axes.size(),
                         recording.axes.front().samples.size(),
                         recording.rate_hz,
                         recording.axes.front().samples.size() / recording.rate_hz));
 
-  const AllanResult result = ComputeAllan(std::move(recording), options);
+  const AllanResult result = ComputeAllan(std::move(recording), in.options);
   output.WriteFile("allan.csv", AllanCsvText(result));
   output.WriteFile("imu.yaml", AllanImuYamlText(result));
   output.WriteFile("result.yaml", AllanResultYamlText(result));
@@ -155,6 +168,7 @@ Command AllanCommand() {
                    {"accel_unit", ""},
                    {"quiet", ""}};
   command.run = &RunAllan;
+  command.read_inputs = [] { ReadAllanInputs(); };
   return command;
 }
 

@@ -299,16 +299,53 @@ std::string ReportHtml(const CalibrationResult& r, const std::string& title) {
   return html.str();
 }
 
-int RunCalibrate() {
+// What calibrate reads and checks before the initial guess and the solve
+// (Command::read_inputs); Calibrate() checks the rest (time ranges, motion) before it allocates.
+struct CalibrateInputs {
+  CalibrateOptions options;
+  Camchain camchain;
+  std::unique_ptr<CalibrationTarget> target;  // nullptr: landmarks only
+  std::vector<Observation> observations;
+  std::vector<ImuSample> imu;
+  std::vector<StampedPose> initial_poses;  // empty without --initial-poses
+};
+
+// Every observation's camera must be in the camchain: a cam_id beyond it means the camchain of
+// another rig or a column mix-up.
+void CheckCameraIds(const std::vector<Observation>& observations,
+                    const Camchain& camchain,
+                    const std::string& observations_path,
+                    const std::string& camchain_path) {
+  for (const Observation& o : observations) {
+    if (o.cam_id >= static_cast<int>(camchain.size())) {
+      throw Error(observations_path,
+                  0,
+                  "cam_id " + std::to_string(o.cam_id) + " (frame t_ns " +
+                      std::to_string(o.t_ns) + ") has no camera in " + camchain_path +
+                      ", which describes " + std::to_string(camchain.size()) +
+                      " camera(s): wrong camchain or cam_id column");
+    }
+  }
+}
+
+CalibrateInputs ReadCalibrateInputs() {
   const std::string& imu_path = RequiredFlag("imu", FLAGS_imu);
   const std::string& observations_path = RequiredFlag("observations", FLAGS_observations);
   const std::string& camchain_path = RequiredFlag("camchain", FLAGS_camchain);
-  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
-  CalibrateOptions options;
+  RequiredFlag("out", FLAGS_out);
+  if (FLAGS_target.empty() && FLAGS_initial_poses.empty()) {
+    throw Error(
+        "without --target, --initial-poses is needed (the IMU trajectory, e.g. "
+        "`splinecal align` on SLAM poses)");
+  }
+  CalibrateInputs in;
+  CalibrateOptions& options = in.options;
   options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
-  options.knot_spacing_s = FLAGS_knot_spacing == 0.0
-                               ? kDefaultCalibrateKnotSpacingS
-                               : PositiveFlag("knot-spacing", FLAGS_knot_spacing);
+  options.knot_spacing_s = kDefaultCalibrateKnotSpacingS;
+  if (FLAGS_knot_spacing != 0.0) {
+    SpanFlagNs("knot-spacing", FLAGS_knot_spacing);  // bounded: int64 knot times cannot overflow
+    options.knot_spacing_s = FLAGS_knot_spacing;
+  }
   options.rolling_shutter = FLAGS_rolling_shutter;
   options.estimate_time_offset = !FLAGS_no_time_offset;
   options.pixel_sigma_px = NonNegativeFlag("pixel-sigma", FLAGS_pixel_sigma);
@@ -320,12 +357,24 @@ int RunCalibrate() {
   options.progress = [](const std::string& line) { Progress(line); };
   if (!FLAGS_imu_yaml.empty()) options.noise = ReadImuYaml(FLAGS_imu_yaml);
 
-  const Camchain camchain = ReadCamchainYaml(camchain_path);
-  std::unique_ptr<CalibrationTarget> target;
-  if (!FLAGS_target.empty())
-    target = std::make_unique<CalibrationTarget>(ReadTargetYaml(FLAGS_target));
-  const std::vector<Observation> observations = ReadObservationsCsv(observations_path);
-  const std::vector<ImuSample> imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  in.camchain = ReadCamchainYaml(camchain_path);
+  if (!FLAGS_target.empty()) {
+    in.target = std::make_unique<CalibrationTarget>(ReadTargetYaml(FLAGS_target));
+  }
+  in.observations = ReadObservationsCsv(observations_path);
+  CheckCameraIds(in.observations, in.camchain, observations_path, camchain_path);
+  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  if (!FLAGS_initial_poses.empty()) in.initial_poses = ReadPoses(FLAGS_initial_poses);
+  return in;
+}
+
+int RunCalibrate() {
+  const CalibrateInputs in = ReadCalibrateInputs();
+  const std::string& out_dir = FLAGS_out;
+  const CalibrateOptions& options = in.options;
+  const Camchain& camchain = in.camchain;
+  const std::vector<Observation>& observations = in.observations;
+  const std::vector<ImuSample>& imu = in.imu;
   OutputDir output(out_dir);
   if (FLAGS_imu_yaml.empty()) {
     Progress("calibrate: no --imu-yaml: weighting the IMU with the ADIS16448 (EuRoC) densities");
@@ -337,17 +386,13 @@ int RunCalibrate() {
   std::unique_ptr<CalibrationInitialGuess> guess;
   CalibrationResult result;
   try {
-    if (!FLAGS_initial_poses.empty()) {
-      const std::vector<StampedPose> poses = ReadPoses(FLAGS_initial_poses);
-      Progress("calibrate: initial guess from " + std::to_string(poses.size()) + " initial poses");
-      guess = std::make_unique<CalibrationInitialGuess>(
-          InitialGuessFromImuPoses(imu, poses, observations, camchain, options, &guess_warnings));
-    } else if (target == nullptr) {
-      throw Error(
-          "without --target, --initial-poses is needed (the IMU trajectory, e.g. "
-          "`splinecal align` on SLAM poses)");
+    if (!in.initial_poses.empty()) {
+      Progress("calibrate: initial guess from " + std::to_string(in.initial_poses.size()) +
+               " initial poses");
+      guess = std::make_unique<CalibrationInitialGuess>(InitialGuessFromImuPoses(
+          imu, in.initial_poses, observations, camchain, options, &guess_warnings));
     }
-    result = Calibrate(imu, observations, camchain, target.get(), options, guess.get());
+    result = Calibrate(imu, observations, camchain, in.target.get(), options, guess.get());
   } catch (const Error& e) {
     // The library's messages start with "calibrate: "; the front end names the command already.
     const std::string prefix = "calibrate: ";
@@ -447,7 +492,8 @@ Command CalibrateCommand() {
            {"gyro_unit", ""},
            {"threads", ""},
            {"out", ""}},
-          &RunCalibrate};
+          &RunCalibrate,
+          [] { ReadCalibrateInputs(); }};
 }
 
 }  // namespace cli

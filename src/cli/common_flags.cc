@@ -39,6 +39,15 @@ double NonNegativeFlag(const std::string& name, double value) {
   return value;
 }
 
+int64_t SpanFlagNs(const std::string& name, double seconds, bool allow_zero) {
+  constexpr double kMaxSpanS = 1e9;
+  seconds = allow_zero ? NonNegativeFlag(name, seconds) : PositiveFlag(name, seconds);
+  if (seconds > kMaxSpanS) {
+    throw Error("--" + name + ": at most 1e9 s, got " + std::to_string(seconds));
+  }
+  return static_cast<int64_t>(std::llround(seconds * 1e9));
+}
+
 const std::string& RequiredFlag(const std::string& name, const std::string& value) {
   if (value.empty()) throw Error("--" + name + " is required");
   return value;

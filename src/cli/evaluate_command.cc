@@ -57,23 +57,44 @@ std::string CsvRow(const Evaluation& e) {
   return row + "\n";
 }
 
-int RunEvaluate() {
-  const SE3Splined spline = ReadSplineCsv(RequiredFlag("spline", FLAGS_spline));
+// What evaluate reads and checks before evaluating anything (Command::read_inputs).
+struct EvaluateInputs {
+  SE3Splined spline;
+  double every_s = 0.0;
+  Eigen::Vector3d g_w = Eigen::Vector3d::Zero();
+  Eigen::Vector3d b_g = Eigen::Vector3d::Zero();
+  Eigen::Vector3d b_a = Eigen::Vector3d::Zero();
+};
+
+EvaluateInputs ReadEvaluateInputs() {
+  EvaluateInputs in{ReadSplineCsv(RequiredFlag("spline", FLAGS_spline))};
   if (FLAGS_samples < 2 || FLAGS_samples > 100000) {
     throw Error("--samples: expected 2 to 100000, got " + std::to_string(FLAGS_samples));
   }
-  const double every_s = NonNegativeFlag("every", FLAGS_every);
-  const Eigen::Vector3d g_w = GravityWorld(PositiveFlag("gravity", FLAGS_gravity));
-  const Eigen::Vector3d b_g = Vector3Flag("gyro-bias", FLAGS_gyro_bias);
-  const Eigen::Vector3d b_a = Vector3Flag("accel-bias", FLAGS_accel_bias);
+  in.every_s = NonNegativeFlag("every", FLAGS_every);
+  in.g_w = GravityWorld(PositiveFlag("gravity", FLAGS_gravity));
+  in.b_g = Vector3Flag("gyro-bias", FLAGS_gyro_bias);
+  in.b_a = Vector3Flag("accel-bias", FLAGS_accel_bias);
+  const double span_s =
+      1e-9 * static_cast<double>(in.spline.end_time_ns() - in.spline.start_time_ns());
+  constexpr double kMaxRows = 1e8;  // refuse before allocating an absurd table
+  if (in.every_s > 0.0 && span_s / in.every_s > kMaxRows) {
+    throw Error("--every " + FormatDouble(in.every_s) + " s would write more than 1e8 rows");
+  }
+  RequiredFlag("out", FLAGS_out);
+  return in;
+}
+
+int RunEvaluate() {
+  const EvaluateInputs in = ReadEvaluateInputs();
+  const SE3Splined& spline = in.spline;
+  const double every_s = in.every_s;
+  const Eigen::Vector3d& g_w = in.g_w;
+  const Eigen::Vector3d& b_g = in.b_g;
+  const Eigen::Vector3d& b_a = in.b_a;
   const int64_t start_ns = spline.start_time_ns();
   const int64_t end_ns = spline.end_time_ns();
-  const double span_s = 1e-9 * static_cast<double>(end_ns - start_ns);
-  constexpr double kMaxRows = 1e8;  // refuse before allocating an absurd table
-  if (every_s > 0.0 && span_s / every_s > kMaxRows) {
-    throw Error("--every " + FormatDouble(every_s) + " s would write more than 1e8 rows");
-  }
-  OutputDir output(RequiredFlag("out", FLAGS_out));
+  OutputDir output(FLAGS_out);
 
   std::printf("spline: %d control poses, dt = %.6g s, valid %.6f s to %.6f s after t0\n",
               spline.num_control_poses(), spline.dt(), spline.start_time(), spline.end_time());
@@ -99,10 +120,14 @@ int RunEvaluate() {
   output.WriteFile("samples.csv", samples_csv);
   int64_t rows = 0;
   if (every_s > 0.0) {
-    const int64_t step_ns = std::max<int64_t>(1, std::llround(every_s * 1e9));
+    // A step longer than the range gives the first row alone (and keeps llround in range).
+    const int64_t span_ns = end_ns - start_ns;
+    const int64_t step_ns = every_s * 1e9 > static_cast<double>(span_ns)
+                                ? span_ns + 1
+                                : std::max<int64_t>(1, std::llround(every_s * 1e9));
     std::string csv = header;
-    for (int64_t t_ns = start_ns; t_ns <= end_ns; t_ns += step_ns, ++rows) {
-      csv += CsvRow(EvaluateAt(spline, t_ns, g_w, b_g, b_a));
+    for (; rows <= span_ns / step_ns; ++rows) {
+      csv += CsvRow(EvaluateAt(spline, start_ns + rows * step_ns, g_w, b_g, b_a));
     }
     output.WriteFile("evaluation.csv", csv);
   }
@@ -139,7 +164,8 @@ Command EvaluateCommand() {
            {"gravity", ""},
            {"gyro_bias", "Gyro bias b_g added to the prediction, x,y,z [rad/s]"},
            {"accel_bias", "Accelerometer bias b_a added to the prediction, x,y,z [m/s^2]"}},
-          &RunEvaluate};
+          &RunEvaluate,
+          [] { ReadEvaluateInputs(); }};
 }
 
 }  // namespace cli

@@ -37,17 +37,29 @@ namespace cli {
 
 namespace {
 
-int RunFit() {
+// What fit reads and checks before the solve (Command::read_inputs); Fit() checks the rest
+// (time ranges, knot spacing) before it allocates.
+struct FitInputs {
+  FitOptions options;
+  std::vector<ImuSample> imu;
+  std::vector<StampedPose> poses;
+};
+
+FitInputs ReadFitInputs() {
   const std::string& imu_path = RequiredFlag("imu", FLAGS_imu);
   const std::string& poses_path = RequiredFlag("poses", FLAGS_poses);
-  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
-  FitOptions options;
-  options.knot_spacing_s = NonNegativeFlag("knot-spacing", FLAGS_knot_spacing);
+  RequiredFlag("out", FLAGS_out);
+  FitInputs in;
+  FitOptions& options = in.options;
+  // Time spans through SpanFlagNs: bounded, so that the fit's int64 knot times cannot overflow.
+  SpanFlagNs("knot-spacing", FLAGS_knot_spacing, /*allow_zero=*/true);
+  options.knot_spacing_s = FLAGS_knot_spacing;
   options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
   options.pose_sigma_m = PositiveFlag("pose-sigma-m", FLAGS_pose_sigma_m);
   options.pose_sigma_rad = PositiveFlag("pose-sigma-rad", FLAGS_pose_sigma_rad);
   options.estimate_time_offset = FLAGS_estimate_time_offset;
-  options.max_time_offset_s = PositiveFlag("max-time-offset", FLAGS_max_time_offset);
+  SpanFlagNs("max-time-offset", FLAGS_max_time_offset);
+  options.max_time_offset_s = FLAGS_max_time_offset;
   options.estimate_extrinsic = FLAGS_estimate_extrinsic;
   if (FLAGS_bias_model == "constant") {
     options.bias_model = BiasModel::kConstant;
@@ -56,23 +68,30 @@ int RunFit() {
   } else {
     throw Error("--bias-model: expected constant or spline, got '" + FLAGS_bias_model + "'");
   }
-  options.bias_knot_spacing_s = PositiveFlag("bias-knot-spacing", FLAGS_bias_knot_spacing);
+  SpanFlagNs("bias-knot-spacing", FLAGS_bias_knot_spacing);
+  options.bias_knot_spacing_s = FLAGS_bias_knot_spacing;
   if (FLAGS_threads < 1 || FLAGS_threads > 256) {
     throw Error("--threads: expected 1 to 256, got " + std::to_string(FLAGS_threads));
   }
   options.num_threads = FLAGS_threads;
   if (!Quiet()) options.progress = [](const std::string& line) { Progress(line); };
 
-  const std::vector<ImuSample> imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
-  const std::vector<StampedPose> poses = ReadPoses(poses_path);
+  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  in.poses = ReadPoses(poses_path);
   if (!FLAGS_imu_yaml.empty()) options.noise = ReadImuYaml(FLAGS_imu_yaml);
+  return in;
+}
+
+int RunFit() {
+  const FitInputs in = ReadFitInputs();
+  const std::string& out_dir = FLAGS_out;
   OutputDir output(out_dir);
 
-  const FitResult result = Fit(imu, poses, options);
+  const FitResult result = Fit(in.imu, in.poses, in.options);
 
   FitReportInputs inputs;
-  inputs.imu_path = imu_path;
-  inputs.poses_path = poses_path;
+  inputs.imu_path = FLAGS_imu;
+  inputs.poses_path = FLAGS_poses;
   inputs.imu_yaml_path = FLAGS_imu_yaml;
   output.WriteFile("result.yaml", FitResultYaml(result, inputs));
   std::ostringstream spline_csv;
@@ -167,7 +186,8 @@ Command FitCommand() {
        {"gyro_unit", ""},
        {"threads", ""},
        {"quiet", ""}},
-      &RunFit};
+      &RunFit,
+      [] { ReadFitInputs(); }};
 }
 
 }  // namespace cli

@@ -93,8 +93,8 @@ void PrintCommandHelp(const Command& command, std::FILE* out) {
   }
 }
 
-// Parses argv after the command name into gflags values. Returns false and fills `error` on the
-// first problem; sets `help` when --help was asked for.
+}  // namespace
+
 bool ParseFlags(const Command& command,
                 const std::vector<std::string>& args,
                 bool* help,
@@ -143,8 +143,6 @@ bool ParseFlags(const Command& command,
   }
   return true;
 }
-
-}  // namespace
 
 bool Quiet() { return FLAGS_quiet; }
 

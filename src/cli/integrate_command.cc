@@ -38,22 +38,38 @@ namespace splinecal {
 namespace cli {
 namespace {
 
-int RunIntegrate() {
+// What integrate reads and checks before integrating anything (Command::read_inputs).
+struct IntegrateInputs {
+  std::string out_dir;
+  std::vector<IntegrationMethod> methods;
+  double gravity = 0.0;
+  std::vector<ImuSample> imu;
+  std::vector<GroundTruthState> truth;
+  size_t start_row = 0;  // the ground-truth row the integration starts from
+  int64_t end_ns = 0;
+};
+
+IntegrateInputs ReadIntegrateInputs() {
+  IntegrateInputs in;
   const std::string& imu_path = RequiredFlag("imu", FLAGS_imu);
   const std::string& truth_path = RequiredFlag("groundtruth", FLAGS_groundtruth);
-  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
-  const std::vector<IntegrationMethod> methods = ParseIntegrationMethods(FLAGS_method);
-  const double gravity = PositiveFlag("gravity", FLAGS_gravity);
-  const double start_s = NonNegativeFlag("start", FLAGS_start);
+  in.out_dir = RequiredFlag("out", FLAGS_out);
+  in.methods = ParseIntegrationMethods(FLAGS_method);
+  in.gravity = PositiveFlag("gravity", FLAGS_gravity);
+  const double start_s = FLAGS_start;
+  const int64_t start_ns = SpanFlagNs("start", start_s, /*allow_zero=*/true);
   const bool duration_given = !gflags::GetCommandLineFlagInfoOrDie("duration").is_default;
-  const double duration_s = duration_given ? PositiveFlag("duration", FLAGS_duration) : 0.0;
+  const double duration_s = FLAGS_duration;
+  const int64_t duration_ns = duration_given ? SpanFlagNs("duration", duration_s) : 0;
 
-  const std::vector<ImuSample> imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
-  const std::vector<GroundTruthState> truth = ReadEurocGroundTruth(truth_path);
+  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  in.truth = ReadEurocGroundTruth(truth_path);
+  const std::vector<ImuSample>& imu = in.imu;
+  const std::vector<GroundTruthState>& truth = in.truth;
   const int64_t data_end_ns = std::min(imu.back().t_ns, truth.back().t_ns);
 
   // The start: the first ground-truth row at or after first IMU time + start, inside the IMU.
-  const int64_t wanted_ns = imu.front().t_ns + static_cast<int64_t>(std::llround(start_s * 1e9));
+  const int64_t wanted_ns = imu.front().t_ns + start_ns;
   auto row = std::lower_bound(truth.begin(),
                               truth.end(),
                               std::max(wanted_ns, imu.front().t_ns),
@@ -67,20 +83,32 @@ int RunIntegrate() {
                     std::to_string((data_end_ns - imu.front().t_ns) * 1e-9) +
                     " s after the first IMU sample)");
   }
-  const NavState start = NavStateFromGroundTruth(*row);
-  const ImuBias bias = BiasFromGroundTruth(*row);
-  int64_t end_ns = data_end_ns;
+  in.start_row = static_cast<size_t>(row - truth.begin());
+  in.end_ns = data_end_ns;
   if (duration_given) {
-    end_ns = start.t_ns + static_cast<int64_t>(std::llround(duration_s * 1e9));
-    if (end_ns > data_end_ns) {
+    in.end_ns = row->t_ns + duration_ns;
+    if (in.end_ns > data_end_ns) {
       throw Error(imu_path,
                   0,
                   "--duration " + std::to_string(duration_s) +
                       " s from the start reaches past "
                       "the end of the IMU or ground-truth data (" +
-                      std::to_string((data_end_ns - start.t_ns) * 1e-9) + " s available)");
+                      std::to_string((data_end_ns - row->t_ns) * 1e-9) + " s available)");
     }
   }
+  return in;
+}
+
+int RunIntegrate() {
+  const IntegrateInputs in = ReadIntegrateInputs();
+  const std::string& out_dir = in.out_dir;
+  const std::vector<ImuSample>& imu = in.imu;
+  const std::vector<GroundTruthState>& truth = in.truth;
+  const double gravity = in.gravity;
+  const int64_t end_ns = in.end_ns;
+  const auto row = truth.begin() + static_cast<std::ptrdiff_t>(in.start_row);
+  const NavState start = NavStateFromGroundTruth(*row);
+  const ImuBias bias = BiasFromGroundTruth(*row);
   const Eigen::Vector3d g_w(0.0, 0.0, -gravity);
   Progress("integrate: " + std::to_string((end_ns - start.t_ns) * 1e-9) +
            " s from t = " + std::to_string(start.t_ns) + " ns");
@@ -119,7 +147,7 @@ int RunIntegrate() {
               "final_position_error_m",
               "final_rotation_error_deg",
               "ate_rmse_m");
-  for (IntegrationMethod method : methods) {
+  for (IntegrationMethod method : in.methods) {
     const std::string name = IntegrationMethodName(method);
     std::vector<NavState> trajectory;
     IntegrateImu(imu, start, end_ns, bias, g_w, method, &trajectory);
@@ -188,7 +216,8 @@ Command IntegrateCommand() {
            {"accel_unit", ""},
            {"gyro_unit", ""},
            {"out", ""}},
-          &RunIntegrate};
+          &RunIntegrate,
+          [] { ReadIntegrateInputs(); }};
 }
 
 }  // namespace cli

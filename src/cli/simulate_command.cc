@@ -64,8 +64,6 @@ constexpr double kMaxSamples = 2e7;
 
 bool IsDefault(const char* flag) { return gflags::GetCommandLineFlagInfoOrDie(flag).is_default; }
 
-int64_t SecondsToNs(double seconds) { return static_cast<int64_t>(std::llround(seconds * 1e9)); }
-
 ImuNoise NoiseFromFlags() {
   const bool any_kalibr_flag =
       !IsDefault("gyroscope_noise_density") || !IsDefault("gyroscope_random_walk") ||
@@ -88,33 +86,49 @@ ImuNoise NoiseFromFlags() {
   return noise;
 }
 
-int RunSimulate() {
-  const std::string& out_dir = RequiredFlag("out", FLAGS_out);
-  const double rate_hz = PositiveFlag("imu-rate", FLAGS_imu_rate);
-  const double knot_spacing_s = FLAGS_knot_spacing == 0.0
-                                    ? kDefaultKnotSpacingS
-                                    : PositiveFlag("knot-spacing", FLAGS_knot_spacing);
-  const int64_t knot_spacing_ns = SecondsToNs(knot_spacing_s);
-  if (knot_spacing_ns < 1'000'000) {
-    throw Error("--knot-spacing: must be at least 0.001 s, got " + std::to_string(knot_spacing_s));
-  }
-  const double duration_s = PositiveFlag("duration", FLAGS_duration);
+// What simulate reads and checks before fitting or simulating anything (Command::read_inputs).
+struct SimulateInputs {
+  std::string out_dir;
+  double rate_hz = 0.0;
+  double knot_spacing_s = 0.0;
+  int64_t knot_spacing_ns = 0;
+  double duration_s = 0.0;
   SimulationOptions options;
-  options.imu_rate_hz = rate_hz;
+  Camchain camchain;  // empty: no cameras
+  CameraSimulationOptions camera_options;
+  Eigen::Vector3d target_centre_w = Eigen::Vector3d::Zero();
+  std::vector<StampedPose> poses;  // of --trajectory-file; empty for the other trajectories
+  int64_t start_ns = 0;            // the simulated time range
+  int64_t end_ns = 0;
+};
+
+SimulateInputs ReadSimulateInputs() {
+  SimulateInputs in;
+  in.out_dir = RequiredFlag("out", FLAGS_out);
+  in.rate_hz = PositiveFlag("imu-rate", FLAGS_imu_rate);
+  in.knot_spacing_s = FLAGS_knot_spacing == 0.0 ? kDefaultKnotSpacingS
+                                                : PositiveFlag("knot-spacing", FLAGS_knot_spacing);
+  in.knot_spacing_ns = SpanFlagNs("knot-spacing", in.knot_spacing_s);
+  if (in.knot_spacing_ns < 1'000'000) {
+    throw Error("--knot-spacing: must be at least 0.001 s, got " +
+                std::to_string(in.knot_spacing_s));
+  }
+  in.duration_s = FLAGS_duration;
+  const int64_t duration_ns = SpanFlagNs("duration", in.duration_s);
+  SimulationOptions& options = in.options;
+  options.imu_rate_hz = in.rate_hz;
   options.noise = NoiseFromFlags();
-  options.noise.update_rate_hz = rate_hz;
+  options.noise.update_rate_hz = in.rate_hz;
   options.noise_free = FLAGS_noise_free;
   options.gyro_bias = Vector3Flag("gyro-bias", FLAGS_gyro_bias);
   options.accel_bias = Vector3Flag("accel-bias", FLAGS_accel_bias);
   options.seed = static_cast<uint64_t>(static_cast<int64_t>(FLAGS_seed));
   options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
 
-  // Cameras (optional): read every input before any work.
-  Camchain camchain;
-  CameraSimulationOptions camera_options;
-  Eigen::Vector3d target_centre_w = Eigen::Vector3d::Zero();
+  // Cameras (optional).
+  CameraSimulationOptions& camera_options = in.camera_options;
   if (!FLAGS_camchain.empty()) {
-    camchain = ReadCamchainYaml(FLAGS_camchain);
+    in.camchain = ReadCamchainYaml(FLAGS_camchain);
     camera_options.camera_rate_hz = PositiveFlag("camera-rate", FLAGS_camera_rate);
     camera_options.pixel_noise_px = NonNegativeFlag("pixel-noise", FLAGS_pixel_noise);
     camera_options.seed = options.seed + 100;
@@ -126,7 +140,7 @@ int RunSimulate() {
       camera_options.has_target = true;
       camera_options.target = ReadTargetYaml(FLAGS_target);
       camera_options.T_w_t = SE3d();  // the target lies in the world's z = 0 plane, at the origin
-      target_centre_w = TargetCentre(camera_options.target, camera_options.T_w_t);
+      in.target_centre_w = TargetCentre(camera_options.target, camera_options.T_w_t);
     }
     if (!camera_options.has_target && camera_options.num_landmarks == 0) {
       throw Error("--camchain needs --target FILE and/or --landmarks N: nothing to observe");
@@ -135,71 +149,86 @@ int RunSimulate() {
     throw Error("--target and --landmarks need --camchain (the cameras that observe them)");
   }
 
-  PoseFitOptions fit_options;
-  fit_options.progress = [](const std::string& line) { Progress(line); };
-  PoseFitResult fit;
-  std::string source;
-  int64_t start_ns = 0;
-  int64_t end_ns = 0;
+  // The time range of each kind of trajectory.
   if (!FLAGS_trajectory_file.empty()) {
     if (!IsDefault("trajectory")) {
       throw Error("give either --trajectory or --trajectory-file, not both");
     }
-    const std::vector<StampedPose> poses = ReadPoses(FLAGS_trajectory_file);
-    start_ns = poses.front().t_ns;
-    end_ns = poses.back().t_ns;
+    in.poses = ReadPoses(FLAGS_trajectory_file);
+    in.start_ns = in.poses.front().t_ns;
+    in.end_ns = in.poses.back().t_ns;
     if (!IsDefault("duration")) {
-      const int64_t wanted_end = start_ns + SecondsToNs(duration_s);
-      if (wanted_end > end_ns) {
+      const int64_t wanted_end = in.start_ns + duration_ns;
+      if (wanted_end > in.end_ns) {
         throw Error(FLAGS_trajectory_file,
                     0,
-                    "--duration " + std::to_string(duration_s) + " s is longer than the " +
-                        "trajectory (" + std::to_string((end_ns - start_ns) * 1e-9) + " s)");
+                    "--duration " + std::to_string(in.duration_s) + " s is longer than the " +
+                        "trajectory (" + std::to_string((in.end_ns - in.start_ns) * 1e-9) + " s)");
       }
-      end_ns = wanted_end;
+      in.end_ns = wanted_end;
     }
-    if (duration_s * rate_hz > kMaxSamples || (end_ns - start_ns) * 1e-9 * rate_hz > kMaxSamples) {
+    if (in.duration_s * in.rate_hz > kMaxSamples ||
+        (in.end_ns - in.start_ns) * 1e-9 * in.rate_hz > kMaxSamples) {
       throw Error("simulation would produce more than 2e7 IMU samples: shorten it");
     }
+    return in;
+  }
+  if (FLAGS_trajectory == "calibration") {
+    if (in.camchain.empty()) throw Error("--trajectory calibration needs --camchain");
+    in.start_ns = 1'000'000'000;
+  } else {
+    MakeTrajectory(FLAGS_trajectory, options.seed);  // refuses an unknown name
+    // The first knot at t = 0 and the IMU from t_1 = one knot spacing (trajectory time 0).
+    in.start_ns = in.knot_spacing_ns;
+  }
+  if (in.duration_s * in.rate_hz > kMaxSamples) {
+    throw Error("--duration " + std::to_string(in.duration_s) + " s at " +
+                std::to_string(in.rate_hz) + " Hz is more than 2e7 IMU samples: shorten it");
+  }
+  in.end_ns = in.start_ns + duration_ns;
+  return in;
+}
+
+int RunSimulate() {
+  const SimulateInputs in = ReadSimulateInputs();
+  const std::string& out_dir = in.out_dir;
+  const double rate_hz = in.rate_hz;
+  const double knot_spacing_s = in.knot_spacing_s;
+  const double duration_s = in.duration_s;
+  const SimulationOptions& options = in.options;
+  const Camchain& camchain = in.camchain;
+  const CameraSimulationOptions& camera_options = in.camera_options;
+  const int64_t start_ns = in.start_ns;
+  const int64_t end_ns = in.end_ns;
+  OutputDir output(out_dir);  // an unwritable --out fails here, before any work
+
+  PoseFitOptions fit_options;
+  fit_options.progress = [](const std::string& line) { Progress(line); };
+  PoseFitResult fit;
+  std::string source;
+  if (!in.poses.empty()) {
     source = FLAGS_trajectory_file;
     Progress("simulate: fitting " + std::to_string(knot_spacing_s) + " s knots to " +
-             std::to_string(poses.size()) + " poses of " + source);
-    fit =
-        FitControlPoses(poses, KnotLayoutCovering(start_ns, end_ns, knot_spacing_ns), fit_options);
+             std::to_string(in.poses.size()) + " poses of " + source);
+    fit = FitControlPoses(
+        in.poses, KnotLayoutCovering(start_ns, end_ns, in.knot_spacing_ns), fit_options);
+  } else if (FLAGS_trajectory == "calibration") {
+    // The lively target-viewing motion of calib/simulate_camera.h, laid out for cam0.
+    source = "calibration";
+    Progress("simulate: fitting the calibration trajectory (" + std::to_string(duration_s) +
+             " s, knots every " + std::to_string(knot_spacing_s) + " s)");
+    fit = FitCalibrationTrajectory(in.target_centre_w,
+                                   camchain.front().T_cam_imu,
+                                   start_ns,
+                                   end_ns,
+                                   in.knot_spacing_ns,
+                                   options.seed);
   } else {
-    if (FLAGS_trajectory == "calibration") {
-      // The lively target-viewing motion of calib/simulate_camera.h, laid out for cam0.
-      if (camchain.empty()) throw Error("--trajectory calibration needs --camchain");
-      if (duration_s * rate_hz > kMaxSamples) {
-        throw Error("--duration " + std::to_string(duration_s) + " s at " +
-                    std::to_string(rate_hz) + " Hz is more than 2e7 IMU samples: shorten it");
-      }
-      source = "calibration";
-      start_ns = 1'000'000'000;
-      end_ns = start_ns + SecondsToNs(duration_s);
-      Progress("simulate: fitting the calibration trajectory (" + std::to_string(duration_s) +
-               " s, knots every " + std::to_string(knot_spacing_s) + " s)");
-      fit = FitCalibrationTrajectory(target_centre_w,
-                                     camchain.front().T_cam_imu,
-                                     start_ns,
-                                     end_ns,
-                                     knot_spacing_ns,
-                                     options.seed);
-    }
-  }
-  if (fit.layout.num_control_poses == 0) {
-    if (duration_s * rate_hz > kMaxSamples) {
-      throw Error("--duration " + std::to_string(duration_s) + " s at " + std::to_string(rate_hz) +
-                  " Hz is more than 2e7 IMU samples: shorten it");
-    }
     const AnalyticTrajectory trajectory = MakeTrajectory(FLAGS_trajectory, options.seed);
     source = trajectory.name();
-    // The first knot at t = 0 and the IMU from t_1 = one knot spacing (trajectory time 0).
-    start_ns = knot_spacing_ns;
-    end_ns = start_ns + SecondsToNs(duration_s);
     Progress("simulate: fitting the " + source + " trajectory (" + std::to_string(duration_s) +
              " s, knots every " + std::to_string(knot_spacing_s) + " s)");
-    fit = FitAnalyticTrajectory(trajectory, start_ns, end_ns, knot_spacing_ns, 0, fit_options);
+    fit = FitAnalyticTrajectory(trajectory, start_ns, end_ns, in.knot_spacing_ns, 0, fit_options);
   }
   Progress(
       StringPrintf("simulate: spline fit position RMS %.3g m, rotation RMS %.3g deg (%d "
@@ -221,7 +250,6 @@ int RunSimulate() {
              std::to_string(cameras.num_landmark_observations) + " landmark observations");
   }
 
-  OutputDir output(out_dir);
   if (!camchain.empty()) {
     std::ostringstream observations_csv;
     WriteObservationsCsv(cameras.observations, &observations_csv);
@@ -336,7 +364,8 @@ Command SimulateCommand() {
        {"gyro_bias", "Initial gyro bias b_g, x,y,z [rad/s]"},
        {"accel_bias", "Initial accelerometer bias b_a, x,y,z [m/s^2]"},
        {"out", ""}},
-      &RunSimulate};
+      &RunSimulate,
+      [] { ReadSimulateInputs(); }};
 }
 
 }  // namespace cli

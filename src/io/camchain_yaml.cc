@@ -2,10 +2,12 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "splinecal/error.h"
+#include "splinecal/io/text_file.h"
 #include "splinecal/io/yaml_document.h"
 #include "splinecal/io/yaml_writer.h"
 
@@ -18,6 +20,25 @@ namespace {
 constexpr double kMaxOrthonormalityError = 1e-6;
 // Resolutions beyond this [px] per side are refused as implausible (a corrupt file).
 constexpr int64_t kMaxResolution = 1 << 20;
+// Plausibility limits, far beyond any real camera (a corrupt file or another unit beyond them):
+// focal lengths and principal point [px], distortion coefficients, time offset [s] (it moves
+// int64 nanosecond stamps: 1e9 s keeps them far from overflow), line delay [s per row].
+constexpr double kMaxIntrinsic = 1e6;
+constexpr double kMaxDistortionCoefficient = 1e3;
+constexpr double kMaxTimeshift = 1e9;
+constexpr double kMaxLineDelay = 1e-2;
+// The keys of a camN map: ours and the others Kalibr writes (ignored); near misses are typos.
+const std::vector<std::string> kCameraKeys = {"camera_model",
+                                              "intrinsics",
+                                              "distortion_model",
+                                              "distortion_coeffs",
+                                              "resolution",
+                                              "T_cam_imu",
+                                              "timeshift_cam_imu",
+                                              "line_delay",
+                                              "rostopic",
+                                              "T_cn_cnm1",
+                                              "cam_overlaps"};
 
 DistortionModel ParseDistortionModel(const YamlDocument& yaml, const std::string& key) {
   const std::string name = yaml.String(key);
@@ -26,14 +47,14 @@ DistortionModel ParseDistortionModel(const YamlDocument& yaml, const std::string
   if (name == "none") return DistortionModel::kNone;
   throw Error(
       yaml.path(),
-      0,
+      yaml.Line(key),
       key + ": unsupported distortion model '" + name + "' (supported: radtan, equidistant, none)");
 }
 
-SE3d ParseRigidTransform(const YamlDocument& yaml, const std::string& key) {
+SE3d ReadRigidTransform(const YamlDocument& yaml, const std::string& key) {
   const std::vector<std::vector<double>> rows = yaml.Rows(key);
   if (rows.size() != 4 || rows[0].size() != 4) {
-    throw Error(yaml.path(), 0, key + ": expected a 4x4 matrix (4 rows of 4 numbers)");
+    throw Error(yaml.path(), yaml.Line(key), key + ": expected a 4x4 matrix (4 rows of 4 numbers)");
   }
   Eigen::Matrix4d T;
   for (int r = 0; r < 4; ++r) {
@@ -47,33 +68,51 @@ SE3d ParseRigidTransform(const YamlDocument& yaml, const std::string& key) {
           kMaxOrthonormalityError ||
       R.determinant() < 0.0) {
     throw Error(yaml.path(),
-                0,
+                yaml.Line(key),
                 key +
                     ": not a rigid transform (the rotation block must be orthonormal with "
                     "determinant +1 and the last row 0 0 0 1)");
   }
-  return SE3d(SO3d::FromMatrix(R), T.topRightCorner<3, 1>());
+  const Eigen::Vector3d t = T.topRightCorner<3, 1>();
+  if (t.cwiseAbs().maxCoeff() > kMaxPosition) {
+    std::ostringstream message;
+    message << key << ": translation beyond the plausible " << kMaxPosition << " m";
+    throw Error(yaml.path(), yaml.Line(key), message.str());
+  }
+  return SE3d(SO3d::FromMatrix(R), t);
+}
+
+// T_cam_imu and timeshift_cam_imu of `cam`, when present.
+void ReadExtrinsics(const YamlDocument& yaml, const std::string& cam, CameraCalibration* c) {
+  if (yaml.Has(cam + "/T_cam_imu")) c->T_cam_imu = ReadRigidTransform(yaml, cam + "/T_cam_imu");
+  if (yaml.Has(cam + "/timeshift_cam_imu")) {
+    c->timeshift_cam_imu_s = yaml.BoundedNumber(cam + "/timeshift_cam_imu", kMaxTimeshift, "s");
+  }
 }
 
 CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
+  yaml.CheckTypos(cam, kCameraKeys);
   CameraCalibration calibration;
   PinholeCamera& camera = calibration.camera;
   const std::string model = yaml.String(cam + "/camera_model");
   if (model != "pinhole") {
     throw Error(yaml.path(),
-                0,
+                yaml.Line(cam + "/camera_model"),
                 cam + "/camera_model: unsupported camera model '" + model +
                     "' (supported: pinhole with radtan, equidistant or none)");
   }
-  const std::vector<double> intrinsics = yaml.Numbers(cam + "/intrinsics");
+  const std::vector<double> intrinsics =
+      yaml.BoundedNumbers(cam + "/intrinsics", kMaxIntrinsic, "px");
+  const int64_t intrinsics_line = yaml.Line(cam + "/intrinsics");
   if (intrinsics.size() != 4) {
     throw Error(yaml.path(),
-                0,
+                intrinsics_line,
                 cam + "/intrinsics: expected 4 numbers [fu, fv, pu, pv], got " +
                     std::to_string(intrinsics.size()));
   }
   if (!(intrinsics[0] > 0.0) || !(intrinsics[1] > 0.0)) {
-    throw Error(yaml.path(), 0, cam + "/intrinsics: focal lengths fu, fv must be positive");
+    throw Error(
+        yaml.path(), intrinsics_line, cam + "/intrinsics: focal lengths fu, fv must be positive");
   }
   camera.fu = intrinsics[0];
   camera.fv = intrinsics[1];
@@ -83,14 +122,16 @@ CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
                           ? ParseDistortionModel(yaml, cam + "/distortion_model")
                           : DistortionModel::kNone;
   std::vector<double> coeffs;
-  if (yaml.Has(cam + "/distortion_coeffs")) coeffs = yaml.Numbers(cam + "/distortion_coeffs");
+  if (yaml.Has(cam + "/distortion_coeffs")) {
+    coeffs = yaml.BoundedNumbers(cam + "/distortion_coeffs", kMaxDistortionCoefficient, "");
+  }
   const size_t expected = camera.distortion == DistortionModel::kNone ? 0 : 4;
   // `none` with four zeros is what some tools write: accept zeros.
   const bool zeros_for_none = camera.distortion == DistortionModel::kNone && coeffs.size() == 4 &&
                               coeffs == std::vector<double>(4, 0.0);
   if (coeffs.size() != expected && !zeros_for_none) {
     throw Error(yaml.path(),
-                0,
+                yaml.Line(cam + "/distortion_coeffs"),
                 cam + "/distortion_coeffs: the " + DistortionModelName(camera.distortion) +
                     " model takes " + std::to_string(expected) + " coefficients, got " +
                     std::to_string(coeffs.size()));
@@ -101,21 +142,18 @@ CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
       resolution[0] != std::floor(resolution[0]) || resolution[1] != std::floor(resolution[1]) ||
       resolution[0] > kMaxResolution || resolution[1] > kMaxResolution) {
     throw Error(yaml.path(),
-                0,
+                yaml.Line(cam + "/resolution"),
                 cam + "/resolution: expected two positive integers [width, height] in pixels");
   }
   camera.width = static_cast<int>(resolution[0]);
   camera.height = static_cast<int>(resolution[1]);
-  if (yaml.Has(cam + "/T_cam_imu")) {
-    calibration.T_cam_imu = ParseRigidTransform(yaml, cam + "/T_cam_imu");
-  }
-  if (yaml.Has(cam + "/timeshift_cam_imu")) {
-    calibration.timeshift_cam_imu_s = yaml.Number(cam + "/timeshift_cam_imu");
-  }
+  ReadExtrinsics(yaml, cam, &calibration);
   if (yaml.Has(cam + "/line_delay")) {
-    calibration.line_delay_s = yaml.Number(cam + "/line_delay");
+    calibration.line_delay_s = yaml.BoundedNumber(cam + "/line_delay", kMaxLineDelay, "s per row");
     if (calibration.line_delay_s < 0.0) {
-      throw Error(yaml.path(), 0, cam + "/line_delay: must be >= 0 [s per row]");
+      throw Error(yaml.path(),
+                  yaml.Line(cam + "/line_delay"),
+                  cam + "/line_delay: must be >= 0 [s per row]");
     }
   }
   if (yaml.Has(cam + "/rostopic")) calibration.rostopic = yaml.String(cam + "/rostopic");
@@ -137,10 +175,20 @@ Camchain ReadCamchainYaml(const std::string& path) {
     if (key.rfind("cam", 0) == 0 && key.size() > 3 &&
         key.find_first_not_of("0123456789", 3) == std::string::npos &&
         std::stoll(key.substr(3)) >= static_cast<long long>(camchain.size())) {
-      throw Error(path, 0, "'" + key + "': cameras must be numbered cam0, cam1, ... without gaps");
+      throw Error(path,
+                  yaml.Line(key),
+                  "'" + key + "': cameras must be numbered cam0, cam1, ... without gaps");
     }
   }
   return camchain;
+}
+
+CameraCalibration ReadCam0Extrinsics(const std::string& path) {
+  const YamlDocument yaml(path);
+  yaml.CheckTypos("cam0", kCameraKeys);
+  CameraCalibration calibration;
+  ReadExtrinsics(yaml, "cam0", &calibration);
+  return calibration;
 }
 
 std::string CamchainYamlText(const Camchain& camchain) {

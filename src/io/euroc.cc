@@ -23,7 +23,7 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
     if (internal::IsHeaderRow(reader, fields)) continue;
     internal::CheckColumnCount(reader, fields, 7, "EuRoC IMU (t_ns, gyro xyz, accel xyz)");
     ImuSample sample;
-    sample.t_ns = ParseInt64(fields[0], reader, kNames[0]);
+    sample.t_ns = ParseTimestampNs(fields[0], reader, kNames[0]);
     for (int i = 0; i < 3; ++i) {
       sample.gyro[i] = options.gyro_scale * ParseBoundedDouble(fields[1 + i], reader, kNames[1 + i],
                                                                kMaxAngularRate, "rad/s");
@@ -85,7 +85,7 @@ std::vector<GroundTruthState> ReadEurocGroundTruth(const std::string& path) {
                                "EuRoC ground truth (t_ns, p xyz, q wxyz, v xyz, bg xyz, ba xyz)");
     double v[17];
     GroundTruthState state;
-    state.t_ns = ParseInt64(fields[0], reader, kNames[0]);
+    state.t_ns = ParseTimestampNs(fields[0], reader, kNames[0]);
     for (int i = 1; i < 17; ++i) {
       // Positions, quaternion (checked for unit norm below), velocities, biases.
       const double limit = i < 4 ? kMaxPosition : i < 8 ? 2.0 : i < 11 ? kMaxVelocity

@@ -5,17 +5,38 @@
 
 namespace splinecal {
 
+namespace {
+
+// Densities and rates beyond these are refused as implausible (a corrupt file, or a variance
+// where a density belongs): real IMUs are below 1 in every unit and below 10 kHz.
+constexpr double kMaxDensity = 1e3;
+constexpr double kMaxRateHz = 1e6;
+
+}  // namespace
+
 ImuNoise ReadImuYaml(const std::string& path) {
   const YamlDocument yaml(path);
+  yaml.CheckTypos("",
+                  {"accelerometer_noise_density",
+                   "accelerometer_random_walk",
+                   "gyroscope_noise_density",
+                   "gyroscope_random_walk",
+                   "update_rate",
+                   "rate_hz",
+                   "rostopic"});
   ImuNoise noise;
-  noise.accelerometer_noise_density = yaml.PositiveNumber("accelerometer_noise_density");
-  noise.accelerometer_random_walk = yaml.PositiveNumber("accelerometer_random_walk");
-  noise.gyroscope_noise_density = yaml.PositiveNumber("gyroscope_noise_density");
-  noise.gyroscope_random_walk = yaml.PositiveNumber("gyroscope_random_walk");
+  noise.accelerometer_noise_density =
+      yaml.PositiveNumber("accelerometer_noise_density", kMaxDensity, "m/s^2/sqrt(Hz)");
+  noise.accelerometer_random_walk =
+      yaml.PositiveNumber("accelerometer_random_walk", kMaxDensity, "m/s^3/sqrt(Hz)");
+  noise.gyroscope_noise_density =
+      yaml.PositiveNumber("gyroscope_noise_density", kMaxDensity, "rad/s/sqrt(Hz)");
+  noise.gyroscope_random_walk =
+      yaml.PositiveNumber("gyroscope_random_walk", kMaxDensity, "rad/s^2/sqrt(Hz)");
   if (yaml.Has("update_rate")) {
-    noise.update_rate_hz = yaml.PositiveNumber("update_rate");
+    noise.update_rate_hz = yaml.PositiveNumber("update_rate", kMaxRateHz, "Hz");
   } else if (yaml.Has("rate_hz")) {
-    noise.update_rate_hz = yaml.PositiveNumber("rate_hz");
+    noise.update_rate_hz = yaml.PositiveNumber("rate_hz", kMaxRateHz, "Hz");
   }
   return noise;
 }

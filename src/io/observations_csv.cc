@@ -34,7 +34,7 @@ std::vector<Observation> ReadObservationsCsv(const std::string& path) {
     if (reader.data_lines() == 1 && internal::IsHeaderRow(reader, fields)) continue;
     internal::CheckColumnCount(reader, fields, 5, "t_ns,cam_id,point_id,u,v");
     Observation o;
-    o.t_ns = ParseInt64(fields[0], reader, "t_ns");
+    o.t_ns = ParseTimestampNs(fields[0], reader, "t_ns");
     const int64_t cam = ParseInt64(fields[1], reader, "cam_id");
     if (cam < 0 || cam > kMaxCameraId) {
       reader.Fail("cam_id must be an integer in [0, " + std::to_string(kMaxCameraId) + "]",

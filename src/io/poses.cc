@@ -34,7 +34,7 @@ StampedPose ParseRow(const TextFileReader& reader,
       reader.Fail("expected at least 8 columns (EuRoC ground truth: t_ns, p xyz, q wxyz, ...), "
                   "found " + std::to_string(fields.size()));
     }
-    pose.t_ns = ParseInt64(fields[0], reader, kNames[0]);
+    pose.t_ns = ParseTimestampNs(fields[0], reader, kNames[0]);
     for (int i = 1; i < 8; ++i) {
       v[i] = ParseBoundedDouble(fields[i], reader, kNames[i], i < 4 ? kMaxPosition : 2.0,
                                 i < 4 ? "m" : "(quaternion)");

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "splinecal/error.h"
+#include "splinecal/io/text_file.h"
 #include "splinecal/io/yaml_document.h"
 #include "splinecal/string_printf.h"
 
@@ -17,12 +18,26 @@ namespace {
 constexpr int64_t kMaxGridSide = 10000;
 // Point ids are integers stored in doubles by the YAML layer: exact up to 2^53.
 constexpr double kMaxPointId = 9007199254740992.0;
+// Sizes [m] and the tag spacing ratio beyond these are refused as implausible (a corrupt file or
+// another unit); they keep every corner's coordinates finite.
+constexpr double kMaxTargetSize = 1e3;
+constexpr double kMaxTagSpacing = 1e2;
+const std::vector<std::string> kTargetKeys = {"target_type",
+                                              "tagCols",
+                                              "tagRows",
+                                              "tagSize",
+                                              "tagSpacing",
+                                              "targetCols",
+                                              "targetRows",
+                                              "rowSpacingMeters",
+                                              "colSpacingMeters",
+                                              "points"};
 
 int GridCount(const YamlDocument& yaml, const std::string& key) {
   const int64_t n = yaml.Integer(key);
   if (n < 1 || n > kMaxGridSide) {
     throw Error(yaml.path(),
-                0,
+                yaml.Line(key),
                 "'" + key + "' must be an integer in [1, " + std::to_string(kMaxGridSide) + "]");
   }
   return static_cast<int>(n);
@@ -32,21 +47,25 @@ int GridCount(const YamlDocument& yaml, const std::string& key) {
 
 CalibrationTarget ReadTargetYaml(const std::string& path) {
   const YamlDocument yaml(path);
+  yaml.CheckTypos("", kTargetKeys);
   const std::string type = yaml.String("target_type");
   try {
     if (type == "aprilgrid") {
-      const double spacing = yaml.Number("tagSpacing");
-      if (spacing < 0.0) throw Error(path, 0, "'tagSpacing' must be >= 0 (a ratio of tagSize)");
+      const double spacing = yaml.BoundedNumber("tagSpacing", kMaxTagSpacing, "(ratio)");
+      if (spacing < 0.0) {
+        throw Error(
+            path, yaml.Line("tagSpacing"), "'tagSpacing' must be >= 0 (a ratio of tagSize)");
+      }
       return MakeAprilGrid(GridCount(yaml, "tagCols"),
                            GridCount(yaml, "tagRows"),
-                           yaml.PositiveNumber("tagSize"),
+                           yaml.PositiveNumber("tagSize", kMaxTargetSize, "m"),
                            spacing);
     }
     if (type == "checkerboard") {
       return MakeCheckerboard(GridCount(yaml, "targetCols"),
                               GridCount(yaml, "targetRows"),
-                              yaml.PositiveNumber("colSpacingMeters"),
-                              yaml.PositiveNumber("rowSpacingMeters"));
+                              yaml.PositiveNumber("colSpacingMeters", kMaxTargetSize, "m"),
+                              yaml.PositiveNumber("rowSpacingMeters", kMaxTargetSize, "m"));
     }
   } catch (const Error& e) {
     if (!e.path().empty()) throw;
@@ -55,7 +74,7 @@ CalibrationTarget ReadTargetYaml(const std::string& path) {
   if (type != "points") {
     throw Error(
         path,
-        0,
+        yaml.Line("target_type"),
         "unsupported target_type '" + type + "' (supported: aprilgrid, checkerboard, points)");
   }
   CalibrationTarget target;
@@ -64,24 +83,31 @@ CalibrationTarget ReadTargetYaml(const std::string& path) {
   for (size_t i = 0; i < rows.size(); ++i) {
     const std::vector<double>& row = rows[i];
     const std::string where = "points[" + std::to_string(i) + "]";
+    const int64_t line = yaml.Line("points/" + std::to_string(i));
     if (row.size() != 4) {
       throw Error(
           path,
-          0,
+          line,
           where + ": expected [id, x, y, z], got " + std::to_string(row.size()) + " numbers");
     }
     if (row[0] < 0.0 || row[0] != std::floor(row[0]) || row[0] > kMaxPointId) {
-      throw Error(path, 0, where + ": the id must be an integer >= 0");
+      throw Error(path, line, where + ": the id must be an integer >= 0");
+    }
+    const Eigen::Vector3d p(row[1], row[2], row[3]);
+    if (p.cwiseAbs().maxCoeff() > kMaxPosition) {
+      std::ostringstream message;
+      message << where << ": a coordinate beyond the plausible " << kMaxPosition << " m";
+      throw Error(path, line, message.str());
     }
     const int64_t id = static_cast<int64_t>(row[0]);
-    if (!target.points.emplace(id, Eigen::Vector3d(row[1], row[2], row[3])).second) {
-      throw Error(path, 0, where + ": duplicate point id " + std::to_string(id));
+    if (!target.points.emplace(id, p).second) {
+      throw Error(path, line, where + ": duplicate point id " + std::to_string(id));
     }
   }
   if (target.points.size() < 4) {
     throw Error(
         path,
-        0,
+        yaml.Line("points"),
         "a points target needs at least 4 points, got " + std::to_string(target.points.size()));
   }
   return target;

@@ -196,6 +196,26 @@ int64_t ParseInt64(std::string_view field, const TextFileReader& at, const std::
   return value;
 }
 
+namespace {
+
+[[noreturn]] void FailTimestampRange(std::string_view field,
+                                     const TextFileReader& at,
+                                     const std::string& what) {
+  at.Fail(what + ": time " + Quote(field) +
+              " is outside the plausible range of +-4e18 ns (the years 1843 to 2096 as Unix time)",
+          field);
+}
+
+}  // namespace
+
+int64_t ParseTimestampNs(std::string_view field,
+                         const TextFileReader& at,
+                         const std::string& what) {
+  const int64_t t_ns = ParseInt64(field, at, what);
+  if (t_ns > kMaxTimestampNs || t_ns < -kMaxTimestampNs) FailTimestampRange(field, at, what);
+  return t_ns;
+}
+
 int64_t ParseSecondsToNs(std::string_view field, const TextFileReader& at, const std::string& what) {
   std::string_view text = field;
   bool negative = false;
@@ -217,19 +237,20 @@ int64_t ParseSecondsToNs(std::string_view field, const TextFileReader& at, const
     // Exponent notation or junk: accept a plain double when it is one (seconds then lose
     // sub-microsecond precision, which such files never had).
     const double seconds = ParseFiniteDouble(field, at, what);
-    if (std::abs(seconds) > 9.0e9) at.Fail(what + ": time " + Quote(field) + " out of range", field);
+    if (std::abs(seconds) * 1e9 > kMaxTimestampNs) FailTimestampRange(field, at, what);
     return static_cast<int64_t>(std::llround(seconds * 1e9));
   }
-  constexpr int64_t kMaxSeconds = 9'000'000'000;  // int64 ns holds +-9.2e9 s
+  constexpr int64_t kMaxSeconds = kMaxTimestampNs / 1'000'000'000;
   int64_t seconds = 0;
   for (char c : whole) {
     seconds = seconds * 10 + (c - '0');
-    if (seconds > kMaxSeconds) at.Fail(what + ": time " + Quote(field) + " out of range", field);
+    if (seconds > kMaxSeconds) FailTimestampRange(field, at, what);
   }
   int64_t nanos = 0;
   for (size_t i = 0; i < 9; ++i) nanos = nanos * 10 + (i < fraction.size() ? fraction[i] - '0' : 0);
   if (fraction.size() > 9 && fraction[9] >= '5') ++nanos;  // round half up on the 10th digit
   const int64_t total = seconds * 1'000'000'000 + nanos;
+  if (total > kMaxTimestampNs) FailTimestampRange(field, at, what);
   return negative ? -total : total;
 }
 

@@ -56,6 +56,20 @@ TEST(EvaluateCommand, PrintsAndWritesThePredictedImu) {
   EXPECT_THAT(ReadFileText(dir.File("out/result.yaml")), HasSubstr("num_control_poses: 8"));
 }
 
+// A step longer than the valid range gives its first row alone (it once became a 1 ns step).
+TEST(EvaluateCommand, EveryLongerThanTheRangeWritesOneRow) {
+  TempDir dir;
+  Vector6<double> xi;
+  xi << 1.0, 0.0, 0.0, 0.0, 0.0, 0.5;
+  const std::string spline = dir.Write("spline.csv", SubgroupSplineCsv(xi, 0.1));
+  for (const char* every : {"0.6", "1e300"}) {
+    const auto result = RunTool(
+        {"evaluate", "--spline", spline, "--out", dir.File("out"), "--every", every, "--quiet"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(CountLines(ReadFileText(dir.File("out/evaluation.csv"))), 1 + 1) << every;
+  }
+}
+
 TEST(EvaluateCommand, BadInputIsOneLineExitTwoAndNoOutput) {
   TempDir dir;
   const std::string bad = dir.Write("bad.csv", "0,0,0,0,1,0,0,0\n10,0,0,0,1,0,0,0\n");

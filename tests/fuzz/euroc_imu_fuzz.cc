@@ -1,13 +1,4 @@
-// Fuzzes the EuRoC IMU reader (io/euroc.h).
-#include "fuzz_input.h"
-#include "splinecal/error.h"
-#include "splinecal/io/euroc.h"
+// Fuzzes the EuRoC IMU reader (io/euroc.h). The reader and the properties checked are in readers.h.
+#include "readers.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string& path = splinecal::fuzz::WriteInput(data, size, ".csv");
-  try {
-    splinecal::ReadEurocImu(path);
-  } catch (const splinecal::Error&) {
-  }
-  return 0;
-}
+SPLINECAL_READER_FUZZER("euroc_imu")

@@ -14,18 +14,22 @@
 namespace splinecal {
 namespace fuzz {
 
-inline const std::string& InputPath(const char* suffix) {
-  static const std::string path =
-      "/tmp/splinecal-fuzz-" + std::to_string(::getpid()) + "-input" + suffix;
-  return path;
+// A temporary path of this process ending in `name` (one process fuzzes one input at a time).
+inline std::string TempPath(const std::string& name) {
+  return "/tmp/splinecal-fuzz-" + std::to_string(::getpid()) + "-" + name;
 }
 
-inline const std::string& WriteInput(const uint8_t* data, size_t size, const char* suffix) {
-  const std::string& path = InputPath(suffix);
+// Writes the bytes to `path`; a failure to write is the harness's fault, not a finding.
+inline void WriteFileOrTrap(const std::string& path, const void* data, size_t size) {
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr) __builtin_trap();
   if (size > 0 && std::fwrite(data, 1, size, file) != size) __builtin_trap();
   std::fclose(file);
+}
+
+inline std::string WriteInput(const uint8_t* data, size_t size, const char* suffix) {
+  const std::string path = TempPath(std::string("input") + suffix);
+  WriteFileOrTrap(path, data, size);
   return path;
 }
 

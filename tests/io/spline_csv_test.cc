@@ -59,6 +59,10 @@ TEST(SplineCsv, RefusesNonUniformSpacingAndTooFewPoses) {
   EXPECT_THAT(error_of("0" + row + "10" + row + "20" + row), HasSubstr("at least 4 control poses"));
   EXPECT_THAT(error_of("0" + row + "0" + row + "0" + row + "0" + row),
               HasSubstr("s.csv:2:1: knot times must increase"));
+  // t0 + 2*dt is beyond int64 here: the check must not compute it.
+  EXPECT_THAT(error_of("-4000000000000000000" + row + "4000000000000000000" + row + "0" + row +
+                       "1" + row),
+              HasSubstr("s.csv:3:1: knot spacing is not uniform"));
 }
 
 }  // namespace

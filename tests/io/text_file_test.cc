@@ -115,6 +115,32 @@ TEST(ParseInt64, ExactAndRangeChecked) {
   EXPECT_EQ(ParseInt64(fields[3], reader, "t"), -7);
 }
 
+// Stamps beyond +-4e18 ns would let a difference of two of them overflow int64.
+TEST(ParseTimestampNs, RefusesStampsBeyondThePlausibleRange) {
+  TempDir dir;
+  const std::string path = dir.Write(
+      "a.txt", "4000000000000000000 -4000000000000000000 4000000000000000001 -9000000000000000000 "
+               "4000000000.000000001 -4000000001 4e9\n");
+  TextFileReader reader(path);
+  ASSERT_TRUE(reader.NextLine());
+  std::vector<std::string_view> fields;
+  SplitFields(reader.line(), &fields);
+  EXPECT_EQ(ParseTimestampNs(fields[0], reader, "t"), kMaxTimestampNs);
+  EXPECT_EQ(ParseTimestampNs(fields[1], reader, "t"), -kMaxTimestampNs);
+  try {
+    ParseTimestampNs(fields[2], reader, "t");
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("a.txt:1:42: t: time '4000000000000000001' is outside the "
+                                    "plausible range of +-4e18 ns"));
+  }
+  EXPECT_THROW(ParseTimestampNs(fields[3], reader, "t"), Error);
+  // The same range for seconds (TUM).
+  EXPECT_THROW(ParseSecondsToNs(fields[4], reader, "t"), Error);
+  EXPECT_THROW(ParseSecondsToNs(fields[5], reader, "t"), Error);
+  EXPECT_EQ(ParseSecondsToNs(fields[6], reader, "t"), kMaxTimestampNs);
+}
+
 TEST(ParseSecondsToNs, DigitExactWithoutFloatingPoint) {
   TempDir dir;
   const std::string path =

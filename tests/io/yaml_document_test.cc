@@ -51,6 +51,31 @@ TEST(YamlDocument, ErrorsNameTheLine) {
               HasSubstr("expected a YAML map"));
 }
 
+TEST(YamlDocument, NonFiniteImplausibleAndTyposNameTheLine) {
+  TempDir dir;
+  const std::string path = dir.Write("a.yaml",
+                                     "a: .nan\nb: 1e999\nc: [1, 2e300]\nd: 5\n"
+                                     "cam0:\n  intrinsic: [1, 2]\n  Rostopic: x\n"
+                                     "points:\n  - [0, 1]\n  - [2, 3]\n");
+  const YamlDocument yaml(path);
+  EXPECT_THAT(ErrorOf([&] { yaml.Number("a"); }), HasSubstr("a.yaml:1: 'a' is not finite"));
+  EXPECT_THAT(ErrorOf([&] { yaml.Number("b"); }), HasSubstr("a.yaml:2: 'b' is not finite"));
+  EXPECT_THAT(ErrorOf([&] { yaml.BoundedNumbers("c", 1e6, "px"); }),
+              HasSubstr("a.yaml:3: 'c' value 2e+300 is beyond the plausible 1e+06 px"));
+  EXPECT_EQ(yaml.BoundedNumber("d", 10.0, "m"), 5.0);
+  EXPECT_THAT(ErrorOf([&] { yaml.PositiveNumber("d", 1.0, "m"); }),
+              HasSubstr("a.yaml:4: 'd' value 5 is beyond the plausible 1 m"));
+  EXPECT_EQ(yaml.Line("d"), 4);
+  EXPECT_EQ(yaml.Line("points/1"), 10);
+  EXPECT_EQ(yaml.Line("nope"), 0);
+  // A near miss of a known key the map lacks is a typo; other unknown keys are ignored.
+  EXPECT_THAT(ErrorOf([&] { yaml.CheckTypos("cam0", {"intrinsics", "rostopic"}); }),
+              HasSubstr("a.yaml:6: unknown key 'cam0/intrinsic': did you mean 'intrinsics'?"));
+  EXPECT_THAT(ErrorOf([&] { yaml.CheckTypos("cam0", {"rostopic"}); }),
+              HasSubstr("a.yaml:7: unknown key 'cam0/Rostopic': did you mean 'rostopic'?"));
+  EXPECT_EQ(ErrorOf([&] { yaml.CheckTypos("", {"points", "e"}); }), "no error");
+}
+
 TEST(ReadImuYaml, EurocSensorFileWithOpenCvHeader) {
   const std::string path =
       std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/sensor.yaml";

@@ -34,6 +34,11 @@ struct Command {
   // Runs the command after its flags were set. Throws splinecal::Error for bad input (the front
   // end prints it on one line and exits 2). Returns the exit code.
   int (*run)();
+  // The input stage run() begins with: reads every file the flags name and checks them and the
+  // flags, up to the point where the heavy work (a solve, a simulation) would start. Writes
+  // nothing. Throws splinecal::Error exactly as run() would; the fuzz targets (tests/fuzz/) call
+  // it on every input, since a whole run per input would be far too slow.
+  void (*read_inputs)();
 };
 
 // Every command, in the order `splinecal help` lists them (src/cli/commands.cc).
@@ -41,6 +46,14 @@ const std::vector<Command>& AllCommands();
 
 // The whole front end: dispatch, flag parsing, error reporting. Returns the process exit code.
 int Main(int argc, char** argv);
+
+// Sets the gflags values of `args` (the arguments after the command name), accepting only the
+// command's flags. Returns false and fills `error` on the first problem; sets `help` when --help
+// was asked for.
+bool ParseFlags(const Command& command,
+                const std::vector<std::string>& args,
+                bool* help,
+                std::string* error);
 
 // Progress for long work goes to stderr through this, and nowhere when --quiet is set.
 void Progress(const std::string& line);

@@ -32,6 +32,10 @@ namespace cli {
 // The flag's value, refused with Error("--name: ...") unless finite and > 0 (or >= 0).
 double PositiveFlag(const std::string& name, double value);
 double NonNegativeFlag(const std::string& name, double value);
+// A time span flag [s] (a duration, a start offset, a knot spacing) in int64 nanoseconds: refused
+// unless finite, > 0 (>= 0 with allow_zero) and at most 1e9 s (31 years), which keeps its sum
+// with any timestamp (at most 4e18 ns, io/text_file.h) far from int64 overflow.
+int64_t SpanFlagNs(const std::string& name, double seconds, bool allow_zero = false);
 // A required path flag: refused when empty.
 const std::string& RequiredFlag(const std::string& name, const std::string& value);
 

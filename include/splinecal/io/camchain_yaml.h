@@ -28,6 +28,11 @@ namespace splinecal {
 // delay.
 Camchain ReadCamchainYaml(const std::string& path);
 
+// cam0's T_cam_imu and timeshift_cam_imu alone (identity and 0 when absent; the camera model is
+// left at its default), checked as ReadCamchainYaml checks them: for a command that needs no
+// intrinsics (align).
+CameraCalibration ReadCam0Extrinsics(const std::string& path);
+
 // The YAML text of `camchain` with every key above (Kalibr's camchain-imucam.yaml layout; numbers
 // with 17 significant digits so that it reads back exactly).
 std::string CamchainYamlText(const Camchain& camchain);

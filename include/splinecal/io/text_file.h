@@ -81,8 +81,15 @@ inline constexpr double kMaxVelocity = 1e5;        // [m/s]
 
 // Parses a decimal int64 without going through floating point.
 int64_t ParseInt64(std::string_view field, const TextFileReader& at, const std::string& what);
+
+// Timestamps beyond +-4e18 ns (as Unix time, the years 1843 to 2096) are refused: the difference
+// of any two accepted stamps then fits in int64, so that periods, gaps and spans never overflow.
+inline constexpr int64_t kMaxTimestampNs = 4'000'000'000'000'000'000;
+// ParseInt64 for a timestamp [ns], refused beyond kMaxTimestampNs.
+int64_t ParseTimestampNs(std::string_view field, const TextFileReader& at, const std::string& what);
 // Parses seconds written as decimal text ("1403715273.262142976") into int64 nanoseconds
-// exactly, digit by digit (never through a double); more than 9 decimals are rounded.
+// exactly, digit by digit (never through a double); more than 9 decimals are rounded. Refused
+// beyond kMaxTimestampNs.
 int64_t ParseSecondsToNs(std::string_view field, const TextFileReader& at, const std::string& what);
 
 // Reads a whole small file (YAML) into a string; throws Error(path, 0, ...) when unreadable.

@@ -20,16 +20,31 @@ class YamlDocument {
 
   const std::string& path() const;
   bool Has(const std::string& key_path) const;
+  // The line of the node at key_path (1-based; 0 when missing), for messages of the readers.
+  int64_t Line(const std::string& key_path) const;
   double Number(const std::string& key_path) const;              // finite
+  // Finite, and at most max_abs in magnitude: a larger value is refused as implausible for the
+  // quantity (a corrupt file or another unit), naming the limit and `unit`.
+  double BoundedNumber(const std::string& key_path, double max_abs, const char* unit) const;
   double PositiveNumber(const std::string& key_path) const;      // finite and > 0
+  double PositiveNumber(const std::string& key_path, double max_abs, const char* unit) const;
   int64_t Integer(const std::string& key_path) const;
   std::string String(const std::string& key_path) const;
   std::vector<double> Numbers(const std::string& key_path) const;  // a flat sequence
+  std::vector<double> BoundedNumbers(const std::string& key_path,
+                                     double max_abs,
+                                     const char* unit) const;
   // A sequence of rows (e.g. T_cam_imu), each the same length; or an OpenCV matrix
   // ({rows, cols, data}).
   std::vector<std::vector<double>> Rows(const std::string& key_path) const;
   // Keys of the top-level map, in file order.
   std::vector<std::string> TopLevelKeys() const;
+
+  // Refuses a key of the map at map_path ("" for the top level) that is not in `known` but
+  // differs only slightly (case, a letter or two) from a key of `known` the map lacks: a typo,
+  // which would otherwise leave an optional key at its default without a word, or be reported
+  // as a missing key without the line that holds it.
+  void CheckTypos(const std::string& map_path, const std::vector<std::string>& known) const;
 
  private:
   struct Impl;

@@ -1,0 +1,5 @@
+// Fuzzes the input stage of `splinecal simulate` (files and flags, read and checked up to the
+// heavy work); the input format is in command_inputs.h.
+#include "command_inputs.h"
+
+SPLINECAL_COMMAND_INPUTS_FUZZER("simulate")
