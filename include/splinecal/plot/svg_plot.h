@@ -30,6 +30,7 @@
 #ifndef SPLINECAL_PLOT_SVG_PLOT_H_
 #define SPLINECAL_PLOT_SVG_PLOT_H_
 
+#include <deque>
 #include <limits>
 #include <string>
 #include <vector>
@@ -76,7 +77,9 @@ struct Panel {
   bool equal_aspect = false;
   bool grid = true;  // light grid lines at the major ticks
   LegendPosition legend = LegendPosition::kTopRight;
-  std::vector<Series> series;
+  // A deque, so that a reference from series.emplace_back() stays valid while more series are
+  // added (plots are built that way; a vector reallocates under such references).
+  std::deque<Series> series;
 };
 
 struct Figure {
@@ -86,7 +89,7 @@ struct Figure {
   int columns = 1;
   double panel_width = 440.0;   // [px], including room for tick labels and axis labels
   double panel_height = 330.0;  // [px]
-  std::vector<Panel> panels;
+  std::deque<Panel> panels;  // a deque for the same reason as Panel::series
 };
 
 // The SVG document of `figure`. CHECK-fails on programmer errors only (mismatched series sizes,
