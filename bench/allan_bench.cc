@@ -20,7 +20,7 @@
 
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/allan_deviation.h"
-#include "splinecal/allan/static_recording.h"
+#include "splinecal/io/static_recording.h"
 
 namespace splinecal {
 namespace {

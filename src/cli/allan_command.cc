@@ -9,7 +9,7 @@
 #include <string>
 
 #include "splinecal/allan/allan.h"
-#include "splinecal/allan/static_recording.h"
+#include "splinecal/io/static_recording.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"

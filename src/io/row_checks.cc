@@ -47,13 +47,20 @@ Eigen::Quaterniond CheckedUnitQuaternion(const TextFileReader& reader,
   return Eigen::Quaterniond(q.coeffs() / norm);
 }
 
+void FailNotIncreasing(const TextFileReader& reader,
+                       int64_t previous_t_ns,
+                       int64_t t_ns,
+                       std::string_view field) {
+  reader.Fail(std::string("timestamps not increasing: ") + std::to_string(t_ns) +
+                  (t_ns == previous_t_ns
+                       ? " repeats the previous row"
+                       : " is before the previous row's " + std::to_string(previous_t_ns)),
+              field);
+}
+
 void TimestampChecker::Add(int64_t t_ns, std::string_view field) {
   if (!times_.empty() && t_ns <= times_.back()) {
-    reader_->Fail(std::string("timestamps not increasing: ") + std::to_string(t_ns) +
-                      (t_ns == times_.back() ? " repeats the previous row"
-                                             : " is before the previous row's " +
-                                                   std::to_string(times_.back())),
-                  field);
+    FailNotIncreasing(*reader_, times_.back(), t_ns, field);
   }
   times_.push_back(t_ns);
   lines_.push_back(reader_->line_number());

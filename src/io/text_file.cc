@@ -20,12 +20,6 @@ constexpr size_t kBufferBytes = size_t{256} << 10;
 // memory on a file without newlines.
 constexpr size_t kMaxLineBytes = size_t{1} << 20;
 
-std::string_view Trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
-
 std::string Quote(std::string_view field) {
   constexpr size_t kShown = 40;
   std::string shown(field.substr(0, kShown));
@@ -104,8 +98,7 @@ bool TextFileReader::ReadRawLine() {
 bool TextFileReader::NextLine() {
   while (ReadRawLine()) {
     if (!line_.empty() && line_.back() == '\r') line_.remove_suffix(1);
-    const std::string_view content = Trim(line_);
-    if (content.empty() || content.front() == '#') continue;
+    if (!IsDataLine(line_)) continue;
     ++data_lines_;
     return true;
   }
@@ -132,7 +125,7 @@ void SplitFields(std::string_view line, std::vector<std::string_view>* fields) {
     while (true) {
       const size_t comma = line.find(',', start);
       const size_t stop = comma == std::string_view::npos ? line.size() : comma;
-      fields->push_back(Trim(line.substr(start, stop - start)));
+      fields->push_back(TrimLine(line.substr(start, stop - start)));
       if (comma == std::string_view::npos) break;
       start = comma + 1;
     }
@@ -155,18 +148,17 @@ bool LooksNumeric(std::string_view field) {
 }
 
 double ParseFiniteDouble(std::string_view field, const TextFileReader& at, const std::string& what) {
+  double value = 0.0;
+  if (TryParseFiniteDouble(field, &value)) return value;
+  // Tell a field that is no number from one that is not finite.
   std::string_view digits = field;
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  double value = 0.0;
   const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (digits.empty() || result.ptr != digits.data() + digits.size() ||
       (result.ec != std::errc() && result.ec != std::errc::result_out_of_range)) {
     at.Fail(what + ": expected a number, got " + Quote(field), field);
   }
-  if (result.ec == std::errc::result_out_of_range || !std::isfinite(value)) {
-    at.Fail(what + ": value " + Quote(field) + " is not a finite number", field);
-  }
-  return value;
+  at.Fail(what + ": value " + Quote(field) + " is not a finite number", field);
 }
 
 double ParseBoundedDouble(std::string_view field,
@@ -183,17 +175,16 @@ double ParseBoundedDouble(std::string_view field,
 }
 
 int64_t ParseInt64(std::string_view field, const TextFileReader& at, const std::string& what) {
+  int64_t value = 0;
+  if (TryParseInt64(field, &value)) return value;
+  // Tell an integer out of range from a field that is no integer.
   std::string_view digits = field;
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  int64_t value = 0;
   const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (result.ec == std::errc::result_out_of_range) {
     at.Fail(what + ": integer " + Quote(field) + " is out of range", field);
   }
-  if (digits.empty() || result.ec != std::errc() || result.ptr != digits.data() + digits.size()) {
-    at.Fail(what + ": expected an integer, got " + Quote(field), field);
-  }
-  return value;
+  at.Fail(what + ": expected an integer, got " + Quote(field), field);
 }
 
 namespace {

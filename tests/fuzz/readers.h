@@ -23,7 +23,7 @@
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/spline_csv.h"
-#include "splinecal/allan/static_recording.h"
+#include "splinecal/io/static_recording.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/io/yaml_document.h"
 

@@ -158,5 +158,24 @@ TEST(ParseSecondsToNs, DigitExactWithoutFloatingPoint) {
   EXPECT_THROW(ParseSecondsToNs(fields[6], reader, "t"), Error);
 }
 
+TEST(TextFile, DataLinesAndTryParsersAgreeWithTheReader) {
+  EXPECT_EQ(TrimLine(" \t1,2 \r"), "1,2");
+  EXPECT_TRUE(IsDataLine("  1,2\r"));
+  EXPECT_FALSE(IsDataLine(" \t\r"));
+  EXPECT_FALSE(IsDataLine("  # comment"));
+  int64_t t = 0;
+  EXPECT_TRUE(TryParseInt64("+1403715273262142976", &t));
+  EXPECT_EQ(t, 1403715273262142976LL);
+  EXPECT_FALSE(TryParseInt64("", &t));
+  EXPECT_FALSE(TryParseInt64("12x", &t));
+  EXPECT_FALSE(TryParseInt64("99999999999999999999", &t));
+  double v = 0.0;
+  EXPECT_TRUE(TryParseFiniteDouble("+2.5e-3", &v));
+  EXPECT_EQ(v, 2.5e-3);
+  for (const char* bad : {"", "+", "1.5.", "nan", "inf", "1e999", "x"}) {
+    EXPECT_FALSE(TryParseFiniteDouble(bad, &v)) << bad;
+  }
+}
+
 }  // namespace
 }  // namespace splinecal

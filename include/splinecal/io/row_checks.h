@@ -33,6 +33,13 @@ Eigen::Quaterniond CheckedUnitQuaternion(const TextFileReader& reader,
                                          double y,
                                          double z);
 
+// Throws "timestamps not increasing: ..." at `field`, for a row whose t_ns is not after the
+// previous row's (callers test t_ns <= previous_t_ns themselves: this runs once per row).
+[[noreturn]] void FailNotIncreasing(const TextFileReader& reader,
+                                    int64_t previous_t_ns,
+                                    int64_t t_ns,
+                                    std::string_view field);
+
 // Timestamps must increase strictly; gaps are measured against the median period.
 class TimestampChecker {
  public:

@@ -7,6 +7,8 @@
 #ifndef SPLINECAL_IO_TEXT_FILE_H_
 #define SPLINECAL_IO_TEXT_FILE_H_
 
+#include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -53,6 +55,51 @@ class TextFileReader {
   int64_t line_number_ = 0;
   int64_t data_lines_ = 0;
 };
+
+// The line and number primitives of every reader, shared with code that scans a file itself (the
+// parallel EuRoC path, io/parallel_euroc_imu.h) so that both accept exactly the same text. Inline:
+// they run once per line or field, on files of 10^7 rows.
+
+// `line` without surrounding spaces and tabs and without a trailing CR.
+inline std::string_view TrimLine(std::string_view line) {
+  while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+  while (!line.empty() && (line.back() == ' ' || line.back() == '\t' || line.back() == '\r')) {
+    line.remove_suffix(1);
+  }
+  return line;
+}
+
+// True for a line that holds data: not blank and not a '#' comment line (the lines
+// TextFileReader::NextLine returns).
+inline bool IsDataLine(std::string_view line) {
+  const std::string_view content = TrimLine(line);
+  return !content.empty() && content.front() != '#';
+}
+
+// The number at the start of [begin, end): an optional '+', then what std::from_chars reads.
+// Returns the first character after it; nullptr when there is no number, it is out of range or
+// (the double) not finite.
+inline const char* ParseInt64Prefix(const char* begin, const char* end, int64_t* value) {
+  if (begin != end && *begin == '+') ++begin;
+  const std::from_chars_result result = std::from_chars(begin, end, *value);
+  return result.ec == std::errc() ? result.ptr : nullptr;
+}
+inline const char* ParseFiniteDoublePrefix(const char* begin, const char* end, double* value) {
+  if (begin != end && *begin == '+') ++begin;
+  const std::from_chars_result result = std::from_chars(begin, end, *value);
+  return result.ec == std::errc() && std::isfinite(*value) ? result.ptr : nullptr;
+}
+
+// The parsers below without error reporting, for callers that hand failures to them: true when
+// the whole field reads as an int64, or as a finite double.
+inline bool TryParseInt64(std::string_view field, int64_t* value) {
+  const char* end = field.data() + field.size();
+  return ParseInt64Prefix(field.data(), end, value) == end;
+}
+inline bool TryParseFiniteDouble(std::string_view field, double* value) {
+  const char* end = field.data() + field.size();
+  return ParseFiniteDoublePrefix(field.data(), end, value) == end;
+}
 
 // Splits a data line into fields: at commas (surrounding spaces trimmed) when the line has a
 // comma, else at runs of spaces and tabs. `fields` views into `line`.

@@ -1,4 +1,4 @@
-#include "splinecal/allan/static_recording.h"
+#include "splinecal/io/static_recording.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

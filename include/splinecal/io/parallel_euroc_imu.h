@@ -1,0 +1,41 @@
+// The fast path for long EuRoC imu0/data.csv files (internal to io/; used by
+// io/static_recording.h). An hour-long static recording at 200-1000 Hz is 10^6-10^7 rows, over a
+// GB of text: the file is memory-mapped and split at line ends, and every hardware thread parses
+// its share straight into the final arrays (a first pass counts each share's rows).
+//
+// Rows are read with the TextFileReader path's primitives (io/text_file.h: IsDataLine, TrimLine,
+// the number parsers ParseInt64Prefix and ParseFiniteDoublePrefix, the plausibility limits
+// kMaxAngularRate and kMaxAcceleration), but nothing here reports an error: anything unusual (a
+// header row without '#', a wrong column count, a bad or implausible value, timestamps that do not
+// increase, fewer than 2 rows) returns nullopt, and the caller reads the file again with
+// TextFileReader, which names the line and column. Both paths give the same numbers, bit for bit.
+#ifndef SPLINECAL_IO_PARALLEL_EUROC_IMU_H_
+#define SPLINECAL_IO_PARALLEL_EUROC_IMU_H_
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace splinecal {
+namespace internal {
+
+struct EurocImuColumns {
+  // gyro xyz [rad/s], accel xyz [m/s^2], multiplied by the scales on input.
+  std::array<std::vector<double>, 6> values;
+  int64_t first_t_ns = 0;
+  int64_t last_t_ns = 0;
+  int64_t largest_step_ns = 0;  // the longest time between consecutive rows
+};
+
+// Readings are multiplied by gyro_scale / accel_scale (both positive) and must stay within the
+// plausibility limits after scaling. nullopt also when the file cannot be mapped.
+std::optional<EurocImuColumns> ReadEurocImuParallel(const std::string& path,
+                                                    double gyro_scale,
+                                                    double accel_scale);
+
+}  // namespace internal
+}  // namespace splinecal
+
+#endif  // SPLINECAL_IO_PARALLEL_EUROC_IMU_H_
