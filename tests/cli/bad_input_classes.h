@@ -62,6 +62,16 @@ inline std::string ValidObservations() {
   return text;
 }
 
+// allan's plain columns: gyro xyz, accel xyz of a resting IMU, no timestamps.
+inline std::string ValidColumns() {
+  std::string text = "# gyro x,y,z [rad/s], accel x,y,z [m/s^2]\n";
+  for (int i = 0; i < 400; ++i) {
+    text += std::to_string(1e-3 * std::sin(0.7 * i)) + ",0.002,-0.001,0.05," +
+            std::to_string(0.02 * std::cos(0.3 * i)) + ",9.81\n";
+  }
+  return text;
+}
+
 // The bundled YAML files (data/): a camchain, an aprilgrid and EuRoC's sensor.yaml.
 inline std::string DataText(const std::string& relative_path) {
   return ReadFileText(std::string(SPLINECAL_SOURCE_DIR) + "/data/" + relative_path);
@@ -135,6 +145,7 @@ enum FileKind : unsigned {
   kTableFile = 2,         // time-stamped rows (poses, ground truth, spline)
   kObservationsFile = 4,  // observations.csv: rows per point, not ordered in time
   kYamlFile = 8,
+  kColumnsFile = 16,  // allan's plain columns: no timestamps, but units of g
 };
 
 struct FileRole {
@@ -173,7 +184,7 @@ inline BadClass FieldClass(const std::string& name,
                            const std::string& value,
                            const std::string& expect) {
   return {name,
-          kImuFile | kTableFile | kObservationsFile,
+          kImuFile | kTableFile | kObservationsFile | kColumnsFile,
           [which, value](const std::string& v, const FileRole& r) {
             return ReplaceField(v, 3, r.number_fields[which], value);
           },
@@ -194,7 +205,7 @@ inline BadClass YamlValueClass(const std::string& name,
 }
 
 inline const std::vector<BadClass>& BadClasses() {
-  constexpr unsigned kCsv = kImuFile | kTableFile | kObservationsFile;
+  constexpr unsigned kCsv = kImuFile | kTableFile | kObservationsFile | kColumnsFile;
   constexpr unsigned kTimeSeries = kImuFile | kTableFile;
   using Role = const FileRole&;
   static const std::vector<BadClass> classes = {
@@ -247,7 +258,7 @@ inline const std::vector<BadClass>& BadClasses() {
        },
        ":22: gap of"},
       {"AccelerometerInG",
-       kImuFile,
+       kImuFile | kColumnsFile,
        [](const std::string& v, Role) {
          auto lines = Lines(v);
          for (size_t i = 1; i < lines.size(); ++i) {
