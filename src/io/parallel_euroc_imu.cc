@@ -7,7 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <limits>
 #include <string_view>
 #include <thread>
 
@@ -56,14 +56,14 @@ struct ChunkScan {
   bool ok = true;
 };
 
-// Calls visit(line) for each data line of `chunk` (whole lines), trimmed as TrimLine does; stops
-// and returns false as soon as visit does.
+// Calls visit(DataLineContent(line)) for each data line of `chunk` (whole lines); stops and
+// returns false as soon as visit does.
 template <typename Visit>
 bool ForEachDataLine(std::string_view chunk, Visit&& visit) {
   while (!chunk.empty()) {
     const size_t newline = chunk.find('\n');
-    const std::string_view line = chunk.substr(0, newline);
-    if (IsDataLine(line) && !visit(TrimLine(line))) return false;
+    const std::string_view content = DataLineContent(chunk.substr(0, newline));
+    if (!content.empty() && !visit(content)) return false;
     if (newline == std::string_view::npos) break;
     chunk.remove_prefix(newline + 1);
   }
@@ -74,18 +74,19 @@ bool IsBlank(char c) { return c == ' ' || c == '\t'; }
 
 // A row "t,gx,gy,gz,ax,ay,az" (blanks allowed around the commas): a row that SplitFields cuts into
 // seven fields at its commas and that TryParseInt64 and TryParseFiniteDouble accept, read in one
-// pass. False for anything else, whitespace-separated columns included: the TextFileReader path
-// then reads or refuses it.
+// pass (the caller's finite limits refuse what TryParseFiniteDouble would refuse: inf, nan).
+// False for anything else, whitespace-separated columns included: the TextFileReader path then
+// reads or refuses it.
 bool ParseRow(std::string_view line, int64_t* t_ns, double* values) {
   const char* p = line.data();
   const char* const end = p + line.size();
-  p = ParseInt64Prefix(p, end, t_ns);
+  p = ParseNumberPrefix(p, end, t_ns);
   for (int a = 0; a < 6 && p != nullptr; ++a) {
     while (p != end && IsBlank(*p)) ++p;
     if (p == end || *p != ',') return false;
     ++p;
     while (p != end && IsBlank(*p)) ++p;
-    p = ParseFiniteDoublePrefix(p, end, &values[a]);
+    p = ParseNumberPrefix(p, end, &values[a]);
   }
   return p == end;
 }
@@ -137,10 +138,13 @@ std::optional<EurocImuColumns> ReadEurocImuParallel(const std::string& path,
   EurocImuColumns columns;
   for (std::vector<double>& values : columns.values) values.resize(rows);
   double scales[6];
-  double limits[6];  // in the file's unit, as the TextFileReader path checks them
+  // Limits in the file's unit, as the TextFileReader path checks them; kept finite (a tiny scale
+  // would make them inf) so that they also refuse inf and nan.
+  double limits[6];
   for (int a = 0; a < 6; ++a) {
     scales[a] = a < 3 ? gyro_scale : accel_scale;
-    limits[a] = (a < 3 ? kMaxAngularRate : kMaxAcceleration) / scales[a];
+    limits[a] = std::min((a < 3 ? kMaxAngularRate : kMaxAcceleration) / scales[a],
+                         std::numeric_limits<double>::max());
   }
   // Pass 2: parse.
   RunOnThreads(threads, [&](int chunk) {

@@ -58,6 +58,10 @@ TEST(ReadEurocImuParallel, HandsAnythingUnusualBack) {
   EXPECT_TRUE(ReadEurocImuParallel(
                   dir.Write("deg.csv", rows + "6000000000,5000,0,0,0,0,9.8\n"), 0.0175, 1.0)
                   .has_value());
+  // inf stays refused when a tiny scale would make the limit inf too.
+  EXPECT_FALSE(
+      ReadEurocImuParallel(dir.Write("inf.csv", rows + "6000000000,inf,0,0,0,0,9.8\n"), 1e-300, 1.0)
+          .has_value());
   EXPECT_FALSE(ReadEurocImuParallel(dir.File("missing.csv"), 1.0, 1.0).has_value());
 }
 

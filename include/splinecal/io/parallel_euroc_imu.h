@@ -1,11 +1,11 @@
 // The fast path for long EuRoC imu0/data.csv files (internal to io/; used by
-// io/static_recording.h). An hour-long static recording at 200-1000 Hz is 10^6-10^7 rows, over a
-// GB of text: the file is memory-mapped and split at line ends, and every hardware thread parses
-// its share straight into the final arrays (a first pass counts each share's rows).
+// io/static_recording.h). Allan recordings last hours: at 200-1000 Hz that is 10^6-10^7 rows, up
+// to 1.5 GB of text. The file is memory-mapped and split at line ends, and every hardware thread
+// parses its share straight into the final arrays (a first pass counts each share's rows).
 //
-// Rows are read with the TextFileReader path's primitives (io/text_file.h: IsDataLine, TrimLine,
-// the number parsers ParseInt64Prefix and ParseFiniteDoublePrefix, the plausibility limits
-// kMaxAngularRate and kMaxAcceleration), but nothing here reports an error: anything unusual (a
+// Rows are read with the TextFileReader path's primitives (io/text_file.h: DataLineContent,
+// the number parser ParseNumberPrefix, the plausibility limits kMaxAngularRate and
+// kMaxAcceleration), but nothing here reports an error: anything unusual (a
 // header row without '#', a wrong column count, a bad or implausible value, timestamps that do not
 // increase, fewer than 2 rows) returns nullopt, and the caller reads the file again with
 // TextFileReader, which names the line and column. Both paths give the same numbers, bit for bit.

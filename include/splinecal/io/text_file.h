@@ -69,36 +69,36 @@ inline std::string_view TrimLine(std::string_view line) {
   return line;
 }
 
-// True for a line that holds data: not blank and not a '#' comment line (the lines
-// TextFileReader::NextLine returns).
-inline bool IsDataLine(std::string_view line) {
+// The data of a line as TrimLine leaves it; empty for a blank line and a '#' comment line.
+inline std::string_view DataLineContent(std::string_view line) {
   const std::string_view content = TrimLine(line);
-  return !content.empty() && content.front() != '#';
+  return !content.empty() && content.front() == '#' ? std::string_view() : content;
 }
 
-// The number at the start of [begin, end): an optional '+', then what std::from_chars reads.
-// Returns the first character after it; nullptr when there is no number, it is out of range or
-// (the double) not finite.
-inline const char* ParseInt64Prefix(const char* begin, const char* end, int64_t* value) {
-  if (begin != end && *begin == '+') ++begin;
-  const std::from_chars_result result = std::from_chars(begin, end, *value);
+// True for a line that holds data: not blank and not a '#' comment line (the lines
+// TextFileReader::NextLine returns).
+inline bool IsDataLine(std::string_view line) { return !DataLineContent(line).empty(); }
+
+// The number at the start of [begin, end) (T is int64_t or double): an optional '+', then what
+// std::from_chars reads. Returns the first character after it; nullptr when there is no number or
+// it is out of range. A double may be inf or nan: callers check finiteness (TryParseFiniteDouble)
+// or a finite limit, which refuses both.
+template <typename T>
+inline const char* ParseNumberPrefix(const char* begin, const char* end, T* value) {
+  const bool plus = begin != end && *begin == '+';  // std::from_chars refuses it
+  const std::from_chars_result result = std::from_chars(begin + plus, end, *value);
   return result.ec == std::errc() ? result.ptr : nullptr;
-}
-inline const char* ParseFiniteDoublePrefix(const char* begin, const char* end, double* value) {
-  if (begin != end && *begin == '+') ++begin;
-  const std::from_chars_result result = std::from_chars(begin, end, *value);
-  return result.ec == std::errc() && std::isfinite(*value) ? result.ptr : nullptr;
 }
 
 // The parsers below without error reporting, for callers that hand failures to them: true when
 // the whole field reads as an int64, or as a finite double.
 inline bool TryParseInt64(std::string_view field, int64_t* value) {
   const char* end = field.data() + field.size();
-  return ParseInt64Prefix(field.data(), end, value) == end;
+  return ParseNumberPrefix(field.data(), end, value) == end;
 }
 inline bool TryParseFiniteDouble(std::string_view field, double* value) {
   const char* end = field.data() + field.size();
-  return ParseFiniteDoublePrefix(field.data(), end, value) == end;
+  return ParseNumberPrefix(field.data(), end, value) == end && std::isfinite(*value);
 }
 
 // Splits a data line into fields: at commas (surrounding spaces trimmed) when the line has a
