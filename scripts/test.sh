@@ -16,7 +16,7 @@ for arg in "$@"; do
       # -O2 without debug info: Eigen needs the inlining of -O2 to run the tests at a usable
       # speed (at -O1 they ran 40 times slower than Release), and debug info only costs time.
       cmake_args=(-DCMAKE_BUILD_TYPE=Sanitize "-DCMAKE_CXX_FLAGS_SANITIZE=-O2 -g0"
-                  -DSPLINECAL_SANITIZE=ON -DSPLINECAL_BUILD_BENCH=OFF)
+                  -DSPLINECAL_SANITIZE=ON -DSPLINECAL_BUILD_BENCH=OFF -DSPLINECAL_SLOW_TESTS=OFF)
       ctest_args+=(-LE slow)
       export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
       export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
