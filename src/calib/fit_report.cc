@@ -22,28 +22,6 @@ void Append3(const Eigen::Vector3d& v, std::string* row) {
   for (int a = 0; a < 3; ++a) *row += "," + FormatDouble(v[a]);
 }
 
-std::string HtmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string Fixed(double value, int digits) { return StringPrintf("%.*g", digits, value); }
 
@@ -284,14 +262,14 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
       "<style>body{font-family:sans-serif;max-width:960px;margin:auto}"
       "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
       "text-align:left}.warn{color:#a00}</style></head><body>\n<h1>splinecal fit</h1>\n";
-  html += "<p>IMU: " + HtmlEscape(inputs.imu_path) + "<br>poses: " + HtmlEscape(inputs.poses_path) +
+  html += "<p>IMU: " + plot::EscapeXml(inputs.imu_path) + "<br>poses: " + plot::EscapeXml(inputs.poses_path) +
           "<br>noise: " +
-          HtmlEscape(inputs.imu_yaml_path.empty() ? "ADIS16448 defaults" : inputs.imu_yaml_path) +
+          plot::EscapeXml(inputs.imu_yaml_path.empty() ? "ADIS16448 defaults" : inputs.imu_yaml_path) +
           "</p>\n";
   html += "<table><tr><th>quantity</th><th>estimate</th><th>std</th></tr>\n";
   auto row = [&html](const std::string& name, const std::string& value, const std::string& std) {
-    html += "<tr><td>" + HtmlEscape(name) + "</td><td>" + HtmlEscape(value) + "</td><td>" +
-            HtmlEscape(std) + "</td></tr>\n";
+    html += "<tr><td>" + plot::EscapeXml(name) + "</td><td>" + plot::EscapeXml(value) + "</td><td>" +
+            plot::EscapeXml(std) + "</td></tr>\n";
   };
   row("gyro bias [rad/s]", VectorText(r.gyro_bias, 6), VectorText(r.gyro_bias_std, 3));
   row("accel bias [m/s^2]", VectorText(r.accel_bias, 6), VectorText(r.accel_bias_std, 3));
@@ -328,7 +306,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   html += "</table>\n";
   if (!r.warnings.empty()) {
     html += "<h2>Warnings</h2><ul class=\"warn\">\n";
-    for (const std::string& w : r.warnings) html += "<li>" + HtmlEscape(w) + "</li>\n";
+    for (const std::string& w : r.warnings) html += "<li>" + plot::EscapeXml(w) + "</li>\n";
     html += "</ul>\n";
   }
   if (!imu.empty()) {

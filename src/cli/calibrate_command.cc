@@ -61,28 +61,6 @@ constexpr double kPi = 3.14159265358979323846;
 // At most this many points per series in report.html (the file stays a few MB).
 constexpr size_t kMaxPlotPoints = 6000;
 
-std::string HtmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 // Every `stride`-th element so that at most kMaxPlotPoints remain.
 size_t Stride(size_t n) { return std::max<size_t>(1, (n + kMaxPlotPoints - 1) / kMaxPlotPoints); }
@@ -246,11 +224,11 @@ std::string ReportHtml(const CalibrationResult& r, const std::string& title) {
   for (plot::Series& s : components) height.series.push_back(std::move(s));
 
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << HtmlEscape(title)
+  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << plot::EscapeXml(title)
        << "</title>\n<style>body{font-family:sans-serif;margin:2em;max-width:1000px}"
           "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:3px 8px;"
           "text-align:right}th{text-align:left}</style></head><body>\n";
-  html << "<h1>" << HtmlEscape(title) << "</h1>\n<table>\n";
+  html << "<h1>" << plot::EscapeXml(title) << "</h1>\n<table>\n";
   for (size_t c = 0; c < r.cameras.size(); ++c) {
     const CameraEstimate& e = r.cameras[c];
     const Eigen::Vector3d rpy = e.calibration.T_cam_imu.so3().Log() * 180.0 / kPi;
@@ -289,7 +267,7 @@ std::string ReportHtml(const CalibrationResult& r, const std::string& title) {
   html << "</table>\n";
   if (!r.warnings.empty()) {
     html << "<h2>Warnings</h2>\n<ul>\n";
-    for (const std::string& w : r.warnings) html << "<li>" << HtmlEscape(w) << "</li>\n";
+    for (const std::string& w : r.warnings) html << "<li>" << plot::EscapeXml(w) << "</li>\n";
     html << "</ul>\n";
   }
   html << "<h2>Reprojection</h2>\n" << plot::RenderSvg(reprojection) << "\n";

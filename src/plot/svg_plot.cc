@@ -58,38 +58,6 @@ std::string Px(double value) {
   return text == "-0.00" ? "0.00" : text;
 }
 
-std::string Escape(const std::string& text) {
-  std::string escaped;
-  escaped.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      case '\'':
-        escaped += "&apos;";
-        break;
-      default:
-        // Control characters are not allowed in XML 1.0 text.
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
-          escaped += ' ';
-        } else {
-          escaped += c;
-        }
-    }
-  }
-  return escaped;
-}
-
 // Number of characters (UTF-8 code points), for estimating text width.
 int CharCount(const std::string& text) {
   int count = 0;
@@ -102,9 +70,9 @@ int CharCount(const std::string& text) {
 // Tick label markup: "10^k" becomes 10 with a superscript k.
 std::string TickLabelMarkup(const std::string& label) {
   const size_t caret = label.find('^');
-  if (caret == std::string::npos) return Escape(label);
-  return Escape(label.substr(0, caret)) + "<tspan dy=\"-5\" font-size=\"8\">" +
-         Escape(label.substr(caret + 1)) + "</tspan>";
+  if (caret == std::string::npos) return EscapeXml(label);
+  return EscapeXml(label.substr(0, caret)) + "<tspan dy=\"-5\" font-size=\"8\">" +
+         EscapeXml(label.substr(caret + 1)) + "</tspan>";
 }
 
 double Pow10(int exponent) { return std::pow(10.0, exponent); }
@@ -329,7 +297,7 @@ class PanelWriter {
     const double centre_x = 0.5 * (area_.left + area_.right);
     if (!panel_.title.empty()) {
       *out_ += "<text x=\"" + Px(centre_x) + "\" y=\"18\" text-anchor=\"middle\" " +
-               "font-weight=\"bold\">" + Escape(panel_.title) + "</text>\n";
+               "font-weight=\"bold\">" + EscapeXml(panel_.title) + "</text>\n";
     }
     const std::string clip_id = "plot-area-" + std::to_string(index_);
     *out_ += "<defs><clipPath id=\"" + clip_id + "\"><rect " + RectAttributes() +
@@ -344,12 +312,12 @@ class PanelWriter {
 
     if (!panel_.x.label.empty()) {
       *out_ += "<text x=\"" + Px(centre_x) + "\" y=\"" + Px(area_.bottom + 38) +
-               "\" text-anchor=\"middle\">" + Escape(panel_.x.label) + "</text>\n";
+               "\" text-anchor=\"middle\">" + EscapeXml(panel_.x.label) + "</text>\n";
     }
     if (!panel_.y.label.empty()) {
       const double centre_y = 0.5 * (area_.top + area_.bottom);
       *out_ += "<text transform=\"translate(16," + Px(centre_y) +
-               ") rotate(-90)\" text-anchor=\"middle\">" + Escape(panel_.y.label) + "</text>\n";
+               ") rotate(-90)\" text-anchor=\"middle\">" + EscapeXml(panel_.y.label) + "</text>\n";
     }
 
     *out_ += "<g clip-path=\"url(#" + clip_id + ")\">\n";
@@ -373,7 +341,7 @@ class PanelWriter {
       if (panel_.series[s].color.empty()) ++automatic;
     }
     const Series& series = panel_.series[series_index];
-    return series.color.empty() ? kPalette[automatic % kPaletteSize] : Escape(series.color);
+    return series.color.empty() ? kPalette[automatic % kPaletteSize] : EscapeXml(series.color);
   }
 
   void WriteGrid(const std::vector<Tick>& x_ticks,
@@ -567,7 +535,7 @@ class PanelWriter {
                  "\" fill=\"" + color + "\" stroke=\"none\"/>\n";
       }
       *out_ += "<text x=\"" + Px(sample_x + kSampleWidth + kPad) + "\" y=\"" + Px(row_y + 4) +
-               "\">" + Escape(series.label) + "</text>\n";
+               "\">" + EscapeXml(series.label) + "</text>\n";
     }
     *out_ += "</g>\n";
   }
@@ -583,6 +551,38 @@ class PanelWriter {
 };
 
 }  // namespace
+
+std::string EscapeXml(const std::string& text) {
+  std::string escaped;
+  escaped.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&apos;";
+        break;
+      default:
+        // Control characters are not allowed in XML 1.0 text.
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
+          escaped += ' ';
+        } else {
+          escaped += c;
+        }
+    }
+  }
+  return escaped;
+}
 
 void AutoRange(double lo, double hi, Scale scale, double* range_lo, double* range_hi) {
   CHECK(std::isfinite(lo) && std::isfinite(hi) && lo <= hi)
@@ -669,7 +669,7 @@ std::string RenderSvg(const Figure& figure) {
          "\" fill=\"white\"/>\n";
   if (!figure.title.empty()) {
     out += "<text x=\"" + Px(width / 2) + "\" y=\"21\" text-anchor=\"middle\" font-size=\"15\" " +
-           "font-weight=\"bold\">" + Escape(figure.title) + "</text>\n";
+           "font-weight=\"bold\">" + EscapeXml(figure.title) + "</text>\n";
   }
   for (int p = 0; p < num_panels; ++p) {
     const double x = (p % columns) * figure.panel_width;

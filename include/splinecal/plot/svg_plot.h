@@ -92,6 +92,10 @@ struct Figure {
   std::deque<Panel> panels;  // a deque for the same reason as Panel::series
 };
 
+// `text` made safe for XML and HTML text and attribute values: & < > " ' become entities and
+// control characters (which XML 1.0 forbids) become spaces.
+std::string EscapeXml(const std::string& text);
+
 // The SVG document of `figure`. CHECK-fails on programmer errors only (mismatched series sizes,
 // columns < 1, non-positive panel size, a log axis with a given range <= 0).
 std::string RenderSvg(const Figure& figure);
