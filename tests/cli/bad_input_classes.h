@@ -160,6 +160,8 @@ struct FileRole {
   // Where a format diagnoses a class more precisely than the generic expectation (a spline.csv
   // reports a repeated or swapped knot as non-uniform spacing), the substring to expect instead.
   std::map<std::string, std::string> expect_instead = {};
+  // YAML files whose yaml_key may be left out (align's camchain): no "missing key" row.
+  bool yaml_key_optional = false;
 };
 
 struct BadClass {
