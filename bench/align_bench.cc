@@ -3,7 +3,7 @@
 // (tests/calib/align_test_data.h).
 #include <benchmark/benchmark.h>
 
-#include "../tests/calib/align_test_data.h"
+#include "calib/align_test_data.h"
 #include "splinecal/calib/align.h"
 #include "splinecal/calib/preintegration.h"
 

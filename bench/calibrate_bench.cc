@@ -13,75 +13,37 @@
 #include <map>
 #include <memory>
 
+#include "calib/calibrate_test_scenario.h"
 #include "splinecal/calib/calibrate.h"
-#include "splinecal/calib/simulate_camera.h"
 
 namespace splinecal {
 namespace {
 
-PinholeCamera EurocCamera() {
-  PinholeCamera c;
-  c.fu = 458.654;
-  c.fv = 457.296;
-  c.pu = 367.215;
-  c.pv = 248.375;
-  c.distortion = DistortionModel::kRadTan;
-  c.distortion_coeffs << -0.28340811, 0.07395907, 0.00019359, 1.76187114e-05;
-  c.width = 752;
-  c.height = 480;
-  return c;
-}
-
-struct Sequence {
-  Camchain truth;
-  Camchain start;
-  CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
-  CalibrationSequence data;
-};
-
-const Sequence& GetSequence(int seconds) {
-  static std::map<int, std::unique_ptr<Sequence>> cache;
-  std::unique_ptr<Sequence>& s = cache[seconds];
-  if (s) return *s;
-  s = std::make_unique<Sequence>();
-  CameraCalibration cam;
-  cam.camera = EurocCamera();
-  cam.T_cam_imu =
-      SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)), Eigen::Vector3d(0.06, -0.02, 0.01));
-  cam.timeshift_cam_imu_s = 0.0042;
-  cam.line_delay_s = 3e-5;
-  s->truth = {cam};
-  cam.T_cam_imu =
-      cam.T_cam_imu * SE3d::Exp((Vector6d() << 0.02, -0.015, 0.01, 0.03, -0.035, 0.02).finished());
-  cam.timeshift_cam_imu_s = 0.0;
-  cam.line_delay_s = 0.0;
-  s->start = {cam};
-  CalibrationSequenceOptions options;
-  options.duration_s = seconds;
-  options.imu.noise = ImuNoise::Adis16448();
-  options.imu.gyro_bias = Eigen::Vector3d(0.002, -0.001, 0.0015);
-  options.imu.accel_bias = Eigen::Vector3d(0.05, -0.03, 0.02);
-  options.imu.seed = 1;
-  options.camera.pixel_noise_px = 0.5;
-  options.camera.seed = 101;
-  options.camera.has_target = true;
-  options.camera.target = s->target;
-  s->data = SimulateCalibrationSequence(s->truth, options);
+// The tests' scenario (tests/calib/calibrate_test_scenario.h) at the given length, simulated once
+// per length outside the timed region.
+const testing::CalibrationScenario& GetScenario(int seconds) {
+  static std::map<int, std::unique_ptr<testing::CalibrationScenario>> cache;
+  std::unique_ptr<testing::CalibrationScenario>& s = cache[seconds];
+  if (!s) {
+    testing::ScenarioOptions options;
+    options.duration_s = seconds;
+    s = std::make_unique<testing::CalibrationScenario>(testing::MakeCalibrationScenario(options));
+  }
   return *s;
 }
 
 void BM_Calibrate(benchmark::State& state) {
-  const Sequence& s = GetSequence(static_cast<int>(state.range(0)));
+  const testing::CalibrationScenario& s = GetScenario(static_cast<int>(state.range(0)));
   CalibrateOptions options;
   options.rolling_shutter = true;
   options.num_threads = static_cast<int>(state.range(1));
   options.keep_residuals = false;
   CalibrationResult result;
   for (auto _ : state) {
-    result = Calibrate(s.data.imu, s.data.cameras.observations, s.start, &s.target, options);
+    result = Calibrate(s.imu, s.observations, s.start, &s.target, options);
   }
-  state.counters["frames"] = s.data.cameras.num_frames;
-  state.counters["corners"] = s.data.cameras.num_target_observations;
+  state.counters["frames"] = s.camera_result.num_frames;
+  state.counters["corners"] = s.camera_result.num_target_observations;
   state.counters["iterations"] = result.iterations;
   state.counters["rounds"] = result.rounds;
   state.counters["init_s"] = result.initialisation_time_s;

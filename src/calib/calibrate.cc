@@ -1165,6 +1165,57 @@ std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations
   return landmarks;
 }
 
+// The fitted spline re-sampled onto `layout` (dt / 10 steps over its valid range).
+std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layout) {
+  std::vector<StampedPose> samples;
+  const int64_t step = std::max<int64_t>(1, layout.dt_ns / 10);
+  for (int64_t t = fitted.start_time_ns(); t <= fitted.end_time_ns(); t += step) {
+    const SE3d T = fitted.PoseNs(t);
+    samples.push_back({t, T.translation(), T.so3().quaternion()});
+  }
+  return FitControlPoses(samples, layout).control_poses;
+}
+
+// An initial guess from the continuous-time fit of the IMU to `poses` (`source` names them in
+// messages): the fitted trajectory on the calibration's layout, gravity and biases. The caller
+// gives the pose weights and what else to estimate, and takes those estimates from `fit`.
+CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
+                                     const std::vector<StampedPose>& poses,
+                                     const std::vector<Observation>& observations,
+                                     const Camchain& camchain,
+                                     const CalibrateOptions& options,
+                                     FitOptions fit_options,
+                                     const std::string& source,
+                                     std::vector<std::string>* warnings,
+                                     FitResult* fit) {
+  fit_options.knot_spacing_s = options.knot_spacing_s;
+  fit_options.gravity_m_s2 = options.gravity_m_s2;
+  fit_options.noise = options.noise;
+  fit_options.compute_covariance = false;
+  fit_options.keep_samples = false;
+  fit_options.max_residual_noise_ratio = 1e9;
+  fit_options.max_iterations = 30;
+  fit_options.num_threads = options.num_threads;
+  try {
+    *fit = Fit(imu, poses, fit_options);
+  } catch (const Error& e) {
+    std::string message = e.what();
+    if (message.rfind("fit: ", 0) == 0) message = message.substr(5);
+    throw Error("calibrate: initial guess from the " + source + " failed: " + message);
+  }
+  if (warnings != nullptr) {
+    for (const std::string& w : fit->warnings) warnings->push_back("initial guess: " + w);
+  }
+  CalibrationInitialGuess guess;
+  guess.layout = LayoutFor(imu, observations, camchain, options.knot_spacing_s);
+  guess.control_poses = ResampleOnto(fit->MakeSpline(), guess.layout);
+  guess.gravity_w = fit->gravity_w;
+  guess.gyro_bias = fit->gyro_bias;
+  guess.accel_bias = fit->accel_bias;
+  guess.camchain = camchain;
+  return guess;
+}
+
 }  // namespace
 
 CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu,
@@ -1212,9 +1263,6 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
   }
   // The continuous-time fit to those camera poses: T_pose_imu = T_c_s.
   FitOptions fit_options;
-  fit_options.knot_spacing_s = options.knot_spacing_s;
-  fit_options.gravity_m_s2 = options.gravity_m_s2;
-  fit_options.noise = options.noise;
   fit_options.pose_sigma_m = kPnpSigmaM;
   fit_options.pose_sigma_rad = kPnpSigmaRad;
   fit_options.estimate_time_offset = options.estimate_time_offset;
@@ -1222,57 +1270,14 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
   fit_options.max_time_offset_s = options.max_time_offset_s;
   fit_options.estimate_extrinsic = true;
   fit_options.T_pose_imu = camchain[0].T_cam_imu;
-  fit_options.compute_covariance = false;
-  fit_options.keep_samples = false;
-  fit_options.max_residual_noise_ratio = 1e9;
-  fit_options.max_iterations = 30;
-  fit_options.num_threads = options.num_threads;
   fit_options.progress = nullptr;
   FitResult fit;
-  try {
-    fit = Fit(imu, poses, fit_options);
-  } catch (const Error& e) {
-    std::string message = e.what();
-    if (message.rfind("fit: ", 0) == 0) message = message.substr(5);
-    throw Error("calibrate: initial guess from the target poses failed: " + message);
-  }
-  if (warnings != nullptr) {
-    for (const std::string& w : fit.warnings) warnings->push_back("initial guess: " + w);
-  }
-  CalibrationInitialGuess guess;
-  guess.layout = LayoutFor(imu, observations, camchain, options.knot_spacing_s);
-  // The fitted spline re-sampled onto the calibration's layout.
-  const SE3Splined fitted = fit.MakeSpline();
-  std::vector<StampedPose> samples;
-  const int64_t step = std::max<int64_t>(1, guess.layout.dt_ns / 10);
-  for (int64_t t = fitted.start_time_ns(); t <= fitted.end_time_ns(); t += step) {
-    const SE3d T = fitted.PoseNs(t);
-    samples.push_back({t, T.translation(), T.so3().quaternion()});
-  }
-  guess.control_poses = FitControlPoses(samples, guess.layout).control_poses;
-  guess.gravity_w = fit.gravity_w;
-  guess.gyro_bias = fit.gyro_bias;
-  guess.accel_bias = fit.accel_bias;
-  guess.camchain = camchain;
+  CalibrationInitialGuess guess = GuessFromFit(
+      imu, poses, observations, camchain, options, fit_options, "target poses", warnings, &fit);
   guess.camchain[0].T_cam_imu = fit.T_pose_imu;
   guess.camchain[0].timeshift_cam_imu_s = fit.time_offset_s;
   return guess;
 }
-
-namespace {
-
-// The fitted spline re-sampled onto `layout` (dt / 10 steps over its valid range).
-std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layout) {
-  std::vector<StampedPose> samples;
-  const int64_t step = std::max<int64_t>(1, layout.dt_ns / 10);
-  for (int64_t t = fitted.start_time_ns(); t <= fitted.end_time_ns(); t += step) {
-    const SE3d T = fitted.PoseNs(t);
-    samples.push_back({t, T.translation(), T.so3().quaternion()});
-  }
-  return FitControlPoses(samples, layout).control_poses;
-}
-
-}  // namespace
 
 CalibrationInitialGuess InitialGuessFromImuPoses(const std::vector<ImuSample>& imu,
                                                  const std::vector<StampedPose>& poses,
@@ -1281,35 +1286,11 @@ CalibrationInitialGuess InitialGuessFromImuPoses(const std::vector<ImuSample>& i
                                                  const CalibrateOptions& options,
                                                  std::vector<std::string>* warnings) {
   FitOptions fit_options;
-  fit_options.knot_spacing_s = options.knot_spacing_s;
-  fit_options.gravity_m_s2 = options.gravity_m_s2;
-  fit_options.noise = options.noise;
   fit_options.pose_sigma_m = kInitialPoseSigmaM;
   fit_options.pose_sigma_rad = kInitialPoseSigmaRad;
-  fit_options.compute_covariance = false;
-  fit_options.keep_samples = false;
-  fit_options.max_residual_noise_ratio = 1e9;
-  fit_options.max_iterations = 30;
-  fit_options.num_threads = options.num_threads;
   FitResult fit;
-  try {
-    fit = Fit(imu, poses, fit_options);
-  } catch (const Error& e) {
-    std::string message = e.what();
-    if (message.rfind("fit: ", 0) == 0) message = message.substr(5);
-    throw Error("calibrate: initial guess from the initial poses failed: " + message);
-  }
-  if (warnings != nullptr) {
-    for (const std::string& w : fit.warnings) warnings->push_back("initial guess: " + w);
-  }
-  CalibrationInitialGuess guess;
-  guess.layout = LayoutFor(imu, observations, camchain, options.knot_spacing_s);
-  guess.control_poses = ResampleOnto(fit.MakeSpline(), guess.layout);
-  guess.gravity_w = fit.gravity_w;
-  guess.gyro_bias = fit.gyro_bias;
-  guess.accel_bias = fit.accel_bias;
-  guess.camchain = camchain;
-  return guess;
+  return GuessFromFit(
+      imu, poses, observations, camchain, options, fit_options, "initial poses", warnings, &fit);
 }
 
 CalibrationResult Calibrate(const std::vector<ImuSample>& imu,

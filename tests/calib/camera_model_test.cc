@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "calib/camera_test_scene.h"
 #include "testing/numeric_diff.h"
 
 namespace splinecal {
@@ -19,18 +20,7 @@ constexpr double kJacobianTolerance = 1e-6;
 // i.e. ~1e-11 px) plus rounding.
 constexpr double kRoundTripTolerancePx = 1e-9;
 
-PinholeCamera EurocRadTan() {
-  PinholeCamera c;
-  c.fu = 458.654;
-  c.fv = 457.296;
-  c.pu = 367.215;
-  c.pv = 248.375;
-  c.distortion = DistortionModel::kRadTan;
-  c.distortion_coeffs << -0.28340811, 0.07395907, 0.00019359, 1.76187114e-05;
-  c.width = 752;
-  c.height = 480;
-  return c;
-}
+PinholeCamera EurocRadTan() { return testing::EurocCamera(); }
 
 PinholeCamera TumViEquidistant() {
   PinholeCamera c;
