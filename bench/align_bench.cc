@@ -4,8 +4,8 @@
 #include <benchmark/benchmark.h>
 
 #include "calib/align_test_data.h"
-#include "splinecal/calib/align.h"
-#include "splinecal/calib/preintegration.h"
+#include "splinecal/vio/align.h"
+#include "splinecal/vio/preintegration.h"
 
 namespace splinecal {
 namespace {

@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "splinecal/calib/fit.h"
-#include "splinecal/imu/simulate.h"
-#include "splinecal/imu/trajectories.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/trajectories.h"
 
 namespace splinecal {
 namespace {

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "splinecal/imu/integrate.h"
-#include "splinecal/imu/noise_generator.h"
-#include "splinecal/imu/simulate.h"
-#include "splinecal/imu/trajectories.h"
+#include "splinecal/sim/noise_generator.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/trajectories.h"
 
 namespace splinecal {
 namespace {

@@ -18,12 +18,12 @@
 #include <vector>
 
 #include "splinecal/calib/fit.h"
-#include "splinecal/calib/gravity_manifold.h"
-#include "splinecal/calib/imu_costs.h"
-#include "splinecal/calib/pnp.h"
-#include "splinecal/calib/reprojection_cost.h"
-#include "splinecal/calib/solver_progress.h"
-#include "splinecal/calib/spline_evaluation_callback.h"
+#include "splinecal/estimation/gravity_manifold.h"
+#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/camera/pnp.h"
+#include "splinecal/estimation/reprojection_cost.h"
+#include "splinecal/estimation/solver_progress.h"
+#include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/string_printf.h"

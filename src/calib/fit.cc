@@ -21,13 +21,13 @@
 #include <sstream>
 #include <utility>
 
-#include "splinecal/calib/bias_costs.h"
-#include "splinecal/calib/gravity_manifold.h"
-#include "splinecal/calib/hand_eye.h"
-#include "splinecal/calib/imu_costs.h"
-#include "splinecal/calib/pose_cost.h"
-#include "splinecal/calib/solver_progress.h"
-#include "splinecal/calib/spline_evaluation_callback.h"
+#include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/gravity_manifold.h"
+#include "splinecal/vio/hand_eye.h"
+#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/pose_cost.h"
+#include "splinecal/estimation/solver_progress.h"
+#include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/string_printf.h"

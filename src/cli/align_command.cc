@@ -1,4 +1,4 @@
-// `splinecal align`: visual-inertial alignment (calib/align.h). Camera poses known up to scale
+// `splinecal align`: visual-inertial alignment (vio/align.h). Camera poses known up to scale
 // plus IMU readings give the metric scale, gravity in the first camera frame, velocities and the
 // gyro bias; writes result.yaml and the IMU poses in a gravity-aligned world (aligned_poses.csv,
 // EuRoC ground-truth format) for `fit --poses` or as the initial guess of `calibrate`.
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/calib/align.h"
+#include "splinecal/vio/align.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"

@@ -26,7 +26,7 @@
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/io/yaml_writer.h"
-#include "splinecal/plot/svg_plot.h"
+#include "splinecal/report/svg_plot.h"
 #include "splinecal/string_printf.h"
 
 DEFINE_string(observations,

@@ -1,7 +1,7 @@
 // `splinecal fit`: the continuous-time fit of IMU data and a pose source (calib/fit.h):
 // biases, gravity, optionally the time offset and the extrinsic, with standard deviations and
 // plain-words warnings. Writes result.yaml, spline.csv, residuals.csv, pose_residuals.csv and
-// report.html (calib/fit_report.h, docs/fit.md).
+// report.html (report/fit_report.h, docs/fit.md).
 #include <gflags/gflags.h>
 
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "splinecal/calib/fit.h"
-#include "splinecal/calib/fit_report.h"
+#include "splinecal/report/fit_report.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"

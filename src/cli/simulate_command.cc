@@ -1,6 +1,6 @@
-// `splinecal simulate`: realistic IMU data from a spline (imu/simulate.h). The trajectory is an
-// analytic one (imu/trajectories.h) or a recorded one (--trajectory-file), turned into spline
-// control poses by a least-squares fit (calib/pose_fit.h); the IMU readings are the spline's
+// `splinecal simulate`: realistic IMU data from a spline (sim/simulate_imu.h). The trajectory is an
+// analytic one (sim/trajectories.h) or a recorded one (--trajectory-file), turned into spline
+// control poses by a least-squares fit (estimation/pose_fit.h); the IMU readings are the spline's
 // IMU model plus Kalibr noise. Writes a EuRoC folder (mav0/imu0, mav0/state_groundtruth_estimate0),
 // spline.csv, imu.yaml and result.yaml to --out. See docs/simulate.md.
 #include <gflags/gflags.h>
@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/calib/pose_fit.h"
-#include "splinecal/calib/simulate_camera.h"
+#include "splinecal/estimation/pose_fit.h"
+#include "splinecal/sim/simulate_camera.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
-#include "splinecal/imu/simulate.h"
-#include "splinecal/imu/trajectories.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
@@ -213,7 +213,7 @@ int RunSimulate() {
     fit = FitControlPoses(
         in.poses, KnotLayoutCovering(start_ns, end_ns, in.knot_spacing_ns), fit_options);
   } else if (FLAGS_trajectory == "calibration") {
-    // The lively target-viewing motion of calib/simulate_camera.h, laid out for cam0.
+    // The lively target-viewing motion of sim/simulate_camera.h, laid out for cam0.
     source = "calibration";
     Progress("simulate: fitting the calibration trajectory (" + std::to_string(duration_s) +
              " s, knots every " + std::to_string(knot_spacing_s) + " s)");

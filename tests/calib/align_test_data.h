@@ -1,9 +1,9 @@
 // Simulated inputs for the alignment tests and benchmark (header-only, test code).
 //
-// IMU readings are the exact derivatives of an analytic trajectory (imu/trajectories.h) at
+// IMU readings are the exact derivatives of an analytic trajectory (sim/trajectories.h) at
 // `imu_rate_hz`. The TRUE states at the camera frames are then either
 //   * kDiscrete: the world trajectory obtained by integrating those very readings with the
-//     midpoint scheme of calib/preintegration.h, written out here independently in the world
+//     midpoint scheme of vio/preintegration.h, written out here independently in the world
 //     frame. Preintegration is then exact, so an alignment must recover scale, gravity and gyro
 //     bias to rounding ("noise-free" in the model's sense), or
 //   * kContinuous: the analytic trajectory itself (what a real IMU sees); the midpoint scheme's
@@ -20,8 +20,8 @@
 
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
-#include "splinecal/imu/noise_generator.h"
-#include "splinecal/imu/trajectories.h"
+#include "splinecal/sim/noise_generator.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"
@@ -106,7 +106,7 @@ inline Scenario MakeScenario(const AnalyticTrajectory& trajectory, const Scenari
       v_w[k] = states[k].v_w;
     }
   } else {
-    // Midpoint integration in the world frame (calib/preintegration.h's scheme):
+    // Midpoint integration in the world frame (vio/preintegration.h's scheme):
     //   R' = R Exp((w_k + w_k+1)/2 h),  a = (R f_k + R' f_k+1)/2 + g_w,
     //   p' = p + v h + a h^2/2,  v' = v + a h.
     SO3d R = states[0].T_w_s.so3();

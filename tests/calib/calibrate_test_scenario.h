@@ -1,5 +1,5 @@
 // A simulated camera-IMU calibration sequence for the calibrate tests and benchmark: the lively
-// target-viewing trajectory of calib/simulate_camera.h, a 200 Hz IMU with the ADIS16448 noise
+// target-viewing trajectory of sim/simulate_camera.h, a 200 Hz IMU with the ADIS16448 noise
 // (EuRoC), a 20 Hz EuRoC-like camera (752 x 480, radtan) with 0.5 px noise, an aprilgrid of
 // 6 x 6 tags of 8.8 cm (144 corners, ~100 visible per frame).
 #ifndef SPLINECAL_TESTS_CALIB_CALIBRATE_TEST_SCENARIO_H_
@@ -10,8 +10,8 @@
 
 #include "calib/camera_test_scene.h"
 #include "splinecal/calib/calibrate.h"
-#include "splinecal/calib/simulate_camera.h"
-#include "splinecal/imu/simulate.h"
+#include "splinecal/sim/simulate_camera.h"
+#include "splinecal/sim/simulate_imu.h"
 
 namespace splinecal {
 namespace testing {

@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "splinecal/calib/camera_model.h"
-#include "splinecal/calib/target.h"
+#include "splinecal/camera/camera_model.h"
+#include "splinecal/camera/target.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"

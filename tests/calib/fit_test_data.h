@@ -1,5 +1,5 @@
 // Simulated data for the `splinecal fit` tests (fit_test.cc, fit_slow_test.cc): a true spline
-// from an analytic trajectory, IMU readings predicted from it (imu/simulate.h), and poses of
+// from an analytic trajectory, IMU readings predicted from it (sim/simulate_imu.h), and poses of
 // the pose source sampled from it with an optional time offset, extrinsic, world tilt and noise.
 #ifndef SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
 #define SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/calib/pose_fit.h"
+#include "splinecal/estimation/pose_fit.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
-#include "splinecal/imu/simulate.h"
-#include "splinecal/imu/trajectories.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/se3_spline.h"
@@ -59,7 +59,7 @@ struct FitData {
   Eigen::Vector3d gravity_w = Eigen::Vector3d::Zero();
 };
 
-// The named trajectories of imu/trajectories.h, plus "translation_only": sinusoidal motion with a
+// The named trajectories of sim/trajectories.h, plus "translation_only": sinusoidal motion with a
 // constant attitude (no rotation at all).
 inline AnalyticTrajectory ScenarioTrajectory(const FitScenario& scenario) {
   if (scenario.trajectory != "translation_only") {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/imu/simulate.h"
-#include "splinecal/imu/trajectories.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/euroc.h"
 #include "testing/run_tool.h"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "splinecal/error.h"
-#include "splinecal/imu/trajectories.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/euroc.h"
 
 namespace splinecal {

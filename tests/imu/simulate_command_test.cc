@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "splinecal/imu/imu_model.h"
-#include "splinecal/imu/trajectories.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/poses.h"

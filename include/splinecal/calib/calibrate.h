@@ -4,11 +4,11 @@
 //
 // The problem (CONVENTIONS.md for frames, units, T_cam_imu, timeshift_cam_imu, line_delay):
 //
-//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (calib/imu_costs.h)
-//           + sum_m |r_rw,m|^2                         bias random walk (calib/bias_costs.h)
+//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (estimation/imu_costs.h)
+//           + sum_m |r_rw,m|^2                         bias random walk (estimation/bias_costs.h)
 //           + sum_f sum_c rho(|r_c,f|^2)               target corners, per frame
 //           + sum_o rho(|r_o|^2)                       landmark observations
-//                                                      (calib/reprojection_cost.h, Huber rho)
+//                                                      (estimation/reprojection_cost.h, Huber rho)
 //
 // over the control poses of T_w_s(t) (IMU clock, SE3Manifold), the biases (constant or a bias
 // spline), gravity g_w (|g_w| fixed, GravityManifold), and per camera T_cam_imu,
@@ -21,7 +21,7 @@
 // pixel error, robust to outliers) and the problem solved again with it, so that the reported
 // standard deviations reflect the data's own pixel noise.
 //
-// Initialisation (target present): the target's pose in every frame by PnP (calib/pnp.h); those
+// Initialisation (target present): the target's pose in every frame by PnP (camera/pnp.h); those
 // camera poses as the pose source of `splinecal fit` (calib/fit.h) with the time offset (gyro vs
 // camera angular-speed correlation, then least squares) and the extrinsic (hand-eye rotation,
 // then least squares) estimated: it gives the trajectory, the biases, gravity, T_cam_imu and the
@@ -31,7 +31,7 @@
 // e.g. InitialGuessFromImuPoses on `splinecal align`'s output.
 //
 // Time windows: each residual holds the control poses of its possible exposure times
-// (calib/reprojection_cost.h); after a solve in which the time offset or line delay moved them
+// (estimation/reprojection_cost.h); after a solve in which the time offset or line delay moved them
 // out of their windows (or the pixel sigma changed by more than 10%), the problem is rebuilt and
 // solved again (at most max_rounds rounds).
 //
@@ -53,11 +53,11 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/calib/bias_costs.h"
-#include "splinecal/calib/camchain.h"
-#include "splinecal/calib/observations.h"
-#include "splinecal/calib/pose_fit.h"
-#include "splinecal/calib/target.h"
+#include "splinecal/estimation/bias_costs.h"
+#include "splinecal/camera/camchain.h"
+#include "splinecal/camera/observations.h"
+#include "splinecal/estimation/pose_fit.h"
+#include "splinecal/camera/target.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"

@@ -13,15 +13,15 @@
 // over the control poses T_i of the spline T_w_s(t) (IMU clock; uniform knots, SE3Manifold),
 // the biases (constant or a bias spline), g_w (|g_w| fixed, GravityManifold), the time offset
 // t_imu = t_pose + time_offset (optional) and T_pose_imu = T_m_s (optional). Residuals:
-// calib/imu_costs.h (sigma = Kalibr density * sqrt(rate)), calib/pose_cost.h (pose_sigma_m,
-// pose_sigma_rad), calib/bias_costs.h (random walk).
+// estimation/imu_costs.h (sigma = Kalibr density * sqrt(rate)), estimation/pose_cost.h (pose_sigma_m,
+// pose_sigma_rad), estimation/bias_costs.h (random walk).
 //
 // Initialisation (docs/fit.md, "Initialisation"): control poses by least squares on the poses
-// (calib/pose_fit.h); gravity g_w = g * unit(mean(a_w) - mean(R_w_s f)) over the whole overlap,
+// (estimation/pose_fit.h); gravity g_w = g * unit(mean(a_w) - mean(R_w_s f)) over the whole overlap,
 // mean(a_w) = (v_end - v_start) / duration from that spline (the platform's accelerations
 // average out; no static period needed); biases zero; the time offset, when estimated, from the
 // best alignment of the gyro's and the poses' angular speed within +-max_time_offset_s; the
-// extrinsic rotation, when estimated, by hand-eye on relative rotations (calib/hand_eye.h).
+// extrinsic rotation, when estimated, by hand-eye on relative rotations (vio/hand_eye.h).
 //
 // Errors. Throws splinecal::Error, with the likely cause in plain words, for: bad options;
 // IMU and pose time ranges that do not overlap; data too short for the knot spacing; gyro or
@@ -39,8 +39,8 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/calib/bias_costs.h"
-#include "splinecal/calib/pose_fit.h"
+#include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/pose_fit.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
@@ -50,7 +50,7 @@
 
 namespace splinecal {
 
-// How the IMU residuals are handed to Ceres (the same objective either way; calib/imu_costs.h).
+// How the IMU residuals are handed to Ceres (the same objective either way; estimation/imu_costs.h).
 enum class ImuResidualLayout {
   kPerSegment,  // one gyro and one accel block per spline segment (default, fastest)
   kPerSample,   // one gyro and one accel block per IMU sample
@@ -69,7 +69,7 @@ enum class FitLinearSolver {
 };
 
 enum class Differentiation {
-  kAnalytic,  // calib/imu_costs.h, calib/pose_cost.h analytic Jacobians (default)
+  kAnalytic,  // estimation/imu_costs.h, estimation/pose_cost.h analytic Jacobians (default)
   kAutoDiff,  // their ceres::AutoDiffCostFunction twins, one block per sample (tests, bench)
 };
 
@@ -130,7 +130,7 @@ struct FitOptions {
   double max_normal_cholesky_jacobian_entries = 8e6;
   ImuResidualLayout layout = ImuResidualLayout::kPerSegment;
   Differentiation differentiation = Differentiation::kAnalytic;
-  bool share_knot_caches = true;  // calib/spline_evaluation_callback.h (analytic only)
+  bool share_knot_caches = true;  // estimation/spline_evaluation_callback.h (analytic only)
   // Uncertainty and diagnostics.
   bool compute_covariance = true;
   // ceres::Covariance on an equivalent compressed problem: per segment, the information

@@ -57,7 +57,7 @@
 #include <vector>
 
 #include "splinecal/imu/imu_sample.h"
-#include "splinecal/io/euroc.h"
+#include "splinecal/imu/ground_truth.h"
 #include "splinecal/lie/so3.h"
 
 namespace splinecal {

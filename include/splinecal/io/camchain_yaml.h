@@ -18,7 +18,7 @@
 
 #include <string>
 
-#include "splinecal/calib/camchain.h"
+#include "splinecal/camera/camchain.h"
 
 namespace splinecal {
 

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "splinecal/imu/ground_truth.h"
 #include "splinecal/imu/imu_sample.h"
 
 namespace splinecal {
@@ -33,16 +34,6 @@ struct ImuReadOptions {
 // gaps, fewer than 2 samples, an accelerometer in units of g.
 std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOptions& options = {});
 void WriteEurocImu(const std::vector<ImuSample>& samples, std::ostream* out);
-
-// One row of EuRoC state_groundtruth_estimate0/data.csv.
-struct GroundTruthState {
-  int64_t t_ns = 0;
-  Eigen::Vector3d p_w_s = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond q_w_s = Eigen::Quaterniond::Identity();  // unit norm
-  Eigen::Vector3d v_w = Eigen::Vector3d::Zero();
-  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
-  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
-};
 
 // Reads the 17-column ground truth (t_ns, p, q wxyz, v, gyro bias, accel bias). Throws on the
 // same problems as ReadEurocImu and on a quaternion whose norm is not about 1.

@@ -1,4 +1,4 @@
-// observations.csv: one detected point per row (calib/observations.h), read with the one input
+// observations.csv: one detected point per row (camera/observations.h), read with the one input
 // layer (io/text_file.h: CRLF, blank lines, '#' comments, spaces after commas):
 //
 //   #t_ns,cam_id,point_id,u,v
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/calib/observations.h"
+#include "splinecal/camera/observations.h"
 
 namespace splinecal {
 

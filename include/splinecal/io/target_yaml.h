@@ -1,4 +1,4 @@
-// Calibration target YAML (calib/target.h), Kalibr's keys, read with io/yaml_document.h:
+// Calibration target YAML (camera/target.h), Kalibr's keys, read with io/yaml_document.h:
 //
 //   target_type: aprilgrid      tagCols, tagRows (integers), tagSize [m], tagSpacing (ratio)
 //   target_type: checkerboard   targetCols, targetRows (inner corners), rowSpacingMeters,
@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "splinecal/calib/target.h"
+#include "splinecal/camera/target.h"
 
 namespace splinecal {
 

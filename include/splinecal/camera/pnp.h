@@ -1,0 +1,54 @@
+// Pose of a calibration target in the camera from one image (perspective-n-point), the initial
+// guess of `splinecal calibrate`'s target poses.
+//
+//   1. Every pixel is unprojected to its ray (x, y, 1) (camera/camera_model.h), so the rest is
+//      distortion-free.
+//   2. Closed form. Planar targets (every point at z = 0): the homography H ~ [r1 r2 t] from
+//      (X, Y, 1) to (x, y, 1) by the normalised direct linear transform (Hartley's scaling,
+//      smallest right singular vector), then R = closest rotation to [r1 r2 r1 x r2] (SVD),
+//      t = h3 / mean(|h1|, |h2|), the sign chosen so that the points are in front [Zhang00].
+//      Non-planar targets: the 3x4 projection [R | t] by the same DLT on (X, Y, Z, 1), R the
+//      closest rotation to its left block, the scale from its singular values.
+//   3. Levenberg-Marquardt on the pixel reprojection error (distortion included) over T_c_t with
+//      the RIGHT perturbation T_c_t Exp(d): d x_c / d d = R_c_t [I, -[p_t]x].
+// Rolling shutter is ignored here (the calibration models it); the result is an initial guess.
+//
+// References: [Zhang00] Z. Zhang, "A flexible new technique for camera calibration", PAMI 2000;
+// [Hartley04] R. Hartley, A. Zisserman, Multiple View Geometry, 2nd ed. (normalised DLT).
+#ifndef SPLINECAL_CAMERA_PNP_H_
+#define SPLINECAL_CAMERA_PNP_H_
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "splinecal/camera/camera_model.h"
+#include "splinecal/lie/se3.h"
+
+namespace splinecal {
+
+struct PnpOptions {
+  int max_iterations = 30;
+  // A planar target needs at least 4 points, a non-planar one at least 6; more are required for
+  // a pose worth using (detector noise averages out): min_points.
+  int min_points = 6;
+};
+
+struct PnpResult {
+  bool ok = false;
+  std::string message;  // why it failed, in words
+  SE3d T_c_t;           // target pose in the camera
+  double rms_px = 0.0;  // RMS of the 2-D pixel error norms after refinement [px]
+  int iterations = 0;
+};
+
+// p_t[i] (target frame) is seen at uv[i]. Returns ok = false with a message for too few
+// points, degenerate geometry (collinear points, singular DLT) or points that do not unproject.
+PnpResult SolvePnp(const PinholeCamera& camera,
+                   const std::vector<Eigen::Vector3d>& p_t,
+                   const std::vector<Eigen::Vector2d>& uv,
+                   const PnpOptions& options = PnpOptions());
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_CAMERA_PNP_H_

@@ -1,0 +1,471 @@
+// The IMU residuals of `splinecal fit`, with analytic Jacobians, and their automatic-
+// differentiation twins (for the tests and the benchmark).
+//
+// Model (CONVENTIONS.md "IMU model", imu/imu_model.h, [seed000 eqs. (9)-(10)]): at an IMU time t
+// in pose-spline segment i (u = (t - t_i) / dt),
+//
+//   gyro residual   r_g = (w_s(t) + b_g(t) - gyro_measured) / sigma_g
+//   accel residual  r_a = (R_w_s(t)^T (a_w(t) - g_w) + b_a(t) - accel_measured) / sigma_a
+//
+// sigma = noise density * sqrt(rate), the per-sample white-noise std ([Kalibr]). b(t) is the
+// constant bias (one block) or the bias spline of estimation/bias_costs.h (four blocks with weights
+// B_j(u_b)); either way b = sum_j weight_j * bias_block_j.
+//
+// Parameter blocks, in this order:
+//   gyro:   4 control poses {px, py, pz, qx, qy, qz, qw} (T_{i-1} .. T_{i+2}), then
+//           kBiasBlocks gyro-bias blocks (3 each)
+//   accel:  4 control poses, kBiasBlocks accel-bias blocks, then g_w (3; estimation/gravity_manifold.h)
+//
+// Jacobians. The spline Jacobians (spline/segment_jacobians.h, imu/imu_model.h) are in the RIGHT
+// tangent of each control pose (T Exp(d), d = [rho; phi]); they are lifted to the ambient block
+// exactly (estimation/pose_block_jacobian.h), so every cost function here keeps Ceres' contract
+// (jacobians == nullptr: residuals only; jacobians[i] == nullptr: skip block i; layout
+// jacobians[i][r * size_i + c]) and passes ceres::GradientChecker through SE3Manifold and
+// GravityManifold. d r_g / d b_g,j = weight_j I / sigma_g, d r_a / d g_w = -R_w_s^T / sigma_a.
+//
+// Two layouts of the same residuals:
+//   GyroCostFunction / AccelCostFunction                 one sample, ceres::SizedCostFunction
+//   GyroSegmentCostFunction / AccelSegmentCostFunction   every sample of one spline segment,
+//                                                        stacked (3 rows per sample)
+// The stacked form is the same objective with ~20x fewer residual blocks at 200 Hz and
+// dt = 0.1 s: Ceres' per-block costs (bookkeeping, validity checks, the manifold product per
+// block, one product term per pair of blocks in J^T J) dominate otherwise; `splinecal fit` uses
+// it (docs/fit.md, "Speed").
+//
+// Sharing: given a SplineEvaluationCallback, a cost function reads its segment's knot deltas and
+// their Jacobians from the spline the callback rebuilt once for this evaluation point, instead
+// of recomputing them per residual (estimation/spline_evaluation_callback.h); otherwise, or when its
+// parameters differ from the callback's, it computes them from its own pose blocks.
+#ifndef SPLINECAL_ESTIMATION_IMU_COSTS_H_
+#define SPLINECAL_ESTIMATION_IMU_COSTS_H_
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/cost_function.h>
+#include <ceres/sized_cost_function.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/spline_evaluation_callback.h"
+#include "splinecal/imu/imu_model.h"
+#include "splinecal/lie/se3_manifold.h"
+#include "splinecal/spline/segment.h"
+#include "splinecal/spline/segment_jacobians.h"
+
+namespace splinecal {
+
+// One IMU reading as a residual: where it falls in its pose-spline segment, what was measured
+// (gyro [rad/s] or accel [m/s^2]) and the weights of its bias blocks (constant model: {1}; bias
+// spline: B_0..B_3 at the sample's bias-spline u).
+struct ImuResidualSample {
+  double u = 0.0;
+  Eigen::Vector3d measured = Eigen::Vector3d::Zero();
+  std::array<double, 4> bias_weights = {1.0, 0.0, 0.0, 0.0};
+};
+
+// What every IMU residual of one pose-spline segment shares.
+struct ImuResidualSegment {
+  int segment_index = 1;  // i: control poses i-1 .. i+2
+  double dt_s = 0.0;      // pose knot spacing [s]
+  double sigma = 1.0;     // per-sample noise std [rad/s or m/s^2]
+  // Optional: the knot caches for this evaluation point (not owned; may be nullptr).
+  const SplineEvaluationCallback* shared = nullptr;
+};
+
+namespace internal {
+
+template <int kBiasBlocks>
+struct GyroCostBase;
+template <>
+struct GyroCostBase<1> {
+  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, 3>;
+};
+template <>
+struct GyroCostBase<4> {
+  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, 3, 3, 3, 3>;
+};
+
+template <int kBiasBlocks>
+struct AccelCostBase;
+template <>
+struct AccelCostBase<1> {
+  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, 3, 3>;
+};
+template <>
+struct AccelCostBase<4> {
+  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, 3, 3, 3, 3, 3>;
+};
+
+// The knots and the pose-block lifts of one evaluation (local holds knots computed from the
+// blocks when the shared spline does not match).
+struct SegmentEvaluation {
+  SegmentKnots<double> knots;
+  std::optional<SegmentKnotData<double>> local;
+  std::array<PoseBlockLift, kSplineOrder> lifts;
+};
+
+inline void PrepareSegmentEvaluation(const ImuResidualSegment& segment,
+                                     double const* const* parameters,
+                                     bool pose_jacobians,
+                                     SegmentEvaluation* evaluation) {
+  evaluation->knots = SegmentKnotsFor(
+      segment.shared, segment.segment_index - 1, parameters, pose_jacobians, &evaluation->local);
+  if (pose_jacobians) {
+    for (int k = 0; k < kSplineOrder; ++k) {
+      evaluation->lifts[k] = MakePoseBlockLift(parameters[k]);
+    }
+  }
+}
+
+inline bool AnyPoseJacobian(double** jacobians) {
+  if (jacobians == nullptr) return false;
+  for (int k = 0; k < kSplineOrder; ++k) {
+    if (jacobians[k] != nullptr) return true;
+  }
+  return false;
+}
+
+template <int kBiasBlocks>
+Eigen::Vector3d WeightedBias(const ImuResidualSample& sample, double const* const* bias_blocks) {
+  Eigen::Vector3d bias = sample.bias_weights[0] * Eigen::Map<const Eigen::Vector3d>(bias_blocks[0]);
+  for (int j = 1; j < kBiasBlocks; ++j) {
+    bias += sample.bias_weights[j] * Eigen::Map<const Eigen::Vector3d>(bias_blocks[j]);
+  }
+  return bias;
+}
+
+// d r / d bias block j = weight_j / sigma I, written as 3 rows of 3 at `row`.
+template <int kBiasBlocks>
+void WriteBiasJacobians(const ImuResidualSample& sample,
+                        double inv_sigma,
+                        double** bias_jacobians,
+                        int row) {
+  for (int j = 0; j < kBiasBlocks; ++j) {
+    if (bias_jacobians[j] == nullptr) continue;
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(bias_jacobians[j] + 3 * row);
+    J = (sample.bias_weights[j] * inv_sigma) * Eigen::Matrix3d::Identity();
+  }
+}
+
+// Gyro residual of one sample into residual[0..2]; Jacobians (when jacobians != nullptr) into
+// rows row..row+2 of each requested block. parameters: 4 poses, kBiasBlocks biases.
+template <int kBiasBlocks>
+void GyroSampleRows(const SegmentEvaluation& evaluation,
+                    const ImuResidualSegment& segment,
+                    const ImuResidualSample& sample,
+                    double const* const* parameters,
+                    double* residual,
+                    double** jacobians,
+                    int row) {
+  const Segment<double> seg = MakeSegment(segment.segment_index, sample.u, segment.dt_s);
+  const double inv_sigma = 1.0 / segment.sigma;
+  const bool pose_jacobians = AnyPoseJacobian(jacobians);
+  Eigen::Vector3d w_s;
+  ControlPoseJacobian<3> J_ws_ctrl;
+  EvaluateAngularVelocityJacobian(
+      evaluation.knots, seg, &w_s, pose_jacobians ? &J_ws_ctrl : nullptr);
+  const Eigen::Vector3d bias = WeightedBias<kBiasBlocks>(sample, parameters + kSplineOrder);
+  Eigen::Map<Eigen::Vector3d> r(residual);
+  r = (w_s + bias - sample.measured) * inv_sigma;
+  if (jacobians == nullptr) return;
+  if (pose_jacobians) {
+    for (int k = 0; k < kSplineOrder; ++k) {
+      if (jacobians[k] == nullptr) continue;
+      const Eigen::Matrix3d J_phi = J_ws_ctrl.blocks[k].rightCols<3>() * inv_sigma;
+      LiftRotationOnlyPoseJacobian(J_phi, evaluation.lifts[k], jacobians[k] + 7 * row);
+    }
+  }
+  WriteBiasJacobians<kBiasBlocks>(sample, inv_sigma, jacobians + kSplineOrder, row);
+}
+
+// Accel residual of one sample; parameters: 4 poses, kBiasBlocks biases, g_w.
+template <int kBiasBlocks>
+void AccelSampleRows(const SegmentEvaluation& evaluation,
+                     const ImuResidualSegment& segment,
+                     const ImuResidualSample& sample,
+                     double const* const* parameters,
+                     double* residual,
+                     double** jacobians,
+                     int row) {
+  const Segment<double> seg = MakeSegment(segment.segment_index, sample.u, segment.dt_s);
+  const double inv_sigma = 1.0 / segment.sigma;
+  const bool pose_jacobians = AnyPoseJacobian(jacobians);
+  const Eigen::Map<const Eigen::Vector3d> g_w(parameters[kSplineOrder + kBiasBlocks]);
+  const Eigen::Vector3d bias = WeightedBias<kBiasBlocks>(sample, parameters + kSplineOrder);
+  Eigen::Vector3d accel;
+  ControlPoseJacobian<3> J_accel_ctrl;
+  Eigen::Matrix3d J_accel_gw;
+  PredictAccelWithJacobian(evaluation.knots,
+                           seg,
+                           g_w,
+                           bias,
+                           &accel,
+                           pose_jacobians ? &J_accel_ctrl : nullptr,
+                           &J_accel_gw);
+  Eigen::Map<Eigen::Vector3d> r(residual);
+  r = (accel - sample.measured) * inv_sigma;
+  if (jacobians == nullptr) return;
+  if (pose_jacobians) {
+    for (int k = 0; k < kSplineOrder; ++k) {
+      if (jacobians[k] == nullptr) continue;
+      const Eigen::Matrix<double, 3, 6> J = J_accel_ctrl.blocks[k] * inv_sigma;
+      LiftPoseJacobian(J, evaluation.lifts[k], jacobians[k] + 7 * row);
+    }
+  }
+  WriteBiasJacobians<kBiasBlocks>(sample, inv_sigma, jacobians + kSplineOrder, row);
+  double* J_g = jacobians[kSplineOrder + kBiasBlocks];
+  if (J_g != nullptr) {
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(J_g + 3 * row);
+    J = J_accel_gw * inv_sigma;
+  }
+}
+
+}  // namespace internal
+
+// The gyro residual of one sample (3 rows). kBiasBlocks: 1 (constant bias) or 4 (bias spline).
+template <int kBiasBlocks>
+class GyroCostFunction : public internal::GyroCostBase<kBiasBlocks>::Type {
+ public:
+  GyroCostFunction(const ImuResidualSegment& segment, const ImuResidualSample& sample)
+      : segment_(segment), sample_(sample) {}
+
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    internal::SegmentEvaluation evaluation;
+    internal::PrepareSegmentEvaluation(
+        segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
+    internal::GyroSampleRows<kBiasBlocks>(
+        evaluation, segment_, sample_, parameters, residuals, jacobians, 0);
+    return true;
+  }
+
+ private:
+  ImuResidualSegment segment_;
+  ImuResidualSample sample_;
+};
+
+// The accelerometer residual of one sample (3 rows).
+template <int kBiasBlocks>
+class AccelCostFunction : public internal::AccelCostBase<kBiasBlocks>::Type {
+ public:
+  AccelCostFunction(const ImuResidualSegment& segment, const ImuResidualSample& sample)
+      : segment_(segment), sample_(sample) {}
+
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    internal::SegmentEvaluation evaluation;
+    internal::PrepareSegmentEvaluation(
+        segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
+    internal::AccelSampleRows<kBiasBlocks>(
+        evaluation, segment_, sample_, parameters, residuals, jacobians, 0);
+    return true;
+  }
+
+ private:
+  ImuResidualSegment segment_;
+  ImuResidualSample sample_;
+};
+
+// Every gyro residual of one segment, stacked: rows 3s..3s+2 are sample s. Same parameter
+// blocks as GyroCostFunction. `samples` must not be empty.
+template <int kBiasBlocks>
+class GyroSegmentCostFunction : public ceres::CostFunction {
+ public:
+  GyroSegmentCostFunction(const ImuResidualSegment& segment, std::vector<ImuResidualSample> samples)
+      : segment_(segment), samples_(std::move(samples)) {
+    CHECK(!samples_.empty());
+    set_num_residuals(3 * static_cast<int>(samples_.size()));
+    for (int k = 0; k < kSplineOrder; ++k) mutable_parameter_block_sizes()->push_back(7);
+    for (int j = 0; j < kBiasBlocks; ++j) mutable_parameter_block_sizes()->push_back(3);
+  }
+
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    internal::SegmentEvaluation evaluation;
+    internal::PrepareSegmentEvaluation(
+        segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
+    for (size_t s = 0; s < samples_.size(); ++s) {
+      internal::GyroSampleRows<kBiasBlocks>(evaluation,
+                                            segment_,
+                                            samples_[s],
+                                            parameters,
+                                            residuals + 3 * s,
+                                            jacobians,
+                                            3 * static_cast<int>(s));
+    }
+    return true;
+  }
+
+  const std::vector<ImuResidualSample>& samples() const { return samples_; }
+
+ private:
+  ImuResidualSegment segment_;
+  std::vector<ImuResidualSample> samples_;
+};
+
+// Every accelerometer residual of one segment, stacked.
+template <int kBiasBlocks>
+class AccelSegmentCostFunction : public ceres::CostFunction {
+ public:
+  AccelSegmentCostFunction(const ImuResidualSegment& segment,
+                           std::vector<ImuResidualSample> samples)
+      : segment_(segment), samples_(std::move(samples)) {
+    CHECK(!samples_.empty());
+    set_num_residuals(3 * static_cast<int>(samples_.size()));
+    for (int k = 0; k < kSplineOrder; ++k) mutable_parameter_block_sizes()->push_back(7);
+    for (int j = 0; j < kBiasBlocks; ++j) mutable_parameter_block_sizes()->push_back(3);
+    mutable_parameter_block_sizes()->push_back(3);  // g_w
+  }
+
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    internal::SegmentEvaluation evaluation;
+    internal::PrepareSegmentEvaluation(
+        segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
+    for (size_t s = 0; s < samples_.size(); ++s) {
+      internal::AccelSampleRows<kBiasBlocks>(evaluation,
+                                             segment_,
+                                             samples_[s],
+                                             parameters,
+                                             residuals + 3 * s,
+                                             jacobians,
+                                             3 * static_cast<int>(s));
+    }
+    return true;
+  }
+
+  const std::vector<ImuResidualSample>& samples() const { return samples_; }
+
+ private:
+  ImuResidualSegment segment_;
+  std::vector<ImuResidualSample> samples_;
+};
+
+// ---- Automatic-differentiation twins (same residuals, same parameter blocks) ----
+
+namespace internal {
+
+// The segment of four pose blocks in scalar T (no Jacobian caches: autodiff needs none).
+template <typename T>
+SegmentKnotData<T> KnotDataFromBlocks(const T* const* poses) {
+  return SegmentKnotData<T>(PoseFromBlock(poses[0]),
+                            PoseFromBlock(poses[1]),
+                            PoseFromBlock(poses[2]),
+                            PoseFromBlock(poses[3]),
+                            /*with_jacobians=*/false);
+}
+
+template <typename T, int kBiasBlocks>
+Vector3<T> WeightedBiasT(const ImuResidualSample& sample, const T* const* bias_blocks) {
+  Vector3<T> bias = Vector3<T>::Zero();
+  for (int j = 0; j < kBiasBlocks; ++j) {
+    bias += T(sample.bias_weights[j]) * Eigen::Map<const Vector3<T>>(bias_blocks[j]);
+  }
+  return bias;
+}
+
+}  // namespace internal
+
+// Functor for ceres::AutoDiffCostFunction<GyroResidual<k>, 3, 7, 7, 7, 7, 3 (x k)>.
+template <int kBiasBlocks>
+struct GyroResidual {
+  GyroResidual(const ImuResidualSegment& segment_in, const ImuResidualSample& sample_in)
+      : segment(segment_in), sample(sample_in) {}
+
+  template <typename T>
+  bool Compute(const T* const* blocks, T* residual) const {
+    const SegmentKnotData<T> data = internal::KnotDataFromBlocks(blocks);
+    const Segment<T> seg = MakeSegment(segment.segment_index, T(sample.u), segment.dt_s);
+    const Vector3<T> bias = internal::WeightedBiasT<T, kBiasBlocks>(sample, blocks + 4);
+    Vector3<T> gyro;
+    PredictImu<T>(data.knots(), seg, Vector3<T>::Zero(), bias, Vector3<T>::Zero(), &gyro, nullptr);
+    const T inv_sigma = T(1.0 / segment.sigma);
+    for (int a = 0; a < 3; ++a) residual[a] = (gyro[a] - T(sample.measured[a])) * inv_sigma;
+    return true;
+  }
+
+  template <typename T>
+  bool operator()(const T* p0, const T* p1, const T* p2, const T* p3, const T* b0, T* r) const {
+    const T* blocks[] = {p0, p1, p2, p3, b0};
+    return Compute(blocks, r);
+  }
+  template <typename T>
+  bool operator()(const T* p0,
+                  const T* p1,
+                  const T* p2,
+                  const T* p3,
+                  const T* b0,
+                  const T* b1,
+                  const T* b2,
+                  const T* b3,
+                  T* r) const {
+    const T* blocks[] = {p0, p1, p2, p3, b0, b1, b2, b3};
+    return Compute(blocks, r);
+  }
+
+  ImuResidualSegment segment;
+  ImuResidualSample sample;
+};
+
+// Functor for ceres::AutoDiffCostFunction<AccelResidual<k>, 3, 7, 7, 7, 7, 3 (x k), 3>.
+template <int kBiasBlocks>
+struct AccelResidual {
+  AccelResidual(const ImuResidualSegment& segment_in, const ImuResidualSample& sample_in)
+      : segment(segment_in), sample(sample_in) {}
+
+  template <typename T>
+  bool Compute(const T* const* blocks, T* residual) const {
+    const SegmentKnotData<T> data = internal::KnotDataFromBlocks(blocks);
+    const Segment<T> seg = MakeSegment(segment.segment_index, T(sample.u), segment.dt_s);
+    const Vector3<T> bias = internal::WeightedBiasT<T, kBiasBlocks>(sample, blocks + 4);
+    const Vector3<T> g_w = Eigen::Map<const Vector3<T>>(blocks[4 + kBiasBlocks]);
+    Vector3<T> accel;
+    PredictImu<T>(data.knots(), seg, g_w, Vector3<T>::Zero(), bias, nullptr, &accel);
+    const T inv_sigma = T(1.0 / segment.sigma);
+    for (int a = 0; a < 3; ++a) residual[a] = (accel[a] - T(sample.measured[a])) * inv_sigma;
+    return true;
+  }
+
+  template <typename T>
+  bool operator()(
+      const T* p0, const T* p1, const T* p2, const T* p3, const T* b0, const T* g, T* r) const {
+    const T* blocks[] = {p0, p1, p2, p3, b0, g};
+    return Compute(blocks, r);
+  }
+  template <typename T>
+  bool operator()(const T* p0,
+                  const T* p1,
+                  const T* p2,
+                  const T* p3,
+                  const T* b0,
+                  const T* b1,
+                  const T* b2,
+                  const T* b3,
+                  const T* g,
+                  T* r) const {
+    const T* blocks[] = {p0, p1, p2, p3, b0, b1, b2, b3, g};
+    return Compute(blocks, r);
+  }
+
+  ImuResidualSegment segment;
+  ImuResidualSample sample;
+};
+
+// The autodiff twins as cost functions (caller owns the result).
+ceres::CostFunction* NewAutoDiffGyroCost(int bias_blocks,
+                                         const ImuResidualSegment& segment,
+                                         const ImuResidualSample& sample);
+ceres::CostFunction* NewAutoDiffAccelCost(int bias_blocks,
+                                          const ImuResidualSegment& segment,
+                                          const ImuResidualSample& sample);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_ESTIMATION_IMU_COSTS_H_

@@ -1,0 +1,119 @@
+// The pose residual of `splinecal fit`: one pose T_w_m of the pose source (motion capture,
+// ground truth, simulator) against the spline T_w_s(t) of the IMU, with the time offset and the
+// extrinsic between them. Analytic Jacobians and an automatic-differentiation twin.
+//
+// (estimation/pose_fit.h has a segment pose cost for fitting control poses to poses; it has no time
+// offset, no extrinsic and no sigma weights, hence this one.)
+//
+// Frames and time (CONVENTIONS.md): the pose source reports T_w_m, the pose of its body frame m;
+// the spline represents the IMU s in the same world w, on the IMU's clock. The extrinsic
+// T_pose_imu = T_m_s maps IMU-frame points into m, so T_w_m = T_w_s T_m_s^-1. A pose stamped
+// t_pose on the pose source's clock was taken at IMU time t = t_pose + time_offset. The residual
+//
+//   T_pred = T_w_s(t_pose + time_offset) T_m_s^-1
+//   r      = [ (p_pred - p_measured) / sigma_m ;  Log(R_measured^T R_pred) / sigma_rad ]   (6)
+//
+// Parameter blocks: the four control poses of the segment the residual is attached to (7 each),
+// the time offset [s] (1), T_m_s (7; {px, py, pz, qx, qy, qz, qw}). Hold the last two constant
+// when they are not estimated.
+//
+// The segment is fixed when the residual is built (from the initial time offset): a time offset
+// that moves t outside that segment evaluates the same segment polynomial at u outside [0, 1]
+// (smooth, exact for the parameters it depends on); `splinecal fit` re-attaches such residuals
+// and solves again (docs/fit.md, "Time offset").
+//
+// Jacobians (RIGHT perturbations, lie/se3.h). With e the right-tangent change of T_pred:
+//   dr / de         = blockdiag(R_pred / sigma_m, Jr^-1(phi_r) / sigma_rad),
+//                     phi_r = Log(R_m^T R_pred)
+//   control pose k: e = Ad(T_m_s) J_T,k d_k     (T Exp(e_T) X = T X Exp(Ad(X^-1) e_T) with
+//                                                X = T_m_s^-1; J_T,k: spline/segment_jacobians.h)
+//   time offset:    e = Ad(T_m_s) xi dtau,      xi = [v_s; w_s] = vee(T^-1 dT/dt), the body twist
+//   extrinsic:      e = -Ad(T_m_s) delta        (T_m_s Exp(delta): X -> Exp(-delta) X)
+// and pose blocks are lifted to the ambient block exactly (estimation/pose_block_jacobian.h).
+#ifndef SPLINECAL_ESTIMATION_POSE_COST_H_
+#define SPLINECAL_ESTIMATION_POSE_COST_H_
+
+#include <ceres/cost_function.h>
+#include <ceres/sized_cost_function.h>
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/spline_evaluation_callback.h"
+#include "splinecal/lie/se3.h"
+#include "splinecal/lie/se3_manifold.h"
+#include "splinecal/spline/segment.h"
+#include "splinecal/spline/segment_jacobians.h"
+
+namespace splinecal {
+
+struct PoseResidualData {
+  int segment_index = 1;  // i: control poses i-1 .. i+2
+  double dt_s = 0.0;      // pose knot spacing [s]
+  // t_pose - t0 [s]: the pose's stamp on the pose source's clock relative to the spline's first
+  // knot time (subtract in int64 ns first). u = (t_s + time_offset) / dt - i.
+  double t_s = 0.0;
+  SE3d T_w_m;               // measured pose
+  double sigma_m = 1e-3;    // position std [m]
+  double sigma_rad = 1e-3;  // rotation std [rad]
+  // Optional knot caches for this evaluation point (not owned).
+  const SplineEvaluationCallback* shared = nullptr;
+};
+
+class PoseCostFunction : public ceres::SizedCostFunction<6, 7, 7, 7, 7, 1, 7> {
+ public:
+  explicit PoseCostFunction(const PoseResidualData& data) : data_(data) {}
+
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override;
+
+  const PoseResidualData& data() const { return data_; }
+
+ private:
+  PoseResidualData data_;
+};
+
+// Functor for ceres::AutoDiffCostFunction<PoseResidual, 6, 7, 7, 7, 7, 1, 7> (the time offset
+// passes through u as a Jet).
+struct PoseResidual {
+  explicit PoseResidual(const PoseResidualData& data_in) : data(data_in) {}
+
+  template <typename T>
+  bool operator()(const T* p0,
+                  const T* p1,
+                  const T* p2,
+                  const T* p3,
+                  const T* time_offset,
+                  const T* T_m_s_block,
+                  T* residual) const {
+    const SegmentKnotData<T> knots(PoseFromBlock(p0),
+                                   PoseFromBlock(p1),
+                                   PoseFromBlock(p2),
+                                   PoseFromBlock(p3),
+                                   /*with_jacobians=*/false);
+    const T u = (T(data.t_s) + time_offset[0]) / T(data.dt_s) - T(double(data.segment_index));
+    const Segment<T> segment = MakeSegment(data.segment_index, u, data.dt_s);
+    SE3<T> T_w_s;
+    EvaluateSegment<T>(knots.knots(), segment, &T_w_s);
+    const SE3<T> T_pred = T_w_s * PoseFromBlock(T_m_s_block).inverse();
+    const SE3<T> T_meas = data.T_w_m.cast<T>();
+    const Vector3<T> dp = T_pred.translation() - T_meas.translation();
+    const Vector3<T> phi = (T_meas.so3().inverse() * T_pred.so3()).Log();
+    for (int a = 0; a < 3; ++a) {
+      residual[a] = dp[a] / T(data.sigma_m);
+      residual[3 + a] = phi[a] / T(data.sigma_rad);
+    }
+    return true;
+  }
+
+  PoseResidualData data;
+};
+
+// The autodiff twin as a cost function (caller owns it).
+ceres::CostFunction* NewAutoDiffPoseCost(const PoseResidualData& data);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_ESTIMATION_POSE_COST_H_

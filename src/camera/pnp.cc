@@ -1,0 +1,222 @@
+#include "splinecal/camera/pnp.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
+#include <cmath>
+#include <vector>
+
+namespace splinecal {
+
+namespace {
+
+// Smallest singular value of the DLT system relative to the largest below which the geometry is
+// degenerate (collinear points, all points on one ray): the solution is then not unique.
+constexpr double kMinSingularValueRatio = 1e-10;
+
+// The rotation closest to M in the Frobenius norm (det +1).
+Eigen::Matrix3d ClosestRotation(const Eigen::Matrix3d& M) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  return svd.matrixU() * D * svd.matrixV().transpose();
+}
+
+// Hartley's normalisation of 2-D points: centroid to 0, mean distance sqrt(2).
+Eigen::Matrix3d Normalisation(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  double distance = 0.0;
+  for (const auto& p : points) distance += (p - mean).norm();
+  distance /= static_cast<double>(points.size());
+  const double s = distance > 0.0 ? std::sqrt(2.0) / distance : 1.0;
+  Eigen::Matrix3d T;
+  T << s, 0.0, -s * mean.x(), 0.0, s, -s * mean.y(), 0.0, 0.0, 1.0;
+  return T;
+}
+
+bool PlanarPose(const std::vector<Eigen::Vector3d>& p_t,
+                const std::vector<Eigen::Vector2d>& m,
+                SE3d* T_c_t,
+                std::string* message) {
+  const int n = static_cast<int>(p_t.size());
+  std::vector<Eigen::Vector2d> xy(n);
+  for (int i = 0; i < n; ++i) xy[i] = p_t[i].head<2>();
+  const Eigen::Matrix3d Ta = Normalisation(xy);
+  const Eigen::Matrix3d Tb = Normalisation(m);
+  Eigen::MatrixXd A(2 * n, 9);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d a = Ta * Eigen::Vector3d(xy[i].x(), xy[i].y(), 1.0);
+    const Eigen::Vector3d b = Tb * Eigen::Vector3d(m[i].x(), m[i].y(), 1.0);
+    // b x (H a) = 0: two independent rows.
+    A.row(2 * i) << 0.0, 0.0, 0.0, -b.z() * a.transpose(), b.y() * a.transpose();
+    A.row(2 * i + 1) << b.z() * a.transpose(), 0.0, 0.0, 0.0, -b.x() * a.transpose();
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  if (!(sv(7) > kMinSingularValueRatio * sv(0))) {
+    *message = "degenerate target geometry (collinear points)";
+    return false;
+  }
+  const Eigen::VectorXd h = svd.matrixV().col(8);
+  Eigen::Matrix3d Hn;
+  Hn << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
+  Eigen::Matrix3d H = Tb.inverse() * Hn * Ta;
+  const double scale = 0.5 * (H.col(0).norm() + H.col(1).norm());
+  if (!(scale > 0.0)) {
+    *message = "degenerate homography";
+    return false;
+  }
+  H /= scale;
+  if (H(2, 2) < 0.0) H = -H;  // the target origin in front: t_z > 0
+  Eigen::Matrix3d M;
+  M.col(0) = H.col(0);
+  M.col(1) = H.col(1);
+  M.col(2) = H.col(0).cross(H.col(1));
+  *T_c_t = SE3d(SO3d::FromMatrix(ClosestRotation(M)), H.col(2));
+  return true;
+}
+
+bool GeneralPose(const std::vector<Eigen::Vector3d>& p_t,
+                 const std::vector<Eigen::Vector2d>& m,
+                 SE3d* T_c_t,
+                 std::string* message) {
+  const int n = static_cast<int>(p_t.size());
+  // Normalise the 3-D points: centroid 0, mean distance sqrt(3).
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : p_t) mean += p;
+  mean /= n;
+  double distance = 0.0;
+  for (const auto& p : p_t) distance += (p - mean).norm();
+  distance /= n;
+  const double s3 = distance > 0.0 ? std::sqrt(3.0) / distance : 1.0;
+  Eigen::Matrix4d Ta = Eigen::Matrix4d::Identity();
+  Ta.topLeftCorner<3, 3>() *= s3;
+  Ta.topRightCorner<3, 1>() = -s3 * mean;
+  const Eigen::Matrix3d Tb = Normalisation(m);
+  Eigen::MatrixXd A(2 * n, 12);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector4d a = Ta * p_t[i].homogeneous();
+    const Eigen::Vector3d b = Tb * Eigen::Vector3d(m[i].x(), m[i].y(), 1.0);
+    A.row(2 * i) << Eigen::RowVector4d::Zero(), -b.z() * a.transpose(), b.y() * a.transpose();
+    A.row(2 * i + 1) << b.z() * a.transpose(), Eigen::RowVector4d::Zero(), -b.x() * a.transpose();
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  if (!(sv(10) > kMinSingularValueRatio * sv(0))) {
+    *message = "degenerate target geometry (coplanar or too few independent points)";
+    return false;
+  }
+  const Eigen::VectorXd p = svd.matrixV().col(11);
+  Eigen::Matrix<double, 3, 4> Pn;
+  Pn << p(0), p(1), p(2), p(3), p(4), p(5), p(6), p(7), p(8), p(9), p(10), p(11);
+  Eigen::Matrix<double, 3, 4> P = Tb.inverse() * Pn * Ta;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd3(P.leftCols<3>());
+  const double scale = svd3.singularValues().mean();
+  if (!(scale > 0.0)) {
+    *message = "degenerate projection matrix";
+    return false;
+  }
+  P /= scale;
+  // Sign: the points must be in front of the camera.
+  int in_front = 0;
+  for (const auto& q : p_t) in_front += (P * q.homogeneous()).z() > 0.0 ? 1 : -1;
+  if (in_front < 0) P = -P;
+  *T_c_t = SE3d(SO3d::FromMatrix(ClosestRotation(P.leftCols<3>())), P.col(3));
+  return true;
+}
+
+// Sum of squared pixel errors; false when a point does not project.
+bool Errors(const PinholeCamera& camera,
+            const SE3d& T_c_t,
+            const std::vector<Eigen::Vector3d>& p_t,
+            const std::vector<Eigen::Vector2d>& uv,
+            double* cost) {
+  *cost = 0.0;
+  for (size_t i = 0; i < p_t.size(); ++i) {
+    Eigen::Vector2d pred;
+    if (!camera.Project(T_c_t * p_t[i], &pred)) return false;
+    *cost += (pred - uv[i]).squaredNorm();
+  }
+  return true;
+}
+
+}  // namespace
+
+PnpResult SolvePnp(const PinholeCamera& camera,
+                   const std::vector<Eigen::Vector3d>& p_t,
+                   const std::vector<Eigen::Vector2d>& uv,
+                   const PnpOptions& options) {
+  PnpResult result;
+  const int n = static_cast<int>(p_t.size());
+  bool planar = true;
+  for (const auto& p : p_t) planar = planar && p.z() == 0.0;
+  const int needed = std::max(options.min_points, planar ? 4 : 6);
+  if (n != static_cast<int>(uv.size()) || n < needed) {
+    result.message =
+        "too few points (" + std::to_string(n) + ", need " + std::to_string(needed) + ")";
+    return result;
+  }
+  std::vector<Eigen::Vector2d> m(n);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d ray;
+    if (!camera.Unproject(uv[i], &ray)) {
+      result.message = "a pixel does not unproject (outside the camera model's valid region)";
+      return result;
+    }
+    m[i] = ray.head<2>();
+  }
+  SE3d T;
+  if (!(planar ? PlanarPose(p_t, m, &T, &result.message)
+               : GeneralPose(p_t, m, &T, &result.message))) {
+    return result;
+  }
+  // Levenberg-Marquardt on the pixel errors, right perturbation of T_c_t.
+  double cost = 0.0;
+  if (!Errors(camera, T, p_t, uv, &cost)) {
+    result.message = "the closed-form pose puts points behind the camera";
+    return result;
+  }
+  double lambda = 1e-3;
+  for (result.iterations = 0; result.iterations < options.max_iterations; ++result.iterations) {
+    Eigen::Matrix<double, 6, 6> JtJ = Eigen::Matrix<double, 6, 6>::Zero();
+    Vector6d Jtr = Vector6d::Zero();
+    const Eigen::Matrix3d R = T.rotationMatrix();
+    for (int i = 0; i < n; ++i) {
+      Eigen::Vector2d pred;
+      Eigen::Matrix<double, 2, 3> J_pi;
+      camera.Project(T * p_t[i], &pred, &J_pi);
+      Eigen::Matrix<double, 2, 6> J;
+      J.leftCols<3>() = J_pi * R;
+      J.rightCols<3>() = -J_pi * R * Hat(p_t[i]);
+      JtJ += J.transpose() * J;
+      Jtr += J.transpose() * (pred - uv[i]);
+    }
+    bool improved = false;
+    for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
+      Eigen::Matrix<double, 6, 6> A = JtJ;
+      A.diagonal() *= (1.0 + lambda);
+      const Vector6d step = -A.ldlt().solve(Jtr);
+      const SE3d candidate = T * SE3d::Exp(step);
+      double candidate_cost = 0.0;
+      if (step.allFinite() && Errors(camera, candidate, p_t, uv, &candidate_cost) &&
+          candidate_cost < cost) {
+        const bool converged = cost - candidate_cost < 1e-12 * cost + 1e-20 || step.norm() < 1e-12;
+        T = candidate;
+        cost = candidate_cost;
+        lambda = std::max(lambda * 0.3, 1e-12);
+        improved = true;
+        if (converged) result.iterations = options.max_iterations;
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!improved) break;
+  }
+  result.ok = true;
+  result.T_c_t = T;
+  result.rms_px = std::sqrt(cost / n);
+  return result;
+}
+
+}  // namespace splinecal

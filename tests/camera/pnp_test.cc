@@ -1,0 +1,113 @@
+#include "splinecal/camera/pnp.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "calib/camera_test_scene.h"
+#include "splinecal/camera/target.h"
+
+namespace splinecal {
+namespace {
+
+// Noise-free correspondences: the pose is recovered to the refinement's convergence (1e-9 m,
+// 1e-9 rad are far below any use and far above rounding at a 1 m range).
+constexpr double kExactTolerance = 1e-9;
+
+struct Views {
+  std::vector<Eigen::Vector3d> p_t;
+  std::vector<Eigen::Vector2d> uv;
+};
+
+Views Project(const PinholeCamera& camera,
+              const SE3d& T_c_t,
+              const std::map<int64_t, Eigen::Vector3d>& points,
+              double noise_px,
+              unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, noise_px > 0.0 ? noise_px : 1.0);
+  Views v;
+  for (const auto& [id, p] : points) {
+    Eigen::Vector2d uv;
+    if (!camera.Project(T_c_t * p, &uv) || !camera.InImage(uv)) continue;
+    if (noise_px > 0.0) uv += Eigen::Vector2d(normal(rng), normal(rng));
+    v.p_t.push_back(p);
+    v.uv.push_back(uv);
+  }
+  return v;
+}
+
+SE3d TestPose(double tilt) {
+  // Target about 0.8 m in front, tilted.
+  return SE3d(SO3d::Exp(Eigen::Vector3d(tilt, -0.5 * tilt, 0.3)),
+              Eigen::Vector3d(-0.2, -0.15, 0.8));
+}
+
+TEST(SolvePnp, PlanarTargetNoiseFreeIsExact) {
+  const PinholeCamera camera = testing::EurocCamera();
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.05, 0.3);
+  for (double tilt : {0.0, 0.3, 0.7}) {
+    const SE3d T_c_t = TestPose(tilt);
+    const Views v = Project(camera, T_c_t, target.points, 0.0, 1);
+    ASSERT_GE(v.p_t.size(), 50u);
+    const PnpResult result = SolvePnp(camera, v.p_t, v.uv);
+    ASSERT_TRUE(result.ok) << result.message;
+    const Vector6d error = (T_c_t.inverse() * result.T_c_t).Log();
+    EXPECT_LT(error.head<3>().norm(), kExactTolerance) << tilt;
+    EXPECT_LT(error.tail<3>().norm(), kExactTolerance) << tilt;
+    EXPECT_LT(result.rms_px, 1e-8);
+  }
+}
+
+TEST(SolvePnp, NonPlanarTargetNoiseFreeIsExact) {
+  const PinholeCamera camera = testing::EurocCamera();
+  std::map<int64_t, Eigen::Vector3d> points;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  for (int i = 0; i < 30; ++i) points[i] = Eigen::Vector3d(u(rng), u(rng), 0.5 * u(rng));
+  const SE3d T_c_t(SO3d::Exp(Eigen::Vector3d(0.2, -0.1, 0.4)), Eigen::Vector3d(0.05, 0.02, 1.0));
+  const Views v = Project(camera, T_c_t, points, 0.0, 1);
+  const PnpResult result = SolvePnp(camera, v.p_t, v.uv);
+  ASSERT_TRUE(result.ok) << result.message;
+  EXPECT_LT((T_c_t.inverse() * result.T_c_t).Log().norm(), kExactTolerance);
+}
+
+TEST(SolvePnp, NoisyPixelsGiveAPoseGoodEnoughToStartFrom) {
+  // 0.5 px noise, ~100 corners at 0.8 m: the pose is good to ~1 mm and ~0.1 degree; the test
+  // allows 5x that.
+  const PinholeCamera camera = testing::EurocCamera();
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.05, 0.3);
+  const SE3d T_c_t = TestPose(0.4);
+  const Views v = Project(camera, T_c_t, target.points, 0.5, 9);
+  const PnpResult result = SolvePnp(camera, v.p_t, v.uv);
+  ASSERT_TRUE(result.ok) << result.message;
+  const Vector6d error = (T_c_t.inverse() * result.T_c_t).Log();
+  EXPECT_LT(error.head<3>().norm(), 5e-3);
+  EXPECT_LT(error.tail<3>().norm(), 5 * 1.75e-3);
+  EXPECT_NEAR(result.rms_px, 0.5 * std::sqrt(2.0), 0.1);  // RMS of 2-D errors
+}
+
+TEST(SolvePnp, RefusesTooFewOrCollinearPoints) {
+  const PinholeCamera camera = testing::EurocCamera();
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.05, 0.3);
+  const SE3d T_c_t = TestPose(0.2);
+  Views v = Project(camera, T_c_t, target.points, 0.0, 1);
+  v.p_t.resize(5);
+  v.uv.resize(5);
+  PnpResult result = SolvePnp(camera, v.p_t, v.uv);
+  EXPECT_FALSE(result.ok);
+  EXPECT_THAT(result.message, ::testing::HasSubstr("too few points"));
+  // One row of corners: collinear.
+  std::map<int64_t, Eigen::Vector3d> row;
+  for (int i = 0; i < 10; ++i) row[i] = Eigen::Vector3d(0.05 * i, 0.0, 0.0);
+  v = Project(camera, T_c_t, row, 0.0, 1);
+  result = SolvePnp(camera, v.p_t, v.uv);
+  EXPECT_FALSE(result.ok);
+  EXPECT_THAT(result.message, ::testing::HasSubstr("collinear"));
+}
+
+}  // namespace
+}  // namespace splinecal

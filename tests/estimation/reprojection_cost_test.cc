@@ -1,0 +1,396 @@
+#include "splinecal/estimation/reprojection_cost.h"
+
+#include <ceres/manifold.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "calib/camera_test_scene.h"
+#include "splinecal/lie/se3_manifold.h"
+#include "testing/numeric_diff.h"
+
+namespace splinecal {
+namespace {
+
+// Analytic vs numeric Jacobians in the tangent spaces (Ridders' extrapolation through the
+// blocks' manifolds, what ceres::GradientChecker does; written out here because the checker's
+// central differences step a line delay of 0 to a negative, invalid value). Per block, the largest
+// error must be below this fraction of the block's largest entry: Ridders reaches ~1e-9 relative
+// here (the time solve converges to ~1e-16 s, far below its steps), and a wrong term would be O(1)
+// relative.
+constexpr double kRelativeJacobianTolerance = 1e-6;
+// The cost's forward model against the independent reference below (pose from SE3Spline::Pose,
+// exposure time by bisection) [px].
+constexpr double kModelTolerancePx = 1e-8;
+
+// Pixel of X_w = (x_w, w) at the exposure time, found by bisection on the spline's Pose (an
+// implementation independent of the cost functions').
+bool ReferencePixel(const SE3Splined& spline,
+                    const PinholeCamera& camera,
+                    const SE3d& T_c_s,
+                    double t_base,
+                    double line_delay,
+                    const Eigen::Vector3d& x_w,
+                    double w,
+                    Eigen::Vector2d* uv) {
+  auto pixel = [&](double tau, Eigen::Vector2d* out) {
+    const SE3d T_w_s = spline.Pose(t_base + tau);
+    const Eigen::Vector3d x_s = T_w_s.so3().inverse() * (x_w - w * T_w_s.translation());
+    return camera.Project(T_c_s.so3() * x_s + w * T_c_s.translation(), out);
+  };
+  double lo = 0.0;
+  double hi = line_delay * (camera.height - 1);
+  for (int i = 0; i < 200 && hi - lo > 0.0; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    Eigen::Vector2d p;
+    if (!pixel(mid, &p)) return false;
+    if (mid - line_delay * p.y() < 0.0) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+    if (line_delay == 0.0) break;
+  }
+  return pixel(0.5 * (lo + hi), uv);
+}
+
+struct Blocks {
+  std::vector<double*> parameters;
+  std::vector<const ceres::Manifold*> manifolds;
+};
+
+class ReprojectionCostTest : public ::testing::Test {
+ protected:
+  ReprojectionCostTest() {
+    settings_.camera = &scene_.camera;
+    settings_.layout.dt_s = scene_.dt_s;
+    settings_.layout.num_control_poses = static_cast<int>(scene_.poses.size());
+    settings_.sigma_px = 0.7;
+  }
+
+  // Checks every Jacobian block of `cost` at `blocks` against Ridders' numeric Jacobians in the
+  // block's tangent space (x (+) d through its manifold, d = 0 .. step). A block whose value is
+  // 0 and must stay >= 0 (a line delay of 0) is differentiated one-sided (forward differences
+  // extrapolated by Ridders on h > 0).
+  void ExpectJacobiansMatch(const ceres::CostFunction& cost, const Blocks& blocks) {
+    const std::vector<int32_t>& sizes = cost.parameter_block_sizes();
+    const int rows = cost.num_residuals();
+    std::vector<std::vector<double>> J_ambient(sizes.size());
+    std::vector<double*> jacobians(sizes.size());
+    for (size_t i = 0; i < sizes.size(); ++i) {
+      J_ambient[i].assign(rows * sizes[i], 0.0);
+      jacobians[i] = J_ambient[i].data();
+    }
+    std::vector<double> r0(rows);
+    ASSERT_TRUE(cost.Evaluate(blocks.parameters.data(), r0.data(), jacobians.data()));
+    for (size_t i = 0; i < sizes.size(); ++i) {
+      const ceres::Manifold* manifold = blocks.manifolds[i];
+      const int tangent = manifold != nullptr ? manifold->TangentSize() : sizes[i];
+      Eigen::MatrixXd plus(sizes[i], tangent);
+      if (manifold != nullptr) {
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> P(sizes[i], tangent);
+        manifold->PlusJacobian(blocks.parameters[i], P.data());
+        plus = P;
+      } else {
+        plus.setIdentity();
+      }
+      const Eigen::MatrixXd analytic =
+          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+              J_ambient[i].data(), rows, sizes[i]) *
+          plus;
+      const std::vector<double> x0(blocks.parameters[i], blocks.parameters[i] + sizes[i]);
+      const bool one_sided = manifold == nullptr && sizes[i] == 1 && x0[0] == 0.0;
+      auto f = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
+        std::vector<double> x(sizes[i]);
+        if (manifold != nullptr) {
+          manifold->Plus(x0.data(), d.data(), x.data());
+        } else {
+          for (int k = 0; k < sizes[i]; ++k) x[k] = x0[k] + (one_sided ? std::abs(d[k]) : d[k]);
+        }
+        std::vector<double*> parameters = blocks.parameters;
+        parameters[i] = x.data();
+        Eigen::VectorXd r(rows);
+        CHECK(cost.Evaluate(parameters.data(), r.data(), nullptr));
+        return r;
+      };
+      Eigen::MatrixXd numeric;
+      testutil::RiddersOptions options;
+      options.initial_step =
+          1e-3 *
+          std::max(1e-6,
+                   Eigen::Map<const Eigen::VectorXd>(x0.data(), sizes[i]).cwiseAbs().maxCoeff());
+      if (manifold != nullptr) options.initial_step = 1e-3;
+      if (one_sided) {
+        // Forward differences: (f(h) - f(0)) / h, Richardson-extrapolated over h.
+        std::vector<Eigen::VectorXd> level;
+        double h = 1e-7;
+        for (int k = 0; k < 6; ++k, h /= 2.0) {
+          level.push_back((f(Eigen::VectorXd::Constant(1, h)) - f(Eigen::VectorXd::Zero(1))) / h);
+        }
+        for (int m = 1; m < 6; ++m) {  // error c1 h + c2 h^2 + ...: remove one power per level
+          const double factor = std::pow(2.0, m);
+          for (int k = 5; k >= m; --k)
+            level[k] = (factor * level[k] - level[k - 1]) / (factor - 1.0);
+        }
+        numeric = level[5];
+      } else {
+        numeric = testutil::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
+      }
+      const double scale = std::max(analytic.cwiseAbs().maxCoeff(), 1e-12);
+      EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff() / scale, kRelativeJacobianTolerance)
+          << "block " << i << " of " << sizes.size() << ", largest entry " << scale;
+    }
+  }
+
+  Blocks TargetBlocks(const ControlPoseWindow& window) {
+    Blocks b;
+    for (int i = 0; i < window.num_poses; ++i) {
+      b.parameters.push_back(scene_.poses[window.first_index + i].data());
+      b.manifolds.push_back(&pose_manifold_);
+    }
+    b.parameters.push_back(scene_.T_c_s.data());
+    b.manifolds.push_back(&pose_manifold_);
+    b.parameters.push_back(&scene_.shift);
+    b.manifolds.push_back(nullptr);
+    b.parameters.push_back(&scene_.line_delay);
+    b.manifolds.push_back(nullptr);
+    b.parameters.push_back(scene_.T_w_t.data());
+    b.manifolds.push_back(&pose_manifold_);
+    return b;
+  }
+
+  // Every target corner with its true pixel, plus `offset_px` of seeded noise. Offsets within
+  // 30% of the Huber threshold are redrawn: Huber's loss is only C^1 there, and a numeric
+  // derivative whose steps straddle the threshold is not accurate to 1e-6.
+  std::vector<TargetCornerObservation> Corners(double t_frame, double offset_px) {
+    const SE3Splined spline = scene_.Spline();
+    const SE3d T_c_s = PoseFromBlock(scene_.T_c_s.data());
+    const SE3d T_w_t = PoseFromBlock(scene_.T_w_t.data());
+    std::mt19937 rng(11);
+    std::normal_distribution<double> normal(0.0, offset_px);
+    std::vector<TargetCornerObservation> corners;
+    for (const auto& [id, p_t] : scene_.target.points) {
+      Eigen::Vector2d uv;
+      if (!ReferencePixel(spline,
+                          scene_.camera,
+                          T_c_s,
+                          t_frame + scene_.shift,
+                          scene_.line_delay,
+                          T_w_t * p_t,
+                          1.0,
+                          &uv) ||
+          !scene_.camera.InImage(uv)) {
+        continue;
+      }
+      Eigen::Vector2d offset(normal(rng), normal(rng));
+      while (settings_.huber_px > 0.0 &&
+             std::abs(offset.norm() - settings_.huber_px) < 0.3 * settings_.huber_px) {
+        offset = Eigen::Vector2d(normal(rng), normal(rng));
+      }
+      corners.push_back({p_t, uv + offset});
+    }
+    return corners;
+  }
+
+  testing::CameraTestScene scene_;
+  ReprojectionSettings settings_;
+  SE3Manifold pose_manifold_;
+};
+
+TEST_F(ReprojectionCostTest, TargetResidualIsZeroAtTheTruePixels) {
+  const double t_frame = 0.45;
+  const std::vector<TargetCornerObservation> corners = Corners(t_frame, 0.0);
+  ASSERT_GE(corners.size(), 40u);
+  ControlPoseWindow window;
+  ASSERT_TRUE(WindowCovering(settings_.layout, t_frame - 0.02, t_frame + 0.07, &window));
+  const TargetFrameCostFunction cost(settings_, window, t_frame, corners);
+  Blocks blocks = TargetBlocks(window);
+  std::vector<double> residuals(cost.num_residuals());
+  ASSERT_TRUE(cost.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));
+  for (double r : residuals) EXPECT_LT(std::abs(r) * settings_.sigma_px, kModelTolerancePx);
+}
+
+TEST_F(ReprojectionCostTest, TargetJacobiansRollingShutterRobust) {
+  const double t_frame = 0.45;
+  settings_.huber_px = 1.5;  // some corners beyond it: the robust branch is exercised
+  ControlPoseWindow window;
+  ASSERT_TRUE(WindowCovering(settings_.layout, t_frame - 0.02, t_frame + 0.07, &window));
+  EXPECT_GE(window.num_poses, 5);
+  const TargetFrameCostFunction cost(settings_, window, t_frame, Corners(t_frame, 2.0));
+  ExpectJacobiansMatch(cost, TargetBlocks(window));
+}
+
+TEST_F(ReprojectionCostTest, TargetJacobiansGlobalShutter) {
+  const double t_frame = 0.62;
+  scene_.line_delay = 0.0;
+  ControlPoseWindow window;
+  ASSERT_TRUE(WindowCovering(settings_.layout, t_frame - 0.02, t_frame + 0.02, &window));
+  const TargetFrameCostFunction cost(settings_, window, t_frame, Corners(t_frame, 1.0));
+  ExpectJacobiansMatch(cost, TargetBlocks(window));
+}
+
+TEST_F(ReprojectionCostTest, TargetEvaluationOutsideTheWindowFails) {
+  const double t_frame = 0.45;
+  ControlPoseWindow window;
+  ASSERT_TRUE(WindowCovering(settings_.layout, t_frame, t_frame + 0.015, &window));
+  const TargetFrameCostFunction cost(settings_, window, t_frame, Corners(t_frame, 0.0));
+  Blocks blocks = TargetBlocks(window);
+  std::vector<double> residuals(cost.num_residuals());
+  EXPECT_TRUE(cost.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));
+  scene_.shift = 0.3;  // exposure far outside the window's segments
+  EXPECT_FALSE(cost.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));
+}
+
+class LandmarkCostTest : public ReprojectionCostTest {
+ protected:
+  // A landmark first seen in the frame at t_ref at pixel (u, v) and depth `depth`.
+  LandmarkObservation Observe(double t_ref,
+                              const Eigen::Vector2d& uv_ref,
+                              double depth,
+                              double t_frame,
+                              double offset_px,
+                              double* rho) {
+    const SE3Splined spline = scene_.Spline();
+    const SE3d T_c_s = PoseFromBlock(scene_.T_c_s.data());
+    LandmarkObservation o;
+    o.t_reference_frame_s = t_ref;
+    o.reference_row = uv_ref.y();
+    CHECK(scene_.camera.Unproject(uv_ref, &o.ray));
+    *rho = 1.0 / depth;
+    const double t_r = t_ref + scene_.shift + scene_.line_delay * uv_ref.y();
+    const Eigen::Vector3d p_w = spline.Pose(t_r) * (T_c_s.inverse() * (o.ray * depth));
+    o.t_frame_s = t_frame;
+    Eigen::Vector2d uv;
+    CHECK(ReferencePixel(
+        spline, scene_.camera, T_c_s, t_frame + scene_.shift, scene_.line_delay, p_w, 1.0, &uv));
+    o.uv = uv + Eigen::Vector2d(offset_px, -0.5 * offset_px);
+    return o;
+  }
+
+  Blocks LandmarkBlocks(const std::vector<int>& indices, double* rho) {
+    Blocks b;
+    for (int i : indices) {
+      b.parameters.push_back(scene_.poses[i].data());
+      b.manifolds.push_back(&pose_manifold_);
+    }
+    b.parameters.push_back(scene_.T_c_s.data());
+    b.manifolds.push_back(&pose_manifold_);
+    b.parameters.push_back(&scene_.shift);
+    b.manifolds.push_back(nullptr);
+    b.parameters.push_back(&scene_.line_delay);
+    b.manifolds.push_back(nullptr);
+    b.parameters.push_back(rho);
+    b.manifolds.push_back(nullptr);
+    return b;
+  }
+
+  std::vector<int> Indices(double t_ref, double t_frame) {
+    ControlPoseWindow a;
+    ControlPoseWindow b;
+    CHECK(WindowCovering(settings_.layout, t_ref - 0.02, t_ref + 0.05, &a));
+    CHECK(WindowCovering(settings_.layout, t_frame - 0.02, t_frame + 0.05, &b));
+    return LandmarkCostFunction::UnionOfWindows(a, b);
+  }
+};
+
+TEST_F(LandmarkCostTest, ResidualIsZeroAtTheTruePixel) {
+  double rho = 0.0;
+  const LandmarkObservation o = Observe(0.3, Eigen::Vector2d(300, 200), 1.4, 0.7, 0.0, &rho);
+  const LandmarkCostFunction cost(settings_, Indices(0.3, 0.7), o);
+  Blocks blocks = LandmarkBlocks(cost.pose_indices(), &rho);
+  double r[2];
+  ASSERT_TRUE(cost.Evaluate(blocks.parameters.data(), r, nullptr));
+  EXPECT_LT(std::abs(r[0]) * settings_.sigma_px, kModelTolerancePx);
+  EXPECT_LT(std::abs(r[1]) * settings_.sigma_px, kModelTolerancePx);
+}
+
+TEST_F(LandmarkCostTest, ReferenceObservationReprojectsExactly) {
+  // The reference observation seen as a measurement of itself: zero for every rho.
+  double rho = 0.0;
+  LandmarkObservation o = Observe(0.5, Eigen::Vector2d(420, 310), 2.0, 0.5, 0.0, &rho);
+  o.uv = Eigen::Vector2d(420, 310);
+  const LandmarkCostFunction cost(settings_, Indices(0.5, 0.5), o);
+  for (double r_value : {0.5, 0.01, 3.0}) {
+    rho = r_value;
+    Blocks blocks = LandmarkBlocks(cost.pose_indices(), &rho);
+    double r[2];
+    ASSERT_TRUE(cost.Evaluate(blocks.parameters.data(), r, nullptr));
+    EXPECT_LT(std::abs(r[0]) * settings_.sigma_px, 1e-9) << rho;
+    EXPECT_LT(std::abs(r[1]) * settings_.sigma_px, 1e-9) << rho;
+  }
+}
+
+TEST_F(LandmarkCostTest, JacobiansSeparateSegments) {
+  double rho = 0.0;
+  settings_.huber_px = 1.0;
+  const LandmarkObservation o = Observe(0.25, Eigen::Vector2d(150, 100), 1.2, 0.8, 2.5, &rho);
+  const std::vector<int> indices = Indices(0.25, 0.8);
+  const LandmarkCostFunction cost(settings_, indices, o);
+  EXPECT_GE(indices.size(), 8u);
+  ExpectJacobiansMatch(cost, LandmarkBlocks(indices, &rho));
+}
+
+TEST_F(LandmarkCostTest, JacobiansSharedSegments) {
+  double rho = 0.0;
+  const LandmarkObservation o = Observe(0.41, Eigen::Vector2d(600, 400), 0.9, 0.46, 1.5, &rho);
+  const std::vector<int> indices = Indices(0.41, 0.46);
+  const LandmarkCostFunction cost(settings_, indices, o);
+  ExpectJacobiansMatch(cost, LandmarkBlocks(indices, &rho));
+}
+
+TEST_F(LandmarkCostTest, JacobiansGlobalShutter) {
+  double rho = 0.0;
+  scene_.line_delay = 0.0;
+  const LandmarkObservation o = Observe(0.35, Eigen::Vector2d(500, 50), 1.7, 0.55, -1.0, &rho);
+  const std::vector<int> indices = Indices(0.35, 0.55);
+  const LandmarkCostFunction cost(settings_, indices, o);
+  ExpectJacobiansMatch(cost, LandmarkBlocks(indices, &rho));
+}
+
+TEST(RobustifyPoint, HuberCostAndContinuity) {
+  const double k = 2.0;
+  for (double n : {0.5, 2.0, 2.0 + 1e-9, 3.0, 50.0}) {
+    Eigen::Vector2d r = n * Eigen::Vector2d(0.6, 0.8);
+    internal::RobustifyPoint(k, &r, nullptr);
+    const double huber = n <= k ? n * n : 2.0 * k * n - k * k;
+    EXPECT_NEAR(r.squaredNorm(), huber, 1e-12 * huber) << n;
+  }
+  // d r' / d r against central differences beyond the threshold.
+  const Eigen::Vector2d r0(3.0, -4.0);
+  Eigen::Vector2d r = r0;
+  Eigen::Matrix2d J;
+  internal::RobustifyPoint(k, &r, &J);
+  for (int j = 0; j < 2; ++j) {
+    const double h = 1e-6;
+    Eigen::Vector2d plus = r0;
+    Eigen::Vector2d minus = r0;
+    plus(j) += h;
+    minus(j) -= h;
+    internal::RobustifyPoint(k, &plus, nullptr);
+    internal::RobustifyPoint(k, &minus, nullptr);
+    EXPECT_LT(((plus - minus) / (2 * h) - J.col(j)).norm(), 1e-8);
+  }
+}
+
+TEST(WindowCovering, SegmentsOfTheRange) {
+  SplineLayout layout;
+  layout.dt_s = 0.1;
+  layout.num_control_poses = 10;  // valid [0.1, 0.8]
+  ControlPoseWindow w;
+  ASSERT_TRUE(WindowCovering(layout, 0.35, 0.37, &w));
+  EXPECT_EQ(w.first_index, 2);
+  EXPECT_EQ(w.num_poses, 4);
+  ASSERT_TRUE(WindowCovering(layout, 0.35, 0.41, &w));
+  EXPECT_EQ(w.num_poses, 5);
+  ASSERT_TRUE(WindowCovering(layout, 0.1, 0.8, &w));
+  EXPECT_EQ(w.first_index, 0);
+  EXPECT_EQ(w.num_poses, 10);
+  EXPECT_FALSE(WindowCovering(layout, 0.05, 0.3, &w));
+  EXPECT_FALSE(WindowCovering(layout, 0.3, 0.85, &w));
+}
+
+}  // namespace
+}  // namespace splinecal
