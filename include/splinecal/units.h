@@ -1,0 +1,24 @@
+// The numerical constants and unit conversions every area shares, written once (CONVENTIONS.md:
+// SI units inside, nanoseconds for timestamps, degrees only at the user's end).
+#ifndef SPLINECAL_UNITS_H_
+#define SPLINECAL_UNITS_H_
+
+#include <cstdint>
+
+namespace splinecal {
+
+inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kRadToDeg = 180.0 / kPi;
+inline constexpr double kDegToRad = kPi / 180.0;
+
+inline constexpr int64_t kNanosecondsPerSecond = 1'000'000'000;
+
+// Seconds of a nanosecond count (or difference), and the nearest nanosecond count of seconds.
+constexpr double NanosecondsToSeconds(int64_t t_ns) { return 1e-9 * static_cast<double>(t_ns); }
+inline int64_t SecondsToNanoseconds(double t_s) {
+  return static_cast<int64_t>(t_s * 1e9 + (t_s >= 0.0 ? 0.5 : -0.5));
+}
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_UNITS_H_
