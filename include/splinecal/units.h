@@ -3,6 +3,7 @@
 #ifndef SPLINECAL_UNITS_H_
 #define SPLINECAL_UNITS_H_
 
+#include <cmath>
 #include <cstdint>
 
 namespace splinecal {
@@ -16,7 +17,7 @@ inline constexpr int64_t kNanosecondsPerSecond = 1'000'000'000;
 // Seconds of a nanosecond count (or difference), and the nearest nanosecond count of seconds.
 constexpr double NanosecondsToSeconds(int64_t t_ns) { return 1e-9 * static_cast<double>(t_ns); }
 inline int64_t SecondsToNanoseconds(double t_s) {
-  return static_cast<int64_t>(t_s * 1e9 + (t_s >= 0.0 ? 0.5 : -0.5));
+  return std::llround(t_s * 1e9);
 }
 
 }  // namespace splinecal
