@@ -9,7 +9,7 @@
 //
 //   Scale: 1, 10 and 60 minutes of 200 Hz IMU with 20 Hz poses (noise, 0.1 s knots), the whole
 //   Fit() (initialisation, solve, covariance; per-sample outputs not kept) with 2 threads and the
-//   default options (FitLinearSolver::kAuto: SPARSE_SCHUR above ~11 minutes).
+//   default options (LinearSolver::kAuto: SPARSE_SCHUR above ~11 minutes).
 //   Target for 60 min: <= 60 s and <= 2 GB peak (counter peak_rss_mb: the process's peak so far,
 //   so run the sizes in increasing order, as registered, or one per process with
 //   --benchmark_filter).
@@ -108,8 +108,8 @@ void BM_FitReference(benchmark::State& state, Path path) {
   options.function_tolerance = 1e-6;
   options.gradient_tolerance = 1e-10;
   options.parameter_tolerance = 1e-8;
-  options.linear_solver = path == Path::kAnalyticSchur ? FitLinearSolver::kSparseSchur
-                                                       : FitLinearSolver::kSparseNormalCholesky;
+  options.linear_solver = path == Path::kAnalyticSchur ? LinearSolver::kSparseSchur
+                                                       : LinearSolver::kSparseNormalCholesky;
   options.layout = path == Path::kAnalyticPerSample ? ImuResidualLayout::kPerSample
                                                     : ImuResidualLayout::kPerSegment;
   options.share_knot_caches = path != Path::kAnalyticUnshared;

@@ -22,17 +22,18 @@
 #include "splinecal/estimation/imu_costs.h"
 #include "splinecal/camera/pnp.h"
 #include "splinecal/estimation/reprojection_cost.h"
-#include "splinecal/estimation/solver_progress.h"
-#include "splinecal/estimation/spline_evaluation_callback.h"
+#include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/estimation/spline_problem.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Time windows of the reprojection residuals reach this far beyond the current exposure range
 // [s]: the time offset may move this much during one solve before the windows are rebuilt.
 constexpr double kWindowMargin_s = 0.005;
@@ -44,10 +45,6 @@ constexpr double kWindowRebuildMargin_s = 0.002;
 constexpr double kSigmaChangeForNewRound = 0.1;
 // 1.4826 x median absolute deviation = std of a Gaussian.
 constexpr double kMadToStd = 1.4826;
-// The diagonally scaled Schur complement of the calibration parameters must have eigenvalues
-// above this fraction of its largest: below, a parameter is not determined (its std would be
-// > ~1e6 x its scale) and no covariance is reported.
-constexpr double kMinCovarianceEigenvalue = 1e-12;
 // PnP poses whose reprojection RMS exceeds this [px] are not used for the initial guess (a
 // wrong detection or a strong rolling-shutter smear; the full problem still uses the frame).
 constexpr double kMaxPnpRmsPx = 10.0;
@@ -266,42 +263,17 @@ class CalibrationProblem {
         options_(options),
         layout_(guess.layout),
         has_target_(has_target) {
-    dt_s_ = 1e-9 * static_cast<double>(layout_.dt_ns);
-    spline_layout_.dt_s = dt_s_;
-    spline_layout_.num_control_poses = layout_.num_control_poses;
+    dt_s_ = layout_.dt_s();
     const int n = layout_.num_control_poses;
-    control_values_.resize(7 * static_cast<size_t>(n));
-    for (int i = 0; i < n; ++i) {
-      PoseToBlock(guess.control_poses[i], &control_values_[7 * i]);
-      control_blocks_.push_back(&control_values_[7 * i]);
-    }
+    spline_ = std::make_unique<SplineProblem>(
+        layout_,
+        guess.control_poses,
+        BiasSpline(options.bias_model, layout_, options.bias_knot_spacing_s));
     imu_rate_hz_ = ImuRateHz(imu_);
     sigma_g_ = options.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz_);
     sigma_a_ = options.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz_);
-    const Eigen::Vector3d g = options.gravity_m_s2 * guess.gravity_w.normalized();
-    for (int a = 0; a < 3; ++a) gravity_[a] = g[a];
-    // Biases.
-    const int64_t t_first = layout_.t0_ns + layout_.dt_ns;
-    const int64_t t_last = layout_.t0_ns + static_cast<int64_t>(n - 2) * layout_.dt_ns;
-    if (options.bias_model == BiasModel::kSpline) {
-      const int per =
-          std::max(1, static_cast<int>(std::lround(options.bias_knot_spacing_s / dt_s_)));
-      bias_dt_ns_ = static_cast<int64_t>(per) * layout_.dt_ns;
-      bias_t0_ns_ = t_first - bias_dt_ns_;
-      const int64_t span = t_last - t_first;
-      num_bias_points_ =
-          static_cast<int>(span / bias_dt_ns_ + (span % bias_dt_ns_ != 0 ? 1 : 0)) + 3;
-    } else {
-      num_bias_points_ = 1;
-    }
-    gyro_bias_values_.resize(3 * static_cast<size_t>(num_bias_points_));
-    accel_bias_values_.resize(3 * static_cast<size_t>(num_bias_points_));
-    for (int m = 0; m < num_bias_points_; ++m) {
-      for (int a = 0; a < 3; ++a) {
-        gyro_bias_values_[3 * m + a] = guess.gyro_bias[a];
-        accel_bias_values_[3 * m + a] = guess.accel_bias[a];
-      }
-    }
+    spline_->SetGravity(options.gravity_m_s2 * guess.gravity_w.normalized());
+    spline_->SetBiases(guess.gyro_bias, guess.accel_bias);
     // Cameras.
     cameras_.resize(camchain.size());
     for (size_t c = 0; c < camchain.size(); ++c) {
@@ -313,8 +285,6 @@ class CalibrationProblem {
           options.rolling_shutter ? std::max(0.0, init.line_delay_s) : init.line_delay_s;
     }
     PoseToBlock(SE3d(), T_w_t_.data());
-    callback_ =
-        std::make_unique<SplineEvaluationCallback>(control_blocks_, layout_.t0_ns, layout_.dt_ns);
     imu_ = ImuBetween(imu,
                       layout_.t0_ns + layout_.dt_ns,
                       layout_.t0_ns + static_cast<int64_t>(n - 2) * layout_.dt_ns);
@@ -324,11 +294,7 @@ class CalibrationProblem {
   void SetFramePeriods(const std::vector<double>& periods) { frame_periods_ = periods; }
   std::vector<TargetFrame>* target_frames() { return &target_frames_; }
   std::vector<Landmark>* landmarks() { return &landmarks_; }
-  SE3Splined Spline() const {
-    std::vector<SE3d> poses;
-    for (const double* b : control_blocks_) poses.push_back(PoseFromBlock(b));
-    return SE3Splined(poses, layout_.t0_ns, layout_.dt_ns);
-  }
+  SE3Splined Spline() const { return spline_->Spline(); }
   const KnotLayout& layout() const { return layout_; }
   double TimeSinceT0(int64_t t_ns) const {
     return 1e-9 * static_cast<double>(t_ns - layout_.t0_ns);
@@ -346,58 +312,30 @@ class CalibrationProblem {
     double built_shift = 0.0;       // the time offset they were built around
   };
 
-  double* gyro_bias(int m) { return &gyro_bias_values_[3 * m]; }
-  double* accel_bias(int m) { return &accel_bias_values_[3 * m]; }
-
-  // The bias segment m (control points m-1 .. m+2) and weights at t_ns.
-  std::array<double, 4> BiasWeights(int64_t t_ns, int* segment) const {
-    if (num_bias_points_ == 1) {
-      *segment = 0;
-      return {1.0, 0.0, 0.0, 0.0};
-    }
-    int m = static_cast<int>((t_ns - bias_t0_ns_) / bias_dt_ns_);
-    m = std::clamp(m, 1, num_bias_points_ - 3);
-    const double u = std::clamp(static_cast<double>(t_ns - (bias_t0_ns_ + m * bias_dt_ns_)) /
-                                    static_cast<double>(bias_dt_ns_),
-                                0.0,
-                                1.0);
-    *segment = m;
-    return BiasSplineWeights(u);
-  }
-  Eigen::Vector3d BiasAt(const std::vector<double>& values, int64_t t_ns) const {
-    int m = 0;
-    const std::array<double, 4> w = BiasWeights(t_ns, &m);
-    if (num_bias_points_ == 1) return Eigen::Map<const Eigen::Vector3d>(values.data());
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (int j = 0; j < 4; ++j)
-      b += w[j] * Eigen::Map<const Eigen::Vector3d>(&values[3 * (m - 1 + j)]);
-    return b;
-  }
+  const std::vector<double*>& control_blocks() const { return spline_->control_blocks(); }
+  ceres::Problem& problem() { return spline_->problem(); }
 
   ReprojectionSettings Settings(int cam, double sigma, double huber) const {
     ReprojectionSettings s;
     s.camera = &camchain_[cam].camera;
-    s.layout = spline_layout_;
+    s.layout = layout_;
     s.sigma_px = sigma;
     s.huber_px = huber;
-    s.shared = callback_.get();
+    s.shared = spline_->evaluation_callback();
     return s;
   }
   // The window of a frame's exposures for the camera's current state (false near the ends).
   bool FrameWindow(int cam, int64_t t_ns, double margin, ControlPoseWindow* window) const {
     const CameraState& c = cameras_[cam];
     const double t = TimeSinceT0(t_ns) + c.shift;
-    return WindowCovering(spline_layout_,
-                          t - std::max(margin, c.window_before_s),
-                          t + c.window_readout_s + margin,
-                          window);
+    return layout_.WindowCovering(
+        t - std::max(margin, c.window_before_s), t + c.window_readout_s + margin, window);
   }
   bool Contains(const ControlPoseWindow& outer, const ControlPoseWindow& inner) const {
     return inner.first_index >= outer.first_index && inner.last_index() <= outer.last_index();
   }
 
   void BuildProblem();
-  void AddImuResiduals();
   double EstimatePixelSigma();
   bool WindowsStillValid();
   // Cheap check for WindowGuard: every camera's time offset and readout are still inside what
@@ -421,7 +359,6 @@ class CalibrationProblem {
   const Camchain& camchain_;
   const CalibrateOptions& options_;
   KnotLayout layout_;
-  SplineLayout spline_layout_;
   bool has_target_;
   double dt_s_ = 0.0;
   double imu_rate_hz_ = 0.0;
@@ -429,14 +366,7 @@ class CalibrationProblem {
   double sigma_a_ = 0.0;
   double sigma_px_ = 1.0;
 
-  std::vector<double> control_values_;
-  std::vector<double*> control_blocks_;
-  std::vector<double> gyro_bias_values_;
-  std::vector<double> accel_bias_values_;
-  int num_bias_points_ = 1;
-  int64_t bias_t0_ns_ = 0;
-  int64_t bias_dt_ns_ = 1;
-  std::array<double, 3> gravity_{};
+  std::unique_ptr<SplineProblem> spline_;  // control poses, biases, gravity
   std::vector<CameraState> cameras_;
   std::array<double, 7> T_w_t_{};
   std::vector<double> frame_periods_;
@@ -457,123 +387,40 @@ class CalibrationProblem {
   std::vector<FrameResidual> frame_residuals_;
   std::vector<LandmarkResidual> landmark_residuals_;
 
-  SE3Manifold se3_manifold_;
-  GravityManifold gravity_manifold_;
-  std::unique_ptr<SplineEvaluationCallback> callback_;
-  std::unique_ptr<ceres::Problem> problem_;
 };
 
-void CalibrationProblem::AddImuResiduals() {
-  const SE3Splined lookup = Spline();
-  const int nb = num_bias_points_ == 1 ? 1 : 4;
-  size_t k = 0;
-  while (k < imu_.size()) {
-    const int index = lookup.SegmentAtNs(imu_[k].t_ns).index;
-    ImuResidualSegment gyro_segment;
-    gyro_segment.segment_index = index;
-    gyro_segment.dt_s = dt_s_;
-    gyro_segment.sigma = sigma_g_;
-    gyro_segment.shared = callback_.get();
-    ImuResidualSegment accel_segment = gyro_segment;
-    accel_segment.sigma = sigma_a_;
-    std::vector<ImuResidualSample> gyro_samples;
-    std::vector<ImuResidualSample> accel_samples;
-    int bias_segment = 0;
-    BiasWeights(layout_.t0_ns + static_cast<int64_t>(index) * layout_.dt_ns, &bias_segment);
-    for (; k < imu_.size(); ++k) {
-      const Segment<double> seg = lookup.SegmentAtNs(imu_[k].t_ns);
-      if (seg.index != index) break;
-      ImuResidualSample sample;
-      sample.u = seg.u;
-      if (nb == 4) {
-        // Weights in the segment's bias segment (a pose segment lies inside one bias segment;
-        // the end sample at u = 1 is clamped into it).
-        const int64_t tb = bias_t0_ns_ + static_cast<int64_t>(bias_segment) * bias_dt_ns_;
-        const double ub = std::clamp(
-            static_cast<double>(imu_[k].t_ns - tb) / static_cast<double>(bias_dt_ns_), 0.0, 1.0);
-        sample.bias_weights = BiasSplineWeights(ub);
-      }
-      sample.measured = imu_[k].gyro;
-      gyro_samples.push_back(sample);
-      sample.measured = imu_[k].accel;
-      accel_samples.push_back(sample);
-    }
-    std::vector<double*> gyro_blocks(control_blocks_.begin() + (index - 1),
-                                     control_blocks_.begin() + (index + 3));
-    std::vector<double*> accel_blocks = gyro_blocks;
-    const int first_bias = nb == 1 ? 0 : bias_segment - 1;
-    for (int j = 0; j < nb; ++j) {
-      gyro_blocks.push_back(gyro_bias(first_bias + j));
-      accel_blocks.push_back(accel_bias(first_bias + j));
-    }
-    accel_blocks.push_back(gravity_.data());
-    ceres::CostFunction* gyro_cost;
-    ceres::CostFunction* accel_cost;
-    if (nb == 1) {
-      gyro_cost = new GyroSegmentCostFunction<1>(gyro_segment, std::move(gyro_samples));
-      accel_cost = new AccelSegmentCostFunction<1>(accel_segment, std::move(accel_samples));
-    } else {
-      gyro_cost = new GyroSegmentCostFunction<4>(gyro_segment, std::move(gyro_samples));
-      accel_cost = new AccelSegmentCostFunction<4>(accel_segment, std::move(accel_samples));
-    }
-    problem_->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
-    problem_->AddResidualBlock(accel_cost, nullptr, accel_blocks);
-  }
-}
-
 void CalibrationProblem::BuildProblem() {
-  ceres::Problem::Options problem_options;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.evaluation_callback = callback_.get();
-  problem_ = std::make_unique<ceres::Problem>(problem_options);
-  callback_->Update();
-  for (double* block : control_blocks_) problem_->AddParameterBlock(block, 7, &se3_manifold_);
-  if (!has_target_) problem_->SetParameterBlockConstant(control_blocks_[0]);  // gauge
-  for (int m = 0; m < num_bias_points_; ++m) {
-    problem_->AddParameterBlock(gyro_bias(m), 3);
-    problem_->AddParameterBlock(accel_bias(m), 3);
-  }
-  problem_->AddParameterBlock(gravity_.data(), 3, &gravity_manifold_);
-  problem_->AddParameterBlock(T_w_t_.data(), 7, &se3_manifold_);
-  problem_->SetParameterBlockConstant(T_w_t_.data());
+  spline_->evaluation_callback()->Update();
+  // Without a target the first control pose holds the gauge.
+  spline_->Reset(/*hold_first_pose=*/!has_target_);
+  problem().AddParameterBlock(T_w_t_.data(), 7, spline_->se3_manifold());
+  problem().SetParameterBlockConstant(T_w_t_.data());
   for (size_t c = 0; c < cameras_.size(); ++c) {
     CameraState& cam = cameras_[c];
     const int height = camchain_[c].camera.height;
     cam.built_shift = cam.shift;
-    problem_->AddParameterBlock(cam.extrinsic.data(), 7, &se3_manifold_);
-    problem_->AddParameterBlock(&cam.shift, 1);
-    problem_->AddParameterBlock(&cam.line_delay, 1);
+    problem().AddParameterBlock(cam.extrinsic.data(), 7, spline_->se3_manifold());
+    problem().AddParameterBlock(&cam.shift, 1);
+    problem().AddParameterBlock(&cam.line_delay, 1);
     if (options_.estimate_time_offset) {
       cam.shift = std::clamp(cam.shift, -options_.max_time_offset_s, options_.max_time_offset_s);
-      problem_->SetParameterLowerBound(&cam.shift, 0, -options_.max_time_offset_s);
-      problem_->SetParameterUpperBound(&cam.shift, 0, options_.max_time_offset_s);
+      problem().SetParameterLowerBound(&cam.shift, 0, -options_.max_time_offset_s);
+      problem().SetParameterUpperBound(&cam.shift, 0, options_.max_time_offset_s);
     } else {
-      problem_->SetParameterBlockConstant(&cam.shift);
+      problem().SetParameterBlockConstant(&cam.shift);
     }
     if (options_.rolling_shutter) {
       // The readout cannot exceed the frame period.
       const double max_line_delay = frame_periods_[c] / std::max(1, height - 1);
       cam.line_delay = std::clamp(cam.line_delay, 0.0, max_line_delay);
-      problem_->SetParameterLowerBound(&cam.line_delay, 0, 0.0);
-      problem_->SetParameterUpperBound(&cam.line_delay, 0, max_line_delay);
+      problem().SetParameterLowerBound(&cam.line_delay, 0, 0.0);
+      problem().SetParameterUpperBound(&cam.line_delay, 0, max_line_delay);
     } else {
-      problem_->SetParameterBlockConstant(&cam.line_delay);
+      problem().SetParameterBlockConstant(&cam.line_delay);
     }
   }
-  AddImuResiduals();
-  if (num_bias_points_ > 1) {
-    const double db = 1e-9 * static_cast<double>(bias_dt_ns_);
-    for (int m = 1; m + 2 < num_bias_points_; ++m) {
-      problem_->AddResidualBlock(
-          new BiasRandomWalkCostFunction(db, options_.noise.gyroscope_random_walk),
-          nullptr,
-          {gyro_bias(m - 1), gyro_bias(m), gyro_bias(m + 1), gyro_bias(m + 2)});
-      problem_->AddResidualBlock(
-          new BiasRandomWalkCostFunction(db, options_.noise.accelerometer_random_walk),
-          nullptr,
-          {accel_bias(m - 1), accel_bias(m), accel_bias(m + 1), accel_bias(m + 2)});
-    }
-  }
+  spline_->AddImuResiduals(imu_, sigma_g_, sigma_a_);
+  spline_->AddBiasRandomWalkResiduals(options_.noise);
   frame_residuals_.clear();
   for (size_t f = 0; f < target_frames_.size(); ++f) {
     const TargetFrame& frame = target_frames_[f];
@@ -585,13 +432,13 @@ void CalibrationProblem::BuildProblem() {
                                              residual.window,
                                              TimeSinceT0(frame.t_ns),
                                              frame.corners);
-    std::vector<double*> blocks(control_blocks_.begin() + residual.window.first_index,
-                                control_blocks_.begin() + residual.window.last_index() + 1);
+    std::vector<double*> blocks(control_blocks().begin() + residual.window.first_index,
+                                control_blocks().begin() + residual.window.last_index() + 1);
     blocks.push_back(cam.extrinsic.data());
     blocks.push_back(&cam.shift);
     blocks.push_back(&cam.line_delay);
     blocks.push_back(T_w_t_.data());
-    problem_->AddResidualBlock(cost, nullptr, blocks);
+    problem().AddResidualBlock(cost, nullptr, blocks);
     frame_residuals_.push_back(residual);
   }
   landmark_residuals_.clear();
@@ -621,16 +468,16 @@ void CalibrationProblem::BuildProblem() {
       auto* cost = new LandmarkCostFunction(
           Settings(landmark.cam, sigma_px_, options_.huber_px), indices, data);
       std::vector<double*> blocks;
-      for (int i : indices) blocks.push_back(control_blocks_[i]);
+      for (int i : indices) blocks.push_back(control_blocks()[i]);
       blocks.push_back(cam.extrinsic.data());
       blocks.push_back(&cam.shift);
       blocks.push_back(&cam.line_delay);
       blocks.push_back(&landmark.rho);
-      problem_->AddResidualBlock(cost, nullptr, blocks);
+      problem().AddResidualBlock(cost, nullptr, blocks);
       landmark_residuals_.push_back(residual);
       added_rho = true;
     }
-    if (added_rho) problem_->SetParameterLowerBound(&landmark.rho, 0, 0.0);
+    if (added_rho) problem().SetParameterLowerBound(&landmark.rho, 0, 0.0);
   }
 }
 
@@ -642,8 +489,8 @@ double CalibrationProblem::EstimatePixelSigma() {
     CameraState& cam = cameras_[frame.cam];
     const TargetFrameCostFunction cost(
         Settings(frame.cam, 1.0, 0.0), r.window, TimeSinceT0(frame.t_ns), frame.corners);
-    std::vector<double*> blocks(control_blocks_.begin() + r.window.first_index,
-                                control_blocks_.begin() + r.window.last_index() + 1);
+    std::vector<double*> blocks(control_blocks().begin() + r.window.first_index,
+                                control_blocks().begin() + r.window.last_index() + 1);
     blocks.push_back(cam.extrinsic.data());
     blocks.push_back(&cam.shift);
     blocks.push_back(&cam.line_delay);
@@ -667,7 +514,7 @@ double CalibrationProblem::EstimatePixelSigma() {
         LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window);
     const LandmarkCostFunction cost(Settings(landmark.cam, 1.0, 0.0), indices, data);
     std::vector<double*> blocks;
-    for (int i : indices) blocks.push_back(control_blocks_[i]);
+    for (int i : indices) blocks.push_back(control_blocks()[i]);
     blocks.push_back(cam.extrinsic.data());
     blocks.push_back(&cam.shift);
     blocks.push_back(&cam.line_delay);
@@ -727,43 +574,27 @@ CalibrationResult CalibrationProblem::Run() {
     cameras_[c].window_before_s =
         kWindowMargin_s + (options_.rolling_shutter ? 0.5 * frame_periods_[c] : 0.0);
   }
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  solver_options.num_threads = options_.num_threads;
-  solver_options.max_num_iterations = options_.max_iterations;
-  solver_options.function_tolerance = 1e-10;
-  solver_options.gradient_tolerance = 1e-12;
-  solver_options.parameter_tolerance = 1e-10;
-  solver_options.logging_type = ceres::SILENT;
+  SolverOptions solver;
+  solver.linear_solver = LinearSolver::kSparseNormalCholesky;
+  solver.num_threads = options_.num_threads;
+  solver.max_iterations = options_.max_iterations;
+  solver.max_rounds = options_.max_rounds;
+  ceres::Solver::Options solver_options = ToCeresOptions(solver, 0.0, nullptr);
   solver_options.update_state_every_iteration = true;  // for WindowGuard
-  ceres::Solver::Summary summary;
-  for (int round = 1; round <= options_.max_rounds; ++round) {
+  SolveRounds rounds(solver_options, options_.progress);
+  for (int round = 1; round <= solver.max_rounds; ++round) {
     BuildProblem();
     if (frame_residuals_.empty() && landmark_residuals_.empty()) {
       throw Error("calibrate: no frame lies inside the spline's time range");
     }
-    std::unique_ptr<SolverProgressCallback> progress;
-    ceres::Solver::Options round_options = solver_options;
-    if (options_.progress) {
-      progress = std::make_unique<SolverProgressCallback>(
-          options_.progress, StringPrintf("calibrate: round %d ", round));
-      round_options.callbacks.push_back(progress.get());
-    }
     WindowGuard guard([this]() { return TimesInsideWindows(); });
-    round_options.callbacks.push_back(&guard);
-    const auto start = std::chrono::steady_clock::now();
-    ceres::Solve(round_options, problem_.get(), &summary);
-    result.solve_time_s +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result.iterations += static_cast<int>(summary.iterations.size()) - 1;
-    if (round == 1) result.initial_cost = summary.initial_cost;
-    result.rounds = round;
-    if (summary.termination_type == ceres::FAILURE || !summary.IsSolutionUsable()) {
-      throw Error("calibrate: the solver failed (" + summary.message +
+    rounds.Solve(&problem(), StringPrintf("calibrate: round %d ", round), {&guard});
+    if (rounds.failed()) {
+      throw Error("calibrate: the solver failed (" + rounds.last().message +
                   "); likely causes: a wrong camchain (intrinsics, T_cam_imu far off), "
                   "observations of another camera, or IMU units");
     }
-    callback_->Update();
+    spline_->evaluation_callback()->Update();
     bool again = false;
     if (result.pixel_sigma_estimated) {
       const double sigma = EstimatePixelSigma();
@@ -791,9 +622,13 @@ CalibrationResult CalibrationProblem::Run() {
                         ": solving again");
     }
   }
-  if (summary.termination_type == ceres::NO_CONVERGENCE) {
-    result.warnings.push_back("the solver stopped after " + std::to_string(result.iterations) +
-                              " iterations without converging (" + summary.message + ")");
+  const ceres::Solver::Summary& summary = rounds.last();
+  result.solve_time_s = rounds.solve_time_s();
+  result.iterations = rounds.iterations();
+  result.initial_cost = rounds.initial_cost();
+  result.rounds = rounds.rounds();
+  if (!rounds.NoConvergenceWarning().empty()) {
+    result.warnings.push_back(rounds.NoConvergenceWarning());
   }
   result.final_cost = summary.final_cost;
   result.termination = summary.message;
@@ -810,93 +645,40 @@ CalibrationResult CalibrationProblem::Run() {
 }
 
 void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
-  // The marginal covariance of the calibration parameters: with J the weighted Jacobian at the
-  // solution (tangent spaces, robust weights inside the residuals), H = J^T J split into the
-  // nuisance parameters a (control poses, bias spline, gravity, inverse depths) and the wanted
-  // ones c (extrinsics, time offsets, line delays, constant biases),
-  //   Cov(c) = (H_cc - H_ca H_aa^-1 H_ac)^-1,
-  // H_aa by sparse Cholesky (banded: the spline's local support). Much cheaper than
-  // ceres::Covariance's QR of the whole Jacobian, and the same number.
-  std::vector<double*> wanted;
+  // The marginal covariance of the calibration parameters (estimation/marginal_covariance.h),
+  // with every other free block -- control poses, bias spline, gravity, inverse depths -- as
+  // nuisance. Always the Schur backend: it needs only the nuisance block H_aa to be positive
+  // definite and tests the calibration parameters' own complement for singularity, so a weakly
+  // determined landmark depth does not withhold the calibration's standard deviations.
+  const bool constant_bias = spline_->bias_spline().is_constant();
+  std::vector<const double*> wanted;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     wanted.push_back(cameras_[c].extrinsic.data());
     if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].shift);
     if (options_.rolling_shutter) wanted.push_back(&cameras_[c].line_delay);
   }
-  if (num_bias_points_ == 1) {
-    wanted.push_back(gyro_bias(0));
-    wanted.push_back(accel_bias(0));
+  if (constant_bias) {
+    wanted.push_back(spline_->gyro_bias(0));
+    wanted.push_back(spline_->accel_bias(0));
   }
-  std::vector<double*> all;
-  problem_->GetParameterBlocks(&all);
-  std::vector<double*> order;
-  for (double* block : all) {
-    if (problem_->IsParameterBlockConstant(block)) continue;
-    if (std::find(wanted.begin(), wanted.end(), block) != wanted.end()) continue;
-    order.push_back(block);
-  }
-  int num_nuisance = 0;
-  for (double* block : order) num_nuisance += problem_->ParameterBlockTangentSize(block);
-  std::map<const double*, int> offset;  // column of each wanted block within c
+  std::map<const double*, int> offset;  // first row of each wanted block in the covariance
   int num_wanted = 0;
-  for (double* block : wanted) {
+  for (const double* block : wanted) {
     offset[block] = num_wanted;
-    num_wanted += problem_->ParameterBlockTangentSize(block);
-    order.push_back(block);
+    num_wanted += problem().ParameterBlockTangentSize(block);
   }
-  ceres::Problem::EvaluateOptions evaluate_options;
-  evaluate_options.parameter_blocks = order;
-  evaluate_options.apply_loss_function = true;
-  evaluate_options.num_threads = options_.num_threads;
-  ceres::CRSMatrix crs;
-  if (!problem_->Evaluate(evaluate_options, nullptr, nullptr, nullptr, &crs)) {
-    result->warnings.push_back("the covariance could not be computed (evaluation failed)");
-    return;
-  }
-  Eigen::SparseMatrix<double, Eigen::RowMajor> J(crs.num_rows, crs.num_cols);
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(crs.values.size());
-  for (int r = 0; r < crs.num_rows; ++r) {
-    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) {
-      triplets.emplace_back(r, crs.cols[k], crs.values[k]);
-    }
-  }
-  J.setFromTriplets(triplets.begin(), triplets.end());
-  const Eigen::SparseMatrix<double> H = Eigen::SparseMatrix<double>(J.transpose() * J);
-  const int na = num_nuisance;
-  const Eigen::SparseMatrix<double> H_aa = H.topLeftCorner(na, na);
-  const Eigen::MatrixXd H_ac = Eigen::MatrixXd(H.topRightCorner(na, num_wanted));
-  const Eigen::MatrixXd H_cc = Eigen::MatrixXd(H.bottomRightCorner(num_wanted, num_wanted));
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H_aa);
-  Eigen::MatrixXd schur = H_cc;
-  bool ok = ldlt.info() == Eigen::Success && ldlt.vectorD().minCoeff() > 0.0;
-  if (ok) {
-    const Eigen::MatrixXd X = ldlt.solve(H_ac);
-    ok = ldlt.info() == Eigen::Success && X.allFinite();
-    schur -= H_ac.transpose() * X;
-  }
-  Eigen::MatrixXd cov;
-  if (ok) {
-    // Inverse through the eigen-decomposition of the diagonally scaled matrix: refuses a Schur
-    // complement that is numerically singular (a parameter the data does not determine).
-    const Eigen::VectorXd scale = schur.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-    const Eigen::MatrixXd scaled = scale.asDiagonal() * schur * scale.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
-    const Eigen::VectorXd lambda = eigen.eigenvalues();
-    ok = lambda.minCoeff() > kMinCovarianceEigenvalue * lambda.maxCoeff();
-    if (ok) {
-      cov = scale.asDiagonal() *
-            (eigen.eigenvectors() * lambda.cwiseInverse().asDiagonal() *
-             eigen.eigenvectors().transpose()) *
-            scale.asDiagonal();
-    }
-  }
-  if (!ok) {
+  MarginalCovarianceOptions covariance_options;
+  covariance_options.backend = CovarianceBackend::kSchur;
+  covariance_options.num_threads = options_.num_threads;
+  const MarginalCovariance marginal =
+      ComputeMarginalCovariance(&problem(), wanted, covariance_options);
+  if (!marginal.ok) {
     result->warnings.push_back(
         "the covariance could not be computed (the problem is rank deficient: some parameter is "
         "not determined by the data); standard deviations are not reported");
     return;
   }
+  const Eigen::MatrixXd& cov = marginal.covariance;
   auto block = [&](const double* a, int rows) {
     return Eigen::MatrixXd(cov.block(offset[a], offset[a], rows, rows));
   };
@@ -909,7 +691,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     const Eigen::Matrix3d cov_t = R * cov6.topLeftCorner<3, 3>() * R.transpose();
     estimate.translation_std_m = cov_t.diagonal().cwiseMax(0.0).cwiseSqrt();
     estimate.rotation_std_deg =
-        cov6.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * (180.0 / kPi);
+        cov6.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * kRadToDeg;
     if (options_.estimate_time_offset) {
       estimate.timeshift_std_s = std::sqrt(std::max(0.0, block(&cam.shift, 1)(0, 0)));
     }
@@ -947,9 +729,10 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
                                  StringPrintf("%.3g", options_.max_time_offset_s) + " s");
     }
   }
-  if (num_bias_points_ == 1) {
-    result->gyro_bias_std = block(gyro_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
-    result->accel_bias_std = block(accel_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
+  if (constant_bias) {
+    result->gyro_bias_std = block(spline_->gyro_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
+    result->accel_bias_std =
+        block(spline_->accel_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
   }
 }
 
@@ -957,7 +740,7 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   result->layout = layout_;
   const SE3Splined spline = Spline();
   result->control_poses = spline.control_poses();
-  result->gravity_w = Eigen::Map<const Eigen::Vector3d>(gravity_.data());
+  result->gravity_w = spline_->gravity_w();
   result->camchain = camchain_;
   result->cameras.resize(cameras_.size());
   for (size_t c = 0; c < cameras_.size(); ++c) {
@@ -970,31 +753,17 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
     result->cameras[c].line_delay_estimated = options_.rolling_shutter;
   }
   // IMU residuals.
-  double gyro_sq = 0.0;
-  double accel_sq = 0.0;
-  Eigen::Vector3d gyro_sum = Eigen::Vector3d::Zero();
-  Eigen::Vector3d accel_sum = Eigen::Vector3d::Zero();
-  for (const ImuSample& s : imu_) {
-    const Eigen::Vector3d b_g = BiasAt(gyro_bias_values_, s.t_ns);
-    const Eigen::Vector3d b_a = BiasAt(accel_bias_values_, s.t_ns);
-    Eigen::Vector3d gyro;
-    Eigen::Vector3d accel;
-    PredictImu<double>(
-        spline, spline.SegmentAtNs(s.t_ns), result->gravity_w, b_g, b_a, &gyro, &accel);
-    gyro_sq += (gyro - s.gyro).squaredNorm();
-    accel_sq += (accel - s.accel).squaredNorm();
-    gyro_sum += b_g;
-    accel_sum += b_a;
-    if (options_.keep_residuals) {
-      result->imu_samples.push_back({s.t_ns, gyro - s.gyro, accel - s.accel});
-    }
-  }
-  const double n = static_cast<double>(imu_.size());
+  const ImuResidualStatistics imu_stats =
+      spline_->EvaluateImu(imu_, [&](const ImuSample& s, const ImuPrediction& p) {
+        if (options_.keep_residuals) {
+          result->imu_samples.push_back({s.t_ns, p.gyro - s.gyro, p.accel - s.accel});
+        }
+      });
   result->num_imu_samples = static_cast<int>(imu_.size());
-  result->gyro_rms = std::sqrt(gyro_sq / (3.0 * n));
-  result->accel_rms = std::sqrt(accel_sq / (3.0 * n));
-  result->gyro_bias = gyro_sum / n;
-  result->accel_bias = accel_sum / n;
+  result->gyro_rms = imu_stats.gyro_rms;
+  result->accel_rms = imu_stats.accel_rms;
+  result->gyro_bias = imu_stats.mean_gyro_bias;
+  result->accel_bias = imu_stats.mean_accel_bias;
   // Reprojection residuals (pixels, no weights, no robust loss).
   std::vector<double> cam_sq(cameras_.size(), 0.0);
   std::vector<std::set<std::pair<int64_t, int>>> cam_frames(cameras_.size());
@@ -1005,8 +774,8 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
     CameraState& cam = cameras_[frame.cam];
     const TargetFrameCostFunction cost(
         Settings(frame.cam, 1.0, 0.0), r.window, TimeSinceT0(frame.t_ns), frame.corners);
-    std::vector<double*> blocks(control_blocks_.begin() + r.window.first_index,
-                                control_blocks_.begin() + r.window.last_index() + 1);
+    std::vector<double*> blocks(control_blocks().begin() + r.window.first_index,
+                                control_blocks().begin() + r.window.last_index() + 1);
     blocks.push_back(cam.extrinsic.data());
     blocks.push_back(&cam.shift);
     blocks.push_back(&cam.line_delay);
@@ -1042,7 +811,7 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
         LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window);
     const LandmarkCostFunction cost(Settings(landmark.cam, 1.0, 0.0), indices, data);
     std::vector<double*> blocks;
-    for (int i : indices) blocks.push_back(control_blocks_[i]);
+    for (int i : indices) blocks.push_back(control_blocks()[i]);
     blocks.push_back(cam.extrinsic.data());
     blocks.push_back(&cam.shift);
     blocks.push_back(&cam.line_delay);

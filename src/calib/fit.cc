@@ -27,17 +27,18 @@
 #include "splinecal/estimation/imu_costs.h"
 #include "splinecal/estimation/pose_cost.h"
 #include "splinecal/estimation/solver_progress.h"
-#include "splinecal/estimation/spline_evaluation_callback.h"
+#include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/estimation/spline_problem.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
 
 // Candidates of the automatic knot spacing [s], largest first (docs/fit.md, "Knot spacing").
 constexpr double kKnotSpacingCandidates[] = {0.2, 0.1, 0.05, 0.04, 0.025, 0.02, 0.01};
@@ -160,235 +161,6 @@ SO3d IntegrateGyro(const std::vector<ImuSample>& imu, int64_t a_ns, int64_t b_ns
   }
   return R;
 }
-
-// r = R [d_0; d_1; ...]: a linear residual over Euclidean (tangent) blocks d_k.
-class LinearCostFunction : public ceres::CostFunction {
- public:
-  LinearCostFunction(Eigen::MatrixXd R, const std::vector<int>& block_sizes) : R_(std::move(R)) {
-    set_num_residuals(static_cast<int>(R_.rows()));
-    *mutable_parameter_block_sizes() = block_sizes;
-  }
-  bool Evaluate(double const* const* parameters,
-                double* residuals,
-                double** jacobians) const override {
-    Eigen::Map<Eigen::VectorXd> r(residuals, R_.rows());
-    r.setZero();
-    int column = 0;
-    const std::vector<int32_t>& sizes = parameter_block_sizes();
-    for (size_t k = 0; k < sizes.size(); ++k) {
-      r += R_.middleCols(column, sizes[k]) *
-           Eigen::Map<const Eigen::VectorXd>(parameters[k], sizes[k]);
-      if (jacobians != nullptr && jacobians[k] != nullptr) {
-        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
-            jacobians[k], R_.rows(), sizes[k]);
-        J = R_.middleCols(column, sizes[k]);
-      }
-      column += sizes[k];
-    }
-    return true;
-  }
-
- private:
-  Eigen::MatrixXd R_;
-};
-
-// The Gauss-Newton information J^T J of `problem` at its current values, compressed into an
-// equivalent linear problem over tangent-space blocks: residual blocks are grouped (by their
-// first parameter block: the segment of an IMU or pose residual), each group's information
-// H = sum J_tangent^T J_tangent over the union of its blocks is factored as H = R^T R (R from
-// the eigen-decomposition, zero eigenvalues dropped), and one residual R [d...] replaces the
-// group. The compressed problem has exactly the same J^T J, hence the same covariance, with
-// ~4x fewer rows at 200 Hz and dt = 0.1 s. tangent_blocks[p] is the tangent block of p.
-class CompressedInformation {
- public:
-  explicit CompressedInformation(ceres::Problem* problem) {
-    std::vector<ceres::ResidualBlockId> residual_blocks;
-    problem->GetResidualBlocks(&residual_blocks);
-    std::vector<double*> blocks;
-    std::vector<std::vector<double>> jacobians;
-    std::vector<double*> jacobian_pointers;
-    std::vector<double> residuals;
-    for (ceres::ResidualBlockId id : residual_blocks) {
-      const ceres::CostFunction* cost = problem->GetCostFunctionForResidualBlock(id);
-      problem->GetParameterBlocksForResidualBlock(id, &blocks);
-      const int rows = cost->num_residuals();
-      residuals.resize(rows);
-      jacobians.resize(blocks.size());
-      jacobian_pointers.resize(blocks.size());
-      for (size_t k = 0; k < blocks.size(); ++k) {
-        if (problem->IsParameterBlockConstant(blocks[k])) {
-          jacobian_pointers[k] = nullptr;
-          continue;
-        }
-        jacobians[k].resize(static_cast<size_t>(rows) * problem->ParameterBlockSize(blocks[k]));
-        jacobian_pointers[k] = jacobians[k].data();
-      }
-      CHECK(cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data()));
-      Group& group = groups_[blocks[0]];
-      // Tangent Jacobians of this residual block, column-stacked in the group's block order.
-      std::vector<std::pair<int, Eigen::MatrixXd>> parts;
-      for (size_t k = 0; k < blocks.size(); ++k) {
-        if (jacobian_pointers[k] == nullptr) continue;
-        const int ambient = problem->ParameterBlockSize(blocks[k]);
-        const int tangent = problem->ParameterBlockTangentSize(blocks[k]);
-        Eigen::MatrixXd J = Eigen::Map<
-            const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-            jacobians[k].data(), rows, ambient);
-        const ceres::Manifold* manifold = problem->GetManifold(blocks[k]);
-        if (manifold != nullptr) {
-          Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> plus(ambient,
-                                                                                      tangent);
-          CHECK(manifold->PlusJacobian(blocks[k], plus.data()));
-          J = J * plus;
-        }
-        block_sizes_[blocks[k]] = tangent;
-        parts.emplace_back(group.Index(blocks[k], tangent), std::move(J));
-      }
-      group.Resize();
-      for (const auto& [a, J_a] : parts) {
-        for (const auto& [b, J_b] : parts) {
-          group.H.block(group.offsets[a], group.offsets[b], J_a.cols(), J_b.cols()) +=
-              J_a.transpose() * J_b;
-        }
-      }
-    }
-  }
-
-  // Entries of the compressed Jacobian (sum of the groups' squared dimensions).
-  double CompressedEntries() const {
-    double entries = 0.0;
-    for (const auto& [key, group] : groups_) entries += static_cast<double>(group.H.size());
-    return entries;
-  }
-
-  // The compressed problem over tangent blocks: one linear residual R [d...] per group with
-  // H = R^T R (eigen-decomposition; zero eigenvalues dropped). Consumes the groups.
-  void BuildCeresProblem() {
-    ceres::Problem::Options options;
-    options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-    compressed_ = std::make_unique<ceres::Problem>(options);
-    for (auto it = groups_.begin(); it != groups_.end(); it = groups_.erase(it)) {
-      const Group& group = it->second;
-      std::vector<double*> tangent_blocks;
-      for (size_t k = 0; k < group.blocks.size(); ++k) {
-        std::vector<double>& storage = tangent_blocks_[group.blocks[k]];
-        storage.assign(group.sizes[k], 0.0);
-        tangent_blocks.push_back(storage.data());
-      }
-      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(group.H);
-      const Eigen::VectorXd& lambda = eigen.eigenvalues();
-      const double floor = 1e-14 * std::max(0.0, lambda.maxCoeff());
-      int rank = 0;
-      for (int k = 0; k < lambda.size(); ++k) rank += lambda[k] > floor ? 1 : 0;
-      if (rank == 0) continue;
-      Eigen::MatrixXd R(rank, group.H.cols());
-      int row = 0;
-      for (int k = 0; k < lambda.size(); ++k) {
-        if (lambda[k] <= floor) continue;
-        R.row(row++) = std::sqrt(lambda[k]) * eigen.eigenvectors().col(k).transpose();
-      }
-      compressed_->AddResidualBlock(
-          new LinearCostFunction(std::move(R), group.sizes), nullptr, tangent_blocks);
-    }
-  }
-
-  // The same covariance without ceres::Covariance, for problems whose Jacobian copies would not
-  // fit in memory: the tangent-space information H = sum of the groups' H (sparse, banded plus
-  // the global columns) is factored by a sparse Cholesky (Eigen, AMD ordering) and
-  // H Y = E solved for the columns E of the requested blocks; the covariance is E^T Y.
-  // Returns false when H is not positive definite (the data leaves a direction undetermined).
-  // Consumes the groups.
-  bool MarginalCovariance(const std::vector<const double*>& requested,
-                          Eigen::MatrixXd* covariance) {
-    std::map<const double*, int> offsets;
-    int size = 0;
-    for (const auto& [key, group] : groups_) {
-      for (size_t k = 0; k < group.blocks.size(); ++k) {
-        if (offsets.emplace(group.blocks[k], size).second) size += group.sizes[k];
-      }
-    }
-    std::vector<Eigen::Triplet<double>> triplets;
-    for (auto it = groups_.begin(); it != groups_.end(); it = groups_.erase(it)) {
-      const Group& group = it->second;
-      for (size_t a = 0; a < group.blocks.size(); ++a) {
-        const int row0 = offsets[group.blocks[a]];
-        for (size_t b = 0; b < group.blocks.size(); ++b) {
-          const int col0 = offsets[group.blocks[b]];
-          for (int r = 0; r < group.sizes[a]; ++r) {
-            for (int c = 0; c < group.sizes[b]; ++c) {
-              if (row0 + r < col0 + c) continue;  // lower triangle
-              triplets.emplace_back(
-                  row0 + r, col0 + c, group.H(group.offsets[a] + r, group.offsets[b] + c));
-            }
-          }
-        }
-      }
-    }
-    Eigen::SparseMatrix<double> H(size, size);
-    H.setFromTriplets(triplets.begin(), triplets.end());  // sums duplicates
-    std::vector<Eigen::Triplet<double>>().swap(triplets);
-    const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky(H);
-    if (cholesky.info() != Eigen::Success) return false;
-    int requested_size = 0;
-    std::vector<std::pair<int, int>> columns;  // (offset in H, tangent size)
-    for (const double* block : requested) {
-      const auto found = offsets.find(block);
-      if (found == offsets.end()) return false;
-      columns.emplace_back(found->second, block_sizes_.at(block));
-      requested_size += columns.back().second;
-    }
-    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(size, requested_size);
-    int column = 0;
-    for (const auto& [offset, block_size] : columns) {
-      for (int c = 0; c < block_size; ++c) E(offset + c, column++) = 1.0;
-    }
-    const Eigen::MatrixXd Y = cholesky.solve(E);
-    if (cholesky.info() != Eigen::Success) return false;
-    covariance->resize(requested_size, requested_size);
-    column = 0;
-    for (const auto& [offset, block_size] : columns) {
-      covariance->middleRows(column, block_size) = Y.middleRows(offset, block_size);
-      column += block_size;
-    }
-    return covariance->allFinite();
-  }
-
-  ceres::Problem* problem() { return compressed_.get(); }
-  // The tangent block standing for `block` (nullptr if it appears in no residual).
-  const double* TangentBlock(const double* block) const {
-    const auto it = tangent_blocks_.find(block);
-    return it == tangent_blocks_.end() ? nullptr : it->second.data();
-  }
-
- private:
-  struct Group {
-    std::vector<const double*> blocks;
-    std::vector<int> sizes;
-    std::vector<int> offsets;
-    Eigen::MatrixXd H;
-    int Index(const double* block, int size) {
-      for (size_t k = 0; k < blocks.size(); ++k) {
-        if (blocks[k] == block) return static_cast<int>(k);
-      }
-      blocks.push_back(block);
-      sizes.push_back(size);
-      offsets.push_back(offsets.empty() ? 0 : offsets.back() + sizes[sizes.size() - 2]);
-      return static_cast<int>(blocks.size()) - 1;
-    }
-    void Resize() {
-      const int n = offsets.empty() ? 0 : offsets.back() + sizes.back();
-      if (H.rows() == n) return;
-      Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(n, n);
-      bigger.topLeftCorner(H.rows(), H.cols()) = H;
-      H = std::move(bigger);
-    }
-  };
-
-  std::map<const double*, Group> groups_;     // by the first parameter block of their residuals
-  std::map<const double*, int> block_sizes_;  // tangent sizes
-  std::map<const double*, std::vector<double>> tangent_blocks_;
-  std::unique_ptr<ceres::Problem> compressed_;
-};
 
 }  // namespace
 
@@ -600,88 +372,20 @@ struct FitProblem::Impl {
   std::string knot_rule;
   std::vector<std::string> warnings;
 
-  std::vector<double> control_values;  // 7 per control pose
-  std::vector<double*> control_blocks;
-  int bias_blocks_per_residual = 1;  // 1 (constant) or 4 (spline)
-  int num_bias_points = 1;
-  int pose_knots_per_bias_knot = 1;
-  int64_t bias_t0_ns = 0;
-  int64_t bias_dt_ns = 0;
-  std::vector<double> gyro_bias_values;  // 3 per control point
-  std::vector<double> accel_bias_values;
-  std::array<double, 3> gravity = {0.0, 0.0, 0.0};
+  std::unique_ptr<SplineProblem> spline_problem;  // control poses, biases, gravity
   double time_offset = 0.0;
   std::array<double, 7> extrinsic = {0, 0, 0, 0, 0, 0, 1};
-
-  SE3Manifold se3_manifold;
-  GravityManifold gravity_manifold;
-  std::unique_ptr<SplineEvaluationCallback> callback;
-  std::unique_ptr<ceres::Problem> problem;
 
   // Diagnostics for failure messages.
   double gyro_rate_ratio = 1.0;
   double correlation_offset_s = std::numeric_limits<double>::quiet_NaN();
   bool correlation_at_edge = false;
 
-  double* gyro_bias(int m) { return &gyro_bias_values[3 * m]; }
-  double* accel_bias(int m) { return &accel_bias_values[3 * m]; }
   int num_control_poses() const { return layout.num_control_poses; }
-  bool analytic() const { return options.differentiation == Differentiation::kAnalytic; }
-
-  // The pose segment i and u of an IMU time inside [t_1, t_{n-2}].
-  void SegmentOf(int64_t t_ns, int* index, double* u) const {
-    const int64_t since = t_ns - layout.t0_ns;
-    int i = static_cast<int>(since / layout.dt_ns);
-    int64_t remainder = since % layout.dt_ns;
-    if (i > num_control_poses() - 3) {
-      i = num_control_poses() - 3;
-      remainder = since - static_cast<int64_t>(i) * layout.dt_ns;
-    }
-    *index = i;
-    *u = static_cast<double>(remainder) / static_cast<double>(layout.dt_ns);
-  }
-
-  // The bias-spline segment m and weights of an IMU time in pose segment i.
-  std::array<double, 4> BiasWeightsAt(int64_t t_ns, int pose_segment, int* bias_segment) const {
-    if (options.bias_model == BiasModel::kConstant) {
-      *bias_segment = 0;
-      return {1.0, 0.0, 0.0, 0.0};
-    }
-    const int m = 1 + (pose_segment - 1) / pose_knots_per_bias_knot;
-    *bias_segment = m;
-    const int64_t tb = bias_t0_ns + static_cast<int64_t>(m) * bias_dt_ns;
-    const double u = static_cast<double>(t_ns - tb) / static_cast<double>(bias_dt_ns);
-    return BiasSplineWeights(u);
-  }
-
-  Eigen::Vector3d BiasAt(const std::vector<double>& values, int64_t t_ns) const {
-    int i = 0;
-    double u = 0.0;
-    SegmentOf(t_ns, &i, &u);
-    int m = 0;
-    const std::array<double, 4> w = BiasWeightsAt(t_ns, i, &m);
-    if (options.bias_model == BiasModel::kConstant) {
-      return Eigen::Map<const Eigen::Vector3d>(values.data());
-    }
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (int j = 0; j < 4; ++j)
-      b += w[j] * Eigen::Map<const Eigen::Vector3d>(&values[3 * (m - 1 + j)]);
-    return b;
-  }
+  ceres::Problem* problem() const { return &spline_problem->problem(); }
 
   double PoseTimeSinceT0(int pose_index) const {
     return 1e-9 * static_cast<double>(poses[pose_index].t_ns - layout.t0_ns);
-  }
-
-  int SegmentOfSeconds(double t_s) const {
-    int i = static_cast<int>(std::floor(t_s / dt_s));
-    return std::clamp(i, 1, num_control_poses() - 3);
-  }
-
-  SE3Splined Spline() const {
-    std::vector<SE3d> T(num_control_poses());
-    for (int i = 0; i < num_control_poses(); ++i) T[i] = PoseFromBlock(&control_values[7 * i]);
-    return SE3Splined(T, layout.t0_ns, layout.dt_ns);
   }
 
   void Initialise(const std::vector<ImuSample>& all_imu, const std::vector<StampedPose>& all_poses);
@@ -858,13 +562,16 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   pose_fit_options.rotation_weight_m_per_rad = options.pose_sigma_m / options.pose_sigma_rad;
   pose_fit_options.num_threads = options.num_threads;
   const PoseFitResult initial = FitControlPoses(imu_poses, layout, pose_fit_options);
-  control_values.resize(7 * static_cast<size_t>(num_control_poses()));
-  control_blocks.resize(num_control_poses());
-  for (int i = 0; i < num_control_poses(); ++i) {
-    PoseToBlock(initial.control_poses[i], &control_values[7 * i]);
-    control_blocks[i] = &control_values[7 * i];
-  }
-  const SE3Splined spline = Spline();
+  ResidualOptions residual_options;
+  residual_options.layout = options.layout;
+  residual_options.differentiation = options.differentiation;
+  residual_options.share_knot_caches = options.share_knot_caches;
+  spline_problem = std::make_unique<SplineProblem>(
+      layout,
+      initial.control_poses,
+      BiasSpline(options.bias_model, layout, options.bias_knot_spacing_s),
+      residual_options);
+  const SE3Splined spline = spline_problem->Spline();
 
   // Units: gyro against the poses' rotation rate; mean specific force against g.
   double gyro_sq = 0.0;
@@ -921,150 +628,25 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   Eigen::Vector3d g_init =
       options.initial_gravity_w.has_value() ? *options.initial_gravity_w : g_estimate;
   g_init = options.gravity_m_s2 * g_init.normalized();
-  for (int a = 0; a < 3; ++a) gravity[a] = g_init[a];
-
-  // Biases.
-  if (options.bias_model == BiasModel::kConstant) {
-    bias_blocks_per_residual = 1;
-    num_bias_points = 1;
-  } else {
-    bias_blocks_per_residual = 4;
-    pose_knots_per_bias_knot =
-        std::max(1, static_cast<int>(std::lround(options.bias_knot_spacing_s / dt_s)));
-    bias_dt_ns = static_cast<int64_t>(pose_knots_per_bias_knot) * dt_ns;
-    bias_t0_ns = t_first - bias_dt_ns;
-    const int64_t span = t_last - t_first;
-    num_bias_points = static_cast<int>(span / bias_dt_ns + (span % bias_dt_ns != 0 ? 1 : 0)) + 3;
-  }
-  gyro_bias_values.assign(3 * static_cast<size_t>(num_bias_points), 0.0);
-  accel_bias_values.assign(3 * static_cast<size_t>(num_bias_points), 0.0);
-  for (int m = 0; m < num_bias_points; ++m) {
-    for (int a = 0; a < 3; ++a) {
-      gyro_bias(m)[a] = options.initial_gyro_bias[a];
-      accel_bias(m)[a] = options.initial_accel_bias[a];
-    }
-  }
-
-  if (analytic() && options.share_knot_caches) {
-    callback = std::make_unique<SplineEvaluationCallback>(control_blocks, layout.t0_ns, dt_ns);
-  }
+  spline_problem->SetGravity(g_init);
+  spline_problem->SetBiases(options.initial_gyro_bias, options.initial_accel_bias);
   BuildProblem();
 }
 
 void FitProblem::Impl::BuildProblem() {
-  ceres::Problem::Options problem_options;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.evaluation_callback = callback.get();
-  problem = std::make_unique<ceres::Problem>(problem_options);
-  for (double* block : control_blocks) problem->AddParameterBlock(block, 7, &se3_manifold);
-  for (int m = 0; m < num_bias_points; ++m) {
-    problem->AddParameterBlock(gyro_bias(m), 3);
-    problem->AddParameterBlock(accel_bias(m), 3);
-  }
-  problem->AddParameterBlock(gravity.data(), 3, &gravity_manifold);
-  problem->AddParameterBlock(&time_offset, 1);
-  problem->AddParameterBlock(extrinsic.data(), 7, &se3_manifold);
+  ceres::Problem& problem = spline_problem->Reset();
+  problem.AddParameterBlock(&time_offset, 1);
+  problem.AddParameterBlock(extrinsic.data(), 7, spline_problem->se3_manifold());
   if (options.estimate_time_offset) {
-    problem->SetParameterLowerBound(&time_offset, 0, -options.max_time_offset_s);
-    problem->SetParameterUpperBound(&time_offset, 0, options.max_time_offset_s);
+    problem.SetParameterLowerBound(&time_offset, 0, -options.max_time_offset_s);
+    problem.SetParameterUpperBound(&time_offset, 0, options.max_time_offset_s);
   } else {
-    problem->SetParameterBlockConstant(&time_offset);
+    problem.SetParameterBlockConstant(&time_offset);
   }
-  if (!options.estimate_extrinsic) problem->SetParameterBlockConstant(extrinsic.data());
-  AddImuResiduals();
+  if (!options.estimate_extrinsic) problem.SetParameterBlockConstant(extrinsic.data());
+  spline_problem->AddImuResiduals(imu, sigma_g, sigma_a);
   AddPoseResiduals();
-  if (options.bias_model == BiasModel::kSpline) {
-    const double db = 1e-9 * static_cast<double>(bias_dt_ns);
-    for (int m = 1; m + 2 < num_bias_points; ++m) {
-      problem->AddResidualBlock(
-          new BiasRandomWalkCostFunction(db, options.noise.gyroscope_random_walk),
-          nullptr,
-          {gyro_bias(m - 1), gyro_bias(m), gyro_bias(m + 1), gyro_bias(m + 2)});
-      problem->AddResidualBlock(
-          new BiasRandomWalkCostFunction(db, options.noise.accelerometer_random_walk),
-          nullptr,
-          {accel_bias(m - 1), accel_bias(m), accel_bias(m + 1), accel_bias(m + 2)});
-    }
-  }
-}
-
-void FitProblem::Impl::AddImuResiduals() {
-  const int nb = bias_blocks_per_residual;
-  size_t k = 0;
-  while (k < imu.size()) {
-    int index = 0;
-    double u = 0.0;
-    SegmentOf(imu[k].t_ns, &index, &u);
-    ImuResidualSegment gyro_segment;
-    gyro_segment.segment_index = index;
-    gyro_segment.dt_s = dt_s;
-    gyro_segment.sigma = sigma_g;
-    gyro_segment.shared = callback.get();
-    ImuResidualSegment accel_segment = gyro_segment;
-    accel_segment.sigma = sigma_a;
-    std::vector<ImuResidualSample> gyro_samples;
-    std::vector<ImuResidualSample> accel_samples;
-    const size_t expected = static_cast<size_t>(dt_s * imu_rate_hz) + 2;
-    gyro_samples.reserve(expected);
-    accel_samples.reserve(expected);
-    int bias_segment = 0;
-    for (; k < imu.size(); ++k) {
-      int i = 0;
-      SegmentOf(imu[k].t_ns, &i, &u);
-      if (i != index) break;
-      ImuResidualSample sample;
-      sample.u = u;
-      sample.bias_weights = BiasWeightsAt(imu[k].t_ns, i, &bias_segment);
-      sample.measured = imu[k].gyro;
-      gyro_samples.push_back(sample);
-      sample.measured = imu[k].accel;
-      accel_samples.push_back(sample);
-    }
-    std::vector<double*> gyro_blocks(control_blocks.begin() + (index - 1),
-                                     control_blocks.begin() + (index + 3));
-    std::vector<double*> accel_blocks = gyro_blocks;
-    const int first_bias = nb == 1 ? 0 : bias_segment - 1;
-    for (int j = 0; j < nb; ++j) {
-      gyro_blocks.push_back(gyro_bias(first_bias + j));
-      accel_blocks.push_back(accel_bias(first_bias + j));
-    }
-    accel_blocks.push_back(gravity.data());
-
-    if (!analytic()) {
-      for (size_t s = 0; s < gyro_samples.size(); ++s) {
-        problem->AddResidualBlock(
-            NewAutoDiffGyroCost(nb, gyro_segment, gyro_samples[s]), nullptr, gyro_blocks);
-        problem->AddResidualBlock(
-            NewAutoDiffAccelCost(nb, accel_segment, accel_samples[s]), nullptr, accel_blocks);
-      }
-    } else if (options.layout == ImuResidualLayout::kPerSample) {
-      for (size_t s = 0; s < gyro_samples.size(); ++s) {
-        ceres::CostFunction* gyro_cost;
-        ceres::CostFunction* accel_cost;
-        if (nb == 1) {
-          gyro_cost = new GyroCostFunction<1>(gyro_segment, gyro_samples[s]);
-          accel_cost = new AccelCostFunction<1>(accel_segment, accel_samples[s]);
-        } else {
-          gyro_cost = new GyroCostFunction<4>(gyro_segment, gyro_samples[s]);
-          accel_cost = new AccelCostFunction<4>(accel_segment, accel_samples[s]);
-        }
-        problem->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
-        problem->AddResidualBlock(accel_cost, nullptr, accel_blocks);
-      }
-    } else {
-      ceres::CostFunction* gyro_cost;
-      ceres::CostFunction* accel_cost;
-      if (nb == 1) {
-        gyro_cost = new GyroSegmentCostFunction<1>(gyro_segment, std::move(gyro_samples));
-        accel_cost = new AccelSegmentCostFunction<1>(accel_segment, std::move(accel_samples));
-      } else {
-        gyro_cost = new GyroSegmentCostFunction<4>(gyro_segment, std::move(gyro_samples));
-        accel_cost = new AccelSegmentCostFunction<4>(accel_segment, std::move(accel_samples));
-      }
-      problem->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
-      problem->AddResidualBlock(accel_cost, nullptr, accel_blocks);
-    }
-  }
+  spline_problem->AddBiasRandomWalkResiduals(options.noise);
 }
 
 void FitProblem::Impl::AddPoseResiduals() {
@@ -1072,23 +654,24 @@ void FitProblem::Impl::AddPoseResiduals() {
   for (int j : used_poses) {
     PoseResidualData data;
     data.t_s = PoseTimeSinceT0(j);
-    data.segment_index = SegmentOfSeconds(data.t_s + time_offset);
+    data.segment_index = layout.ClampedSegmentAt(data.t_s + time_offset);
     data.dt_s = dt_s;
     data.T_w_m = PoseOf(poses[j]);
     data.sigma_m = options.pose_sigma_m;
     data.sigma_rad = options.pose_sigma_rad;
-    data.shared = callback.get();
+    data.shared = spline_problem->evaluation_callback();
     pose_segments.push_back(data.segment_index);
-    ceres::CostFunction* cost = analytic()
+    const bool analytic = options.differentiation == Differentiation::kAnalytic;
+    ceres::CostFunction* cost = analytic
                                     ? static_cast<ceres::CostFunction*>(new PoseCostFunction(data))
                                     : NewAutoDiffPoseCost(data);
     const int i = data.segment_index;
-    problem->AddResidualBlock(cost,
+    problem()->AddResidualBlock(cost,
                               nullptr,
-                              {control_blocks[i - 1],
-                               control_blocks[i],
-                               control_blocks[i + 1],
-                               control_blocks[i + 2],
+                              {spline_problem->control_block(i - 1),
+                               spline_problem->control_block(i),
+                               spline_problem->control_block(i + 1),
+                               spline_problem->control_block(i + 2),
                                &time_offset,
                                extrinsic.data()});
   }
@@ -1125,51 +708,39 @@ std::string FitProblem::Impl::LikelyCauses(double gyro_ratio, double accel_ratio
 
 FitResult FitProblem::Impl::Solve() {
   FitResult result;
-  ceres::Solver::Options solver_options;
   // Jacobian entries: 3 rows per gyro/accel sample times their tangent columns, 6 per pose.
+  const int bias_points = spline_problem->bias_spline().points_per_segment();
   const double jacobian_entries =
-      3.0 * static_cast<double>(imu.size()) * (2.0 * 24.0 + 6.0 * bias_blocks_per_residual + 2.0) +
+      3.0 * static_cast<double>(imu.size()) * (2.0 * 24.0 + 6.0 * bias_points + 2.0) +
       6.0 * static_cast<double>(used_poses.size()) * 31.0;
-  const bool schur = options.linear_solver == FitLinearSolver::kSparseSchur ||
-                     (options.linear_solver == FitLinearSolver::kAuto &&
-                      jacobian_entries > options.max_normal_cholesky_jacobian_entries);
-  solver_options.linear_solver_type = schur ? ceres::SPARSE_SCHUR : ceres::SPARSE_NORMAL_CHOLESKY;
-  result.linear_solver = schur ? "SPARSE_SCHUR" : "SPARSE_NORMAL_CHOLESKY";
-  solver_options.num_threads = options.num_threads;
-  solver_options.max_num_iterations = options.max_iterations;
-  solver_options.function_tolerance = options.function_tolerance;
-  solver_options.gradient_tolerance = options.gradient_tolerance;
-  solver_options.parameter_tolerance = options.parameter_tolerance;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.initial_trust_region_radius = options.initial_trust_region_radius;
-  std::unique_ptr<SolverProgressCallback> progress;
-  if (options.progress) {
-    progress = std::make_unique<SolverProgressCallback>(options.progress, "fit: ");
-    solver_options.callbacks.push_back(progress.get());
-  }
-
-  ceres::Solver::Summary summary;
+  SolverOptions solver;
+  solver.max_iterations = options.max_iterations;
+  solver.max_rounds = kMaxSolverRounds;
+  solver.num_threads = options.num_threads;
+  solver.function_tolerance = options.function_tolerance;
+  solver.gradient_tolerance = options.gradient_tolerance;
+  solver.parameter_tolerance = options.parameter_tolerance;
+  solver.initial_trust_region_radius = options.initial_trust_region_radius;
+  solver.linear_solver = options.linear_solver;
+  solver.max_normal_cholesky_jacobian_entries = options.max_normal_cholesky_jacobian_entries;
+  SolveRounds rounds(ToCeresOptions(solver, jacobian_entries, &result.linear_solver),
+                     options.progress);
 #ifdef __GLIBC__
   // Return what the initialisation freed (the pose fit's solver) before the main solve, whose
   // Jacobian is the peak memory of long recordings (docs/performance.md).
   malloc_trim(0);
 #endif
-  for (int round = 0; round < kMaxSolverRounds; ++round) {
-    const auto start = std::chrono::steady_clock::now();
-    ceres::Solve(solver_options, problem.get(), &summary);
-    result.solve_time_s +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result.iterations += static_cast<int>(summary.iterations.size()) - 1;
-    if (round == 0) result.initial_cost = summary.initial_cost;
-    ++result.solver_rounds;
-    if (summary.termination_type == ceres::FAILURE || !summary.IsSolutionUsable()) {
-      throw Error("the solver failed (" + summary.message +
+  for (int round = 0; round < solver.max_rounds; ++round) {
+    rounds.Solve(problem(), "fit: ");
+    if (rounds.failed()) {
+      throw Error("the solver failed (" + rounds.last().message +
                   "); likely causes: " + LikelyCauses(0.0, 0.0));
     }
     if (!options.estimate_time_offset) break;
     bool moved = false;
     for (size_t p = 0; p < used_poses.size(); ++p) {
-      if (SegmentOfSeconds(PoseTimeSinceT0(used_poses[p]) + time_offset) != pose_segments[p]) {
+      if (layout.ClampedSegmentAt(PoseTimeSinceT0(used_poses[p]) + time_offset) !=
+          pose_segments[p]) {
         moved = true;
       }
     }
@@ -1178,25 +749,26 @@ FitResult FitProblem::Impl::Solve() {
       options.progress("fit: time offset moved poses across knots; solving again");
     BuildProblem();
   }
+  const ceres::Solver::Summary& summary = rounds.last();
+  result.solve_time_s = rounds.solve_time_s();
+  result.iterations = rounds.iterations();
+  result.initial_cost = rounds.initial_cost();
+  result.solver_rounds = rounds.rounds();
   result.final_cost = summary.final_cost;
   result.termination = summary.message;
   result.solver_report = summary.FullReport();
-  if (summary.termination_type == ceres::NO_CONVERGENCE) {
-    result.warnings.push_back("the solver stopped after " + std::to_string(result.iterations) +
-                              " iterations without converging (" + summary.message + ")");
+  if (!rounds.NoConvergenceWarning().empty()) {
+    result.warnings.push_back(rounds.NoConvergenceWarning());
   }
-  if (callback) callback->Update();
+  if (spline_problem->evaluation_callback()) spline_problem->evaluation_callback()->Update();
 
   // Estimates.
   result.layout = layout;
   result.knot_spacing_s = dt_s;
   result.knot_spacing_rule = knot_rule;
-  result.control_poses.resize(num_control_poses());
-  for (int i = 0; i < num_control_poses(); ++i) {
-    result.control_poses[i] = PoseFromBlock(&control_values[7 * i]);
-  }
+  result.control_poses = spline_problem->ControlPoses();
   result.bias_model = options.bias_model;
-  result.gravity_w = Eigen::Map<const Eigen::Vector3d>(gravity.data());
+  result.gravity_w = spline_problem->gravity_w();
   result.time_offset_estimated = options.estimate_time_offset;
   result.time_offset_s = time_offset;
   result.extrinsic_estimated = options.estimate_extrinsic;
@@ -1209,49 +781,37 @@ FitResult FitProblem::Impl::Solve() {
   result.noise_std.position_m = options.pose_sigma_m;
   result.noise_std.rotation_rad = options.pose_sigma_rad;
   if (options.bias_model == BiasModel::kSpline) {
-    result.bias_t0_ns = bias_t0_ns;
-    result.bias_dt_ns = bias_dt_ns;
-    for (int m = 0; m < num_bias_points; ++m) {
-      result.gyro_bias_control_points.push_back(Eigen::Map<const Eigen::Vector3d>(gyro_bias(m)));
-      result.accel_bias_control_points.push_back(Eigen::Map<const Eigen::Vector3d>(accel_bias(m)));
+    const BiasSpline& bias = spline_problem->bias_spline();
+    result.bias_t0_ns = bias.t0_ns();
+    result.bias_dt_ns = bias.dt_ns();
+    for (int m = 0; m < bias.num_points(); ++m) {
+      result.gyro_bias_control_points.push_back(
+          Eigen::Map<const Eigen::Vector3d>(spline_problem->gyro_bias(m)));
+      result.accel_bias_control_points.push_back(
+          Eigen::Map<const Eigen::Vector3d>(spline_problem->accel_bias(m)));
     }
   }
 
   // Residuals at the solution (and the bias averages).
-  const SE3Splined spline = Spline();
-  const Eigen::Vector3d g_w = result.gravity_w;
-  double gyro_sq = 0.0;
-  double accel_sq = 0.0;
-  Eigen::Vector3d gyro_bias_sum = Eigen::Vector3d::Zero();
-  Eigen::Vector3d accel_bias_sum = Eigen::Vector3d::Zero();
   if (options.keep_samples) result.imu_samples.reserve(imu.size());
-  for (const ImuSample& s : imu) {
-    const Eigen::Vector3d b_g = BiasAt(gyro_bias_values, s.t_ns);
-    const Eigen::Vector3d b_a = BiasAt(accel_bias_values, s.t_ns);
-    Eigen::Vector3d gyro;
-    Eigen::Vector3d accel;
-    PredictImu<double>(spline, spline.SegmentAtNs(s.t_ns), g_w, b_g, b_a, &gyro, &accel);
-    gyro_sq += (gyro - s.gyro).squaredNorm();
-    accel_sq += (accel - s.accel).squaredNorm();
-    gyro_bias_sum += b_g;
-    accel_bias_sum += b_a;
-    if (options.keep_samples) {
-      FitImuSample out;
-      out.t_ns = s.t_ns;
-      out.gyro_measured = s.gyro;
-      out.gyro_fitted = gyro;
-      out.accel_measured = s.accel;
-      out.accel_fitted = accel;
-      out.gyro_bias = b_g;
-      out.accel_bias = b_a;
-      result.imu_samples.push_back(out);
-    }
-  }
-  const double n_imu = static_cast<double>(imu.size());
-  result.residual_rms.gyro_rad_s = std::sqrt(gyro_sq / (3.0 * n_imu));
-  result.residual_rms.accel_m_s2 = std::sqrt(accel_sq / (3.0 * n_imu));
-  result.gyro_bias = gyro_bias_sum / n_imu;
-  result.accel_bias = accel_bias_sum / n_imu;
+  const ImuResidualStatistics imu_stats =
+      spline_problem->EvaluateImu(imu, [&](const ImuSample& s, const ImuPrediction& p) {
+        if (!options.keep_samples) return;
+        FitImuSample out;
+        out.t_ns = s.t_ns;
+        out.gyro_measured = s.gyro;
+        out.gyro_fitted = p.gyro;
+        out.accel_measured = s.accel;
+        out.accel_fitted = p.accel;
+        out.gyro_bias = p.gyro_bias;
+        out.accel_bias = p.accel_bias;
+        result.imu_samples.push_back(out);
+      });
+  result.residual_rms.gyro_rad_s = imu_stats.gyro_rms;
+  result.residual_rms.accel_m_s2 = imu_stats.accel_rms;
+  result.gyro_bias = imu_stats.mean_gyro_bias;
+  result.accel_bias = imu_stats.mean_accel_bias;
+  const SE3Splined spline = spline_problem->Spline();
   const SE3d T_s_m = result.T_pose_imu.inverse();
   double position_sq = 0.0;
   double rotation_sq = 0.0;
@@ -1321,17 +881,18 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   const auto start = std::chrono::steady_clock::now();
   // Parameter blocks and the linear map from their tangent coordinates to the reported
   // quantities (bias averages for the spline model).
+  const int num_bias_points = spline_problem->bias_spline().num_points();
   std::vector<const double*> blocks;
   std::vector<int> tangent_sizes;
   for (int m = 0; m < num_bias_points; ++m) {
-    blocks.push_back(gyro_bias(m));
+    blocks.push_back(spline_problem->gyro_bias(m));
     tangent_sizes.push_back(3);
   }
   for (int m = 0; m < num_bias_points; ++m) {
-    blocks.push_back(accel_bias(m));
+    blocks.push_back(spline_problem->accel_bias(m));
     tangent_sizes.push_back(3);
   }
-  blocks.push_back(gravity.data());
+  blocks.push_back(spline_problem->gravity());
   tangent_sizes.push_back(2);
   if (options.estimate_time_offset) {
     blocks.push_back(&time_offset);
@@ -1346,23 +907,10 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
       8 + (options.estimate_time_offset ? 1 : 0) + (options.estimate_extrinsic ? 6 : 0);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(reported, tangent_total);
   // Bias averages: mean over the samples of sum_j w_j c_{m-1+j}.
-  if (options.bias_model == BiasModel::kConstant) {
-    A.block<3, 3>(0, 0).setIdentity();
-    A.block<3, 3>(3, 3).setIdentity();
-  } else {
-    std::vector<double> a(num_bias_points, 0.0);
-    for (const ImuSample& s : imu) {
-      int i = 0;
-      double u = 0.0;
-      SegmentOf(s.t_ns, &i, &u);
-      int m = 0;
-      const std::array<double, 4> w = BiasWeightsAt(s.t_ns, i, &m);
-      for (int j = 0; j < 4; ++j) a[m - 1 + j] += w[j] / static_cast<double>(imu.size());
-    }
-    for (int m = 0; m < num_bias_points; ++m) {
-      A.block<3, 3>(0, 3 * m) = a[m] * Eigen::Matrix3d::Identity();
-      A.block<3, 3>(3, 3 * (num_bias_points + m)) = a[m] * Eigen::Matrix3d::Identity();
-    }
+  const std::vector<double> a = spline_problem->MeanBiasWeights(imu);
+  for (int m = 0; m < num_bias_points; ++m) {
+    A.block<3, 3>(0, 3 * m) = a[m] * Eigen::Matrix3d::Identity();
+    A.block<3, 3>(3, 3 * (num_bias_points + m)) = a[m] * Eigen::Matrix3d::Identity();
   }
   int column = 6 * num_bias_points;
   int row = 6;
@@ -1389,39 +937,17 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
     }
   }
 
-  ceres::Covariance::Options covariance_options;
+  MarginalCovarianceOptions covariance_options;
   covariance_options.num_threads = options.num_threads;
-  covariance_options.algorithm_type = ceres::SPARSE_QR;
-  ceres::Covariance covariance(covariance_options);
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> full(tangent_total,
-                                                                              tangent_total);
-  bool ok = false;
-  if (options.compressed_covariance) {
-    // The same J^T J as the problem, with fewer rows (CompressedInformation).
-    CompressedInformation compressed(problem.get());
-    if (compressed.CompressedEntries() <= options.max_ceres_covariance_entries) {
-      result->covariance_method = "ceres::Covariance (SPARSE_QR) on the compressed problem";
-      compressed.BuildCeresProblem();
-      std::vector<const double*> tangent_blocks;
-      ok = true;
-      for (const double* block : blocks) {
-        tangent_blocks.push_back(compressed.TangentBlock(block));
-        ok = ok && tangent_blocks.back() != nullptr;
-      }
-      if (ok) ok = covariance.Compute(tangent_blocks, compressed.problem());
-      if (ok) ok = covariance.GetCovarianceMatrixInTangentSpace(tangent_blocks, full.data());
-    } else {
-      result->covariance_method = "sparse Cholesky of the compressed information (large problem)";
-      Eigen::MatrixXd marginal;
-      ok = compressed.MarginalCovariance(blocks, &marginal);
-      if (ok) full = marginal;
-    }
-  } else {
-    result->covariance_method = "ceres::Covariance (SPARSE_QR) on the fit's problem";
-    ok = covariance.Compute(blocks, problem.get());
-    if (ok) ok = covariance.GetCovarianceMatrixInTangentSpace(blocks, full.data());
-  }
-  if (ok) ok = full.allFinite();
+  covariance_options.max_ceres_covariance_entries = options.max_ceres_covariance_entries;
+  covariance_options.backend = options.compressed_covariance
+                                   ? CovarianceBackend::kAuto
+                                   : CovarianceBackend::kCeresUncompressed;
+  const MarginalCovariance marginal =
+      ComputeMarginalCovariance(problem(), blocks, covariance_options);
+  result->covariance_method = marginal.method;
+  const bool ok = marginal.ok;
+  const Eigen::MatrixXd& full = marginal.covariance;
   const ExcitationThresholds& limit = options.excitation;
   if (!ok) {
     result->covariance_ok = false;
@@ -1557,13 +1083,11 @@ int FitProblem::num_imu_samples() const { return static_cast<int>(impl_->imu.siz
 int FitProblem::num_poses() const { return static_cast<int>(impl_->used_poses.size()); }
 
 std::vector<SE3d> FitProblem::ControlPoses() const {
-  std::vector<SE3d> poses(impl_->num_control_poses());
-  for (size_t i = 0; i < poses.size(); ++i) poses[i] = PoseFromBlock(impl_->control_blocks[i]);
-  return poses;
+  return impl_->spline_problem->ControlPoses();
 }
 
 Eigen::Vector3d FitProblem::GravityW() const {
-  return Eigen::Map<const Eigen::Vector3d>(impl_->gravity.data());
+  return impl_->spline_problem->gravity_w();
 }
 
 void FitProblem::SetControlPoses(const std::vector<SE3d>& control_poses) {
@@ -1572,25 +1096,16 @@ void FitProblem::SetControlPoses(const std::vector<SE3d>& control_poses) {
                 std::to_string(impl_->num_control_poses()) + " control poses, got " +
                 std::to_string(control_poses.size()));
   }
-  for (size_t i = 0; i < control_poses.size(); ++i) {
-    PoseToBlock(control_poses[i], impl_->control_blocks[i]);
-  }
-  if (impl_->callback) impl_->callback->Update();
+  impl_->spline_problem->SetControlPoses(control_poses);
 }
 
 void FitProblem::SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias) {
-  for (int m = 0; m < impl_->num_bias_points; ++m) {
-    Eigen::Map<Eigen::Vector3d> bg(impl_->gyro_bias(m));
-    Eigen::Map<Eigen::Vector3d> ba(impl_->accel_bias(m));
-    bg = gyro_bias;
-    ba = accel_bias;
-  }
+  impl_->spline_problem->SetBiases(gyro_bias, accel_bias);
 }
 
 void FitProblem::SetGravity(const Eigen::Vector3d& g_w) {
   if (!(g_w.norm() > 0.0) || !g_w.allFinite()) throw Error("SetGravity: needs a nonzero vector");
-  const Eigen::Vector3d g = impl_->options.gravity_m_s2 * g_w.normalized();
-  for (int a = 0; a < 3; ++a) impl_->gravity[a] = g[a];
+  impl_->spline_problem->SetGravity(impl_->options.gravity_m_s2 * g_w.normalized());
 }
 
 void FitProblem::SetTimeOffset(double time_offset_s) {
@@ -1604,7 +1119,7 @@ void FitProblem::SetExtrinsic(const SE3d& T_pose_imu) {
 
 double FitProblem::Cost() {
   double cost = 0.0;
-  impl_->problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
+  impl_->problem()->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
   return cost;
 }
 

@@ -16,36 +16,6 @@
 
 namespace splinecal {
 
-bool SegmentIndexAt(const SplineLayout& layout, double t_s, int* index, double* u) {
-  const int n = layout.num_control_poses;
-  if (n < kSplineOrder || !(layout.dt_s > 0.0)) return false;
-  const double s = t_s / layout.dt_s;
-  const double last = static_cast<double>(n - 2);
-  const double slack = internal::kEndSnapSegments;
-  if (!(s >= 1.0 - slack && s <= last + slack)) return false;
-  int i = static_cast<int>(std::floor(s));
-  i = std::clamp(i, 1, n - 3);
-  *index = i;
-  *u = std::clamp(s - static_cast<double>(i), 0.0, 1.0);
-  return true;
-}
-
-bool WindowCovering(const SplineLayout& layout,
-                    double t_lo_s,
-                    double t_hi_s,
-                    ControlPoseWindow* window) {
-  int i_lo = 0;
-  int i_hi = 0;
-  double u = 0.0;
-  if (!(t_lo_s <= t_hi_s)) return false;
-  if (!SegmentIndexAt(layout, t_lo_s, &i_lo, &u) || !SegmentIndexAt(layout, t_hi_s, &i_hi, &u)) {
-    return false;
-  }
-  window->first_index = i_lo - 1;
-  window->num_poses = i_hi + 2 - (i_lo - 1) + 1;
-  return true;
-}
-
 namespace internal {
 
 BodyState EvaluateBodyState(const SegmentKnots<double>& knots, const Segment<double>& segment) {
@@ -170,11 +140,14 @@ bool StateAt(const ReprojectionSettings& settings,
              ExposureState* state) {
   int index = 0;
   double u = 0.0;
-  if (!SegmentIndexAt(settings.layout, t_s, &index, &u)) return false;
+  SegmentPosition position;
+  if (!settings.layout.SegmentAt(t_s, &position)) return false;
+  index = position.index;
+  u = position.u;
   const SegmentKnots<double>* k = knots->ForSegment(index);
   if (k == nullptr) return false;
   state->segment_index = index;
-  state->segment = MakeSegment(index, u, settings.layout.dt_s);
+  state->segment = MakeSegment(index, u, settings.layout.dt_s());
   state->knots = k;
   state->body = EvaluateBodyState(*k, state->segment);
   return true;

@@ -183,7 +183,7 @@ TEST(Fit, AutoDiffPerSampleUnsharedAndSchurPathsReachTheSameSolution) {
   variants[0].differentiation = Differentiation::kAutoDiff;
   variants[1].layout = ImuResidualLayout::kPerSample;
   variants[2].share_knot_caches = false;
-  variants[3].linear_solver = FitLinearSolver::kSparseSchur;
+  variants[3].linear_solver = LinearSolver::kSparseSchur;
   for (const FitOptions& variant : variants) {
     const FitResult result = Fit(data.imu, data.poses, variant);
     EXPECT_NEAR(

@@ -66,7 +66,7 @@ class ReprojectionCostTest : public ::testing::Test {
  protected:
   ReprojectionCostTest() {
     settings_.camera = &scene_.camera;
-    settings_.layout.dt_s = scene_.dt_s;
+    settings_.layout.dt_ns = std::llround(scene_.dt_s * 1e9);
     settings_.layout.num_control_poses = static_cast<int>(scene_.poses.size());
     settings_.sigma_px = 0.7;
   }
@@ -205,7 +205,7 @@ TEST_F(ReprojectionCostTest, TargetResidualIsZeroAtTheTruePixels) {
   const std::vector<TargetCornerObservation> corners = Corners(t_frame, 0.0);
   ASSERT_GE(corners.size(), 40u);
   ControlPoseWindow window;
-  ASSERT_TRUE(WindowCovering(settings_.layout, t_frame - 0.02, t_frame + 0.07, &window));
+  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.07, &window));
   const TargetFrameCostFunction cost(settings_, window, t_frame, corners);
   Blocks blocks = TargetBlocks(window);
   std::vector<double> residuals(cost.num_residuals());
@@ -217,7 +217,7 @@ TEST_F(ReprojectionCostTest, TargetJacobiansRollingShutterRobust) {
   const double t_frame = 0.45;
   settings_.huber_px = 1.5;  // some corners beyond it: the robust branch is exercised
   ControlPoseWindow window;
-  ASSERT_TRUE(WindowCovering(settings_.layout, t_frame - 0.02, t_frame + 0.07, &window));
+  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.07, &window));
   EXPECT_GE(window.num_poses, 5);
   const TargetFrameCostFunction cost(settings_, window, t_frame, Corners(t_frame, 2.0));
   ExpectJacobiansMatch(cost, TargetBlocks(window));
@@ -227,7 +227,7 @@ TEST_F(ReprojectionCostTest, TargetJacobiansGlobalShutter) {
   const double t_frame = 0.62;
   scene_.line_delay = 0.0;
   ControlPoseWindow window;
-  ASSERT_TRUE(WindowCovering(settings_.layout, t_frame - 0.02, t_frame + 0.02, &window));
+  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.02, &window));
   const TargetFrameCostFunction cost(settings_, window, t_frame, Corners(t_frame, 1.0));
   ExpectJacobiansMatch(cost, TargetBlocks(window));
 }
@@ -235,7 +235,7 @@ TEST_F(ReprojectionCostTest, TargetJacobiansGlobalShutter) {
 TEST_F(ReprojectionCostTest, TargetEvaluationOutsideTheWindowFails) {
   const double t_frame = 0.45;
   ControlPoseWindow window;
-  ASSERT_TRUE(WindowCovering(settings_.layout, t_frame, t_frame + 0.015, &window));
+  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame, t_frame + 0.015, &window));
   const TargetFrameCostFunction cost(settings_, window, t_frame, Corners(t_frame, 0.0));
   Blocks blocks = TargetBlocks(window);
   std::vector<double> residuals(cost.num_residuals());
@@ -290,8 +290,8 @@ class LandmarkCostTest : public ReprojectionCostTest {
   std::vector<int> Indices(double t_ref, double t_frame) {
     ControlPoseWindow a;
     ControlPoseWindow b;
-    CHECK(WindowCovering(settings_.layout, t_ref - 0.02, t_ref + 0.05, &a));
-    CHECK(WindowCovering(settings_.layout, t_frame - 0.02, t_frame + 0.05, &b));
+    CHECK(settings_.layout.WindowCovering(t_ref - 0.02, t_ref + 0.05, &a));
+    CHECK(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.05, &b));
     return LandmarkCostFunction::UnionOfWindows(a, b);
   }
 };
@@ -375,21 +375,21 @@ TEST(RobustifyPoint, HuberCostAndContinuity) {
   }
 }
 
-TEST(WindowCovering, SegmentsOfTheRange) {
-  SplineLayout layout;
-  layout.dt_s = 0.1;
+TEST(KnotLayout, WindowCoveringSegmentsOfTheRange) {
+  KnotLayout layout;
+  layout.dt_ns = 100'000'000;
   layout.num_control_poses = 10;  // valid [0.1, 0.8]
   ControlPoseWindow w;
-  ASSERT_TRUE(WindowCovering(layout, 0.35, 0.37, &w));
+  ASSERT_TRUE(layout.WindowCovering(0.35, 0.37, &w));
   EXPECT_EQ(w.first_index, 2);
   EXPECT_EQ(w.num_poses, 4);
-  ASSERT_TRUE(WindowCovering(layout, 0.35, 0.41, &w));
+  ASSERT_TRUE(layout.WindowCovering(0.35, 0.41, &w));
   EXPECT_EQ(w.num_poses, 5);
-  ASSERT_TRUE(WindowCovering(layout, 0.1, 0.8, &w));
+  ASSERT_TRUE(layout.WindowCovering(0.1, 0.8, &w));
   EXPECT_EQ(w.first_index, 0);
   EXPECT_EQ(w.num_poses, 10);
-  EXPECT_FALSE(WindowCovering(layout, 0.05, 0.3, &w));
-  EXPECT_FALSE(WindowCovering(layout, 0.3, 0.85, &w));
+  EXPECT_FALSE(layout.WindowCovering(0.05, 0.3, &w));
+  EXPECT_FALSE(layout.WindowCovering(0.3, 0.85, &w));
 }
 
 }  // namespace

@@ -74,8 +74,7 @@ TEST_F(SimulateCamerasTest, NoiseFreeObservationsAreTheReprojectionModel) {
   const std::vector<ObservationFrame> frames = GroupIntoFrames(r.observations);
   ReprojectionSettings settings;
   settings.camera = &rig_[0].camera;
-  settings.layout.dt_s = spline_.dt();
-  settings.layout.num_control_poses = spline_.num_control_poses();
+  settings.layout = spline_.layout();
   std::vector<std::array<double, 7>> blocks(spline_.num_control_poses());
   for (int i = 0; i < spline_.num_control_poses(); ++i) {
     PoseToBlock(spline_.control_pose(i), blocks[i].data());
@@ -90,8 +89,8 @@ TEST_F(SimulateCamerasTest, NoiseFreeObservationsAreTheReprojectionModel) {
   for (size_t f = 0; f < frames.size(); f += 7) {
     const double t_frame = spline_.TimeSinceT0(frames[f].t_ns);
     ControlPoseWindow window;
-    ASSERT_TRUE(WindowCovering(
-        settings.layout, t_frame + shift, t_frame + shift + line_delay * 480, &window));
+    ASSERT_TRUE(settings.layout.WindowCovering(
+        t_frame + shift, t_frame + shift + line_delay * 480, &window));
     std::vector<TargetCornerObservation> corners;
     for (const Observation& o : frames[f].observations) {
       corners.push_back({*options_.target.Find(o.point_id), o.uv});

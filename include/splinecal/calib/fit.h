@@ -40,6 +40,8 @@
 #include <vector>
 
 #include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/estimation/spline_problem.h"
 #include "splinecal/estimation/pose_fit.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
@@ -49,29 +51,6 @@
 #include "splinecal/spline/se3_spline.h"
 
 namespace splinecal {
-
-// How the IMU residuals are handed to Ceres (the same objective either way; estimation/imu_costs.h).
-enum class ImuResidualLayout {
-  kPerSegment,  // one gyro and one accel block per spline segment (default, fastest)
-  kPerSample,   // one gyro and one accel block per IMU sample
-};
-
-// Ceres' linear solver for the Levenberg-Marquardt steps.
-enum class FitLinearSolver {
-  // kSparseNormalCholesky, or kSparseSchur when the Jacobian would exceed
-  // FitOptions::max_normal_cholesky_jacobian_entries (recordings over ~3 minutes).
-  kAuto,
-  // SPARSE_NORMAL_CHOLESKY (SuiteSparse). Ceres 2.1 appends the LM diagonal to the Jacobian
-  // by reallocating it on the first step: for a moment it holds two copies of J.
-  kSparseNormalCholesky,
-  // SPARSE_SCHUR: eliminates an independent set of control poses; no copy of J, similar speed.
-  kSparseSchur,
-};
-
-enum class Differentiation {
-  kAnalytic,  // estimation/imu_costs.h, estimation/pose_cost.h analytic Jacobians (default)
-  kAutoDiff,  // their ceres::AutoDiffCostFunction twins, one block per sample (tests, bench)
-};
 
 // When a standard deviation exceeds its threshold the parameter is reported as not determined
 // by the data (FitResult::warnings says why, in plain words).
@@ -123,7 +102,7 @@ struct FitOptions {
   // two iterations on the reference problem (docs/fit.md, "Speed"); a bad step is still rejected
   // and the radius shrinks.
   double initial_trust_region_radius = 1e6;
-  FitLinearSolver linear_solver = FitLinearSolver::kAuto;
+  LinearSolver linear_solver = LinearSolver::kAuto;
   // kAuto switches to SPARSE_SCHUR above this many Jacobian entries (8e6: 64 MB, ~2.7 minutes
   // at 200 Hz), where SPARSE_NORMAL_CHOLESKY's transient second copy of J starts to dominate the
   // peak memory; both are about as fast (docs/fit.md, "Speed").

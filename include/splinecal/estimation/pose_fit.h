@@ -38,22 +38,10 @@
 
 #include "splinecal/io/poses.h"
 #include "splinecal/lie/se3.h"
+#include "splinecal/spline/knot_layout.h"
 #include "splinecal/spline/se3_spline.h"
 
 namespace splinecal {
-
-// Knot times t_i = t0_ns + i * dt_ns, i = 0..num_control_poses-1.
-struct KnotLayout {
-  int64_t t0_ns = 0;
-  int64_t dt_ns = 0;
-  int num_control_poses = 0;
-};
-
-// The smallest layout with spacing dt_ns whose valid range [t_1, t_{n-2}] covers
-// [start_ns, end_ns]: t_1 = start_ns (so t0 = start_ns - dt_ns) and
-// n = ceil((end_ns - start_ns) / dt_ns) + 3. Throws splinecal::Error if dt_ns <= 0 or
-// end_ns < start_ns.
-KnotLayout KnotLayoutCovering(int64_t start_ns, int64_t end_ns, int64_t dt_ns);
 
 struct PoseFitOptions {
   double rotation_weight_m_per_rad = 1.0;  // w_R

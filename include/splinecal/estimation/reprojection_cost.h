@@ -68,38 +68,15 @@
 #include "splinecal/camera/rolling_shutter.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/lie/se3.h"
+#include "splinecal/spline/knot_layout.h"
 #include "splinecal/spline/segment.h"
 
 namespace splinecal {
 
-// Control poses first_index .. first_index + num_poses - 1 of the spline.
-struct ControlPoseWindow {
-  int first_index = 0;
-  int num_poses = 0;
-  int last_index() const { return first_index + num_poses - 1; }
-};
-
-// The spline's knot layout as the cost functions see it.
-struct SplineLayout {
-  double dt_s = 0.1;          // knot spacing [s]
-  int num_control_poses = 0;  // n; valid times [dt, (n-2) dt] relative to t0
-};
-
-// The segment index i and u of t_s (seconds since t0), exactly as SE3Spline::SegmentAt computes
-// them; false outside the valid range [t_1, t_{n-2}].
-bool SegmentIndexAt(const SplineLayout& layout, double t_s, int* index, double* u);
-
-// The smallest window whose segments cover every time in [t_lo_s, t_hi_s] (seconds since t0),
-// clipped to the spline; false when [t_lo_s, t_hi_s] is not inside the valid range.
-bool WindowCovering(const SplineLayout& layout,
-                    double t_lo_s,
-                    double t_hi_s,
-                    ControlPoseWindow* window);
-
 // What every reprojection residual of one camera shares.
 struct ReprojectionSettings {
   const PinholeCamera* camera = nullptr;  // not owned
-  SplineLayout layout;
+  KnotLayout layout;  // only dt and n matter: residual times are seconds since t0
   double sigma_px = 1.0;  // pixel noise std [px]: residuals are divided by it
   double huber_px = 0.0;  // Huber threshold [px]; 0 = plain least squares
   ExposureSolveOptions exposure;

@@ -61,6 +61,7 @@
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/types.h"
 #include "splinecal/spline/basis.h"
+#include "splinecal/spline/knot_layout.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
 
@@ -75,11 +76,6 @@ double ScalarPart(const ceres::Jet<U, N>& x) {
   return ScalarPart(x.a);
 }
 
-// Times within this fraction of a segment (1e-9 dt, i.e. below a nanosecond for dt < 1 s)
-// outside [t_1, t_{n-2}] are snapped onto the end: a relative time in seconds computed in
-// double as (n-2) * dt can round a few ulps past the end.
-inline constexpr double kEndSnapSegments = 1e-9;
-
 }  // namespace internal
 
 template <typename T>
@@ -90,7 +86,7 @@ class SE3Spline {
   // control_poses[i] = T_w_s at t_i = t0_ns + i * dt_ns. Throws splinecal::Error if there are
   // fewer than 4 control poses, dt_ns <= 0, or the last knot time overflows int64.
   SE3Spline(std::vector<SE3<T>> control_poses, int64_t t0_ns, int64_t dt_ns)
-      : control_poses_(std::move(control_poses)), t0_ns_(t0_ns), dt_ns_(dt_ns) {
+      : control_poses_(std::move(control_poses)) {
     if (control_poses_.size() < static_cast<size_t>(kSplineOrder)) {
       throw Error("SE3Spline: needs at least 4 control poses, got " +
                   std::to_string(control_poses_.size()));
@@ -110,7 +106,9 @@ class SE3Spline {
                   std::to_string(t0_ns) + " ns, dt = " + std::to_string(dt_ns) + " ns, " +
                   std::to_string(control_poses_.size()) + " control poses)");
     }
-    dt_s_ = 1e-9 * static_cast<double>(dt_ns_);
+    layout_.t0_ns = t0_ns;
+    layout_.dt_ns = dt_ns;
+    layout_.num_control_poses = static_cast<int>(control_poses_.size());
     const int n = num_control_poses();
     rotations_.resize(n);
     for (int i = 0; i < n; ++i) rotations_[i] = control_poses_[i].so3().matrix();
@@ -119,21 +117,23 @@ class SE3Spline {
     for (int k = 1; k < n; ++k) UpdateDelta(k);
   }
 
-  int num_control_poses() const { return static_cast<int>(control_poses_.size()); }
+  // Knot times and the segment lookup (spline/knot_layout.h).
+  const KnotLayout& layout() const { return layout_; }
+  int num_control_poses() const { return layout_.num_control_poses; }
   int num_segments() const { return num_control_poses() - 3; }
-  int64_t t0_ns() const { return t0_ns_; }
-  int64_t dt_ns() const { return dt_ns_; }
+  int64_t t0_ns() const { return layout_.t0_ns; }
+  int64_t dt_ns() const { return layout_.dt_ns; }
   // Knot spacing [s].
-  double dt() const { return dt_s_; }
+  double dt() const { return layout_.dt_s(); }
   // t_i = t0 + i dt [ns].
-  int64_t knot_time_ns(int i) const { return t0_ns_ + static_cast<int64_t>(i) * dt_ns_; }
+  int64_t knot_time_ns(int i) const { return layout_.knot_time_ns(i); }
   // Valid time range [t_1, t_{n-2}] in absolute ns and in seconds relative to t0.
-  int64_t start_time_ns() const { return knot_time_ns(1); }
-  int64_t end_time_ns() const { return knot_time_ns(num_control_poses() - 2); }
-  double start_time() const { return dt_s_; }
-  double end_time() const { return 1e-9 * static_cast<double>(end_time_ns() - t0_ns_); }
+  int64_t start_time_ns() const { return layout_.start_time_ns(); }
+  int64_t end_time_ns() const { return layout_.end_time_ns(); }
+  double start_time() const { return layout_.start_time(); }
+  double end_time() const { return layout_.end_time(); }
   // Seconds since t0, exact integer subtraction first (no loss near 1.4e18 ns).
-  double TimeSinceT0(int64_t t_ns) const { return 1e-9 * static_cast<double>(t_ns - t0_ns_); }
+  double TimeSinceT0(int64_t t_ns) const { return layout_.TimeSinceT0(t_ns); }
 
   const std::vector<SE3<T>>& control_poses() const { return control_poses_; }
   const SE3<T>& control_pose(int i) const {
@@ -164,10 +164,8 @@ class SE3Spline {
   // The segment of t_s, a time in SECONDS RELATIVE TO t0 (T may carry a Jet time offset).
   // Throws splinecal::Error outside [t_1, t_{n-2}] (or for NaN).
   Segment<T> SegmentAt(const T& t_s) const {
-    const double s = internal::ScalarPart(t_s) / dt_s_;  // time in units of dt since t0
-    const double last = static_cast<double>(num_control_poses() - 2);
-    const double slack = internal::kEndSnapSegments;
-    if (!(s >= 1.0 - slack && s <= last + slack)) {
+    SegmentPosition position;
+    if (!layout_.SegmentAt(internal::ScalarPart(t_s), &position)) {
       std::ostringstream message;
       message.precision(17);
       message << "SE3Spline: time " << internal::ScalarPart(t_s)
@@ -175,34 +173,25 @@ class SE3Spline {
               << ", " << end_time() << "] s";
       throw Error(message.str());
     }
-    int index = static_cast<int>(std::floor(s));
-    if (index < 1) index = 1;
-    if (index > num_control_poses() - 3) index = num_control_poses() - 3;
+    const int index = position.index;
     // u = t/dt - i keeps the Jet part of t_s; snapped ends clamp the value only.
-    T u = t_s / dt_s_ - T(static_cast<double>(index));
+    T u = t_s / dt() - T(static_cast<double>(index));
     const double u_value = internal::ScalarPart(u);
     if (u_value < 0.0) u += T(-u_value);
     if (u_value > 1.0) u -= T(u_value - 1.0);
-    return MakeSegment(index, u, dt_s_);
+    return MakeSegment(index, u, dt());
   }
 
   // The segment of an absolute time t_ns [ns] (exact integer lookup). Throws splinecal::Error
   // outside [t_1, t_{n-2}].
   Segment<T> SegmentAtNs(int64_t t_ns) const {
-    if (t_ns < start_time_ns() || t_ns > end_time_ns()) {
+    SegmentPosition position;
+    if (!layout_.SegmentAtNs(t_ns, &position)) {
       throw Error("SE3Spline: time " + std::to_string(t_ns) +
                   " ns is outside the valid range [t_1, t_{n-2}] = [" +
                   std::to_string(start_time_ns()) + ", " + std::to_string(end_time_ns()) + "] ns");
     }
-    const int64_t since_t0 = t_ns - t0_ns_;
-    int index = static_cast<int>(since_t0 / dt_ns_);
-    int64_t remainder = since_t0 % dt_ns_;
-    if (index > num_control_poses() - 3) {  // t_ns == t_{n-2}: last segment at u = 1
-      index = num_control_poses() - 3;
-      remainder = dt_ns_;
-    }
-    const double u = static_cast<double>(remainder) / static_cast<double>(dt_ns_);
-    return MakeSegment(index, T(u), dt_s_);
+    return MakeSegment(position.index, T(position.u), dt());
   }
 
   // The knot data of `segment` (a view into this spline's caches).
@@ -281,9 +270,7 @@ class SE3Spline {
 
   std::vector<SE3<T>> control_poses_;
   std::vector<Matrix3<T>> rotations_;  // control pose rotation matrices
-  int64_t t0_ns_;
-  int64_t dt_ns_;
-  double dt_s_ = 0.0;
+  KnotLayout layout_;
   std::vector<KnotDelta<T>> deltas_;                 // deltas_[k-1] = Omega_k, k = 1..n-1
   std::vector<KnotDeltaJacobians> delta_jacobians_;  // double only
 };

@@ -1,0 +1,89 @@
+// Solver settings with one shape for every estimate (fit, calibrate, a user's own), and the
+// rounds of a solve: estimates whose residuals must be re-attached or re-weighted after a solve
+// (a time offset moved samples across knots, the pixel noise was re-estimated) solve again,
+// and report the rounds as one solve (time, iterations, first initial cost, last summary).
+#ifndef SPLINECAL_ESTIMATION_SOLVE_ROUNDS_H_
+#define SPLINECAL_ESTIMATION_SOLVE_ROUNDS_H_
+
+#include <ceres/iteration_callback.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace splinecal {
+
+// Ceres' linear solver for the Levenberg-Marquardt steps.
+enum class LinearSolver {
+  // kSparseNormalCholesky, or kSparseSchur when the Jacobian would exceed
+  // SolverOptions::max_normal_cholesky_jacobian_entries (long recordings).
+  kAuto,
+  // SPARSE_NORMAL_CHOLESKY (SuiteSparse). Ceres 2.1 appends the LM diagonal to the Jacobian by
+  // reallocating it on the first step: for a moment it holds two copies of J.
+  kSparseNormalCholesky,
+  // SPARSE_SCHUR: eliminates an independent set of control poses; no copy of J, similar speed.
+  kSparseSchur,
+};
+
+struct SolverOptions {
+  int max_iterations = 50;  // per round
+  int max_rounds = 4;       // solves at most (each after a rebuild the estimate asked for)
+  int num_threads = 1;
+  double function_tolerance = 1e-10;
+  double gradient_tolerance = 1e-12;
+  double parameter_tolerance = 1e-10;
+  // Levenberg-Marquardt's first trust region (Ceres' default 1e4).
+  double initial_trust_region_radius = 1e4;
+  LinearSolver linear_solver = LinearSolver::kAuto;
+  // kAuto switches to SPARSE_SCHUR above this many Jacobian entries (8e6: 64 MB, ~2.7 minutes
+  // of 200 Hz IMU), where SPARSE_NORMAL_CHOLESKY's transient second copy of J dominates memory.
+  double max_normal_cholesky_jacobian_entries = 8e6;
+  // One line per solver iteration (empty: silent).
+  std::function<void(const std::string&)> progress;
+};
+
+// Throws splinecal::Error (naming `what`) for values no solve can use.
+void CheckSolverOptions(const SolverOptions& options);
+
+// The Ceres options for `options`; jacobian_entries (an estimate) chooses the linear solver
+// under LinearSolver::kAuto, and *linear_solver_name (may be nullptr) names the one chosen.
+ceres::Solver::Options ToCeresOptions(const SolverOptions& options,
+                                      double jacobian_entries,
+                                      std::string* linear_solver_name);
+
+class SolveRounds {
+ public:
+  SolveRounds(ceres::Solver::Options options, std::function<void(const std::string&)> progress)
+      : options_(std::move(options)), progress_(std::move(progress)) {}
+
+  // Solves `problem` as the next round; progress lines start with `progress_prefix`;
+  // `callbacks` are added to this round's iteration callbacks. Returns the round's summary.
+  const ceres::Solver::Summary& Solve(ceres::Problem* problem,
+                                      const std::string& progress_prefix,
+                                      const std::vector<ceres::IterationCallback*>& callbacks = {});
+
+  int rounds() const { return rounds_; }
+  int iterations() const { return iterations_; }
+  double initial_cost() const { return initial_cost_; }  // of the first round
+  double solve_time_s() const { return solve_time_s_; }  // wall time in ceres::Solve, all rounds
+  const ceres::Solver::Summary& last() const { return last_; }
+  // The last round failed (Ceres reported FAILURE or an unusable solution).
+  bool failed() const;
+  // "the solver stopped after N iterations without converging (...)", or "" when it converged.
+  std::string NoConvergenceWarning() const;
+
+ private:
+  ceres::Solver::Options options_;
+  std::function<void(const std::string&)> progress_;
+  ceres::Solver::Summary last_;
+  int rounds_ = 0;
+  int iterations_ = 0;
+  double initial_cost_ = 0.0;
+  double solve_time_s_ = 0.0;
+};
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_ESTIMATION_SOLVE_ROUNDS_H_

@@ -1,0 +1,162 @@
+// SplineProblem: the estimation problem every continuous-time estimate of splinecal is built on
+// (`fit`, `calibrate`, and a user's own). It owns the parameter blocks of the IMU trajectory --
+// the control poses of T_w_s(t) (spline/se3_spline.h, SE3Manifold), the bias model's control
+// points (estimation/bias_spline.h) and gravity g_w (GravityManifold, |g_w| fixed) -- the
+// ceres::Problem over them, and the evaluation callback that refreshes the spline's knot caches
+// once per evaluation point (estimation/spline_evaluation_callback.h). It adds the IMU residuals
+// (estimation/imu_costs.h, CONVENTIONS.md "IMU model") and the bias random-walk prior
+// (estimation/bias_costs.h):
+//
+//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2  +  sum_m |r_rw,m|^2  +  what the caller adds.
+//
+// A caller adds its own parameter blocks and residuals to problem() after Reset() -- pose
+// residuals (fit), reprojection residuals (calibrate), anything else -- and solves it with
+// estimation/solve_rounds.h; estimation/marginal_covariance.h gives the standard deviations.
+//
+//   SplineProblem spline_problem(layout, initial_control_poses, BiasSpline(), {});
+//   spline_problem.SetGravity(g_w);
+//   ceres::Problem& problem = spline_problem.Reset();
+//   spline_problem.AddImuResiduals(imu, sigma_gyro, sigma_accel);
+//   problem.AddResidualBlock(my_cost, nullptr, spline_problem.control_block(3), ...);
+//
+// Reset() starts a new ceres::Problem over the same values: callers whose residuals must be
+// attached to other control poses after a solve (a time offset moved) rebuild with it.
+#ifndef SPLINECAL_ESTIMATION_SPLINE_PROBLEM_H_
+#define SPLINECAL_ESTIMATION_SPLINE_PROBLEM_H_
+
+#include <ceres/problem.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "splinecal/estimation/bias_spline.h"
+#include "splinecal/estimation/gravity_manifold.h"
+#include "splinecal/estimation/spline_evaluation_callback.h"
+#include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_sample.h"
+#include "splinecal/imu/noise.h"
+#include "splinecal/lie/se3.h"
+#include "splinecal/lie/se3_manifold.h"
+#include "splinecal/spline/knot_layout.h"
+#include "splinecal/spline/se3_spline.h"
+
+namespace splinecal {
+
+// How the IMU residuals are handed to Ceres (the same objective either way).
+enum class ImuResidualLayout {
+  kPerSegment,  // one gyro and one accel block per spline segment (default, fastest)
+  kPerSample,   // one gyro and one accel block per IMU sample
+};
+
+enum class Differentiation {
+  kAnalytic,  // estimation/imu_costs.h, estimation/pose_cost.h analytic Jacobians (default)
+  kAutoDiff,  // their ceres::AutoDiffCostFunction twins, one block per sample (tests, bench)
+};
+
+// Implementation choices that do not change the objective (tests and benchmarks compare them).
+struct ResidualOptions {
+  ImuResidualLayout layout = ImuResidualLayout::kPerSegment;
+  Differentiation differentiation = Differentiation::kAnalytic;
+  // Share the knot caches between residuals through the evaluation callback (analytic only).
+  bool share_knot_caches = true;
+};
+
+// The IMU model at one sample, at the problem's current values.
+struct ImuPrediction {
+  Eigen::Vector3d gyro = Eigen::Vector3d::Zero();   // w_s + b_g
+  Eigen::Vector3d accel = Eigen::Vector3d::Zero();  // R^T (a_w - g_w) + b_a
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
+};
+
+// Residuals of the IMU samples at the problem's current values.
+struct ImuResidualStatistics {
+  double gyro_rms = 0.0;   // RMS per axis of measured - predicted [rad/s]
+  double accel_rms = 0.0;  // [m/s^2]
+  Eigen::Vector3d mean_gyro_bias = Eigen::Vector3d::Zero();   // time average over the samples
+  Eigen::Vector3d mean_accel_bias = Eigen::Vector3d::Zero();
+};
+
+class SplineProblem {
+ public:
+  // control_poses: the initial T_w_s at the layout's knots (layout.num_control_poses of them).
+  // Biases start at zero, gravity at (0, 0, -9.81). Throws splinecal::Error on a size mismatch
+  // or an invalid layout.
+  SplineProblem(const KnotLayout& layout,
+                const std::vector<SE3d>& control_poses,
+                const BiasSpline& bias,
+                const ResidualOptions& options = {});
+  ~SplineProblem();
+  SplineProblem(const SplineProblem&) = delete;
+  SplineProblem& operator=(const SplineProblem&) = delete;
+
+  const KnotLayout& layout() const { return layout_; }
+  const BiasSpline& bias_spline() const { return bias_; }
+  const ResidualOptions& residual_options() const { return options_; }
+  int num_control_poses() const { return layout_.num_control_poses; }
+
+  // Parameter blocks (stable addresses for the object's lifetime).
+  double* control_block(int i) { return control_blocks_[i]; }
+  const std::vector<double*>& control_blocks() const { return control_blocks_; }
+  double* gyro_bias(int m) { return &gyro_bias_values_[3 * m]; }
+  double* accel_bias(int m) { return &accel_bias_values_[3 * m]; }
+  const double* gyro_bias(int m) const { return &gyro_bias_values_[3 * m]; }
+  const double* accel_bias(int m) const { return &accel_bias_values_[3 * m]; }
+  double* gravity() { return gravity_.data(); }
+  // The manifold of 7-parameter pose blocks {p, q}: a caller's own pose blocks use it too.
+  SE3Manifold* se3_manifold() { return &se3_manifold_; }
+  // The knot caches shared by the analytic residuals (nullptr when not shared).
+  SplineEvaluationCallback* evaluation_callback() const { return callback_.get(); }
+
+  // Values.
+  std::vector<SE3d> ControlPoses() const;
+  void SetControlPoses(const std::vector<SE3d>& control_poses);  // same count; refreshes caches
+  SE3Splined Spline() const;
+  void SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias);
+  Eigen::Vector3d gravity_w() const { return Eigen::Map<const Eigen::Vector3d>(gravity_.data()); }
+  void SetGravity(const Eigen::Vector3d& g_w);  // stored as given
+  Eigen::Vector3d GyroBiasAt(int64_t t_ns) const;
+  Eigen::Vector3d AccelBiasAt(int64_t t_ns) const;
+
+  // A new ceres::Problem holding the control-pose, bias and gravity blocks (in that order) with
+  // their manifolds; with hold_first_pose the first control pose is constant (the gauge when
+  // nothing else fixes the world frame). The previous problem and its residuals are dropped.
+  ceres::Problem& Reset(bool hold_first_pose = false);
+  ceres::Problem& problem() { return *problem_; }
+
+  // Gyro and accelerometer residuals of every sample in imu (inside the layout's valid range,
+  // increasing times), weighted 1 / sigma per axis.
+  void AddImuResiduals(const std::vector<ImuSample>& imu, double sigma_gyro, double sigma_accel);
+  // The random-walk prior of the bias spline (nothing for a constant bias), Kalibr densities.
+  void AddBiasRandomWalkResiduals(const ImuNoise& noise);
+
+  // The IMU model at every sample (visit may be empty) and the residual statistics.
+  ImuResidualStatistics EvaluateImu(
+      const std::vector<ImuSample>& imu,
+      const std::function<void(const ImuSample&, const ImuPrediction&)>& visit = {}) const;
+  // d(mean bias over the samples) / d(control point m): the weights a reported average bias
+  // gives each bias control point (all 1 for a constant bias).
+  std::vector<double> MeanBiasWeights(const std::vector<ImuSample>& imu) const;
+
+ private:
+  KnotLayout layout_;
+  BiasSpline bias_;
+  ResidualOptions options_;
+  std::vector<double> control_values_;  // 7 per control pose
+  std::vector<double*> control_blocks_;
+  std::vector<double> gyro_bias_values_;   // 3 per control point
+  std::vector<double> accel_bias_values_;
+  std::array<double, 3> gravity_ = {0.0, 0.0, -kDefaultGravity};
+  SE3Manifold se3_manifold_;
+  GravityManifold gravity_manifold_;
+  std::unique_ptr<SplineEvaluationCallback> callback_;
+  std::unique_ptr<ceres::Problem> problem_;
+};
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_ESTIMATION_SPLINE_PROBLEM_H_

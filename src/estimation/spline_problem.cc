@@ -1,0 +1,245 @@
+#include "splinecal/estimation/spline_problem.h"
+
+#include <ceres/ceres.h>
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "splinecal/error.h"
+#include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/imu_costs.h"
+
+namespace splinecal {
+
+SplineProblem::SplineProblem(const KnotLayout& layout,
+                             const std::vector<SE3d>& control_poses,
+                             const BiasSpline& bias,
+                             const ResidualOptions& options)
+    : layout_(layout), bias_(bias), options_(options) {
+  if (!layout_.valid()) {
+    throw Error("SplineProblem: needs at least 4 control poses and a positive knot spacing");
+  }
+  if (static_cast<int>(control_poses.size()) != layout_.num_control_poses) {
+    throw Error("SplineProblem: the layout has " + std::to_string(layout_.num_control_poses) +
+                " control poses, the initial guess " + std::to_string(control_poses.size()));
+  }
+  const int n = layout_.num_control_poses;
+  control_values_.resize(kPoseBlockSize * static_cast<size_t>(n));
+  control_blocks_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    control_blocks_[i] = &control_values_[kPoseBlockSize * i];
+    PoseToBlock(control_poses[i], control_blocks_[i]);
+  }
+  gyro_bias_values_.assign(3 * static_cast<size_t>(bias_.num_points()), 0.0);
+  accel_bias_values_.assign(3 * static_cast<size_t>(bias_.num_points()), 0.0);
+  if (options_.differentiation == Differentiation::kAnalytic && options_.share_knot_caches) {
+    callback_ =
+        std::make_unique<SplineEvaluationCallback>(control_blocks_, layout_.t0_ns, layout_.dt_ns);
+  }
+  Reset();
+}
+
+SplineProblem::~SplineProblem() = default;
+
+std::vector<SE3d> SplineProblem::ControlPoses() const {
+  std::vector<SE3d> poses(control_blocks_.size());
+  for (size_t i = 0; i < poses.size(); ++i) poses[i] = PoseFromBlock(control_blocks_[i]);
+  return poses;
+}
+
+void SplineProblem::SetControlPoses(const std::vector<SE3d>& control_poses) {
+  if (control_poses.size() != control_blocks_.size()) {
+    throw Error("SplineProblem::SetControlPoses: expected " +
+                std::to_string(control_blocks_.size()) + " control poses, got " +
+                std::to_string(control_poses.size()));
+  }
+  for (size_t i = 0; i < control_poses.size(); ++i) PoseToBlock(control_poses[i], control_blocks_[i]);
+  if (callback_) callback_->Update();
+}
+
+SE3Splined SplineProblem::Spline() const {
+  return SE3Splined(ControlPoses(), layout_.t0_ns, layout_.dt_ns);
+}
+
+void SplineProblem::SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias) {
+  for (int m = 0; m < bias_.num_points(); ++m) {
+    Eigen::Map<Eigen::Vector3d>(this->gyro_bias(m)) = gyro_bias;
+    Eigen::Map<Eigen::Vector3d>(this->accel_bias(m)) = accel_bias;
+  }
+}
+
+void SplineProblem::SetGravity(const Eigen::Vector3d& g_w) {
+  for (int a = 0; a < 3; ++a) gravity_[a] = g_w[a];
+}
+
+Eigen::Vector3d SplineProblem::GyroBiasAt(int64_t t_ns) const {
+  return bias_.Evaluate(gyro_bias_values_.data(), t_ns);
+}
+
+Eigen::Vector3d SplineProblem::AccelBiasAt(int64_t t_ns) const {
+  return bias_.Evaluate(accel_bias_values_.data(), t_ns);
+}
+
+ceres::Problem& SplineProblem::Reset(bool hold_first_pose) {
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.evaluation_callback = callback_.get();
+  problem_ = std::make_unique<ceres::Problem>(problem_options);
+  for (double* block : control_blocks_) {
+    problem_->AddParameterBlock(block, kPoseBlockSize, &se3_manifold_);
+  }
+  if (hold_first_pose) problem_->SetParameterBlockConstant(control_blocks_[0]);
+  for (int m = 0; m < bias_.num_points(); ++m) {
+    problem_->AddParameterBlock(gyro_bias(m), 3);
+    problem_->AddParameterBlock(accel_bias(m), 3);
+  }
+  problem_->AddParameterBlock(gravity_.data(), 3, &gravity_manifold_);
+  return *problem_;
+}
+
+void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
+                                    double sigma_gyro,
+                                    double sigma_accel) {
+  const int nb = bias_.points_per_segment();
+  const bool analytic = options_.differentiation == Differentiation::kAnalytic;
+  const double dt_s = layout_.dt_s();
+  const double duration_s =
+      imu.size() > 1 ? 1e-9 * static_cast<double>(imu.back().t_ns - imu.front().t_ns) : 0.0;
+  const double rate_hz = duration_s > 0.0 ? static_cast<double>(imu.size() - 1) / duration_s : 0.0;
+  size_t k = 0;
+  while (k < imu.size()) {
+    SegmentPosition position;
+    if (!layout_.SegmentAtNs(imu[k].t_ns, &position)) {
+      throw Error("SplineProblem: IMU sample at " + std::to_string(imu[k].t_ns) +
+                  " ns is outside the spline's valid range");
+    }
+    const int index = position.index;
+    const int bias_segment = bias_.SegmentOfPoseSegment(index);
+    ImuResidualSegment gyro_segment;
+    gyro_segment.segment_index = index;
+    gyro_segment.dt_s = dt_s;
+    gyro_segment.sigma = sigma_gyro;
+    gyro_segment.shared = callback_.get();
+    ImuResidualSegment accel_segment = gyro_segment;
+    accel_segment.sigma = sigma_accel;
+    std::vector<ImuResidualSample> gyro_samples;
+    std::vector<ImuResidualSample> accel_samples;
+    const size_t expected = static_cast<size_t>(dt_s * rate_hz) + 2;
+    gyro_samples.reserve(expected);
+    accel_samples.reserve(expected);
+    for (; k < imu.size(); ++k) {
+      if (!layout_.SegmentAtNs(imu[k].t_ns, &position) || position.index != index) break;
+      ImuResidualSample sample;
+      sample.u = position.u;
+      sample.bias_weights = bias_.WeightsInSegment(imu[k].t_ns, bias_segment).weights;
+      sample.measured = imu[k].gyro;
+      gyro_samples.push_back(sample);
+      sample.measured = imu[k].accel;
+      accel_samples.push_back(sample);
+    }
+    std::vector<double*> gyro_blocks(control_blocks_.begin() + (index - 1),
+                                     control_blocks_.begin() + (index + 3));
+    std::vector<double*> accel_blocks = gyro_blocks;
+    const int first_bias = nb == 1 ? 0 : bias_segment - 1;
+    for (int j = 0; j < nb; ++j) {
+      gyro_blocks.push_back(gyro_bias(first_bias + j));
+      accel_blocks.push_back(accel_bias(first_bias + j));
+    }
+    accel_blocks.push_back(gravity_.data());
+
+    if (!analytic) {
+      for (size_t s = 0; s < gyro_samples.size(); ++s) {
+        problem_->AddResidualBlock(
+            NewAutoDiffGyroCost(nb, gyro_segment, gyro_samples[s]), nullptr, gyro_blocks);
+        problem_->AddResidualBlock(
+            NewAutoDiffAccelCost(nb, accel_segment, accel_samples[s]), nullptr, accel_blocks);
+      }
+    } else if (options_.layout == ImuResidualLayout::kPerSample) {
+      for (size_t s = 0; s < gyro_samples.size(); ++s) {
+        ceres::CostFunction* gyro_cost;
+        ceres::CostFunction* accel_cost;
+        if (nb == 1) {
+          gyro_cost = new GyroCostFunction<1>(gyro_segment, gyro_samples[s]);
+          accel_cost = new AccelCostFunction<1>(accel_segment, accel_samples[s]);
+        } else {
+          gyro_cost = new GyroCostFunction<4>(gyro_segment, gyro_samples[s]);
+          accel_cost = new AccelCostFunction<4>(accel_segment, accel_samples[s]);
+        }
+        problem_->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
+        problem_->AddResidualBlock(accel_cost, nullptr, accel_blocks);
+      }
+    } else {
+      ceres::CostFunction* gyro_cost;
+      ceres::CostFunction* accel_cost;
+      if (nb == 1) {
+        gyro_cost = new GyroSegmentCostFunction<1>(gyro_segment, std::move(gyro_samples));
+        accel_cost = new AccelSegmentCostFunction<1>(accel_segment, std::move(accel_samples));
+      } else {
+        gyro_cost = new GyroSegmentCostFunction<4>(gyro_segment, std::move(gyro_samples));
+        accel_cost = new AccelSegmentCostFunction<4>(accel_segment, std::move(accel_samples));
+      }
+      problem_->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
+      problem_->AddResidualBlock(accel_cost, nullptr, accel_blocks);
+    }
+  }
+}
+
+void SplineProblem::AddBiasRandomWalkResiduals(const ImuNoise& noise) {
+  if (bias_.is_constant()) return;
+  const double db = bias_.dt_s();
+  for (int m = 1; m + 2 < bias_.num_points(); ++m) {
+    problem_->AddResidualBlock(
+        new BiasRandomWalkCostFunction(db, noise.gyroscope_random_walk),
+        nullptr,
+        {gyro_bias(m - 1), gyro_bias(m), gyro_bias(m + 1), gyro_bias(m + 2)});
+    problem_->AddResidualBlock(
+        new BiasRandomWalkCostFunction(db, noise.accelerometer_random_walk),
+        nullptr,
+        {accel_bias(m - 1), accel_bias(m), accel_bias(m + 1), accel_bias(m + 2)});
+  }
+}
+
+ImuResidualStatistics SplineProblem::EvaluateImu(
+    const std::vector<ImuSample>& imu,
+    const std::function<void(const ImuSample&, const ImuPrediction&)>& visit) const {
+  ImuResidualStatistics stats;
+  if (imu.empty()) return stats;
+  const SE3Splined spline = Spline();
+  const Eigen::Vector3d g_w = gravity_w();
+  double gyro_sq = 0.0;
+  double accel_sq = 0.0;
+  for (const ImuSample& s : imu) {
+    ImuPrediction p;
+    p.gyro_bias = GyroBiasAt(s.t_ns);
+    p.accel_bias = AccelBiasAt(s.t_ns);
+    PredictImu<double>(
+        spline, spline.SegmentAtNs(s.t_ns), g_w, p.gyro_bias, p.accel_bias, &p.gyro, &p.accel);
+    gyro_sq += (p.gyro - s.gyro).squaredNorm();
+    accel_sq += (p.accel - s.accel).squaredNorm();
+    stats.mean_gyro_bias += p.gyro_bias;
+    stats.mean_accel_bias += p.accel_bias;
+    if (visit) visit(s, p);
+  }
+  const double n = static_cast<double>(imu.size());
+  stats.gyro_rms = std::sqrt(gyro_sq / (3.0 * n));
+  stats.accel_rms = std::sqrt(accel_sq / (3.0 * n));
+  stats.mean_gyro_bias /= n;
+  stats.mean_accel_bias /= n;
+  return stats;
+}
+
+std::vector<double> SplineProblem::MeanBiasWeights(const std::vector<ImuSample>& imu) const {
+  std::vector<double> a(bias_.num_points(), 0.0);
+  if (bias_.is_constant()) {
+    a[0] = 1.0;
+    return a;
+  }
+  for (const ImuSample& s : imu) {
+    const BiasWeights w = bias_.WeightsAt(s.t_ns);
+    for (int j = 0; j < 4; ++j) a[w.first_point + j] += w.weights[j] / static_cast<double>(imu.size());
+  }
+  return a;
+}
+
+}  // namespace splinecal
