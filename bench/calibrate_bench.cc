@@ -36,7 +36,7 @@ void BM_Calibrate(benchmark::State& state) {
   const testing::CalibrationScenario& s = GetScenario(static_cast<int>(state.range(0)));
   CalibrateOptions options;
   options.rolling_shutter = true;
-  options.num_threads = static_cast<int>(state.range(1));
+  options.solver.num_threads = static_cast<int>(state.range(1));
   options.keep_residuals = false;
   CalibrationResult result;
   for (auto _ : state) {

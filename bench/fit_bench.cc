@@ -100,20 +100,20 @@ enum class Path { kAnalytic, kAnalyticPerSample, kAnalyticUnshared, kAnalyticSch
 void BM_FitReference(benchmark::State& state, Path path) {
   const Dataset& data = ReferenceData();
   FitOptions options;
-  options.knot_spacing_s = 0.1;
-  options.num_threads = 1;
-  options.compute_covariance = false;
+  options.model.knot_spacing_s = 0.1;
+  options.solver.num_threads = 1;
+  options.covariance.compute = false;
   options.keep_samples = false;
   // Ceres' default stopping rules, as in the reference measurements.
-  options.function_tolerance = 1e-6;
-  options.gradient_tolerance = 1e-10;
-  options.parameter_tolerance = 1e-8;
-  options.linear_solver = path == Path::kAnalyticSchur ? LinearSolver::kSparseSchur
+  options.solver.function_tolerance = 1e-6;
+  options.solver.gradient_tolerance = 1e-10;
+  options.solver.parameter_tolerance = 1e-8;
+  options.solver.linear_solver = path == Path::kAnalyticSchur ? LinearSolver::kSparseSchur
                                                        : LinearSolver::kSparseNormalCholesky;
-  options.layout = path == Path::kAnalyticPerSample ? ImuResidualLayout::kPerSample
+  options.residuals.layout = path == Path::kAnalyticPerSample ? ImuResidualLayout::kPerSample
                                                     : ImuResidualLayout::kPerSegment;
-  options.share_knot_caches = path != Path::kAnalyticUnshared;
-  options.differentiation =
+  options.residuals.share_knot_caches = path != Path::kAnalyticUnshared;
+  options.residuals.differentiation =
       path == Path::kAutoDiff ? Differentiation::kAutoDiff : Differentiation::kAnalytic;
   std::mt19937_64 rng(11);
   std::normal_distribution<double> normal(0.0, 0.05);
@@ -170,8 +170,8 @@ void BM_FitScale(benchmark::State& state) {
   const int64_t minutes = state.range(0);
   const Dataset data = MakeDataset(minutes * 60 * 1'000'000'000LL, 50'000'000);  // 20 Hz poses
   FitOptions options;
-  options.knot_spacing_s = 0.1;
-  options.num_threads = 2;
+  options.model.knot_spacing_s = 0.1;
+  options.solver.num_threads = 2;
   options.keep_samples = false;
   FitResult result;
   double wall_s = 0.0;

@@ -123,23 +123,24 @@ void CheckInputs(const std::vector<ImuSample>& imu,
       throw Error(std::string("calibrate: ") + what + " must be positive");
     }
   };
-  positive(options.knot_spacing_s, "the knot spacing");
+  try {
+    CheckSplineModelOptions(options.model);
+    CheckSolverOptions(options.solver);
+  } catch (const Error& e) {
+    throw Error(std::string("calibrate: ") + e.what());
+  }
   // Refused before anything is allocated: a spacing below two IMU periods leaves segments with
   // no IMU data and, taken to the extreme (1 ns), would ask for billions of control poses.
   const double imu_rate_hz = ImuRateHz(imu);
-  if (options.knot_spacing_s < 2.0 / imu_rate_hz * (1.0 - 1e-6)) {
-    throw Error("calibrate: knot spacing " + StringPrintf("%.6g", options.knot_spacing_s) +
+  if (options.model.knot_spacing_s > 0.0 &&
+      options.model.knot_spacing_s < 2.0 / imu_rate_hz * (1.0 - 1e-6)) {
+    throw Error("calibrate: knot spacing " + StringPrintf("%.6g", options.model.knot_spacing_s) +
                 " s is below two IMU periods (" + StringPrintf("%.6g", 2.0 / imu_rate_hz) +
                 " s): some segments would hold no IMU data");
   }
-  positive(options.gravity_m_s2, "gravity");
-  positive(options.bias_knot_spacing_s, "the bias knot spacing");
   positive(options.max_time_offset_s, "the time-offset range");
   if (!(options.pixel_sigma_px >= 0.0) || !(options.huber_px >= 0.0)) {
     throw Error("calibrate: the pixel sigma and the Huber threshold must be >= 0");
-  }
-  if (options.num_threads < 1 || options.max_iterations < 1 || options.max_rounds < 1) {
-    throw Error("calibrate: threads, iterations and rounds must be >= 1");
   }
 }
 
@@ -216,11 +217,11 @@ std::vector<ImuSample> ImuBetween(const std::vector<ImuSample>& imu,
   return out;
 }
 
-// The spline layout for the camera data: the IMU range cut to the frames' span plus a margin.
-KnotLayout LayoutFor(const std::vector<ImuSample>& imu,
-                     const std::vector<Observation>& observations,
-                     const Camchain& camchain,
-                     double knot_spacing_s) {
+// The time span the calibration's spline covers [ns, IMU clock]: the frames' exposures (camchain
+// time offsets and readouts) plus a margin, cut to the IMU data.
+std::pair<int64_t, int64_t> SpanOfFrames(const std::vector<ImuSample>& imu,
+                                         const std::vector<Observation>& observations,
+                                         const Camchain& camchain) {
   int64_t first = std::numeric_limits<int64_t>::max();
   int64_t last = std::numeric_limits<int64_t>::min();
   for (const Observation& o : observations) {
@@ -230,8 +231,16 @@ KnotLayout LayoutFor(const std::vector<ImuSample>& imu,
     last =
         std::max<int64_t>(last, t + std::llround(cam.line_delay_s * (cam.camera.height - 1) * 1e9));
   }
-  const int64_t start = std::max<int64_t>(imu.front().t_ns, first - kImuMarginNs);
-  const int64_t end = std::min<int64_t>(imu.back().t_ns, last + kImuMarginNs);
+  return {std::max<int64_t>(imu.front().t_ns, first - kImuMarginNs),
+          std::min<int64_t>(imu.back().t_ns, last + kImuMarginNs)};
+}
+
+// The spline layout for the camera data.
+KnotLayout LayoutFor(const std::vector<ImuSample>& imu,
+                     const std::vector<Observation>& observations,
+                     const Camchain& camchain,
+                     double knot_spacing_s) {
+  const auto [start, end] = SpanOfFrames(imu, observations, camchain);
   return KnotLayoutCovering(start, end, std::llround(knot_spacing_s * 1e9));
 }
 
@@ -268,11 +277,11 @@ class CalibrationProblem {
     spline_ = std::make_unique<SplineProblem>(
         layout_,
         guess.control_poses,
-        BiasSpline(options.bias_model, layout_, options.bias_knot_spacing_s));
+        BiasSpline(options.model.bias_model, layout_, options.model.bias_knot_spacing_s));
     imu_rate_hz_ = ImuRateHz(imu_);
-    sigma_g_ = options.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz_);
-    sigma_a_ = options.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz_);
-    spline_->SetGravity(options.gravity_m_s2 * guess.gravity_w.normalized());
+    sigma_g_ = options.model.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz_);
+    sigma_a_ = options.model.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz_);
+    spline_->SetGravity(options.model.gravity_m_s2 * guess.gravity_w.normalized());
     spline_->SetBiases(guess.gyro_bias, guess.accel_bias);
     // Cameras.
     cameras_.resize(camchain.size());
@@ -420,7 +429,7 @@ void CalibrationProblem::BuildProblem() {
     }
   }
   spline_->AddImuResiduals(imu_, sigma_g_, sigma_a_);
-  spline_->AddBiasRandomWalkResiduals(options_.noise);
+  spline_->AddBiasRandomWalkResiduals(options_.model.noise);
   frame_residuals_.clear();
   for (size_t f = 0; f < target_frames_.size(); ++f) {
     const TargetFrame& frame = target_frames_[f];
@@ -574,14 +583,10 @@ CalibrationResult CalibrationProblem::Run() {
     cameras_[c].window_before_s =
         kWindowMargin_s + (options_.rolling_shutter ? 0.5 * frame_periods_[c] : 0.0);
   }
-  SolverOptions solver;
-  solver.linear_solver = LinearSolver::kSparseNormalCholesky;
-  solver.num_threads = options_.num_threads;
-  solver.max_iterations = options_.max_iterations;
-  solver.max_rounds = options_.max_rounds;
+  const SolverOptions& solver = options_.solver;
   ceres::Solver::Options solver_options = ToCeresOptions(solver, 0.0, nullptr);
   solver_options.update_state_every_iteration = true;  // for WindowGuard
-  SolveRounds rounds(solver_options, options_.progress);
+  SolveRounds rounds(solver_options, options_.solver.progress);
   for (int round = 1; round <= solver.max_rounds; ++round) {
     BuildProblem();
     if (frame_residuals_.empty() && landmark_residuals_.empty()) {
@@ -616,8 +621,8 @@ CalibrationResult CalibrationProblem::Run() {
       cameras_[c].window_before_s = kWindowMargin_s;
     }
     if (!again) break;
-    if (round < options_.max_rounds && options_.progress) {
-      options_.progress("calibrate: pixel sigma " + StringPrintf("%.4g", sigma_px_) +
+    if (round < options_.solver.max_rounds && options_.solver.progress) {
+      options_.solver.progress("calibrate: pixel sigma " + StringPrintf("%.4g", sigma_px_) +
                         " px; time windows " + (windows_valid ? "valid" : "moved") +
                         ": solving again");
     }
@@ -635,7 +640,7 @@ CalibrationResult CalibrationProblem::Run() {
   result.solver_report = summary.FullReport();
   result.pixel_sigma_px = sigma_px_;
   Collect(&result);
-  if (options_.compute_covariance) {
+  if (options_.covariance.compute) {
     const auto start = std::chrono::steady_clock::now();
     ComputeCovariance(&result);
     result.covariance_time_s =
@@ -669,7 +674,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   }
   MarginalCovarianceOptions covariance_options;
   covariance_options.backend = CovarianceBackend::kSchur;
-  covariance_options.num_threads = options_.num_threads;
+  covariance_options.num_threads = options_.solver.num_threads;
   const MarginalCovariance marginal =
       ComputeMarginalCovariance(&problem(), wanted, covariance_options);
   if (!marginal.ok) {
@@ -711,7 +716,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
           StringPrintf("%.3g", 1e3 * estimate.translation_std_m.maxCoeff()) +
           " mm): it shows only through rotational accelerations; rotate faster and longer");
     }
-    if (options_.estimate_time_offset && estimate.timeshift_std_s > options_.warn_timeshift_std_s) {
+    if (options_.estimate_time_offset && estimate.timeshift_std_s > options_.warn_time_offset_std_s) {
       result->warnings.push_back(name + ": the time offset is poorly determined (std " +
                                  StringPrintf("%.3g", 1e3 * estimate.timeshift_std_s) +
                                  " ms): the motion is too slow or too smooth");
@@ -957,14 +962,14 @@ CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
                                      const std::string& source,
                                      std::vector<std::string>* warnings,
                                      FitResult* fit) {
-  fit_options.knot_spacing_s = options.knot_spacing_s;
-  fit_options.gravity_m_s2 = options.gravity_m_s2;
-  fit_options.noise = options.noise;
-  fit_options.compute_covariance = false;
+  fit_options.model.knot_spacing_s = options.model.knot_spacing_s;
+  fit_options.model.gravity_m_s2 = options.model.gravity_m_s2;
+  fit_options.model.noise = options.model.noise;
+  fit_options.covariance.compute = false;
   fit_options.keep_samples = false;
   fit_options.max_residual_noise_ratio = 1e9;
-  fit_options.max_iterations = 30;
-  fit_options.num_threads = options.num_threads;
+  fit_options.solver.max_iterations = 30;
+  fit_options.solver.num_threads = options.solver.num_threads;
   try {
     *fit = Fit(imu, poses, fit_options);
   } catch (const Error& e) {
@@ -976,7 +981,7 @@ CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
     for (const std::string& w : fit->warnings) warnings->push_back("initial guess: " + w);
   }
   CalibrationInitialGuess guess;
-  guess.layout = LayoutFor(imu, observations, camchain, options.knot_spacing_s);
+  guess.layout = LayoutFor(imu, observations, camchain, options.model.knot_spacing_s);
   guess.control_poses = ResampleOnto(fit->MakeSpline(), guess.layout);
   guess.gravity_w = fit->gravity_w;
   guess.gyro_bias = fit->gyro_bias;
@@ -1039,7 +1044,7 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
   fit_options.max_time_offset_s = options.max_time_offset_s;
   fit_options.estimate_extrinsic = true;
   fit_options.T_pose_imu = camchain[0].T_cam_imu;
-  fit_options.progress = nullptr;
+  fit_options.solver.progress = nullptr;
   FitResult fit;
   CalibrationInitialGuess guess = GuessFromFit(
       imu, poses, observations, camchain, options, fit_options, "target poses", warnings, &fit);
@@ -1066,12 +1071,24 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
                             const std::vector<Observation>& all_observations,
                             const Camchain& camchain,
                             const CalibrationTarget* target,
-                            const CalibrateOptions& options,
+                            const CalibrateOptions& given_options,
                             const CalibrationInitialGuess* guess) {
-  CheckInputs(imu, all_observations, camchain, options);
+  CheckInputs(imu, all_observations, camchain, given_options);
   std::vector<std::string> warnings;
   const std::vector<Observation> observations =
       ObservationsInsideImu(imu, all_observations, camchain, &warnings);
+  // Knot spacing 0: chosen from the gyro over the frames' time span, as `fit` chooses it.
+  CalibrateOptions options = given_options;
+  std::string knot_rule = "given (--knot-spacing)";
+  if (guess != nullptr) {
+    options.model.knot_spacing_s = guess->layout.dt_s();
+    knot_rule = "the initial guess's";
+  } else if (options.model.knot_spacing_s == 0.0) {
+    const auto [start, end] = SpanOfFrames(imu, observations, camchain);
+    const std::vector<ImuSample> span_imu = ImuBetween(imu, start, end);
+    if (span_imu.size() < 2) throw Error("calibrate: fewer than 2 IMU samples during the frames");
+    options.model.knot_spacing_s = ChooseKnotSpacing(span_imu, options.model.noise, &knot_rule);
+  }
   if (target != nullptr) {
     bool seen = false;
     for (const Observation& o : observations) seen = seen || target->Find(o.point_id) != nullptr;
@@ -1093,7 +1110,7 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
       throw Error("calibrate: the initial guess does not match the camchain or its layout");
     }
   } else if (target != nullptr) {
-    if (options.progress) options.progress("calibrate: initial guess (PnP per frame, then fit)");
+    if (options.solver.progress) options.solver.progress("calibrate: initial guess (PnP per frame, then fit)");
     initial = InitialGuessFromTarget(imu, observations, camchain, *target, options, &warnings);
   } else {
     throw Error(
@@ -1119,6 +1136,8 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
   const double init_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - init_start).count();
   CalibrationResult result = problem.Run();
+  result.knot_spacing_s = initial.layout.dt_s();
+  result.knot_spacing_rule = knot_rule;
   result.initialisation_time_s = init_time;
   result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
   return result;

@@ -66,8 +66,6 @@ constexpr double kWarnResidualNoiseRatio = 3.0;
 // A time offset within this fraction of the search range's edge is "at the edge".
 constexpr double kEdgeFraction = 0.01;
 
-// At most this many solves when pose residuals must be re-attached after a time-offset move.
-constexpr int kMaxSolverRounds = 4;
 
 int64_t MedianPeriodNs(const std::vector<int64_t>& times) {
   std::vector<int64_t> periods;
@@ -106,26 +104,15 @@ void CheckIncreasing(const std::vector<ImuSample>& imu, const std::vector<Stampe
 }
 
 void CheckOptions(const FitOptions& o) {
+  CheckSplineModelOptions(o.model);
+  CheckSolverOptions(o.solver);
   auto positive = [](double value, const std::string& name) {
     if (!(value > 0.0) || !std::isfinite(value)) {
       throw Error(name + " must be a positive number, got " + std::to_string(value));
     }
   };
-  if (!(o.knot_spacing_s >= 0.0) || !std::isfinite(o.knot_spacing_s)) {
-    throw Error("knot spacing must be >= 0 s (0: automatic), got " +
-                std::to_string(o.knot_spacing_s));
-  }
-  positive(o.gravity_m_s2, "gravity");
   positive(o.pose_sigma_m, "pose sigma [m]");
   positive(o.pose_sigma_rad, "pose sigma [rad]");
-  positive(o.noise.gyroscope_noise_density, "gyroscope_noise_density");
-  positive(o.noise.accelerometer_noise_density, "accelerometer_noise_density");
-  if (o.bias_model == BiasModel::kSpline) {
-    positive(o.noise.gyroscope_random_walk, "gyroscope_random_walk (needed by the bias spline)");
-    positive(o.noise.accelerometer_random_walk,
-             "accelerometer_random_walk (needed by the bias spline)");
-    positive(o.bias_knot_spacing_s, "bias knot spacing");
-  }
   if (!std::isfinite(o.time_offset_s)) throw Error("time offset must be finite");
   if (o.estimate_time_offset) {
     positive(o.max_time_offset_s, "max time offset");
@@ -139,10 +126,7 @@ void CheckOptions(const FitOptions& o) {
       !(o.initial_gravity_w->norm() > 0.0 && o.initial_gravity_w->allFinite())) {
     throw Error("the initial gravity vector must be finite and nonzero");
   }
-  positive(o.initial_trust_region_radius, "initial trust region radius");
   positive(o.max_residual_noise_ratio, "max residual/noise ratio");
-  if (o.max_iterations < 1) throw Error("max iterations must be >= 1");
-  if (o.num_threads < 1) throw Error("threads must be >= 1");
 }
 
 // Product of the gyro's rotations over [a_ns, b_ns] (IMU clock), piecewise constant rates with
@@ -403,13 +387,13 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   CheckIncreasing(all_imu, all_poses);
   poses = all_poses;
   imu_rate_hz = ImuRateHz(all_imu);
-  sigma_g = options.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz);
-  sigma_a = options.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz);
-  if (options.noise.update_rate_hz > 0.0 &&
-      std::abs(options.noise.update_rate_hz - imu_rate_hz) > 0.1 * imu_rate_hz) {
+  sigma_g = options.model.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz);
+  sigma_a = options.model.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz);
+  if (options.model.noise.update_rate_hz > 0.0 &&
+      std::abs(options.model.noise.update_rate_hz - imu_rate_hz) > 0.1 * imu_rate_hz) {
     warnings.push_back("the IMU file's sample rate is " + StringPrintf("%.1f", imu_rate_hz) +
                        " Hz but the noise file says " +
-                       StringPrintf("%.1f", options.noise.update_rate_hz) +
+                       StringPrintf("%.1f", options.model.noise.update_rate_hz) +
                        " Hz; the weights use the measured rate");
   }
 
@@ -480,11 +464,11 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   if (overlap_imu.size() < 2) {
     throw Error("fewer than 2 IMU samples fall inside the pose data's time range");
   }
-  if (options.knot_spacing_s > 0.0) {
-    dt_s = options.knot_spacing_s;
+  if (options.model.knot_spacing_s > 0.0) {
+    dt_s = options.model.knot_spacing_s;
     knot_rule = "given (--knot-spacing)";
   } else {
-    dt_s = ChooseKnotSpacing(overlap_imu, options.noise, &knot_rule);
+    dt_s = ChooseKnotSpacing(overlap_imu, options.model.noise, &knot_rule);
   }
   const int64_t dt_ns = std::llround(dt_s * 1e9);
   dt_s = 1e-9 * static_cast<double>(dt_ns);
@@ -560,16 +544,16 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   }
   PoseFitOptions pose_fit_options;
   pose_fit_options.rotation_weight_m_per_rad = options.pose_sigma_m / options.pose_sigma_rad;
-  pose_fit_options.num_threads = options.num_threads;
+  pose_fit_options.num_threads = options.solver.num_threads;
   const PoseFitResult initial = FitControlPoses(imu_poses, layout, pose_fit_options);
   ResidualOptions residual_options;
-  residual_options.layout = options.layout;
-  residual_options.differentiation = options.differentiation;
-  residual_options.share_knot_caches = options.share_knot_caches;
+  residual_options.layout = options.residuals.layout;
+  residual_options.differentiation = options.residuals.differentiation;
+  residual_options.share_knot_caches = options.residuals.share_knot_caches;
   spline_problem = std::make_unique<SplineProblem>(
       layout,
       initial.control_poses,
-      BiasSpline(options.bias_model, layout, options.bias_knot_spacing_s),
+      BiasSpline(options.model.bias_model, layout, options.model.bias_knot_spacing_s),
       residual_options);
   const SE3Splined spline = spline_problem->Spline();
 
@@ -615,7 +599,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   const Eigen::Vector3d mean_a =
       duration > 0.0 ? Eigen::Vector3d((v_end - v_start) / duration) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d g_estimate = mean_a - mean_Rf;  // f = R^T (a - g)  =>  g = a - R f
-  const double g_ratio = g_estimate.norm() / options.gravity_m_s2;
+  const double g_ratio = g_estimate.norm() / options.model.gravity_m_s2;
   if (g_ratio > kMaxGravityRatio || g_ratio < 1.0 / kMaxGravityRatio) {
     std::string hint = ": wrong accelerometer units or a wrong --gravity";
     if (g_ratio > 1.0 / 12.0 && g_ratio < 1.0 / 8.0) {
@@ -623,11 +607,11 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
     }
     throw Error("the mean specific force in the world frame has magnitude " +
                 StringPrintf("%.4g", g_estimate.norm()) + " m/s^2 but gravity is " +
-                StringPrintf("%.4g", options.gravity_m_s2) + " m/s^2" + hint);
+                StringPrintf("%.4g", options.model.gravity_m_s2) + " m/s^2" + hint);
   }
   Eigen::Vector3d g_init =
       options.initial_gravity_w.has_value() ? *options.initial_gravity_w : g_estimate;
-  g_init = options.gravity_m_s2 * g_init.normalized();
+  g_init = options.model.gravity_m_s2 * g_init.normalized();
   spline_problem->SetGravity(g_init);
   spline_problem->SetBiases(options.initial_gyro_bias, options.initial_accel_bias);
   BuildProblem();
@@ -646,7 +630,7 @@ void FitProblem::Impl::BuildProblem() {
   if (!options.estimate_extrinsic) problem.SetParameterBlockConstant(extrinsic.data());
   spline_problem->AddImuResiduals(imu, sigma_g, sigma_a);
   AddPoseResiduals();
-  spline_problem->AddBiasRandomWalkResiduals(options.noise);
+  spline_problem->AddBiasRandomWalkResiduals(options.model.noise);
 }
 
 void FitProblem::Impl::AddPoseResiduals() {
@@ -661,7 +645,7 @@ void FitProblem::Impl::AddPoseResiduals() {
     data.sigma_rad = options.pose_sigma_rad;
     data.shared = spline_problem->evaluation_callback();
     pose_segments.push_back(data.segment_index);
-    const bool analytic = options.differentiation == Differentiation::kAnalytic;
+    const bool analytic = options.residuals.differentiation == Differentiation::kAnalytic;
     ceres::CostFunction* cost = analytic
                                     ? static_cast<ceres::CostFunction*>(new PoseCostFunction(data))
                                     : NewAutoDiffPoseCost(data);
@@ -713,18 +697,9 @@ FitResult FitProblem::Impl::Solve() {
   const double jacobian_entries =
       3.0 * static_cast<double>(imu.size()) * (2.0 * 24.0 + 6.0 * bias_points + 2.0) +
       6.0 * static_cast<double>(used_poses.size()) * 31.0;
-  SolverOptions solver;
-  solver.max_iterations = options.max_iterations;
-  solver.max_rounds = kMaxSolverRounds;
-  solver.num_threads = options.num_threads;
-  solver.function_tolerance = options.function_tolerance;
-  solver.gradient_tolerance = options.gradient_tolerance;
-  solver.parameter_tolerance = options.parameter_tolerance;
-  solver.initial_trust_region_radius = options.initial_trust_region_radius;
-  solver.linear_solver = options.linear_solver;
-  solver.max_normal_cholesky_jacobian_entries = options.max_normal_cholesky_jacobian_entries;
+  const SolverOptions& solver = options.solver;
   SolveRounds rounds(ToCeresOptions(solver, jacobian_entries, &result.linear_solver),
-                     options.progress);
+                     options.solver.progress);
 #ifdef __GLIBC__
   // Return what the initialisation freed (the pose fit's solver) before the main solve, whose
   // Jacobian is the peak memory of long recordings (docs/performance.md).
@@ -745,8 +720,8 @@ FitResult FitProblem::Impl::Solve() {
       }
     }
     if (!moved) break;
-    if (options.progress)
-      options.progress("fit: time offset moved poses across knots; solving again");
+    if (options.solver.progress)
+      options.solver.progress("fit: time offset moved poses across knots; solving again");
     BuildProblem();
   }
   const ceres::Solver::Summary& summary = rounds.last();
@@ -767,7 +742,7 @@ FitResult FitProblem::Impl::Solve() {
   result.knot_spacing_s = dt_s;
   result.knot_spacing_rule = knot_rule;
   result.control_poses = spline_problem->ControlPoses();
-  result.bias_model = options.bias_model;
+  result.bias_model = options.model.bias_model;
   result.gravity_w = spline_problem->gravity_w();
   result.time_offset_estimated = options.estimate_time_offset;
   result.time_offset_s = time_offset;
@@ -780,7 +755,7 @@ FitResult FitProblem::Impl::Solve() {
   result.noise_std.accel_m_s2 = sigma_a;
   result.noise_std.position_m = options.pose_sigma_m;
   result.noise_std.rotation_rad = options.pose_sigma_rad;
-  if (options.bias_model == BiasModel::kSpline) {
+  if (options.model.bias_model == BiasModel::kSpline) {
     const BiasSpline& bias = spline_problem->bias_spline();
     result.bias_t0_ns = bias.t0_ns();
     result.bias_dt_ns = bias.dt_ns();
@@ -872,7 +847,7 @@ FitResult FitProblem::Impl::Solve() {
   // peak memory of long recordings, docs/performance.md).
   malloc_trim(0);
 #endif
-  if (options.compute_covariance) ComputeCovariance(&result);
+  if (options.covariance.compute) ComputeCovariance(&result);
   result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
   return result;
 }
@@ -938,11 +913,9 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   }
 
   MarginalCovarianceOptions covariance_options;
-  covariance_options.num_threads = options.num_threads;
-  covariance_options.max_ceres_covariance_entries = options.max_ceres_covariance_entries;
-  covariance_options.backend = options.compressed_covariance
-                                   ? CovarianceBackend::kAuto
-                                   : CovarianceBackend::kCeresUncompressed;
+  covariance_options.num_threads = options.solver.num_threads;
+  covariance_options.max_ceres_covariance_entries = options.covariance.max_ceres_covariance_entries;
+  covariance_options.backend = options.covariance.backend;
   const MarginalCovariance marginal =
       ComputeMarginalCovariance(problem(), blocks, covariance_options);
   result->covariance_method = marginal.method;
@@ -979,7 +952,7 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   result->accel_bias_std = std_dev.segment<3>(3);
   const Eigen::Matrix2d C_dir = C.block<2, 2>(6, 6);
   const Eigen::Matrix<double, 3, 2> J_g =
-      options.gravity_m_s2 * GravityTangentBasis(result->gravity_w);
+      options.model.gravity_m_s2 * GravityTangentBasis(result->gravity_w);
   result->gravity_w_std = (J_g * C_dir * J_g.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
   // Direction std: the larger principal std of the 2-D tangent covariance.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> dir_eigen(C_dir);
@@ -1105,7 +1078,7 @@ void FitProblem::SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector
 
 void FitProblem::SetGravity(const Eigen::Vector3d& g_w) {
   if (!(g_w.norm() > 0.0) || !g_w.allFinite()) throw Error("SetGravity: needs a nonzero vector");
-  impl_->spline_problem->SetGravity(impl_->options.gravity_m_s2 * g_w.normalized());
+  impl_->spline_problem->SetGravity(impl_->options.model.gravity_m_s2 * g_w.normalized());
 }
 
 void FitProblem::SetTimeOffset(double time_offset_s) {

@@ -101,7 +101,7 @@ std::string ResultYaml(const CalibrationResult& r, const CalibrateOptions& optio
   yaml.Scalar("num_imu_samples", r.num_imu_samples);
   yaml.Scalar("num_landmarks", r.num_landmarks);
   yaml.Scalar("knot_spacing_s", 1e-9 * static_cast<double>(r.layout.dt_ns));
-  yaml.Scalar("bias_model", options.bias_model == BiasModel::kSpline ? "spline" : "constant");
+  yaml.Scalar("bias_model", options.model.bias_model == BiasModel::kSpline ? "spline" : "constant");
   yaml.Scalar("rolling_shutter", options.rolling_shutter);
   yaml.Scalar("huber_px", options.huber_px);
   yaml.Scalar("iterations", r.iterations);
@@ -318,11 +318,11 @@ CalibrateInputs ReadCalibrateInputs() {
   }
   CalibrateInputs in;
   CalibrateOptions& options = in.options;
-  options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
-  options.knot_spacing_s = kDefaultCalibrateKnotSpacingS;
+  options.model.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
+  options.model.knot_spacing_s = kDefaultCalibrateKnotSpacingS;
   if (FLAGS_knot_spacing != 0.0) {
     SpanFlagNs("knot-spacing", FLAGS_knot_spacing);  // bounded: int64 knot times cannot overflow
-    options.knot_spacing_s = FLAGS_knot_spacing;
+    options.model.knot_spacing_s = FLAGS_knot_spacing;
   }
   options.rolling_shutter = FLAGS_rolling_shutter;
   options.estimate_time_offset = !FLAGS_no_time_offset;
@@ -331,9 +331,9 @@ CalibrateInputs ReadCalibrateInputs() {
   if (FLAGS_min_corners < 4) throw Error("--min-corners: must be at least 4");
   options.min_corners_per_frame = FLAGS_min_corners;
   if (FLAGS_threads < 1) throw Error("--threads: must be at least 1");
-  options.num_threads = FLAGS_threads;
-  options.progress = [](const std::string& line) { Progress(line); };
-  if (!FLAGS_imu_yaml.empty()) options.noise = ReadImuYaml(FLAGS_imu_yaml);
+  options.solver.num_threads = FLAGS_threads;
+  options.solver.progress = [](const std::string& line) { Progress(line); };
+  if (!FLAGS_imu_yaml.empty()) options.model.noise = ReadImuYaml(FLAGS_imu_yaml);
 
   in.camchain = ReadCamchainYaml(camchain_path);
   if (!FLAGS_target.empty()) {

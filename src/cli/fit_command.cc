@@ -53,8 +53,8 @@ FitInputs ReadFitInputs() {
   FitOptions& options = in.options;
   // Time spans through SpanFlagNs: bounded, so that the fit's int64 knot times cannot overflow.
   SpanFlagNs("knot-spacing", FLAGS_knot_spacing, /*allow_zero=*/true);
-  options.knot_spacing_s = FLAGS_knot_spacing;
-  options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
+  options.model.knot_spacing_s = FLAGS_knot_spacing;
+  options.model.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
   options.pose_sigma_m = PositiveFlag("pose-sigma-m", FLAGS_pose_sigma_m);
   options.pose_sigma_rad = PositiveFlag("pose-sigma-rad", FLAGS_pose_sigma_rad);
   options.estimate_time_offset = FLAGS_estimate_time_offset;
@@ -62,23 +62,23 @@ FitInputs ReadFitInputs() {
   options.max_time_offset_s = FLAGS_max_time_offset;
   options.estimate_extrinsic = FLAGS_estimate_extrinsic;
   if (FLAGS_bias_model == "constant") {
-    options.bias_model = BiasModel::kConstant;
+    options.model.bias_model = BiasModel::kConstant;
   } else if (FLAGS_bias_model == "spline") {
-    options.bias_model = BiasModel::kSpline;
+    options.model.bias_model = BiasModel::kSpline;
   } else {
     throw Error("--bias-model: expected constant or spline, got '" + FLAGS_bias_model + "'");
   }
   SpanFlagNs("bias-knot-spacing", FLAGS_bias_knot_spacing);
-  options.bias_knot_spacing_s = FLAGS_bias_knot_spacing;
+  options.model.bias_knot_spacing_s = FLAGS_bias_knot_spacing;
   if (FLAGS_threads < 1 || FLAGS_threads > 256) {
     throw Error("--threads: expected 1 to 256, got " + std::to_string(FLAGS_threads));
   }
-  options.num_threads = FLAGS_threads;
-  if (!Quiet()) options.progress = [](const std::string& line) { Progress(line); };
+  options.solver.num_threads = FLAGS_threads;
+  if (!Quiet()) options.solver.progress = [](const std::string& line) { Progress(line); };
 
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
   in.poses = ReadPoses(poses_path);
-  if (!FLAGS_imu_yaml.empty()) options.noise = ReadImuYaml(FLAGS_imu_yaml);
+  if (!FLAGS_imu_yaml.empty()) options.model.noise = ReadImuYaml(FLAGS_imu_yaml);
   return in;
 }
 

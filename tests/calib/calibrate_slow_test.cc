@@ -36,7 +36,7 @@ Errors CalibrateAndCompare(const testing::CalibrationScenario& s,
                            CalibrationResult* result) {
   CalibrateOptions options;
   options.rolling_shutter = rolling_shutter;
-  options.num_threads = 2;
+  options.solver.num_threads = 2;
   *result = Calibrate(s.imu, s.observations, s.start, &s.target, options);
   const CameraCalibration& est = result->cameras[0].calibration;
   const CameraCalibration& truth = s.truth[0];

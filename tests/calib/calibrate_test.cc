@@ -96,7 +96,7 @@ void ExpectWithinTargetsAndStds(const CalibrationResult& r, const Errors& e, boo
 
 CalibrateOptions FastOptions() {
   CalibrateOptions options;
-  options.num_threads = 2;
+  options.solver.num_threads = 2;
   return options;
 }
 
@@ -237,7 +237,7 @@ TEST_F(CalibrateRefuses, ACameraMissingFromTheCamchain) {
 TEST_F(CalibrateRefuses, AKnotSpacingThatWouldExhaustMemory) {
   // 1 ns knots over 4 s would be 4e9 control poses: refused before anything is allocated.
   CalibrateOptions options = FastOptions();
-  options.knot_spacing_s = 1e-9;
+  options.model.knot_spacing_s = 1e-9;
   try {
     Calibrate(scenario_->imu, scenario_->observations, scenario_->start, &scenario_->target,
               options);

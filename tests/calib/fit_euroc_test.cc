@@ -35,8 +35,8 @@ TEST(FitEuroc, V101EasyBiasesMatchTheGroundTruth) {
   accel_bias /= static_cast<double>(truth.size());
 
   FitOptions options;
-  options.noise = ReadImuYaml(dir + "sensor.yaml");
-  options.knot_spacing_s = 0.05;  // the ground truth's 20 Hz; the automatic rule picks 0.01 s
+  options.model.noise = ReadImuYaml(dir + "sensor.yaml");
+  options.model.knot_spacing_s = 0.05;  // the ground truth's 20 Hz; the automatic rule picks 0.01 s
   options.keep_samples = false;
   const FitResult result = Fit(imu, poses, options);
   EXPECT_LE((result.gyro_bias - gyro_bias).cwiseAbs().maxCoeff(), kGyroBiasTolerance);

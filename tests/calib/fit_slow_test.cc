@@ -45,8 +45,8 @@ TEST(FitMonteCarlo, BiasNeesIsInsideItsNinetyFivePercentInterval) {
     }
     const FitData data = MakeFitData(scenario);
     FitOptions options;
-    options.knot_spacing_s = 0.1;
-    options.noise = scenario.noise;
+    options.model.knot_spacing_s = 0.1;
+    options.model.noise = scenario.noise;
     options.keep_samples = false;
     const FitResult result = Fit(data.imu, data.poses, options);
     ASSERT_TRUE(result.covariance_ok) << "run " << run;

@@ -53,7 +53,7 @@ double MaxControlPoseError(const SE3Splined& truth, const std::vector<SE3d>& fit
 
 FitOptions QuietOptions() {
   FitOptions options;
-  options.knot_spacing_s = 0.1;
+  options.model.knot_spacing_s = 0.1;
   options.keep_samples = false;
   return options;
 }
@@ -63,7 +63,7 @@ TEST(Fit, RecoversNoiseFreeSimulationFromAPerturbedStart) {
   scenario.R_world = SO3d::Exp(Eigen::Vector3d(0.2, -0.3, 0.5));  // gravity not along -z
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
-  options.compute_covariance = false;
+  options.covariance.compute = false;
   FitProblem problem(data.imu, data.poses, options);
   ASSERT_EQ(problem.layout().t0_ns, data.truth.t0_ns());
   ASSERT_EQ(problem.layout().num_control_poses, data.truth.num_control_poses());
@@ -93,7 +93,7 @@ TEST(Fit, NoisyEstimatesLieWithinThreeReportedStandardDeviations) {
   }
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
-  options.noise = scenario.noise;
+  options.model.noise = scenario.noise;
   const FitResult result = Fit(data.imu, data.poses, options);
   ASSERT_TRUE(result.covariance_ok);
   for (int a = 0; a < 3; ++a) {
@@ -124,7 +124,7 @@ TEST(Fit, RecoversTimeOffsetAndExtrinsicWithinThreeStandardDeviations) {
                              Eigen::Vector3d(0.06, -0.05, 0.06));  // ~10 cm
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
-  options.noise = scenario.noise;
+  options.model.noise = scenario.noise;
   options.estimate_time_offset = true;
   options.estimate_extrinsic = true;
   const FitResult result = Fit(data.imu, data.poses, options);
@@ -160,7 +160,7 @@ TEST(Fit, ReattachesPoseResidualsWhenTheTimeOffsetCrossesKnots) {
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
   options.estimate_time_offset = true;
-  options.compute_covariance = false;
+  options.covariance.compute = false;
   FitProblem problem(data.imu, data.poses, options);
   problem.SetTimeOffset(0.0);
   const FitResult result = problem.Solve();
@@ -176,14 +176,14 @@ TEST(Fit, AutoDiffPerSampleUnsharedAndSchurPathsReachTheSameSolution) {
   scenario.pose_noise = true;
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
-  options.noise = scenario.noise;
-  options.compute_covariance = false;
+  options.model.noise = scenario.noise;
+  options.covariance.compute = false;
   const FitResult reference = Fit(data.imu, data.poses, options);
   std::vector<FitOptions> variants(4, options);
-  variants[0].differentiation = Differentiation::kAutoDiff;
-  variants[1].layout = ImuResidualLayout::kPerSample;
-  variants[2].share_knot_caches = false;
-  variants[3].linear_solver = LinearSolver::kSparseSchur;
+  variants[0].residuals.differentiation = Differentiation::kAutoDiff;
+  variants[1].residuals.layout = ImuResidualLayout::kPerSample;
+  variants[2].residuals.share_knot_caches = false;
+  variants[3].solver.linear_solver = LinearSolver::kSparseSchur;
   for (const FitOptions& variant : variants) {
     const FitResult result = Fit(data.imu, data.poses, variant);
     EXPECT_NEAR(
@@ -208,17 +208,17 @@ TEST(Fit, TheThreeCovarianceComputationsAgree) {
   scenario.pose_rate_hz = 20.0;
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
-  options.noise = scenario.noise;
+  options.model.noise = scenario.noise;
   options.estimate_time_offset = true;
   options.estimate_extrinsic = true;
-  options.bias_model = BiasModel::kSpline;
-  options.noise.gyroscope_random_walk = ImuNoise::Adis16448().gyroscope_random_walk;
-  options.noise.accelerometer_random_walk = ImuNoise::Adis16448().accelerometer_random_walk;
-  options.compressed_covariance = false;
+  options.model.bias_model = BiasModel::kSpline;
+  options.model.noise.gyroscope_random_walk = ImuNoise::Adis16448().gyroscope_random_walk;
+  options.model.noise.accelerometer_random_walk = ImuNoise::Adis16448().accelerometer_random_walk;
+  options.covariance.backend = CovarianceBackend::kCeresUncompressed;
   const FitResult direct = Fit(data.imu, data.poses, options);
-  options.compressed_covariance = true;
+  options.covariance.backend = CovarianceBackend::kAuto;
   const FitResult compressed = Fit(data.imu, data.poses, options);
-  options.max_ceres_covariance_entries = 0.0;
+  options.covariance.max_ceres_covariance_entries = 0.0;
   const FitResult cholesky = Fit(data.imu, data.poses, options);
   ASSERT_TRUE(direct.covariance_ok);
   ASSERT_TRUE(compressed.covariance_ok);
@@ -248,11 +248,11 @@ TEST(Fit, BiasSplineFollowsADriftingBias) {
       100.0 * ImuNoise::Adis16448().accelerometer_random_walk;
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
-  options.noise = scenario.noise;
-  options.bias_model = BiasModel::kSpline;
+  options.model.noise = scenario.noise;
+  options.model.bias_model = BiasModel::kSpline;
   options.keep_samples = true;
   const FitResult spline_fit = Fit(data.imu, data.poses, options);
-  options.bias_model = BiasModel::kConstant;
+  options.model.bias_model = BiasModel::kConstant;
   const FitResult constant_fit = Fit(data.imu, data.poses, options);
   // The spline absorbs the drift: its residuals are at the white-noise level, the constant
   // model's are not.
@@ -273,7 +273,7 @@ TEST(Fit, SaysWhenTheImuNeverRotates) {
   scenario.pose_noise = true;
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
-  options.noise = scenario.noise;
+  options.model.noise = scenario.noise;
   const FitResult result = Fit(data.imu, data.poses, options);
   bool said = false;
   for (const std::string& warning : result.warnings) {
@@ -291,7 +291,7 @@ TEST(Fit, KeepsPerSampleResidualsForTheReport) {
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
   options.keep_samples = true;
-  options.compute_covariance = false;
+  options.covariance.compute = false;
   const FitResult result = Fit(data.imu, data.poses, options);
   EXPECT_EQ(static_cast<int>(result.imu_samples.size()), result.num_imu_samples);
   EXPECT_EQ(static_cast<int>(result.pose_samples.size()), result.num_poses);
@@ -331,7 +331,7 @@ TEST(FitErrors, TimeRangesThatDoNotOverlap) {
 TEST(FitErrors, DataTooShortForTheKnotSpacing) {
   const FitData data = SmallData();
   FitOptions options = QuietOptions();
-  options.knot_spacing_s = 2.0;
+  options.model.knot_spacing_s = 2.0;
   EXPECT_THAT(FitError(data.imu, data.poses, options),
               AllOf(HasSubstr("too short for knot spacing 2 s"), HasSubstr("--knot-spacing")));
 }
@@ -369,8 +369,8 @@ TEST(FitErrors, SolverFailureNamesTheLikelyCauses) {
   scenario.imu_noise = true;
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
-  options.noise.gyroscope_noise_density *= 1e-3;
-  options.noise.accelerometer_noise_density *= 1e-3;
+  options.model.noise.gyroscope_noise_density *= 1e-3;
+  options.model.noise.accelerometer_noise_density *= 1e-3;
   EXPECT_THAT(FitError(data.imu, data.poses, options),
               AllOf(HasSubstr("does not explain the data"),
                     HasSubstr("likely causes"),
@@ -387,7 +387,7 @@ TEST(FitErrors, BadOptions) {
   options.time_offset_s = 0.5;
   EXPECT_THAT(FitError(data.imu, data.poses, options), HasSubstr("outside the search range"));
   options = QuietOptions();
-  options.knot_spacing_s = 0.004;  // below two IMU periods at 200 Hz
+  options.model.knot_spacing_s = 0.004;  // below two IMU periods at 200 Hz
   EXPECT_THAT(FitError(data.imu, data.poses, options), HasSubstr("below two IMU periods"));
 }
 

@@ -54,6 +54,7 @@
 #include <vector>
 
 #include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/options.h"
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/observations.h"
 #include "splinecal/estimation/pose_fit.h"
@@ -68,11 +69,13 @@
 namespace splinecal {
 
 struct CalibrateOptions {
-  double knot_spacing_s = 0.05;  // spline knot spacing dt [s]
-  double gravity_m_s2 = kDefaultGravity;
-  ImuNoise noise;  // Kalibr densities (the weights use the measured IMU rate)
-  BiasModel bias_model = BiasModel::kSpline;
-  double bias_knot_spacing_s = 1.0;       // rounded to a multiple of dt
+  // Knots every 0.05 s (0: chosen from the data), gravity magnitude, IMU noise, bias spline.
+  SplineModelOptions model = [] {
+    SplineModelOptions model;
+    model.knot_spacing_s = 0.05;
+    model.bias_model = BiasModel::kSpline;
+    return model;
+  }();
   bool rolling_shutter = false;           // estimate line_delay (else fixed at the camchain's)
   bool estimate_time_offset = true;       // else timeshift_cam_imu fixed at the camchain's
   double max_time_offset_s = 0.1;         // |timeshift_cam_imu| bound and correlation search range
@@ -80,17 +83,22 @@ struct CalibrateOptions {
   double huber_px = 2.0;                  // Huber threshold [px]; 0 = plain least squares
   int min_corners_per_frame = 8;          // frames with fewer target corners are not used
   double min_rotation_rate_rad_s = 0.05;  // refuse data rotating less about its weakest axis
-  int max_iterations = 50;
-  int max_rounds = 6;
-  int num_threads = 1;
-  bool compute_covariance = true;
+  // Levenberg-Marquardt with SPARSE_NORMAL_CHOLESKY, up to 6 rounds (time windows rebuilt and
+  // the pixel noise re-estimated between them).
+  SolverOptions solver = [] {
+    SolverOptions solver;
+    solver.linear_solver = LinearSolver::kSparseNormalCholesky;
+    solver.max_rounds = 6;
+    return solver;
+  }();
+  // Always the Schur backend (calibrate.cc, ComputeCovariance, says why).
+  CovarianceOptions covariance;
   // Warnings when a standard deviation exceeds these.
   double warn_rotation_std_deg = 0.1;
   double warn_translation_std_m = 0.005;
-  double warn_timeshift_std_s = 0.001;
+  double warn_time_offset_std_s = 0.001;
   double warn_line_delay_relative_std = 0.05;
   bool keep_residuals = true;  // per-observation and per-IMU-sample residuals in the result
-  std::function<void(const std::string&)> progress;  // one line per solver iteration
 };
 
 // A starting point for the whole state (required without a target; optional otherwise).
@@ -140,6 +148,8 @@ struct CalibrationResult {
   Camchain camchain;  // the estimated camchain (intrinsics as given)
 
   KnotLayout layout;
+  double knot_spacing_s = 0.0;
+  std::string knot_spacing_rule;    // how it was chosen, in words
   std::vector<SE3d> control_poses;  // T_w_s, w = the target's frame
   SE3Splined MakeSpline() const { return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns); }
   Eigen::Vector3d gravity_w = Eigen::Vector3d::Zero();

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/options.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/estimation/spline_problem.h"
 #include "splinecal/estimation/pose_fit.h"
@@ -66,62 +67,36 @@ struct ExcitationThresholds {
 };
 
 struct FitOptions {
-  // Knot spacing dt [s]; 0 chooses it from the data (ChooseKnotSpacing).
-  double knot_spacing_s = 0.0;
-  // Gravity magnitude g [m/s^2]; g_w keeps this norm.
-  double gravity_m_s2 = kDefaultGravity;
-  // Initial g_w (its norm is replaced by g); unset: from the specific force (file comment).
+  // Knots (0: chosen from the data), gravity magnitude, IMU noise, bias model.
+  SplineModelOptions model;
+  // Initial g_w (its norm is replaced by model.gravity_m_s2); unset: from the specific force
+  // (file comment).
   std::optional<Eigen::Vector3d> initial_gravity_w;
-  // IMU noise (Kalibr densities). Weights use density * sqrt(rate) with the rate measured from
-  // the IMU timestamps; noise.update_rate_hz is only compared with it (a warning if they differ).
-  ImuNoise noise;
+  Eigen::Vector3d initial_gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d initial_accel_bias = Eigen::Vector3d::Zero();
   // Pose source noise: position [m] per axis, rotation [rad] per axis.
   double pose_sigma_m = 1e-3;
   double pose_sigma_rad = 1e-3;
-  // Biases.
-  BiasModel bias_model = BiasModel::kConstant;
-  double bias_knot_spacing_s = 1.0;  // bias spline; rounded to a multiple of dt
-  Eigen::Vector3d initial_gyro_bias = Eigen::Vector3d::Zero();
-  Eigen::Vector3d initial_accel_bias = Eigen::Vector3d::Zero();
   // Time offset t_imu = t_pose + time_offset [s]: the fixed value, or the initial guess when
   // estimated (then also the centre of the correlation search).
   bool estimate_time_offset = false;
   double time_offset_s = 0.0;
   double max_time_offset_s = 0.1;  // search range +-max [s] when estimated
-  // Extrinsic T_pose_imu = T_m_s: fixed, or the initial guess when estimated.
+  // Extrinsic T_pose_imu (the IMU in the pose source's frame m): fixed, or the initial guess
+  // when estimated.
   bool estimate_extrinsic = false;
   SE3d T_pose_imu;
-  // Solver (Levenberg-Marquardt, SPARSE_NORMAL_CHOLESKY).
-  int max_iterations = 50;
-  int num_threads = 1;
-  double function_tolerance = 1e-10;
-  double gradient_tolerance = 1e-12;
-  double parameter_tolerance = 1e-10;
-  // Levenberg-Marquardt's first trust region (Ceres' default is 1e4). The residuals are weighted
-  // by their noise, so Gauss-Newton steps are good from the start: a large radius saves one or
-  // two iterations on the reference problem (docs/fit.md, "Speed"); a bad step is still rejected
-  // and the radius shrinks.
-  double initial_trust_region_radius = 1e6;
-  LinearSolver linear_solver = LinearSolver::kAuto;
-  // kAuto switches to SPARSE_SCHUR above this many Jacobian entries (8e6: 64 MB, ~2.7 minutes
-  // at 200 Hz), where SPARSE_NORMAL_CHOLESKY's transient second copy of J starts to dominate the
-  // peak memory; both are about as fast (docs/fit.md, "Speed").
-  double max_normal_cholesky_jacobian_entries = 8e6;
-  ImuResidualLayout layout = ImuResidualLayout::kPerSegment;
-  Differentiation differentiation = Differentiation::kAnalytic;
-  bool share_knot_caches = true;  // estimation/spline_evaluation_callback.h (analytic only)
-  // Uncertainty and diagnostics.
-  bool compute_covariance = true;
-  // ceres::Covariance on an equivalent compressed problem: per segment, the information
-  // J^T J of its residuals factored into at most as many rows as it has tangent parameters (the
-  // same J^T J, so the same covariance; ~4x fewer rows, much less memory). false: on the fit's
-  // own problem.
-  bool compressed_covariance = true;
-  // ceres::Covariance keeps several copies of the Jacobian (CRS, CHOLMOD, SuiteSparseQR). Above
-  // this many compressed Jacobian entries (~5 minutes at dt = 0.1 s, ~2.5 at 0.05 s) the same
-  // covariance is computed by a sparse Cholesky of the compressed information instead (Eigen),
-  // which needs a fraction of the memory and time (docs/fit.md, "Uncertainty").
-  double max_ceres_covariance_entries = 3e6;
+  // Levenberg-Marquardt, up to 4 rounds (pose residuals re-attached after the time offset moved
+  // them across knots). The residuals are weighted by their noise, so Gauss-Newton steps are
+  // good from the start: a first trust region of 1e6 (Ceres' default is 1e4) saves one or two
+  // iterations on the reference problem (docs/fit.md, "Speed").
+  SolverOptions solver = [] {
+    SolverOptions solver;
+    solver.initial_trust_region_radius = 1e6;
+    solver.max_rounds = 4;
+    return solver;
+  }();
+  CovarianceOptions covariance;
   ExcitationThresholds excitation;
   // Residual RMS above this many times the noise std (gyro or accel) is a failed fit (Error).
   // EuRoC's MAV vibrations leave the accelerometer at ~30x its white noise: 100 keeps real data
@@ -129,8 +104,8 @@ struct FitOptions {
   double max_residual_noise_ratio = 100.0;
   // Keep per-sample predictions and residuals in FitResult (for residuals.csv / report.html).
   bool keep_samples = true;
-  // One line per solver iteration (nullptr: silent).
-  std::function<void(const std::string&)> progress;
+  // Implementation choices with the same objective (tests and benchmarks compare them).
+  ResidualOptions residuals;
 };
 
 // Per-axis root mean square of the residuals (unweighted, in the sensor's units) and the noise

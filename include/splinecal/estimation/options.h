@@ -1,0 +1,49 @@
+// The options every continuous-time estimate shares, with one shape in fit and calibrate:
+//
+//   FitOptions / CalibrateOptions {
+//     SplineModelOptions model;       what is estimated: knots, gravity, IMU noise, bias model
+//     ...                             what only that estimate has (pose source, cameras, ...)
+//     SolverOptions solver;           how it is solved (estimation/solve_rounds.h)
+//     CovarianceOptions covariance;   how its standard deviations are computed
+//   }
+#ifndef SPLINECAL_ESTIMATION_OPTIONS_H_
+#define SPLINECAL_ESTIMATION_OPTIONS_H_
+
+#include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/noise.h"
+
+namespace splinecal {
+
+// The continuous-time model of the IMU trajectory (estimation/spline_problem.h).
+struct SplineModelOptions {
+  // Knot spacing dt [s] of the pose spline; 0 chooses it from the data (ChooseKnotSpacing,
+  // estimation/knot_spacing.h) and says why.
+  double knot_spacing_s = 0.0;
+  // Gravity magnitude g [m/s^2]; g_w keeps this norm.
+  double gravity_m_s2 = kDefaultGravity;
+  // IMU noise, Kalibr densities. The weights use density * sqrt(rate) with the rate measured
+  // from the IMU timestamps.
+  ImuNoise noise;
+  // Biases: constant, or a cubic B-spline with Kalibr's random-walk prior whose knots are
+  // bias_knot_spacing_s apart (rounded to a whole number of pose knot intervals).
+  BiasModel bias_model = BiasModel::kConstant;
+  double bias_knot_spacing_s = 1.0;
+};
+
+// Standard deviations (estimation/marginal_covariance.h).
+struct CovarianceOptions {
+  bool compute = true;
+  CovarianceBackend backend = CovarianceBackend::kAuto;
+  // kAuto: ceres::Covariance up to this many compressed Jacobian entries, Schur above.
+  double max_ceres_covariance_entries = 3e6;
+};
+
+// Throws splinecal::Error, in plain words, for model values no estimate can use.
+void CheckSplineModelOptions(const SplineModelOptions& model);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_ESTIMATION_OPTIONS_H_
