@@ -30,25 +30,19 @@
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/estimation/spline_problem.h"
+#include "fit_uncertainty.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
+#include "splinecal/estimation/knot_spacing.h"
+#include "splinecal/imu/imu_rate.h"
+#include "splinecal/vio/time_offset_correlation.h"
 
 namespace splinecal {
 
 namespace {
 
-
-// Candidates of the automatic knot spacing [s], largest first (docs/fit.md, "Knot spacing").
-constexpr double kKnotSpacingCandidates[] = {0.2, 0.1, 0.05, 0.04, 0.025, 0.02, 0.01};
-// Share of the gyro signal's variance a knot interval may leave unexplained.
-constexpr double kKnotSpacingUnexplainedShare = 0.01;
-
-// Poses slower than this [Hz], or angular speeds that vary less than this [rad/s] (std), cannot
-// align the clocks by correlation.
-constexpr double kCorrelationMinPoseRateHz = 5.0;
-constexpr double kCorrelationMinSpeedStd = 0.05;
 
 // The data must span at least this many knot intervals, and hold at least this many poses.
 constexpr int kMinKnotIntervals = 4;
@@ -66,22 +60,6 @@ constexpr double kWarnResidualNoiseRatio = 3.0;
 // A time offset within this fraction of the search range's edge is "at the edge".
 constexpr double kEdgeFraction = 0.01;
 
-
-int64_t MedianPeriodNs(const std::vector<int64_t>& times) {
-  std::vector<int64_t> periods;
-  periods.reserve(times.size());
-  for (size_t k = 1; k < times.size(); ++k) periods.push_back(times[k] - times[k - 1]);
-  if (periods.empty()) return 0;
-  std::nth_element(periods.begin(), periods.begin() + periods.size() / 2, periods.end());
-  return periods[periods.size() / 2];
-}
-
-double ImuRateHz(const std::vector<ImuSample>& imu) {
-  std::vector<int64_t> times(imu.size());
-  for (size_t k = 0; k < imu.size(); ++k) times[k] = imu[k].t_ns;
-  const int64_t period = MedianPeriodNs(times);
-  return period > 0 ? 1e9 / static_cast<double>(period) : 0.0;
-}
 
 SE3d PoseOf(const StampedPose& pose) { return SE3d(SO3d::FromQuaternion(pose.q), pose.p); }
 
@@ -149,196 +127,6 @@ SO3d IntegrateGyro(const std::vector<ImuSample>& imu, int64_t a_ns, int64_t b_ns
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-
-double ChooseKnotSpacing(const std::vector<ImuSample>& imu,
-                         const ImuNoise& noise,
-                         std::string* rule) {
-  CHECK_GE(imu.size(), 2u);
-  const double rate_hz = ImuRateHz(imu);
-  CHECK_GT(rate_hz, 0.0);
-  const int n = static_cast<int>(imu.size());
-  // Prefix sums of the gyro for O(1) window means.
-  std::vector<Eigen::Vector3d> prefix(n + 1, Eigen::Vector3d::Zero());
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int k = 0; k < n; ++k) {
-    prefix[k + 1] = prefix[k] + imu[k].gyro;
-    mean += imu[k].gyro;
-  }
-  mean /= n;
-  double variance = 0.0;
-  for (int k = 0; k < n; ++k) variance += (imu[k].gyro - mean).squaredNorm();
-  variance /= 3.0 * n;
-  const double noise_variance =
-      noise.gyroscope_noise_density * noise.gyroscope_noise_density * rate_hz;
-  const double signal_variance = std::max(0.0, variance - noise_variance);
-  const double allowed = std::max(kKnotSpacingUnexplainedShare * signal_variance, noise_variance);
-  const double min_spacing = 2.0 / rate_hz;
-
-  double chosen = 0.0;
-  double chosen_unexplained = 0.0;
-  double smallest = 0.0;
-  double smallest_unexplained = 0.0;
-  for (double dt : kKnotSpacingCandidates) {
-    if (dt < min_spacing * (1.0 - 1e-9)) continue;
-    const int m = std::max(1, static_cast<int>(std::lround(dt * rate_hz)));
-    if (m > n) continue;
-    const int half = m / 2;
-    double sum = 0.0;
-    int count = 0;
-    for (int k = half; k + (m - 1 - half) < n; ++k) {
-      const int first = k - half;
-      const Eigen::Vector3d average = (prefix[first + m] - prefix[first]) / m;
-      sum += (imu[k].gyro - average).squaredNorm();
-      ++count;
-    }
-    if (count == 0) continue;
-    const double residual = sum / (3.0 * count);
-    // A sample's white noise contributes sigma^2 (1 - 1/m) to its distance from the mean of a
-    // window that contains it.
-    const double unexplained = std::max(0.0, residual - noise_variance * (1.0 - 1.0 / m));
-    smallest = dt;
-    smallest_unexplained = unexplained;
-    if (unexplained <= allowed) {
-      chosen = dt;
-      chosen_unexplained = unexplained;
-      break;
-    }
-  }
-  bool fallback = false;
-  if (chosen == 0.0) {
-    fallback = true;
-    chosen = smallest > 0.0 ? smallest : std::max(min_spacing, 0.01);
-    chosen_unexplained = smallest_unexplained;
-  }
-  if (rule != nullptr) {
-    std::ostringstream text;
-    text << "automatic: " << chosen << " s, ";
-    if (fallback) {
-      text << "the smallest candidate (no candidate captured the gyro signal to within "
-              "max(1% of its variance, the gyro noise variance))";
-    } else {
-      text << "the largest of 0.2, 0.1, 0.05, 0.04, 0.025, 0.02, 0.01 s (>= 2 IMU periods) whose "
-              "one-interval moving average leaves <= max(1% of the gyro signal variance, the gyro "
-              "noise variance) unexplained";
-    }
-    const double share = signal_variance > 0.0 ? chosen_unexplained / signal_variance : 0.0;
-    text << " (" << StringPrintf("%.2g", 100.0 * share) << "% of the gyro signal variance left)";
-    *rule = text.str();
-  }
-  return chosen;
-}
-
-bool EstimateTimeOffsetByCorrelation(const std::vector<ImuSample>& imu,
-                                     const std::vector<StampedPose>& poses,
-                                     double centre_s,
-                                     double range_s,
-                                     double* offset_s,
-                                     bool* at_edge) {
-  if (at_edge != nullptr) *at_edge = false;
-  if (imu.size() < 2 || poses.size() < 3 || !(range_s > 0.0)) return false;
-  const double duration = 1e-9 * static_cast<double>(poses.back().t_ns - poses.front().t_ns);
-  if (!(duration > 0.0) ||
-      static_cast<double>(poses.size() - 1) / duration < kCorrelationMinPoseRateHz) {
-    return false;
-  }
-  // Mean body rate of each pose interval, in the pose source's body frame m.
-  std::vector<Eigen::Vector3d> rate(poses.size() - 1);
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (size_t j = 0; j + 1 < poses.size(); ++j) {
-    const double dt = 1e-9 * static_cast<double>(poses[j + 1].t_ns - poses[j].t_ns);
-    const SO3d R_a = SO3d::FromQuaternion(poses[j].q);
-    const SO3d R_b = SO3d::FromQuaternion(poses[j + 1].q);
-    rate[j] = (R_a.inverse() * R_b).Log() / dt;
-    mean += rate[j];
-  }
-  mean /= static_cast<double>(rate.size());
-  double spread = 0.0;
-  for (const Eigen::Vector3d& x : rate) spread += (x - mean).squaredNorm();
-  if (std::sqrt(spread / static_cast<double>(rate.size())) < kCorrelationMinSpeedStd) return false;
-
-  // The gyro as a piecewise-linear function of time; integral[k] = its integral from t_0 to t_k.
-  std::vector<Eigen::Vector3d> integral(imu.size(), Eigen::Vector3d::Zero());
-  for (size_t k = 1; k < imu.size(); ++k) {
-    integral[k] = integral[k - 1] + 0.5e-9 * static_cast<double>(imu[k].t_ns - imu[k - 1].t_ns) *
-                                        (imu[k].gyro + imu[k - 1].gyro);
-  }
-  auto integral_to = [&](int64_t t) -> Eigen::Vector3d {  // t in [t_0, t_last]
-    size_t k = static_cast<size_t>(
-        std::upper_bound(imu.begin(),
-                         imu.end(),
-                         t,
-                         [](int64_t value, const ImuSample& s) { return value < s.t_ns; }) -
-        imu.begin());
-    k = std::clamp<size_t>(k, 1, imu.size() - 1) - 1;  // t in [t_k, t_k+1]
-    const double h = 1e-9 * static_cast<double>(imu[k + 1].t_ns - imu[k].t_ns);
-    const double d = 1e-9 * static_cast<double>(t - imu[k].t_ns);
-    return integral[k] + d * imu[k].gyro + (0.5 * d * d / h) * (imu[k + 1].gyro - imu[k].gyro);
-  };
-  const double step = 1.0 / ImuRateHz(imu);
-  const int steps = std::max(1, static_cast<int>(std::floor(range_s / step)));
-  std::vector<double> costs(2 * steps + 1, std::numeric_limits<double>::infinity());
-  double best_cost = std::numeric_limits<double>::infinity();
-  int best = 0;
-  std::vector<Eigen::Vector3d> x;
-  std::vector<Eigen::Vector3d> y;
-  for (int s = -steps; s <= steps; ++s) {
-    const int64_t tau_ns = std::llround((centre_s + s * step) * 1e9);
-    x.clear();
-    y.clear();
-    for (size_t j = 0; j + 1 < poses.size(); ++j) {
-      const int64_t a = poses[j].t_ns + tau_ns;
-      const int64_t b = poses[j + 1].t_ns + tau_ns;
-      if (a < imu.front().t_ns || b > imu.back().t_ns) continue;
-      x.push_back(rate[j]);
-      y.push_back((integral_to(b) - integral_to(a)) / (1e-9 * static_cast<double>(b - a)));
-    }
-    if (x.size() < 10) continue;
-    // Least squares over an unknown rotation R (extrinsic) and gyro bias b of
-    // sum |x_j - R (y_j - b)|^2: centre both sets, then Kabsch. The minimum is
-    // sum |x'|^2 + sum |y'|^2 - 2 (s_1 + s_2 + sign s_3), s the singular values of sum y' x'^T.
-    Eigen::Vector3d x_mean = Eigen::Vector3d::Zero();
-    Eigen::Vector3d y_mean = Eigen::Vector3d::Zero();
-    for (size_t j = 0; j < x.size(); ++j) {
-      x_mean += x[j];
-      y_mean += y[j];
-    }
-    x_mean /= static_cast<double>(x.size());
-    y_mean /= static_cast<double>(y.size());
-    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-    double sum_sq = 0.0;
-    for (size_t j = 0; j < x.size(); ++j) {
-      const Eigen::Vector3d xc = x[j] - x_mean;
-      const Eigen::Vector3d yc = y[j] - y_mean;
-      H += yc * xc.transpose();
-      sum_sq += xc.squaredNorm() + yc.squaredNorm();
-    }
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H);
-    const double sign = H.determinant() < 0.0 ? -1.0 : 1.0;
-    const Eigen::Vector3d sv = svd.singularValues();
-    const double cost =
-        (sum_sq - 2.0 * (sv[0] + sv[1] + sign * sv[2])) / static_cast<double>(x.size());
-    costs[s + steps] = cost;
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = s;
-    }
-  }
-  if (!std::isfinite(best_cost)) return false;
-  // Sub-sample refinement: the vertex of the parabola through the best cost and its neighbours.
-  double refinement = 0.0;
-  if (std::abs(best) < steps) {
-    const double c_minus = costs[best + steps - 1];
-    const double c_zero = costs[best + steps];
-    const double c_plus = costs[best + steps + 1];
-    const double curvature = c_minus - 2.0 * c_zero + c_plus;
-    if (std::isfinite(curvature) && curvature > 0.0) {
-      refinement = std::clamp(0.5 * (c_minus - c_plus) / curvature, -0.5, 0.5);
-    }
-  }
-  *offset_s = centre_s + (best + refinement) * step;
-  if (at_edge != nullptr) *at_edge = std::abs(best) == steps;
-  return true;
-}
 
 // ---------------------------------------------------------------------------------------------
 
@@ -921,119 +709,13 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   result->covariance_method = marginal.method;
   const bool ok = marginal.ok;
   const Eigen::MatrixXd& full = marginal.covariance;
-  const ExcitationThresholds& limit = options.excitation;
   if (!ok) {
-    result->covariance_ok = false;
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    result->gyro_bias_std.setConstant(nan);
-    result->accel_bias_std.setConstant(nan);
-    result->gravity_w_std.setConstant(nan);
-    result->gravity_direction_std_deg = nan;
-    result->time_offset_std_s = nan;
-    result->T_pose_imu_translation_std_m.setConstant(nan);
-    result->T_pose_imu_rotation_std_rad.setConstant(nan);
-    result->not_determined = {"gyro_bias", "accel_bias", "gravity_w"};
-    if (options.estimate_time_offset) result->not_determined.push_back("time_offset_s");
-    if (options.estimate_extrinsic) result->not_determined.push_back("T_pose_imu");
-    result->warnings.push_back(
-        "the information matrix is singular: some parameters are not determined by this data at "
-        "all, so no standard deviations are reported. Typical reasons: the IMU did not rotate "
-        "(accelerometer bias and gravity cannot be told apart), it rotated about one axis only "
-        "(extrinsic), or its rotation rate never changed (time offset)");
+    ReportSingularFitInformation(options, result);
     result->covariance_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
-  const Eigen::MatrixXd C = A * full * A.transpose();
-  result->covariance_ok = true;
-  result->covariance = C;
-  const Eigen::VectorXd std_dev = C.diagonal().cwiseMax(0.0).cwiseSqrt();
-  result->gyro_bias_std = std_dev.segment<3>(0);
-  result->accel_bias_std = std_dev.segment<3>(3);
-  const Eigen::Matrix2d C_dir = C.block<2, 2>(6, 6);
-  const Eigen::Matrix<double, 3, 2> J_g =
-      options.model.gravity_m_s2 * GravityTangentBasis(result->gravity_w);
-  result->gravity_w_std = (J_g * C_dir * J_g.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
-  // Direction std: the larger principal std of the 2-D tangent covariance.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> dir_eigen(C_dir);
-  result->gravity_direction_std_deg =
-      std::sqrt(std::max(0.0, dir_eigen.eigenvalues()[1])) * kRadToDeg;
-  int next = 8;
-  if (options.estimate_time_offset) result->time_offset_std_s = std_dev[next++];
-  if (options.estimate_extrinsic) {
-    result->T_pose_imu_translation_std_m = std_dev.segment<3>(next);
-    result->T_pose_imu_rotation_std_rad = std_dev.segment<3>(next + 3);
-  }
-
-  // Plain-words excitation warnings.
-  auto max_of = [](const Eigen::Vector3d& v) { return v.maxCoeff(); };
-  if (max_of(result->gyro_bias_std) > limit.gyro_bias_std_rad_s) {
-    result->not_determined.push_back("gyro_bias");
-    result->warnings.push_back(
-        "gyro_bias is not determined by this data (std up to " +
-        StringPrintf("%.3g", max_of(result->gyro_bias_std)) +
-        " rad/s): too little data, or poses too noisy to pin down the rotation");
-  }
-  if (max_of(result->accel_bias_std) > limit.accel_bias_std_m_s2) {
-    result->not_determined.push_back("accel_bias");
-    result->warnings.push_back(
-        "accel_bias is not determined by this data (std up to " +
-        StringPrintf("%.3g", max_of(result->accel_bias_std)) +
-        " m/s^2): the accelerometer bias can only be told apart from gravity when the IMU is "
-        "held in several orientations; rotate it about at least two axes");
-  }
-  if (result->gravity_direction_std_deg > limit.gravity_direction_std_deg) {
-    result->not_determined.push_back("gravity_w");
-    result->warnings.push_back(
-        "gravity_w's direction is not determined by this data (std " +
-        StringPrintf("%.3g", result->gravity_direction_std_deg) +
-        " deg): it trades off against the accelerometer bias unless the IMU rotates");
-  }
-  if (options.estimate_time_offset && result->time_offset_std_s > limit.time_offset_std_s) {
-    result->not_determined.push_back("time_offset_s");
-    result->warnings.push_back(
-        "time_offset_s is not determined by this data (std " +
-        StringPrintf("%.3g", 1e3 * result->time_offset_std_s) +
-        " ms): the clocks are aligned by changes of the rotation rate; the motion needs "
-        "rotational accelerations");
-  }
-  if (options.estimate_extrinsic) {
-    if (max_of(result->T_pose_imu_translation_std_m) > limit.extrinsic_translation_std_m ||
-        max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg >
-            limit.extrinsic_rotation_std_deg) {
-      result->not_determined.push_back("T_pose_imu");
-    }
-    if (max_of(result->T_pose_imu_translation_std_m) > limit.extrinsic_translation_std_m) {
-      result->warnings.push_back(
-          "the translation of T_pose_imu is not determined by this data (std up to " +
-          StringPrintf("%.3g", max_of(result->T_pose_imu_translation_std_m)) +
-          " m): it shows only through lever-arm accelerations; rotate faster about at least two "
-          "axes");
-    }
-    if (max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg >
-        limit.extrinsic_rotation_std_deg) {
-      result->warnings.push_back(
-          "the rotation of T_pose_imu is not determined by this data (std up to " +
-          StringPrintf("%.3g", max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg) +
-          " deg): rotate about at least two axes");
-    }
-  }
-  // Near-perfect correlations between different quantities.
-  const std::vector<std::string>& labels = result->covariance_labels;
-  auto group = [](const std::string& label) { return label.substr(0, label.rfind('_')); };
-  for (int a = 0; a < C.rows(); ++a) {
-    for (int b = a + 1; b < C.rows(); ++b) {
-      if (group(labels[a]) == group(labels[b])) continue;
-      const double denominator = std::sqrt(C(a, a) * C(b, b));
-      if (!(denominator > 0.0)) continue;
-      const double rho = C(a, b) / denominator;
-      if (std::abs(rho) > limit.max_correlation) {
-        result->warnings.push_back(
-            labels[a] + " and " + labels[b] + " are almost perfectly correlated (" +
-            StringPrintf("%.4f", rho) + "): this data cannot tell them apart");
-      }
-    }
-  }
+  ReportFitUncertainty(options, A * full * A.transpose(), result);
   result->covariance_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

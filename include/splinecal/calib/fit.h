@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/knot_spacing.h"
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/estimation/spline_problem.h"
@@ -50,6 +51,7 @@
 #include "splinecal/io/poses.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/se3_spline.h"
+#include "splinecal/vio/time_offset_correlation.h"
 
 namespace splinecal {
 
@@ -245,30 +247,6 @@ class FitProblem {
 FitResult Fit(const std::vector<ImuSample>& imu,
               const std::vector<StampedPose>& poses,
               const FitOptions& options = {});
-
-// The automatic knot spacing (docs/fit.md, "Knot spacing"): the largest of 0.2, 0.1, 0.05,
-// 0.04, 0.025, 0.02, 0.01 s, not below 2 IMU periods, for which the centred moving average over
-// one knot interval leaves at most max(1% of the gyro signal's variance, the gyro's white-noise
-// variance) of the gyro signal unexplained (the white noise's own share removed); the smallest
-// candidate if none does. `rule` (may be nullptr) receives the choice in words. imu: at least 2
-// samples with increasing times.
-double ChooseKnotSpacing(const std::vector<ImuSample>& imu,
-                         const ImuNoise& noise,
-                         std::string* rule);
-
-// Time offset (t_imu = t_pose + offset) that best aligns the mean body rate of each pose interval
-// (Log(R_j^T R_j+1) / (t_j+1 - t_j), frame m) with the mean gyro over the same interval shifted
-// by the offset (frame s), searched over centre +- range in steps of one IMU period. At each
-// offset the unknown extrinsic rotation and gyro bias are eliminated in closed form (Kabsch on the
-// centred rates), so neither biases the alignment. Returns false (and leaves *offset_s) when the
-// poses are too sparse (< 5 Hz) or the motion too slow to tell (rate spread < 0.05 rad/s).
-// *at_edge (may be nullptr) is set when the best offset is at the edge of the range.
-bool EstimateTimeOffsetByCorrelation(const std::vector<ImuSample>& imu,
-                                     const std::vector<StampedPose>& poses,
-                                     double centre_s,
-                                     double range_s,
-                                     double* offset_s,
-                                     bool* at_edge);
 
 }  // namespace splinecal
 

@@ -1,0 +1,163 @@
+// The initial guesses of `splinecal calibrate` (calib/calibrate.h): from the target by PnP and
+// `fit`, or from given IMU poses.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "calibration_data.h"
+#include "splinecal/calib/calibrate.h"
+#include "splinecal/calib/fit.h"
+#include "splinecal/camera/pnp.h"
+#include "splinecal/error.h"
+#include "splinecal/estimation/pose_fit.h"
+
+namespace splinecal {
+
+using calibrate_internal::LayoutFor;
+using calibrate_internal::MakeTargetFrames;
+using calibrate_internal::TargetFrame;
+
+namespace {
+
+// PnP poses whose reprojection RMS exceeds this [px] are not used for the initial guess (a
+// wrong detection or a strong rolling-shutter smear; the full problem still uses the frame).
+constexpr double kMaxPnpRmsPx = 10.0;
+// Fewer usable PnP poses than this make no initial trajectory.
+constexpr int kMinPnpPoses = 10;
+// Pose-source noise assumed for PnP poses in the initial fit [m], [rad].
+constexpr double kPnpSigmaM = 0.003;
+constexpr double kPnpSigmaRad = 0.003;
+// Noise assumed for user-supplied initial IMU poses (SLAM after alignment) [m], [rad]: loose, as
+// they only start the solve.
+constexpr double kInitialPoseSigmaM = 0.01;
+constexpr double kInitialPoseSigmaRad = 0.01;
+
+// The fitted spline re-sampled onto `layout` (dt / 10 steps over its valid range).
+std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layout) {
+  std::vector<StampedPose> samples;
+  const int64_t step = std::max<int64_t>(1, layout.dt_ns / 10);
+  for (int64_t t = fitted.start_time_ns(); t <= fitted.end_time_ns(); t += step) {
+    const SE3d T = fitted.PoseNs(t);
+    samples.push_back({t, T.translation(), T.so3().quaternion()});
+  }
+  return FitControlPoses(samples, layout).control_poses;
+}
+
+// An initial guess from the continuous-time fit of the IMU to `poses` (`source` names them in
+// messages): the fitted trajectory on the calibration's layout, gravity and biases. The caller
+// gives the pose weights and what else to estimate, and takes those estimates from `fit`.
+CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
+                                     const std::vector<StampedPose>& poses,
+                                     const std::vector<Observation>& observations,
+                                     const Camchain& camchain,
+                                     const CalibrateOptions& options,
+                                     FitOptions fit_options,
+                                     const std::string& source,
+                                     std::vector<std::string>* warnings,
+                                     FitResult* fit) {
+  fit_options.model.knot_spacing_s = options.model.knot_spacing_s;
+  fit_options.model.gravity_m_s2 = options.model.gravity_m_s2;
+  fit_options.model.noise = options.model.noise;
+  fit_options.covariance.compute = false;
+  fit_options.keep_samples = false;
+  fit_options.max_residual_noise_ratio = 1e9;
+  fit_options.solver.max_iterations = 30;
+  fit_options.solver.num_threads = options.solver.num_threads;
+  try {
+    *fit = Fit(imu, poses, fit_options);
+  } catch (const Error& e) {
+    std::string message = e.what();
+    if (message.rfind("fit: ", 0) == 0) message = message.substr(5);
+    throw Error("calibrate: initial guess from the " + source + " failed: " + message);
+  }
+  if (warnings != nullptr) {
+    for (const std::string& w : fit->warnings) warnings->push_back("initial guess: " + w);
+  }
+  CalibrationInitialGuess guess;
+  guess.layout = LayoutFor(imu, observations, camchain, options.model.knot_spacing_s);
+  guess.control_poses = ResampleOnto(fit->MakeSpline(), guess.layout);
+  guess.gravity_w = fit->gravity_w;
+  guess.gyro_bias = fit->gyro_bias;
+  guess.accel_bias = fit->accel_bias;
+  guess.camchain = camchain;
+  return guess;
+}
+
+}  // namespace
+
+CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu,
+                                               const std::vector<Observation>& observations,
+                                               const Camchain& camchain,
+                                               const CalibrationTarget& target,
+                                               const CalibrateOptions& options,
+                                               std::vector<std::string>* warnings) {
+  // PnP per frame of cam0.
+  std::vector<StampedPose> poses;
+  int frames_tried = 0;
+  for (const TargetFrame& frame :
+       MakeTargetFrames(observations, target, options.min_corners_per_frame)) {
+    if (frame.cam != 0) continue;
+    ++frames_tried;
+    std::vector<Eigen::Vector3d> p_t;
+    std::vector<Eigen::Vector2d> uv;
+    for (const TargetCornerObservation& c : frame.corners) {
+      p_t.push_back(c.p_t);
+      uv.push_back(c.uv);
+    }
+    PnpOptions pnp_options;
+    pnp_options.min_points = options.min_corners_per_frame;
+    const PnpResult pnp = SolvePnp(camchain[0].camera, p_t, uv, pnp_options);
+    if (!pnp.ok || pnp.rms_px > kMaxPnpRmsPx) continue;
+    const SE3d T_t_c = pnp.T_c_t.inverse();
+    StampedPose pose;
+    pose.t_ns = frame.t_ns;
+    pose.p = T_t_c.translation();
+    pose.q = T_t_c.so3().quaternion();
+    poses.push_back(pose);
+  }
+  if (static_cast<int>(poses.size()) < kMinPnpPoses) {
+    throw Error("calibrate: the target gives a pose in only " + std::to_string(poses.size()) +
+                " of " + std::to_string(frames_tried) + " frames of cam0 with at least " +
+                std::to_string(options.min_corners_per_frame) + " corners (need " +
+                std::to_string(kMinPnpPoses) +
+                "): check the target file (size, spacing, corner ids) and the intrinsics");
+  }
+  if (warnings != nullptr && static_cast<int>(poses.size()) < frames_tried) {
+    warnings->push_back(std::to_string(frames_tried - static_cast<int>(poses.size())) + " of " +
+                        std::to_string(frames_tried) +
+                        " target frames gave no usable PnP pose (they still enter the "
+                        "calibration)");
+  }
+  // The continuous-time fit to those camera poses: T_pose_imu = T_c_s.
+  FitOptions fit_options;
+  fit_options.pose_sigma_m = kPnpSigmaM;
+  fit_options.pose_sigma_rad = kPnpSigmaRad;
+  fit_options.estimate_time_offset = options.estimate_time_offset;
+  fit_options.time_offset_s = camchain[0].timeshift_cam_imu_s;
+  fit_options.max_time_offset_s = options.max_time_offset_s;
+  fit_options.estimate_extrinsic = true;
+  fit_options.T_pose_imu = camchain[0].T_cam_imu;
+  fit_options.solver.progress = nullptr;
+  FitResult fit;
+  CalibrationInitialGuess guess = GuessFromFit(
+      imu, poses, observations, camchain, options, fit_options, "target poses", warnings, &fit);
+  guess.camchain[0].T_cam_imu = fit.T_pose_imu;
+  guess.camchain[0].timeshift_cam_imu_s = fit.time_offset_s;
+  return guess;
+}
+
+CalibrationInitialGuess InitialGuessFromImuPoses(const std::vector<ImuSample>& imu,
+                                                 const std::vector<StampedPose>& poses,
+                                                 const std::vector<Observation>& observations,
+                                                 const Camchain& camchain,
+                                                 const CalibrateOptions& options,
+                                                 std::vector<std::string>* warnings) {
+  FitOptions fit_options;
+  fit_options.pose_sigma_m = kInitialPoseSigmaM;
+  fit_options.pose_sigma_rad = kInitialPoseSigmaRad;
+  FitResult fit;
+  return GuessFromFit(
+      imu, poses, observations, camchain, options, fit_options, "initial poses", warnings, &fit);
+}
+
+}  // namespace splinecal
