@@ -44,14 +44,14 @@ void BM_Calibrate(benchmark::State& state) {
   }
   state.counters["frames"] = s.camera_result.num_frames;
   state.counters["corners"] = s.camera_result.num_target_observations;
-  state.counters["iterations"] = result.iterations;
-  state.counters["rounds"] = result.rounds;
+  state.counters["iterations"] = result.solve.iterations;
+  state.counters["rounds"] = result.solve.rounds;
   state.counters["init_s"] = result.initialisation_time_s;
-  state.counters["solve_s"] = result.solve_time_s;
+  state.counters["solve_s"] = result.solve.solve_time_s;
   state.counters["covariance_s"] = result.covariance_time_s;
   state.counters["rms_px"] = result.reprojection_rms_px;
   if (std::getenv("CALIBRATE_BENCH_REPORT") != nullptr)
-    std::fprintf(stderr, "%s\n", result.solver_report.c_str());
+    std::fprintf(stderr, "%s\n", result.solve.report.c_str());
 }
 BENCHMARK(BM_Calibrate)
     ->ArgNames({"seconds", "threads"})

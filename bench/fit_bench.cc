@@ -143,8 +143,8 @@ void BM_FitReference(benchmark::State& state, Path path) {
     state.ResumeTiming();
   }
   const double n = static_cast<double>(state.iterations());
-  state.counters["iterations"] = result.iterations;
-  state.counters["final_cost"] = result.final_cost;
+  state.counters["iterations"] = result.solve.iterations;
+  state.counters["final_cost"] = result.solve.final_cost;
   state.counters["solve_wall_s"] = wall_s / n;
   state.counters["solve_cpu_s"] = cpu_s / n;
   state.counters["control_poses"] = result.layout.num_control_poses;
@@ -182,12 +182,12 @@ void BM_FitScale(benchmark::State& state) {
   }
   const double n = static_cast<double>(state.iterations());
   state.counters["fit_wall_s"] = wall_s / n;
-  state.counters["solve_s"] = result.solve_time_s;
+  state.counters["solve_s"] = result.solve.solve_time_s;
   state.counters["covariance_s"] = result.covariance_time_s;
-  state.counters["iterations"] = result.iterations;
+  state.counters["iterations"] = result.solve.iterations;
   state.counters["imu_samples"] = result.num_imu_samples;
   state.counters["peak_rss_mb"] = PeakRssMb();
-  state.SetLabel(result.linear_solver + ", covariance: " + result.covariance_method);
+  state.SetLabel(result.solve.linear_solver + ", covariance: " + result.covariance_method);
   state.counters["gyro_bias_err"] = (result.gyro_bias - data.gyro_bias).norm();
   state.counters["accel_bias_err"] = (result.accel_bias - data.accel_bias).norm();
 }

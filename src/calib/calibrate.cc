@@ -443,17 +443,10 @@ CalibrationResult CalibrationProblem::Run() {
                         ": solving again");
     }
   }
-  const ceres::Solver::Summary& summary = rounds.last();
-  result.solve_time_s = rounds.solve_time_s();
-  result.iterations = rounds.iterations();
-  result.initial_cost = rounds.initial_cost();
-  result.rounds = rounds.rounds();
+  result.solve = rounds.Summary();
   if (!rounds.NoConvergenceWarning().empty()) {
     result.warnings.push_back(rounds.NoConvergenceWarning());
   }
-  result.final_cost = summary.final_cost;
-  result.termination = summary.message;
-  result.solver_report = summary.FullReport();
   result.pixel_sigma_px = sigma_px_;
   Collect(&result);
   if (options_.covariance.compute) {

@@ -486,8 +486,7 @@ FitResult FitProblem::Impl::Solve() {
       3.0 * static_cast<double>(imu.size()) * (2.0 * 24.0 + 6.0 * bias_points + 2.0) +
       6.0 * static_cast<double>(used_poses.size()) * 31.0;
   const SolverOptions& solver = options.solver;
-  SolveRounds rounds(ToCeresOptions(solver, jacobian_entries, &result.linear_solver),
-                     options.solver.progress);
+  SolveRounds rounds(solver, jacobian_entries);
 #ifdef __GLIBC__
   // Return what the initialisation freed (the pose fit's solver) before the main solve, whose
   // Jacobian is the peak memory of long recordings (docs/performance.md).
@@ -512,14 +511,7 @@ FitResult FitProblem::Impl::Solve() {
       options.solver.progress("fit: time offset moved poses across knots; solving again");
     BuildProblem();
   }
-  const ceres::Solver::Summary& summary = rounds.last();
-  result.solve_time_s = rounds.solve_time_s();
-  result.iterations = rounds.iterations();
-  result.initial_cost = rounds.initial_cost();
-  result.solver_rounds = rounds.rounds();
-  result.final_cost = summary.final_cost;
-  result.termination = summary.message;
-  result.solver_report = summary.FullReport();
+  result.solve = rounds.Summary();
   if (!rounds.NoConvergenceWarning().empty()) {
     result.warnings.push_back(rounds.NoConvergenceWarning());
   }

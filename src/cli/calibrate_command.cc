@@ -104,13 +104,13 @@ std::string ResultYaml(const CalibrationResult& r, const CalibrateOptions& optio
   yaml.Scalar("bias_model", options.model.bias_model == BiasModel::kSpline ? "spline" : "constant");
   yaml.Scalar("rolling_shutter", options.rolling_shutter);
   yaml.Scalar("huber_px", options.huber_px);
-  yaml.Scalar("iterations", r.iterations);
-  yaml.Scalar("rounds", r.rounds);
+  yaml.Scalar("iterations", r.solve.iterations);
+  yaml.Scalar("rounds", r.solve.rounds);
   yaml.Scalar("initialisation_time_s", r.initialisation_time_s);
-  yaml.Scalar("solve_time_s", r.solve_time_s);
+  yaml.Scalar("solve_time_s", r.solve.solve_time_s);
   yaml.Scalar("covariance_time_s", r.covariance_time_s);
   yaml.Scalar("covariance_ok", r.covariance_ok);
-  yaml.Scalar("termination", r.termination);
+  yaml.Scalar("termination", r.solve.termination);
   if (r.cameras.size() > 1) {
     yaml.BeginMap("cameras");
     for (size_t c = 0; c < r.cameras.size(); ++c) {

@@ -144,8 +144,8 @@ int RunFit() {
       result.noise_std.gyro_rad_s,
       result.residual_rms.accel_m_s2,
       result.noise_std.accel_m_s2,
-      result.iterations,
-      result.solve_time_s,
+      result.solve.iterations,
+      result.solve.solve_time_s,
       result.knot_spacing_s);
   for (const std::string& warning : result.warnings) std::printf("warning: %s\n", warning.c_str());
   std::printf("wrote %s/{result.yaml,spline.csv,residuals.csv,pose_residuals.csv,report.html}\n",

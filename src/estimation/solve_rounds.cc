@@ -64,6 +64,25 @@ const ceres::Solver::Summary& SolveRounds::Solve(
   return last_;
 }
 
+SolveRounds::SolveRounds(const SolverOptions& options, double jacobian_entries)
+    : options_(ToCeresOptions(options, jacobian_entries, &linear_solver_)),
+      progress_(options.progress) {}
+
+SolveSummary SolveRounds::Summary() const {
+  SolveSummary summary;
+  summary.rounds = rounds_;
+  summary.iterations = iterations_;
+  summary.initial_cost = initial_cost_;
+  summary.final_cost = last_.final_cost;
+  summary.solve_time_s = solve_time_s_;
+  summary.termination = last_.message;
+  summary.report = last_.FullReport();
+  summary.linear_solver = linear_solver_.empty()
+                              ? ceres::LinearSolverTypeToString(options_.linear_solver_type)
+                              : linear_solver_;
+  return summary;
+}
+
 bool SolveRounds::failed() const {
   return last_.termination_type == ceres::FAILURE || !last_.IsSolutionUsable();
 }

@@ -99,13 +99,13 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   yaml.Scalar("position_m", r.noise_std.position_m);
   yaml.Scalar("rotation_rad", r.noise_std.rotation_rad);
   yaml.EndMap();
-  yaml.Scalar("iterations", r.iterations);
-  yaml.Scalar("initial_cost", r.initial_cost);
-  yaml.Scalar("final_cost", r.final_cost);
-  yaml.Scalar("solve_time_s", r.solve_time_s);
+  yaml.Scalar("iterations", r.solve.iterations);
+  yaml.Scalar("initial_cost", r.solve.initial_cost);
+  yaml.Scalar("final_cost", r.solve.final_cost);
+  yaml.Scalar("solve_time_s", r.solve.solve_time_s);
   yaml.Scalar("covariance_time_s", r.covariance_time_s);
-  yaml.Scalar("termination", r.termination);
-  yaml.Scalar("linear_solver", r.linear_solver);
+  yaml.Scalar("termination", r.solve.termination);
+  yaml.Scalar("linear_solver", r.solve.linear_solver);
   yaml.Scalar("covariance_method", r.covariance_method);
   yaml.Scalar("knot_spacing_s", r.knot_spacing_s);
   yaml.Scalar("knot_spacing_rule", r.knot_spacing_rule);
@@ -301,8 +301,8 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
       "noise " + Fixed(r.noise_std.rotation_rad, 4));
   row("knot spacing [s]", Fixed(r.knot_spacing_s, 6), r.knot_spacing_rule);
   row("solver",
-      std::to_string(r.iterations) + " iterations, " + Fixed(r.solve_time_s, 3) + " s",
-      r.termination);
+      std::to_string(r.solve.iterations) + " iterations, " + Fixed(r.solve.solve_time_s, 3) + " s",
+      r.solve.termination);
   html += "</table>\n";
   if (!r.warnings.empty()) {
     html += "<h2>Warnings</h2><ul class=\"warn\">\n";

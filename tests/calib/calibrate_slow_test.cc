@@ -66,10 +66,10 @@ Errors CalibrateAndCompare(const testing::CalibrationScenario& s,
       1e6 * truth.line_delay_s,
       1e6 * c.line_delay_std_s,
       result->reprojection_rms_px,
-      result->iterations,
-      result->rounds,
+      result->solve.iterations,
+      result->solve.rounds,
       result->initialisation_time_s,
-      result->solve_time_s,
+      result->solve.solve_time_s,
       result->covariance_time_s);
   return e;
 }

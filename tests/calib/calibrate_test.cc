@@ -59,10 +59,10 @@ void Print(const char* name, const CalibrationResult& r, const Errors& e) {
       1e6 * c.line_delay_std_s,
       r.reprojection_rms_px,
       r.pixel_sigma_px,
-      r.iterations,
-      r.rounds,
+      r.solve.iterations,
+      r.solve.rounds,
       r.initialisation_time_s,
-      r.solve_time_s,
+      r.solve.solve_time_s,
       r.covariance_time_s);
   for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
 }

@@ -164,7 +164,7 @@ TEST(Fit, ReattachesPoseResidualsWhenTheTimeOffsetCrossesKnots) {
   FitProblem problem(data.imu, data.poses, options);
   problem.SetTimeOffset(0.0);
   const FitResult result = problem.Solve();
-  EXPECT_GE(result.solver_rounds, 2);
+  EXPECT_GE(result.solve.rounds, 2);
   EXPECT_NEAR(result.time_offset_s, scenario.time_offset_s, kOffsetTolerance);
   EXPECT_LE((result.gyro_bias - scenario.gyro_bias).cwiseAbs().maxCoeff(), 1e-7);
 }
@@ -187,7 +187,7 @@ TEST(Fit, AutoDiffPerSampleUnsharedAndSchurPathsReachTheSameSolution) {
   for (const FitOptions& variant : variants) {
     const FitResult result = Fit(data.imu, data.poses, variant);
     EXPECT_NEAR(
-        result.final_cost, reference.final_cost, kSameSolutionCostTolerance * reference.final_cost);
+        result.solve.final_cost, reference.solve.final_cost, kSameSolutionCostTolerance * reference.solve.final_cost);
     EXPECT_LE((result.gyro_bias - reference.gyro_bias).cwiseAbs().maxCoeff(),
               kSameSolutionBiasTolerance);
     EXPECT_LE((result.accel_bias - reference.accel_bias).cwiseAbs().maxCoeff(),

@@ -529,3 +529,26 @@ TEST(SE3Spline, JetTimeDerivativeIsVelocity) {
 
 }  // namespace
 }  // namespace splinecal
+
+namespace splinecal {
+namespace {
+
+// The named accessors return exactly what the one-pass Evaluate writes for that output.
+TEST(SE3Spline, NamedAccessorsEqualEvaluate) {
+  const SE3Splined spline(
+      testutil::RandomControlPoses(8, 17), testutil::kEurocLikeT0Ns, testutil::kTestDtNs);
+  for (double t = spline.start_time(); t <= spline.end_time(); t += 0.0731) {
+    const Segment<double> segment = spline.SegmentAt(t);
+    SE3d T_w_s;
+    Eigen::Vector3d w_s, w_dot_s, v_w, a_w;
+    spline.Evaluate(segment, &T_w_s, &w_s, &w_dot_s, &v_w, &a_w);
+    EXPECT_EQ(spline.Pose(segment).matrix(), T_w_s.matrix());
+    EXPECT_EQ(spline.AngularVelocity(segment), w_s);
+    EXPECT_EQ(spline.AngularAcceleration(segment), w_dot_s);
+    EXPECT_EQ(spline.LinearVelocity(segment), v_w);
+    EXPECT_EQ(spline.LinearAcceleration(segment), a_w);
+  }
+}
+
+}  // namespace
+}  // namespace splinecal

@@ -169,15 +169,9 @@ struct CalibrationResult {
   int num_landmarks = 0;
   int num_imu_samples = 0;
 
-  int iterations = 0;
-  int rounds = 0;
-  double initial_cost = 0.0;
-  double final_cost = 0.0;
-  double solve_time_s = 0.0;
+  SolveSummary solve;  // rounds: the time windows were rebuilt or the pixel noise re-estimated
   double covariance_time_s = 0.0;
   double initialisation_time_s = 0.0;
-  std::string termination;
-  std::string solver_report;  // Ceres' FullReport of the last round (timings per phase)
   bool covariance_ok = false;
   std::vector<std::string> warnings;
 

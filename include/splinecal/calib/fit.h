@@ -187,15 +187,8 @@ struct FitResult {
   int num_imu_samples = 0;
   int num_poses = 0;
 
-  int iterations = 0;
-  double initial_cost = 0.0;
-  double final_cost = 0.0;
-  double solve_time_s = 0.0;  // wall time in ceres::Solve
+  SolveSummary solve;  // > 1 round when pose residuals were re-attached after a time-offset move
   double covariance_time_s = 0.0;
-  std::string termination;    // Ceres' termination message
-  std::string solver_report;  // Ceres' FullReport of the last solve (timings per phase)
-  std::string linear_solver;  // the Ceres linear solver used
-  int solver_rounds = 0;      // > 1 when pose residuals were re-attached after a time-offset move
 
   std::vector<std::string> warnings;
   // Quantities the data does not determine (std above ExcitationThresholds, or a singular

@@ -53,10 +53,24 @@ ceres::Solver::Options ToCeresOptions(const SolverOptions& options,
                                       double jacobian_entries,
                                       std::string* linear_solver_name);
 
+// How a (multi-round) solve went, in every estimate's result.
+struct SolveSummary {
+  int rounds = 0;
+  int iterations = 0;         // over all rounds
+  double initial_cost = 0.0;  // 1/2 |r|^2 at the start of the first round
+  double final_cost = 0.0;    // at the end of the last
+  double solve_time_s = 0.0;  // wall time in ceres::Solve
+  std::string termination;    // Ceres' termination message of the last round
+  std::string report;         // Ceres' FullReport of the last round (timings per phase)
+  std::string linear_solver;  // the Ceres linear solver used
+};
+
 class SolveRounds {
  public:
   SolveRounds(ceres::Solver::Options options, std::function<void(const std::string&)> progress)
       : options_(std::move(options)), progress_(std::move(progress)) {}
+  // ToCeresOptions(options, jacobian_entries, ...) with options.progress.
+  SolveRounds(const SolverOptions& options, double jacobian_entries);
 
   // Solves `problem` as the next round; progress lines start with `progress_prefix`;
   // `callbacks` are added to this round's iteration callbacks. Returns the round's summary.
@@ -73,10 +87,13 @@ class SolveRounds {
   bool failed() const;
   // "the solver stopped after N iterations without converging (...)", or "" when it converged.
   std::string NoConvergenceWarning() const;
+  // The rounds so far as one solve.
+  SolveSummary Summary() const;
 
  private:
   ceres::Solver::Options options_;
   std::function<void(const std::string&)> progress_;
+  std::string linear_solver_;
   ceres::Solver::Summary last_;
   int rounds_ = 0;
   int iterations_ = 0;

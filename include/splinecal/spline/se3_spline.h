@@ -219,6 +219,35 @@ class SE3Spline {
     EvaluateSegment(Knots(segment), segment, T_w_s, w_s, w_dot_s, v_w, a_w);
   }
 
+  // Named evaluations: one quantity of the segment (the same one-pass Evaluate).
+  SE3<T> Pose(const Segment<T>& segment) const {
+    SE3<T> T_w_s;
+    Evaluate(segment, &T_w_s);
+    return T_w_s;
+  }
+  // Body angular velocity w_s [rad/s] and acceleration w_dot_s [rad/s^2].
+  Vector3<T> AngularVelocity(const Segment<T>& segment) const {
+    Vector3<T> w_s;
+    Evaluate(segment, nullptr, &w_s);
+    return w_s;
+  }
+  Vector3<T> AngularAcceleration(const Segment<T>& segment) const {
+    Vector3<T> w_dot_s;
+    Evaluate(segment, nullptr, nullptr, &w_dot_s);
+    return w_dot_s;
+  }
+  // World linear velocity v_w [m/s] and acceleration a_w [m/s^2].
+  Vector3<T> LinearVelocity(const Segment<T>& segment) const {
+    Vector3<T> v_w;
+    Evaluate(segment, nullptr, nullptr, nullptr, &v_w);
+    return v_w;
+  }
+  Vector3<T> LinearAcceleration(const Segment<T>& segment) const {
+    Vector3<T> a_w;
+    Evaluate(segment, nullptr, nullptr, nullptr, nullptr, &a_w);
+    return a_w;
+  }
+
   // Conveniences: the pose at a relative time [s] or an absolute time [ns].
   SE3<T> Pose(const T& t_s) const {
     SE3<T> T_w_s;
