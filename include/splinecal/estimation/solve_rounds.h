@@ -91,9 +91,9 @@ class SolveRounds {
   SolveSummary Summary() const;
 
  private:
+  std::string linear_solver_;  // before options_: its constructor writes it
   ceres::Solver::Options options_;
   std::function<void(const std::string&)> progress_;
-  std::string linear_solver_;
   ceres::Solver::Summary last_;
   int rounds_ = 0;
   int iterations_ = 0;
