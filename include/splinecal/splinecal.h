@@ -1,0 +1,110 @@
+// The whole public API of splinecal in one include, as ceres/ceres.h is for Ceres:
+//
+//   #include <splinecal/splinecal.h>
+//
+// Areas, from the bottom up: an area includes only areas listed before it (no cycles; a ctest
+// checks it).
+//   lie/         SO(3), SE(3), their Jacobians and Ceres manifolds
+//   spline/      the uniform cumulative cubic B-spline on SE(3), its knot layout and derivatives
+//   imu/         IMU samples, the measurement model, noise densities, dead reckoning
+//   camera/      camera models, camchains, targets, observations, PnP, rolling shutter
+//   allan/       Allan deviation and noise identification
+//   io/          readers and writers of every file format (plain data types in, out)
+//   estimation/  residuals, the spline problem, covariance, solver rounds: the estimation core
+//   vio/         preintegration, hand-eye, visual-inertial alignment, clock correlation
+//   sim/         IMU and camera simulation, trajectories, noise
+//   calib/       fit (IMU + poses) and calibrate (camera-IMU)
+//   report/      result files, SVG plots and HTML reports
+// docs/library.md shows a complete program. Each header's comment is its contract.
+#ifndef SPLINECAL_SPLINECAL_H_
+#define SPLINECAL_SPLINECAL_H_
+
+#include "splinecal/error.h"
+#include "splinecal/string_printf.h"
+#include "splinecal/units.h"
+
+// lie/
+#include "splinecal/lie/se3.h"
+#include "splinecal/lie/se3_manifold.h"
+#include "splinecal/lie/so3.h"
+#include "splinecal/lie/types.h"
+
+// spline/
+#include "splinecal/spline/basis.h"
+#include "splinecal/spline/knot_layout.h"
+#include "splinecal/spline/se3_spline.h"
+#include "splinecal/spline/segment.h"
+#include "splinecal/spline/segment_jacobians.h"
+
+// imu/
+#include "splinecal/imu/ground_truth.h"
+#include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_rate.h"
+#include "splinecal/imu/imu_sample.h"
+#include "splinecal/imu/integrate.h"
+#include "splinecal/imu/noise.h"
+
+// camera/
+#include "splinecal/camera/camchain.h"
+#include "splinecal/camera/camera_model.h"
+#include "splinecal/camera/observations.h"
+#include "splinecal/camera/pnp.h"
+#include "splinecal/camera/rolling_shutter.h"
+#include "splinecal/camera/target.h"
+
+// allan/
+#include "splinecal/allan/allan.h"
+#include "splinecal/allan/allan_deviation.h"
+#include "splinecal/allan/noise_fit.h"
+#include "splinecal/allan/static_recording.h"
+
+// io/
+#include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/euroc.h"
+#include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/io/observations_csv.h"
+#include "splinecal/io/output_dir.h"
+#include "splinecal/io/poses.h"
+#include "splinecal/io/spline_csv.h"
+#include "splinecal/io/static_recording.h"
+#include "splinecal/io/target_yaml.h"
+#include "splinecal/io/yaml_writer.h"
+
+// estimation/
+#include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/bias_spline.h"
+#include "splinecal/estimation/gravity_manifold.h"
+#include "splinecal/estimation/gravity_tangent.h"
+#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/knot_spacing.h"
+#include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/estimation/options.h"
+#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/pose_cost.h"
+#include "splinecal/estimation/pose_fit.h"
+#include "splinecal/estimation/reprojection_cost.h"
+#include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/estimation/spline_evaluation_callback.h"
+#include "splinecal/estimation/spline_problem.h"
+
+// vio/
+#include "splinecal/vio/align.h"
+#include "splinecal/vio/hand_eye.h"
+#include "splinecal/vio/preintegration.h"
+#include "splinecal/vio/time_offset_correlation.h"
+
+// sim/
+#include "splinecal/sim/noise_generator.h"
+#include "splinecal/sim/simulate_camera.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/trajectories.h"
+
+// calib/
+#include "splinecal/calib/calibrate.h"
+#include "splinecal/calib/fit.h"
+
+// report/
+#include "splinecal/report/fit_report.h"
+#include "splinecal/report/svg_plot.h"
+
+#endif  // SPLINECAL_SPLINECAL_H_
