@@ -14,6 +14,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -128,6 +129,17 @@ class CalibrationProblem {
   CalibrationResult Run();
 
  private:
+  // Per residual: which frame / landmark observation it is, and its window(s).
+  struct FrameResidual {
+    int frame = 0;
+    ControlPoseWindow window;
+  };
+  struct LandmarkResidual {
+    int landmark = 0;
+    int observation = 0;
+    ControlPoseWindow reference_window;
+    ControlPoseWindow window;
+  };
   struct CameraState {
     std::array<double, 7> extrinsic{};
     double shift = 0.0;
@@ -161,6 +173,18 @@ class CalibrationProblem {
   }
 
   void BuildProblem();
+  // The cost (pixel sigma, Huber threshold) and parameter blocks of a frame or landmark residual,
+  // and its unweighted pixel errors at the current values (false: cannot be evaluated).
+  std::unique_ptr<TargetFrameCostFunction> FrameCost(const FrameResidual& r,
+                                                     double sigma,
+                                                     double huber) const;
+  std::unique_ptr<LandmarkCostFunction> LandmarkCost(const LandmarkResidual& r,
+                                                     double sigma,
+                                                     double huber) const;
+  std::vector<double*> Blocks(const FrameResidual& r);
+  std::vector<double*> Blocks(const LandmarkResidual& r);
+  template <typename Residual>
+  bool PixelErrors(const Residual& r, std::vector<double>* errors);
   double EstimatePixelSigma();
   bool WindowsStillValid();
   // Cheap check for WindowGuard: every camera's time offset and readout are still inside what
@@ -198,20 +222,8 @@ class CalibrationProblem {
 
   std::vector<TargetFrame> target_frames_;
   std::vector<Landmark> landmarks_;
-  // Per residual: which frame / landmark observation it is, and its window(s).
-  struct FrameResidual {
-    int frame = 0;
-    ControlPoseWindow window;
-  };
-  struct LandmarkResidual {
-    int landmark = 0;
-    int observation = 0;
-    ControlPoseWindow reference_window;
-    ControlPoseWindow window;
-  };
   std::vector<FrameResidual> frame_residuals_;
   std::vector<LandmarkResidual> landmark_residuals_;
-
 };
 
 void CalibrationProblem::BuildProblem() {
@@ -252,18 +264,8 @@ void CalibrationProblem::BuildProblem() {
     FrameResidual residual;
     residual.frame = static_cast<int>(f);
     if (!FrameWindow(frame.cam, frame.t_ns, kWindowMargin_s, &residual.window)) continue;
-    CameraState& cam = cameras_[frame.cam];
-    auto* cost = new TargetFrameCostFunction(Settings(frame.cam, sigma_px_, options_.huber_px),
-                                             residual.window,
-                                             TimeSinceT0(frame.t_ns),
-                                             frame.corners);
-    std::vector<double*> blocks(control_blocks().begin() + residual.window.first_index,
-                                control_blocks().begin() + residual.window.last_index() + 1);
-    blocks.push_back(cam.extrinsic.data());
-    blocks.push_back(&cam.shift);
-    blocks.push_back(&cam.line_delay);
-    blocks.push_back(T_w_t_.data());
-    problem().AddResidualBlock(cost, nullptr, blocks);
+    problem().AddResidualBlock(
+        FrameCost(residual, sigma_px_, options_.huber_px).release(), nullptr, Blocks(residual));
     frame_residuals_.push_back(residual);
   }
   landmark_residuals_.clear();
@@ -281,24 +283,8 @@ void CalibrationProblem::BuildProblem() {
         continue;
       }
       if (obs.cam_id != landmark.cam) continue;  // one camera per landmark (the reference's)
-      const std::vector<int> indices =
-          LandmarkCostFunction::UnionOfWindows(residual.reference_window, residual.window);
-      LandmarkObservation data;
-      data.t_reference_frame_s = TimeSinceT0(landmark.reference.t_ns);
-      data.ray = landmark.ray;
-      data.reference_row = landmark.reference.uv.y();
-      data.t_frame_s = TimeSinceT0(obs.t_ns);
-      data.uv = obs.uv;
-      CameraState& cam = cameras_[landmark.cam];
-      auto* cost = new LandmarkCostFunction(
-          Settings(landmark.cam, sigma_px_, options_.huber_px), indices, data);
-      std::vector<double*> blocks;
-      for (int i : indices) blocks.push_back(control_blocks()[i]);
-      blocks.push_back(cam.extrinsic.data());
-      blocks.push_back(&cam.shift);
-      blocks.push_back(&cam.line_delay);
-      blocks.push_back(&landmark.rho);
-      problem().AddResidualBlock(cost, nullptr, blocks);
+      problem().AddResidualBlock(
+          LandmarkCost(residual, sigma_px_, options_.huber_px).release(), nullptr, Blocks(residual));
       landmark_residuals_.push_back(residual);
       added_rho = true;
     }
@@ -306,48 +292,74 @@ void CalibrationProblem::BuildProblem() {
   }
 }
 
+std::unique_ptr<TargetFrameCostFunction> CalibrationProblem::FrameCost(const FrameResidual& r,
+                                                                       double sigma,
+                                                                       double huber) const {
+  const TargetFrame& frame = target_frames_[r.frame];
+  return std::make_unique<TargetFrameCostFunction>(
+      Settings(frame.cam, sigma, huber), r.window, TimeSinceT0(frame.t_ns), frame.corners);
+}
+
+std::unique_ptr<LandmarkCostFunction> CalibrationProblem::LandmarkCost(const LandmarkResidual& r,
+                                                                       double sigma,
+                                                                       double huber) const {
+  const Landmark& landmark = landmarks_[r.landmark];
+  const Observation& obs = landmark.others[r.observation];
+  LandmarkObservation data;
+  data.t_reference_frame_s = TimeSinceT0(landmark.reference.t_ns);
+  data.ray = landmark.ray;
+  data.reference_row = landmark.reference.uv.y();
+  data.t_frame_s = TimeSinceT0(obs.t_ns);
+  data.uv = obs.uv;
+  return std::make_unique<LandmarkCostFunction>(
+      Settings(landmark.cam, sigma, huber),
+      LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window),
+      data);
+}
+
+std::vector<double*> CalibrationProblem::Blocks(const FrameResidual& r) {
+  CameraState& cam = cameras_[target_frames_[r.frame].cam];
+  std::vector<double*> blocks(control_blocks().begin() + r.window.first_index,
+                              control_blocks().begin() + r.window.last_index() + 1);
+  blocks.insert(blocks.end(), {cam.extrinsic.data(), &cam.shift, &cam.line_delay, T_w_t_.data()});
+  return blocks;
+}
+
+std::vector<double*> CalibrationProblem::Blocks(const LandmarkResidual& r) {
+  Landmark& landmark = landmarks_[r.landmark];
+  CameraState& cam = cameras_[landmark.cam];
+  std::vector<double*> blocks;
+  for (int i : LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window)) {
+    blocks.push_back(control_blocks()[i]);
+  }
+  blocks.insert(blocks.end(), {cam.extrinsic.data(), &cam.shift, &cam.line_delay, &landmark.rho});
+  return blocks;
+}
+
+template <typename Residual>
+bool CalibrationProblem::PixelErrors(const Residual& r, std::vector<double>* errors) {
+  std::unique_ptr<ceres::CostFunction> cost;
+  if constexpr (std::is_same_v<Residual, FrameResidual>) {
+    cost = FrameCost(r, 1.0, 0.0);
+  } else {
+    cost = LandmarkCost(r, 1.0, 0.0);
+  }
+  errors->resize(cost->num_residuals());
+  return cost->Evaluate(Blocks(r).data(), errors->data(), nullptr);
+}
+
 // 1.4826 x the median absolute pixel error per coordinate over every residual.
 double CalibrationProblem::EstimatePixelSigma() {
   std::vector<double> errors;
+  std::vector<double> e;
   for (const FrameResidual& r : frame_residuals_) {
-    const TargetFrame& frame = target_frames_[r.frame];
-    CameraState& cam = cameras_[frame.cam];
-    const TargetFrameCostFunction cost(
-        Settings(frame.cam, 1.0, 0.0), r.window, TimeSinceT0(frame.t_ns), frame.corners);
-    std::vector<double*> blocks(control_blocks().begin() + r.window.first_index,
-                                control_blocks().begin() + r.window.last_index() + 1);
-    blocks.push_back(cam.extrinsic.data());
-    blocks.push_back(&cam.shift);
-    blocks.push_back(&cam.line_delay);
-    blocks.push_back(T_w_t_.data());
-    std::vector<double> residuals(cost.num_residuals());
-    if (cost.Evaluate(blocks.data(), residuals.data(), nullptr)) {
-      for (double e : residuals) errors.push_back(std::abs(e));
+    if (PixelErrors(r, &e)) {
+      for (double v : e) errors.push_back(std::abs(v));
     }
   }
   for (const LandmarkResidual& r : landmark_residuals_) {
-    Landmark& landmark = landmarks_[r.landmark];
-    const Observation& obs = landmark.others[r.observation];
-    CameraState& cam = cameras_[landmark.cam];
-    LandmarkObservation data;
-    data.t_reference_frame_s = TimeSinceT0(landmark.reference.t_ns);
-    data.ray = landmark.ray;
-    data.reference_row = landmark.reference.uv.y();
-    data.t_frame_s = TimeSinceT0(obs.t_ns);
-    data.uv = obs.uv;
-    const std::vector<int> indices =
-        LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window);
-    const LandmarkCostFunction cost(Settings(landmark.cam, 1.0, 0.0), indices, data);
-    std::vector<double*> blocks;
-    for (int i : indices) blocks.push_back(control_blocks()[i]);
-    blocks.push_back(cam.extrinsic.data());
-    blocks.push_back(&cam.shift);
-    blocks.push_back(&cam.line_delay);
-    blocks.push_back(&landmark.rho);
-    double residuals[2];
-    if (cost.Evaluate(blocks.data(), residuals, nullptr)) {
-      errors.push_back(std::abs(residuals[0]));
-      errors.push_back(std::abs(residuals[1]));
+    if (PixelErrors(r, &e)) {
+      for (double v : e) errors.push_back(std::abs(v));
     }
   }
   if (errors.empty()) return sigma_px_;
@@ -585,17 +597,8 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   int all_count = 0;
   for (const FrameResidual& r : frame_residuals_) {
     const TargetFrame& frame = target_frames_[r.frame];
-    CameraState& cam = cameras_[frame.cam];
-    const TargetFrameCostFunction cost(
-        Settings(frame.cam, 1.0, 0.0), r.window, TimeSinceT0(frame.t_ns), frame.corners);
-    std::vector<double*> blocks(control_blocks().begin() + r.window.first_index,
-                                control_blocks().begin() + r.window.last_index() + 1);
-    blocks.push_back(cam.extrinsic.data());
-    blocks.push_back(&cam.shift);
-    blocks.push_back(&cam.line_delay);
-    blocks.push_back(T_w_t_.data());
-    std::vector<double> e(cost.num_residuals());
-    if (!cost.Evaluate(blocks.data(), e.data(), nullptr)) continue;
+    std::vector<double> e;
+    if (!PixelErrors(r, &e)) continue;
     CameraEstimate& estimate = result->cameras[frame.cam];
     ++estimate.num_frames;
     for (size_t k = 0; k < frame.corners.size(); ++k) {
@@ -612,26 +615,10 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   }
   std::set<int> landmarks_used;
   for (const LandmarkResidual& r : landmark_residuals_) {
-    Landmark& landmark = landmarks_[r.landmark];
+    const Landmark& landmark = landmarks_[r.landmark];
     const Observation& obs = landmark.others[r.observation];
-    CameraState& cam = cameras_[landmark.cam];
-    LandmarkObservation data;
-    data.t_reference_frame_s = TimeSinceT0(landmark.reference.t_ns);
-    data.ray = landmark.ray;
-    data.reference_row = landmark.reference.uv.y();
-    data.t_frame_s = TimeSinceT0(obs.t_ns);
-    data.uv = obs.uv;
-    const std::vector<int> indices =
-        LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window);
-    const LandmarkCostFunction cost(Settings(landmark.cam, 1.0, 0.0), indices, data);
-    std::vector<double*> blocks;
-    for (int i : indices) blocks.push_back(control_blocks()[i]);
-    blocks.push_back(cam.extrinsic.data());
-    blocks.push_back(&cam.shift);
-    blocks.push_back(&cam.line_delay);
-    blocks.push_back(&landmark.rho);
-    double e[2];
-    if (!cost.Evaluate(blocks.data(), e, nullptr)) continue;
+    std::vector<double> e;
+    if (!PixelErrors(r, &e)) continue;
     landmarks_used.insert(r.landmark);
     const Eigen::Vector2d error(e[0], e[1]);
     cam_sq[landmark.cam] += error.squaredNorm();
