@@ -24,13 +24,15 @@ namespace {
 constexpr double kMaxPnpRmsPx = 10.0;
 // Fewer usable PnP poses than this make no initial trajectory.
 constexpr int kMinPnpPoses = 10;
-// Pose-source noise assumed for PnP poses in the initial fit [m], [rad].
-constexpr double kPnpSigmaM = 0.003;
-constexpr double kPnpSigmaRad = 0.003;
-// Noise assumed for user-supplied initial IMU poses (SLAM after alignment) [m], [rad]: loose, as
-// they only start the solve.
-constexpr double kInitialPoseSigmaM = 0.01;
-constexpr double kInitialPoseSigmaRad = 0.01;
+// The noise a pose source is assumed to have in the initial fit, per axis.
+struct PoseSigma {
+  double m;    // position [m]
+  double rad;  // rotation [rad]
+};
+// PnP poses of the target.
+constexpr PoseSigma kPnpSigma = {0.003, 0.003};
+// User-supplied initial IMU poses (SLAM after alignment): loose, as they only start the solve.
+constexpr PoseSigma kInitialPoseSigma = {0.01, 0.01};
 
 // The fitted spline re-sampled onto `layout` (dt / 10 steps over its valid range).
 std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layout) {
@@ -130,8 +132,8 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
   }
   // The continuous-time fit to those camera poses: T_pose_imu = T_c_s.
   FitOptions fit_options;
-  fit_options.pose_sigma_m = kPnpSigmaM;
-  fit_options.pose_sigma_rad = kPnpSigmaRad;
+  fit_options.pose_sigma_m = kPnpSigma.m;
+  fit_options.pose_sigma_rad = kPnpSigma.rad;
   fit_options.estimate_time_offset = options.estimate_time_offset;
   fit_options.time_offset_s = camchain[0].timeshift_cam_imu_s;
   fit_options.max_time_offset_s = options.max_time_offset_s;
@@ -153,8 +155,8 @@ CalibrationInitialGuess InitialGuessFromImuPoses(const std::vector<ImuSample>& i
                                                  const CalibrateOptions& options,
                                                  std::vector<std::string>* warnings) {
   FitOptions fit_options;
-  fit_options.pose_sigma_m = kInitialPoseSigmaM;
-  fit_options.pose_sigma_rad = kInitialPoseSigmaRad;
+  fit_options.pose_sigma_m = kInitialPoseSigma.m;
+  fit_options.pose_sigma_rad = kInitialPoseSigma.rad;
   FitResult fit;
   return GuessFromFit(
       imu, poses, observations, camchain, options, fit_options, "initial poses", warnings, &fit);
