@@ -96,8 +96,8 @@ class CalibrationProblem {
         guess.control_poses,
         BiasSpline(options.model.bias_model, layout_, options.model.bias_knot_spacing_s));
     imu_rate_hz_ = ImuRateHz(imu_);
-    sigma_g_ = options.model.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz_);
-    sigma_a_ = options.model.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz_);
+    sigma_g_ = options.model.noise.GyroWhiteStd(imu_rate_hz_);
+    sigma_a_ = options.model.noise.AccelWhiteStd(imu_rate_hz_);
     spline_->SetGravity(options.model.gravity_m_s2 * guess.gravity_w.normalized());
     spline_->SetBiases(guess.gyro_bias, guess.accel_bias);
     // Cameras.

@@ -175,8 +175,8 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   CheckIncreasing(all_imu, all_poses);
   poses = all_poses;
   imu_rate_hz = ImuRateHz(all_imu);
-  sigma_g = options.model.noise.gyroscope_noise_density * std::sqrt(imu_rate_hz);
-  sigma_a = options.model.noise.accelerometer_noise_density * std::sqrt(imu_rate_hz);
+  sigma_g = options.model.noise.GyroWhiteStd(imu_rate_hz);
+  sigma_a = options.model.noise.AccelWhiteStd(imu_rate_hz);
   if (options.model.noise.update_rate_hz > 0.0 &&
       std::abs(options.model.noise.update_rate_hz - imu_rate_hz) > 0.1 * imu_rate_hz) {
     warnings.push_back("the IMU file's sample rate is " + StringPrintf("%.1f", imu_rate_hz) +

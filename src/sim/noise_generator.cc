@@ -100,14 +100,14 @@ ImuNoiseGenerator::ImuNoiseGenerator(const ImuNoise& noise,
     throw Error("IMU noise: initial biases must be finite");
   }
   // [Kalibr]: white noise std sigma * sqrt(f); random-walk step std sigma_rw / sqrt(f).
-  const double sqrt_f = std::sqrt(f);
-  gyro_white_std_ =
-      CheckedDensity(noise.gyroscope_noise_density, "gyroscope_noise_density") * sqrt_f;
-  accel_white_std_ =
-      CheckedDensity(noise.accelerometer_noise_density, "accelerometer_noise_density") * sqrt_f;
-  gyro_step_std_ = CheckedDensity(noise.gyroscope_random_walk, "gyroscope_random_walk") / sqrt_f;
-  accel_step_std_ =
-      CheckedDensity(noise.accelerometer_random_walk, "accelerometer_random_walk") / sqrt_f;
+  CheckedDensity(noise.gyroscope_noise_density, "gyroscope_noise_density");
+  CheckedDensity(noise.accelerometer_noise_density, "accelerometer_noise_density");
+  CheckedDensity(noise.gyroscope_random_walk, "gyroscope_random_walk");
+  CheckedDensity(noise.accelerometer_random_walk, "accelerometer_random_walk");
+  gyro_white_std_ = noise.GyroWhiteStd(f);
+  accel_white_std_ = noise.AccelWhiteStd(f);
+  gyro_step_std_ = noise.GyroRandomWalkStepStd(f);
+  accel_step_std_ = noise.AccelRandomWalkStepStd(f);
 }
 
 }  // namespace splinecal

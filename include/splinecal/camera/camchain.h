@@ -27,10 +27,6 @@ struct CameraCalibration {
   double timeshift_cam_imu_s = 0.0;
   double line_delay_s = 0.0;
   std::string rostopic;  // kept from the input, written back when not empty
-
-  // Exposure time of image row `row` of a frame stamped t_cam_ns, in the IMU clock, relative to
-  // the stamp: timeshift + row * line_delay [s].
-  double ExposureOffset(double row) const { return timeshift_cam_imu_s + row * line_delay_s; }
 };
 
 // cam0, cam1, ... in order.

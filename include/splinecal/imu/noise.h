@@ -19,14 +19,17 @@ struct ImuNoise {
   // The defaults above are the EuRoC ADIS16448 values (its sensor.yaml).
   static ImuNoise Adis16448() { return ImuNoise(); }
 
-  // Per-sample standard deviations at update_rate_hz.
-  double GyroWhiteStd() const { return gyroscope_noise_density * std::sqrt(update_rate_hz); }
-  double AccelWhiteStd() const { return accelerometer_noise_density * std::sqrt(update_rate_hz); }
-  double GyroRandomWalkStepStd() const {
-    return gyroscope_random_walk / std::sqrt(update_rate_hz);
+  // Per-sample standard deviations at rate f [Hz] (CONVENTIONS.md, "IMU model"): white noise
+  // density * sqrt(f), random-walk step density / sqrt(f).
+  double GyroWhiteStd(double rate_hz) const { return gyroscope_noise_density * std::sqrt(rate_hz); }
+  double AccelWhiteStd(double rate_hz) const {
+    return accelerometer_noise_density * std::sqrt(rate_hz);
   }
-  double AccelRandomWalkStepStd() const {
-    return accelerometer_random_walk / std::sqrt(update_rate_hz);
+  double GyroRandomWalkStepStd(double rate_hz) const {
+    return gyroscope_random_walk / std::sqrt(rate_hz);
+  }
+  double AccelRandomWalkStepStd(double rate_hz) const {
+    return accelerometer_random_walk / std::sqrt(rate_hz);
   }
 };
 
