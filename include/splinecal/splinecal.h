@@ -43,6 +43,7 @@
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/integrate.h"
 #include "splinecal/imu/noise.h"
+#include "splinecal/imu/static_recording.h"
 
 // camera/
 #include "splinecal/camera/camchain.h"
@@ -56,7 +57,6 @@
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/allan_deviation.h"
 #include "splinecal/allan/noise_fit.h"
-#include "splinecal/allan/static_recording.h"
 
 // io/
 #include "splinecal/io/camchain_yaml.h"

@@ -1,6 +1,6 @@
 // IMU noise identification: what `splinecal allan` does, as a library call.
 //
-// ComputeAllan takes a static recording (one sample series per axis, allan/static_recording.h),
+// ComputeAllan takes a static recording (one sample series per axis, imu/static_recording.h),
 // computes the overlapping Allan deviation of every axis at log-spaced averaging times
 // (allan/allan_deviation.h; axes in parallel on std::threads), fits the noise terms of each axis
 // (allan/noise_fit.h) and combines the axes of each sensor into Kalibr's four keys
@@ -26,7 +26,7 @@
 
 #include "splinecal/allan/allan_deviation.h"
 #include "splinecal/allan/noise_fit.h"
-#include "splinecal/allan/static_recording.h"
+#include "splinecal/imu/static_recording.h"
 
 namespace splinecal {
 

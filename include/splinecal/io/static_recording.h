@@ -1,4 +1,4 @@
-// The readers of `splinecal allan`'s static IMU recordings (allan/static_recording.h holds the
+// The readers of `splinecal allan`'s static IMU recordings (imu/static_recording.h holds the
 // data they fill; docs/allan.md describes the inputs):
 //   - EuRoC imu0/data.csv (t_ns, gyro xyz [rad/s], accel xyz [m/s^2]); the rate comes from the
 //     timestamps: (rows - 1) / (t_last - t_first).
@@ -16,7 +16,7 @@
 #include <optional>
 #include <string>
 
-#include "splinecal/allan/static_recording.h"
+#include "splinecal/imu/static_recording.h"
 #include "splinecal/io/euroc.h"
 
 namespace splinecal {

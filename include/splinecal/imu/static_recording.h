@@ -1,7 +1,7 @@
 // A static IMU recording as `splinecal allan` analyses it: one series per axis at a uniform rate.
 // The files are read by io/static_recording.h.
-#ifndef SPLINECAL_ALLAN_STATIC_RECORDING_H_
-#define SPLINECAL_ALLAN_STATIC_RECORDING_H_
+#ifndef SPLINECAL_IMU_STATIC_RECORDING_H_
+#define SPLINECAL_IMU_STATIC_RECORDING_H_
 
 #include <string>
 #include <vector>
@@ -30,4 +30,4 @@ struct StaticRecording {
 
 }  // namespace splinecal
 
-#endif  // SPLINECAL_ALLAN_STATIC_RECORDING_H_
+#endif  // SPLINECAL_IMU_STATIC_RECORDING_H_

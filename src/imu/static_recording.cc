@@ -1,4 +1,4 @@
-#include "splinecal/allan/static_recording.h"
+#include "splinecal/imu/static_recording.h"
 
 namespace splinecal {
 
