@@ -25,8 +25,8 @@ while (($#)); do
 done
 scripts/install-deps.sh
 configure() {  # source dir, build dir
-  cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DSPLINECAL_NATIVE=ON \
-    -DSPLINECAL_BUILD_TESTS=OFF -DSPLINECAL_BUILD_BENCH=ON >/dev/null
+  scripts/configure.sh "$1" "$2" -DCMAKE_BUILD_TYPE=Release -DSPLINECAL_NATIVE=ON \
+    -DSPLINECAL_BUILD_TESTS=OFF -DSPLINECAL_BUILD_BENCH=ON
 }
 if ((${#benches[@]} == 0)); then
   for f in bench/*_bench.cc; do benches+=("$(basename "$f" .cc)"); done

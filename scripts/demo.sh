@@ -8,7 +8,7 @@ scripts/install-deps.sh
 command -v python3 >/dev/null || { sudo=(); [[ $(id -u) -ne 0 ]] && sudo=(sudo);
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq python3-minimal >/dev/null; }
 echo "== building (Release) =="
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+scripts/configure.sh . build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j "$(nproc)" --target splinecal_tool >/dev/null
 sc=build/splinecal
 out=demo-out

@@ -9,8 +9,8 @@ seconds=${1:-60}
 shift || true
 
 scripts/install-deps.sh --fuzz
-cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DSPLINECAL_FUZZ=ON -DSPLINECAL_BUILD_TESTS=OFF -DSPLINECAL_BUILD_BENCH=OFF >/dev/null
+scripts/configure.sh . build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DSPLINECAL_FUZZ=ON -DSPLINECAL_BUILD_TESTS=OFF
 targets=("$@")
 if ((${#targets[@]} == 0)); then
   for f in tests/fuzz/*_fuzz.cc; do targets+=("$(basename "$f" .cc)"); done

@@ -2,7 +2,7 @@
 # Installs splinecal's build dependencies from Debian's packages, and nothing when all are there.
 set -euo pipefail
 
-packages=(build-essential cmake libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
+packages=(build-essential cmake ninja-build libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev)
 if [[ "${1:-}" == "--fuzz" ]]; then packages+=(clang libclang-rt-14-dev); fi
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds splinecal and runs the whole test suite with ctest.
+# Installs what is missing, builds splinecal and runs the whole test suite with ctest (the
+# benchmarks are not built here: scripts/bench.sh builds and runs them).
 #   scripts/test.sh              Release build in build/, every test (slow Monte-Carlo included)
 #   scripts/test.sh --sanitize   ASan + UBSan build in build-sanitize/, slow tests left out
 #   scripts/test.sh --fast       leaves out the tests labelled slow
@@ -16,7 +17,7 @@ for arg in "$@"; do
       # -O2 without debug info: Eigen needs the inlining of -O2 to run the tests at a usable
       # speed (at -O1 they ran 40 times slower than Release), and debug info only costs time.
       cmake_args=(-DCMAKE_BUILD_TYPE=Sanitize "-DCMAKE_CXX_FLAGS_SANITIZE=-O2 -g0"
-                  -DSPLINECAL_SANITIZE=ON -DSPLINECAL_BUILD_BENCH=OFF -DSPLINECAL_SLOW_TESTS=OFF)
+                  -DSPLINECAL_SANITIZE=ON -DSPLINECAL_SLOW_TESTS=OFF)
       ctest_args+=(-LE slow)
       export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
       export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -28,6 +29,6 @@ done
 
 scripts/install-deps.sh
 jobs=$(nproc)
-cmake -S . -B "$build_dir" "${cmake_args[@]}" >/dev/null
+scripts/configure.sh . "$build_dir" "${cmake_args[@]}"
 cmake --build "$build_dir" -j "$jobs"
 ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" "${ctest_args[@]}"
