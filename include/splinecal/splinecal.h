@@ -75,6 +75,7 @@
 #include "splinecal/estimation/bias_spline.h"
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/gravity_tangent.h"
+#include "splinecal/estimation/imu_autodiff_costs.h"
 #include "splinecal/estimation/imu_costs.h"
 #include "splinecal/estimation/knot_spacing.h"
 #include "splinecal/estimation/marginal_covariance.h"

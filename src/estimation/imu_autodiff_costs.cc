@@ -1,4 +1,4 @@
-#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/imu_autodiff_costs.h"
 
 #include <ceres/autodiff_cost_function.h>
 #include <glog/logging.h>

@@ -256,7 +256,7 @@ class CompressedInformation {
     }
   };
 
-  bool evaluation_failed_ = false;       // a residual block could not be evaluated
+  bool evaluation_failed_ = false;            // a residual block could not be evaluated
   std::map<const double*, Group> groups_;     // by the first parameter block of their residuals
   std::map<const double*, int> block_sizes_;  // tangent sizes
   std::map<const double*, std::vector<double>> tangent_blocks_;
@@ -288,10 +288,9 @@ MarginalCovariance ComputeMarginalCovariance(ceres::Problem* problem,
       result.method = "none: a residual could not be evaluated at the solution";
       return result;
     }
-    const bool use_ceres =
-        options.backend == CovarianceBackend::kCeres ||
-        (options.backend == CovarianceBackend::kAuto &&
-         compressed.CompressedEntries() <= options.max_ceres_covariance_entries);
+    const bool use_ceres = options.backend == CovarianceBackend::kCeres ||
+                           (options.backend == CovarianceBackend::kAuto &&
+                            compressed.CompressedEntries() <= options.max_ceres_covariance_entries);
     if (use_ceres) {
       result.method = "ceres::Covariance (SPARSE_QR) on the compressed problem";
       compressed.BuildCeresProblem();

@@ -1,7 +1,5 @@
 #include "splinecal/estimation/pose_cost.h"
 
-#include <ceres/autodiff_cost_function.h>
-
 #include "splinecal/lie/so3.h"
 
 namespace splinecal {
@@ -59,10 +57,6 @@ bool PoseCostFunction::Evaluate(double const* const* parameters,
     internal::LiftPoseJacobian(J, internal::MakePoseBlockLift(parameters[5]), jacobians[5]);
   }
   return true;
-}
-
-ceres::CostFunction* NewAutoDiffPoseCost(const PoseResidualData& data) {
-  return new ceres::AutoDiffCostFunction<PoseResidual, 6, 7, 7, 7, 7, 1, 7>(new PoseResidual(data));
 }
 
 }  // namespace splinecal

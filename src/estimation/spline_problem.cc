@@ -8,6 +8,7 @@
 
 #include "splinecal/error.h"
 #include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/imu_autodiff_costs.h"
 #include "splinecal/estimation/imu_costs.h"
 
 namespace splinecal {
@@ -54,7 +55,8 @@ void SplineProblem::SetControlPoses(const std::vector<SE3d>& control_poses) {
                 std::to_string(control_blocks_.size()) + " control poses, got " +
                 std::to_string(control_poses.size()));
   }
-  for (size_t i = 0; i < control_poses.size(); ++i) PoseToBlock(control_poses[i], control_blocks_[i]);
+  for (size_t i = 0; i < control_poses.size(); ++i)
+    PoseToBlock(control_poses[i], control_blocks_[i]);
   if (callback_) callback_->Update();
 }
 
@@ -237,7 +239,8 @@ std::vector<double> SplineProblem::MeanBiasWeights(const std::vector<ImuSample>&
   }
   for (const ImuSample& s : imu) {
     const BiasWeights w = bias_.WeightsAt(s.t_ns);
-    for (int j = 0; j < 4; ++j) a[w.first_point + j] += w.weights[j] / static_cast<double>(imu.size());
+    for (int j = 0; j < 4; ++j)
+      a[w.first_point + j] += w.weights[j] / static_cast<double>(imu.size());
   }
   return a;
 }

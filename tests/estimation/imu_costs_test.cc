@@ -1,5 +1,7 @@
 #include "splinecal/estimation/imu_costs.h"
 
+#include "splinecal/estimation/imu_autodiff_costs.h"
+
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 

@@ -1,5 +1,6 @@
-// The IMU residuals of `splinecal fit`, with analytic Jacobians, and their automatic-
-// differentiation twins (for the tests and the benchmark).
+// The IMU residuals of `splinecal fit` and `calibrate`, with analytic Jacobians (their
+// automatic-differentiation twins, for the tests and the benchmark, are in
+// estimation/imu_autodiff_costs.h).
 //
 // Model (CONVENTIONS.md "IMU model", imu/imu_model.h, [seed000 eqs. (9)-(10)]): at an IMU time t
 // in pose-spline segment i (u = (t - t_i) / dt),
@@ -14,7 +15,8 @@
 // Parameter blocks, in this order:
 //   gyro:   4 control poses {px, py, pz, qx, qy, qz, qw} (T_{i-1} .. T_{i+2}), then
 //           kBiasBlocks gyro-bias blocks (3 each)
-//   accel:  4 control poses, kBiasBlocks accel-bias blocks, then g_w (3; estimation/gravity_manifold.h)
+//   accel:  4 control poses, kBiasBlocks accel-bias blocks, then g_w (3;
+//   estimation/gravity_manifold.h)
 //
 // Jacobians. The spline Jacobians (spline/segment_jacobians.h, imu/imu_model.h) are in the RIGHT
 // tangent of each control pose (T Exp(d), d = [rho; phi]); they are lifted to the ambient block
@@ -34,12 +36,11 @@
 //
 // Sharing: given a SplineEvaluationCallback, a cost function reads its segment's knot deltas and
 // their Jacobians from the spline the callback rebuilt once for this evaluation point, instead
-// of recomputing them per residual (estimation/spline_evaluation_callback.h); otherwise, or when its
-// parameters differ from the callback's, it computes them from its own pose blocks.
+// of recomputing them per residual (estimation/spline_evaluation_callback.h); otherwise, or when
+// its parameters differ from the callback's, it computes them from its own pose blocks.
 #ifndef SPLINECAL_ESTIMATION_IMU_COSTS_H_
 #define SPLINECAL_ESTIMATION_IMU_COSTS_H_
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/cost_function.h>
 #include <ceres/sized_cost_function.h>
 
@@ -234,14 +235,7 @@ class GyroCostFunction : public internal::GyroCostBase<kBiasBlocks>::Type {
 
   bool Evaluate(double const* const* parameters,
                 double* residuals,
-                double** jacobians) const override {
-    internal::SegmentEvaluation evaluation;
-    internal::PrepareSegmentEvaluation(
-        segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
-    internal::GyroSampleRows<kBiasBlocks>(
-        evaluation, segment_, sample_, parameters, residuals, jacobians, 0);
-    return true;
-  }
+                double** jacobians) const override;
 
  private:
   ImuResidualSegment segment_;
@@ -257,14 +251,7 @@ class AccelCostFunction : public internal::AccelCostBase<kBiasBlocks>::Type {
 
   bool Evaluate(double const* const* parameters,
                 double* residuals,
-                double** jacobians) const override {
-    internal::SegmentEvaluation evaluation;
-    internal::PrepareSegmentEvaluation(
-        segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
-    internal::AccelSampleRows<kBiasBlocks>(
-        evaluation, segment_, sample_, parameters, residuals, jacobians, 0);
-    return true;
-  }
+                double** jacobians) const override;
 
  private:
   ImuResidualSegment segment_;
@@ -286,21 +273,7 @@ class GyroSegmentCostFunction : public ceres::CostFunction {
 
   bool Evaluate(double const* const* parameters,
                 double* residuals,
-                double** jacobians) const override {
-    internal::SegmentEvaluation evaluation;
-    internal::PrepareSegmentEvaluation(
-        segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
-    for (size_t s = 0; s < samples_.size(); ++s) {
-      internal::GyroSampleRows<kBiasBlocks>(evaluation,
-                                            segment_,
-                                            samples_[s],
-                                            parameters,
-                                            residuals + 3 * s,
-                                            jacobians,
-                                            3 * static_cast<int>(s));
-    }
-    return true;
-  }
+                double** jacobians) const override;
 
   const std::vector<ImuResidualSample>& samples() const { return samples_; }
 
@@ -325,21 +298,7 @@ class AccelSegmentCostFunction : public ceres::CostFunction {
 
   bool Evaluate(double const* const* parameters,
                 double* residuals,
-                double** jacobians) const override {
-    internal::SegmentEvaluation evaluation;
-    internal::PrepareSegmentEvaluation(
-        segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
-    for (size_t s = 0; s < samples_.size(); ++s) {
-      internal::AccelSampleRows<kBiasBlocks>(evaluation,
-                                             segment_,
-                                             samples_[s],
-                                             parameters,
-                                             residuals + 3 * s,
-                                             jacobians,
-                                             3 * static_cast<int>(s));
-    }
-    return true;
-  }
+                double** jacobians) const override;
 
   const std::vector<ImuResidualSample>& samples() const { return samples_; }
 
@@ -348,123 +307,80 @@ class AccelSegmentCostFunction : public ceres::CostFunction {
   std::vector<ImuResidualSample> samples_;
 };
 
-// ---- Automatic-differentiation twins (same residuals, same parameter blocks) ----
+// ---- Evaluate: the residual rows and their Jacobians ----
 
-namespace internal {
-
-// The segment of four pose blocks in scalar T (no Jacobian caches: autodiff needs none).
-template <typename T>
-SegmentKnotData<T> KnotDataFromBlocks(const T* const* poses) {
-  return SegmentKnotData<T>(PoseFromBlock(poses[0]),
-                            PoseFromBlock(poses[1]),
-                            PoseFromBlock(poses[2]),
-                            PoseFromBlock(poses[3]),
-                            /*with_jacobians=*/false);
+template <int kBiasBlocks>
+bool GyroCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
+                                             double* residuals,
+                                             double** jacobians) const {
+  internal::SegmentEvaluation evaluation;
+  internal::PrepareSegmentEvaluation(
+      segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
+  internal::GyroSampleRows<kBiasBlocks>(
+      evaluation, segment_, sample_, parameters, residuals, jacobians, 0);
+  return true;
 }
 
-template <typename T, int kBiasBlocks>
-Vector3<T> WeightedBiasT(const ImuResidualSample& sample, const T* const* bias_blocks) {
-  Vector3<T> bias = Vector3<T>::Zero();
-  for (int j = 0; j < kBiasBlocks; ++j) {
-    bias += T(sample.bias_weights[j]) * Eigen::Map<const Vector3<T>>(bias_blocks[j]);
-  }
-  return bias;
+template <int kBiasBlocks>
+bool AccelCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
+                                              double* residuals,
+                                              double** jacobians) const {
+  internal::SegmentEvaluation evaluation;
+  internal::PrepareSegmentEvaluation(
+      segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
+  internal::AccelSampleRows<kBiasBlocks>(
+      evaluation, segment_, sample_, parameters, residuals, jacobians, 0);
+  return true;
 }
 
-}  // namespace internal
-
-// Functor for ceres::AutoDiffCostFunction<GyroResidual<k>, 3, 7, 7, 7, 7, 3 (x k)>.
 template <int kBiasBlocks>
-struct GyroResidual {
-  GyroResidual(const ImuResidualSegment& segment_in, const ImuResidualSample& sample_in)
-      : segment(segment_in), sample(sample_in) {}
-
-  template <typename T>
-  bool Compute(const T* const* blocks, T* residual) const {
-    const SegmentKnotData<T> data = internal::KnotDataFromBlocks(blocks);
-    const Segment<T> seg = MakeSegment(segment.segment_index, T(sample.u), segment.dt_s);
-    const Vector3<T> bias = internal::WeightedBiasT<T, kBiasBlocks>(sample, blocks + 4);
-    Vector3<T> gyro;
-    PredictImu<T>(data.knots(), seg, Vector3<T>::Zero(), bias, Vector3<T>::Zero(), &gyro, nullptr);
-    const T inv_sigma = T(1.0 / segment.sigma);
-    for (int a = 0; a < 3; ++a) residual[a] = (gyro[a] - T(sample.measured[a])) * inv_sigma;
-    return true;
+bool GyroSegmentCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
+                                                    double* residuals,
+                                                    double** jacobians) const {
+  internal::SegmentEvaluation evaluation;
+  internal::PrepareSegmentEvaluation(
+      segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
+  for (size_t s = 0; s < samples_.size(); ++s) {
+    internal::GyroSampleRows<kBiasBlocks>(evaluation,
+                                          segment_,
+                                          samples_[s],
+                                          parameters,
+                                          residuals + 3 * s,
+                                          jacobians,
+                                          3 * static_cast<int>(s));
   }
+  return true;
+}
 
-  template <typename T>
-  bool operator()(const T* p0, const T* p1, const T* p2, const T* p3, const T* b0, T* r) const {
-    const T* blocks[] = {p0, p1, p2, p3, b0};
-    return Compute(blocks, r);
-  }
-  template <typename T>
-  bool operator()(const T* p0,
-                  const T* p1,
-                  const T* p2,
-                  const T* p3,
-                  const T* b0,
-                  const T* b1,
-                  const T* b2,
-                  const T* b3,
-                  T* r) const {
-    const T* blocks[] = {p0, p1, p2, p3, b0, b1, b2, b3};
-    return Compute(blocks, r);
-  }
-
-  ImuResidualSegment segment;
-  ImuResidualSample sample;
-};
-
-// Functor for ceres::AutoDiffCostFunction<AccelResidual<k>, 3, 7, 7, 7, 7, 3 (x k), 3>.
 template <int kBiasBlocks>
-struct AccelResidual {
-  AccelResidual(const ImuResidualSegment& segment_in, const ImuResidualSample& sample_in)
-      : segment(segment_in), sample(sample_in) {}
-
-  template <typename T>
-  bool Compute(const T* const* blocks, T* residual) const {
-    const SegmentKnotData<T> data = internal::KnotDataFromBlocks(blocks);
-    const Segment<T> seg = MakeSegment(segment.segment_index, T(sample.u), segment.dt_s);
-    const Vector3<T> bias = internal::WeightedBiasT<T, kBiasBlocks>(sample, blocks + 4);
-    const Vector3<T> g_w = Eigen::Map<const Vector3<T>>(blocks[4 + kBiasBlocks]);
-    Vector3<T> accel;
-    PredictImu<T>(data.knots(), seg, g_w, Vector3<T>::Zero(), bias, nullptr, &accel);
-    const T inv_sigma = T(1.0 / segment.sigma);
-    for (int a = 0; a < 3; ++a) residual[a] = (accel[a] - T(sample.measured[a])) * inv_sigma;
-    return true;
+bool AccelSegmentCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
+                                                     double* residuals,
+                                                     double** jacobians) const {
+  internal::SegmentEvaluation evaluation;
+  internal::PrepareSegmentEvaluation(
+      segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
+  for (size_t s = 0; s < samples_.size(); ++s) {
+    internal::AccelSampleRows<kBiasBlocks>(evaluation,
+                                           segment_,
+                                           samples_[s],
+                                           parameters,
+                                           residuals + 3 * s,
+                                           jacobians,
+                                           3 * static_cast<int>(s));
   }
+  return true;
+}
 
-  template <typename T>
-  bool operator()(
-      const T* p0, const T* p1, const T* p2, const T* p3, const T* b0, const T* g, T* r) const {
-    const T* blocks[] = {p0, p1, p2, p3, b0, g};
-    return Compute(blocks, r);
-  }
-  template <typename T>
-  bool operator()(const T* p0,
-                  const T* p1,
-                  const T* p2,
-                  const T* p3,
-                  const T* b0,
-                  const T* b1,
-                  const T* b2,
-                  const T* b3,
-                  const T* g,
-                  T* r) const {
-    const T* blocks[] = {p0, p1, p2, p3, b0, b1, b2, b3, g};
-    return Compute(blocks, r);
-  }
-
-  ImuResidualSegment segment;
-  ImuResidualSample sample;
-};
-
-// The autodiff twins as cost functions (caller owns the result).
-ceres::CostFunction* NewAutoDiffGyroCost(int bias_blocks,
-                                         const ImuResidualSegment& segment,
-                                         const ImuResidualSample& sample);
-ceres::CostFunction* NewAutoDiffAccelCost(int bias_blocks,
-                                          const ImuResidualSegment& segment,
-                                          const ImuResidualSample& sample);
+// The analytic costs are compiled once, in src/estimation/imu_costs.cc, for both bias models;
+// other units only declare them (their Evaluate is the costly part to compile).
+extern template class GyroCostFunction<1>;
+extern template class GyroCostFunction<4>;
+extern template class AccelCostFunction<1>;
+extern template class AccelCostFunction<4>;
+extern template class GyroSegmentCostFunction<1>;
+extern template class GyroSegmentCostFunction<4>;
+extern template class AccelSegmentCostFunction<1>;
+extern template class AccelSegmentCostFunction<4>;
 
 }  // namespace splinecal
 
