@@ -9,6 +9,7 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/poses.h"
+#include "testing/shared_data.h"
 
 namespace splinecal {
 namespace {
@@ -21,7 +22,7 @@ constexpr double kAccelBiasTolerance = 0.05;  // [m/s^2]
 
 TEST(FitEuroc, V101EasyBiasesMatchTheGroundTruth) {
   const std::string dir = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/";
-  if (!std::filesystem::exists(dir + "imu0.csv")) GTEST_SKIP() << dir << " is absent";
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");
   const std::vector<ImuSample> imu = ReadEurocImu(dir + "imu0.csv");
   const std::vector<StampedPose> poses = ReadPoses(dir + "groundtruth.csv");
   const std::vector<GroundTruthState> truth = ReadEurocGroundTruth(dir + "groundtruth.csv");

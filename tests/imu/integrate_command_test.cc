@@ -15,6 +15,7 @@
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/io/euroc.h"
 #include "testing/run_tool.h"
+#include "testing/shared_data.h"
 
 namespace splinecal {
 namespace {
@@ -171,7 +172,7 @@ TEST(IntegrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
 TEST(IntegrateCommand, EurocV101EasyFirstTenSeconds) {
   SKIP_UNLESS_REGISTERED();
   const std::string data = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy";
-  if (!std::ifstream(data + "/imu0.csv").good()) GTEST_SKIP() << "no " << data;
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");
   TempDir dir;
   const auto result = RunTool({"integrate",
                                "--imu",

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "splinecal/error.h"
+#include "testing/shared_data.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -132,7 +133,7 @@ TEST(ReadEurocGroundTruth, NonUnitQuaternionIsRefused) {
 
 TEST(ReadEurocGroundTruth, SharedRealDataReads) {
   const std::string path = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/groundtruth.csv";
-  if (!std::ifstream(path)) GTEST_SKIP() << "shared data absent: " << path;
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/groundtruth.csv");
   const auto states = ReadEurocGroundTruth(path);
   EXPECT_EQ(states.size(), 2895u);
   const auto imu = ReadEurocImu(std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/imu0.csv");
