@@ -138,7 +138,7 @@ std::string FitPoseResidualsCsv(const FitResult& r) {
 std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int max_points) {
   const std::vector<FitImuSample>& imu = r.imu_samples;
   const int64_t t_ref = imu.empty() ? r.layout.t0_ns : imu.front().t_ns;
-  auto seconds = [t_ref](int64_t t_ns) { return 1e-9 * static_cast<double>(t_ns - t_ref); };
+  auto seconds = [t_ref](int64_t t_ns) { return NanosecondsToSeconds(t_ns - t_ref); };
   const std::vector<size_t> keep =
       plot::DecimatedIndices(imu.size(), max_points, /*keep_last=*/true);
 
