@@ -106,6 +106,7 @@
 #include "splinecal/calib/fit.h"
 
 // report/
+#include "splinecal/report/align_report.h"
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"
