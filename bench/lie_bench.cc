@@ -12,6 +12,7 @@
 
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
@@ -34,7 +35,7 @@ std::vector<Vector6d> MakeTwists(double max_angle) {
 }
 
 const std::vector<Vector6d>& GenericTwists() {
-  static const std::vector<Vector6d> twists = MakeTwists(M_PI);
+  static const std::vector<Vector6d> twists = MakeTwists(kPi);
   return twists;
 }
 

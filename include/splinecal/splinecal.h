@@ -98,6 +98,8 @@
 #include "splinecal/sim/noise_generator.h"
 #include "splinecal/sim/simulate_camera.h"
 #include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/simulation_result.h"
+#include "splinecal/sim/simulation_trajectory.h"
 #include "splinecal/sim/trajectories.h"
 
 // calib/
@@ -105,7 +107,11 @@
 #include "splinecal/calib/fit.h"
 
 // report/
+#include "splinecal/report/align_report.h"
+#include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/fit_report.h"
+#include "splinecal/report/html_page.h"
+#include "splinecal/report/plot_decimation.h"
 #include "splinecal/report/svg_plot.h"
 
 #endif  // SPLINECAL_SPLINECAL_H_

@@ -38,12 +38,10 @@ void CheckInputs(const std::vector<ImuSample>& imu,
   if (camchain.empty()) throw Error("calibrate: the camchain has no camera");
   if (imu.size() < 2) throw Error("calibrate: fewer than 2 IMU samples");
   if (observations.empty()) throw Error("calibrate: no observations");
-  for (const Observation& o : observations) {
-    if (o.cam_id < 0 || o.cam_id >= static_cast<int>(camchain.size())) {
-      throw Error("calibrate: an observation of camera " + std::to_string(o.cam_id) + " (frame " +
-                  std::to_string(o.t_ns) + ") but the camchain describes " +
-                  std::to_string(camchain.size()) + " camera(s): wrong camchain or cam_id column");
-    }
+  if (const Observation* o = FindObservationWithoutCamera(observations, camchain)) {
+    throw Error("calibrate: an observation of camera " + std::to_string(o->cam_id) + " (frame " +
+                std::to_string(o->t_ns) + ") but the camchain describes " +
+                std::to_string(camchain.size()) + " camera(s): wrong camchain or cam_id column");
   }
   for (size_t k = 1; k < imu.size(); ++k) {
     if (imu[k].t_ns <= imu[k - 1].t_ns) throw Error("calibrate: IMU timestamps not increasing");

@@ -3,6 +3,8 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "splinecal/units.h"
+
 namespace splinecal {
 
 namespace {
@@ -194,7 +196,7 @@ bool PinholeCamera::Unproject(const Eigen::Vector2d& uv,
         theta -= f / df;
         if (std::abs(f) < kUnprojectTolerance) break;
       }
-      if (!(theta > 0.0 && theta < 0.5 * M_PI)) return false;
+      if (!(theta > 0.0 && theta < 0.5 * kPi)) return false;
       p = target * (std::tan(theta) / theta_d);
     } else {
       p = target / (1.0 + (distortion_coeffs(0) - 1.0 / 3.0) * target.squaredNorm());

@@ -5,8 +5,11 @@
 #include <sstream>
 
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
-DEFINE_string(out, "", "Output folder [path], created if missing; results appear whole or not at all");
+DEFINE_string(out,
+              "",
+              "Output folder [path], created if missing; results appear whole or not at all");
 DEFINE_bool(quiet, false, "Silence progress output on stderr");
 DEFINE_string(imu, "", "IMU data, EuRoC imu0/data.csv [path]");
 DEFINE_string(imu_yaml, "", "IMU noise, Kalibr imu.yaml [path]");
@@ -72,7 +75,6 @@ Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text) {
 
 ImuReadOptions ImuReadOptionsFromFlags() {
   constexpr double kStandardGravity = 9.80665;  // the g of "units of g" [m/s^2]
-  constexpr double kPi = 3.14159265358979323846;
   ImuReadOptions options;
   if (FLAGS_accel_unit == "g") {
     options.accel_scale = kStandardGravity;
@@ -81,7 +83,7 @@ ImuReadOptions ImuReadOptionsFromFlags() {
     throw Error("--accel-unit: expected m/s^2 or g, got '" + FLAGS_accel_unit + "'");
   }
   if (FLAGS_gyro_unit == "deg/s") {
-    options.gyro_scale = kPi / 180.0;
+    options.gyro_scale = kDegToRad;
   } else if (FLAGS_gyro_unit != "rad/s") {
     throw Error("--gyro-unit: expected rad/s or deg/s, got '" + FLAGS_gyro_unit + "'");
   }

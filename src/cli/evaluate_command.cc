@@ -17,10 +17,13 @@
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 DEFINE_string(spline, "", "Control poses, spline.csv [path]");
 DEFINE_int32(samples, 5, "Evenly spaced times to print, ends included [count]");
-DEFINE_double(every, 0.0, "Also write evaluation.csv with a row every this many seconds [s]; 0: no");
+DEFINE_double(every,
+              0.0,
+              "Also write evaluation.csv with a row every this many seconds [s]; 0: no");
 
 namespace splinecal {
 namespace cli {
@@ -75,8 +78,7 @@ EvaluateInputs ReadEvaluateInputs() {
   in.g_w = GravityWorld(PositiveFlag("gravity", FLAGS_gravity));
   in.b_g = Vector3Flag("gyro-bias", FLAGS_gyro_bias);
   in.b_a = Vector3Flag("accel-bias", FLAGS_accel_bias);
-  const double span_s =
-      1e-9 * static_cast<double>(in.spline.end_time_ns() - in.spline.start_time_ns());
+  const double span_s = NanosecondsToSeconds(in.spline.end_time_ns() - in.spline.start_time_ns());
   constexpr double kMaxRows = 1e8;  // refuse before allocating an absurd table
   if (in.every_s > 0.0 && span_s / in.every_s > kMaxRows) {
     throw Error("--every " + FormatDouble(in.every_s) + " s would write more than 1e8 rows");
@@ -97,25 +99,43 @@ int RunEvaluate() {
   OutputDir output(FLAGS_out);
 
   std::printf("spline: %d control poses, dt = %.6g s, valid %.6f s to %.6f s after t0\n",
-              spline.num_control_poses(), spline.dt(), spline.start_time(), spline.end_time());
-  std::printf("%10s  %29s  %26s  %26s  %26s\n", "t - t_1 [s]", "p_w_s [m]", "w_s [rad/s]",
-              "gyro [rad/s]", "accel [m/s^2]");
+              spline.num_control_poses(),
+              spline.dt(),
+              spline.start_time(),
+              spline.end_time());
+  std::printf("%10s  %29s  %26s  %26s  %26s\n",
+              "t - t_1 [s]",
+              "p_w_s [m]",
+              "w_s [rad/s]",
+              "gyro [rad/s]",
+              "accel [m/s^2]");
   const std::string header =
       "#t_ns,px,py,pz,qw,qx,qy,qz,wx,wy,wz,vx,vy,vz,ax,ay,az,gyro_x,gyro_y,gyro_z,accel_x,"
       "accel_y,accel_z\n";
   std::string samples_csv = header;
   for (int k = 0; k < FLAGS_samples; ++k) {
-    const int64_t t_ns = start_ns + static_cast<int64_t>(std::llround(
-                                        static_cast<double>(end_ns - start_ns) * k /
-                                        (FLAGS_samples - 1)));
+    const int64_t t_ns =
+        start_ns + static_cast<int64_t>(std::llround(static_cast<double>(end_ns - start_ns) * k /
+                                                     (FLAGS_samples - 1)));
     const Evaluation e = EvaluateAt(spline, t_ns, g_w, b_g, b_a);
     samples_csv += CsvRow(e);
     const Eigen::Vector3d& p = e.T_w_s.translation();
-    std::printf("%10.4f  [%8.4f %8.4f %8.4f]  [%7.4f %7.4f %7.4f]  [%7.4f %7.4f %7.4f]  "
-                "[%7.3f %7.3f %7.3f]\n",
-                1e-9 * static_cast<double>(t_ns - start_ns), p.x(), p.y(), p.z(), e.w_s.x(),
-                e.w_s.y(), e.w_s.z(), e.gyro.x(), e.gyro.y(), e.gyro.z(), e.accel.x(),
-                e.accel.y(), e.accel.z());
+    std::printf(
+        "%10.4f  [%8.4f %8.4f %8.4f]  [%7.4f %7.4f %7.4f]  [%7.4f %7.4f %7.4f]  "
+        "[%7.3f %7.3f %7.3f]\n",
+        NanosecondsToSeconds(t_ns - start_ns),
+        p.x(),
+        p.y(),
+        p.z(),
+        e.w_s.x(),
+        e.w_s.y(),
+        e.w_s.z(),
+        e.gyro.x(),
+        e.gyro.y(),
+        e.gyro.z(),
+        e.accel.x(),
+        e.accel.y(),
+        e.accel.z());
   }
   output.WriteFile("samples.csv", samples_csv);
   int64_t rows = 0;

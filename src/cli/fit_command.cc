@@ -9,7 +9,6 @@
 #include <string>
 
 #include "splinecal/calib/fit.h"
-#include "splinecal/report/fit_report.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
@@ -19,6 +18,8 @@
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/spline_csv.h"
+#include "splinecal/report/fit_report.h"
+#include "splinecal/units.h"
 
 DEFINE_double(pose_sigma_m, 1e-3, "Pose source position noise, std per axis [m]");
 DEFINE_double(pose_sigma_rad, 1e-3, "Pose source rotation noise, std per axis [rad]");
@@ -128,7 +129,7 @@ int RunFit() {
   }
   if (result.extrinsic_estimated) {
     const Eigen::Vector3d t = result.T_pose_imu.translation();
-    const Eigen::Vector3d r = result.T_pose_imu.so3().Log() * 57.295779513082320876;
+    const Eigen::Vector3d r = result.T_pose_imu.so3().Log() * kRadToDeg;
     std::printf("T_pose_imu  t [%.5f %.5f %.5f] m, rotation vector [%.4f %.4f %.4f] deg\n",
                 t.x(),
                 t.y(),

@@ -18,6 +18,7 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/yaml_writer.h"
+#include "splinecal/report/plot_decimation.h"
 #include "splinecal/report/svg_plot.h"
 
 DEFINE_string(groundtruth,
@@ -37,6 +38,9 @@ DECLARE_double(duration);  // src/cli/simulate_command.cc
 namespace splinecal {
 namespace cli {
 namespace {
+
+// At most this many points per method in trajectory.svg.
+constexpr int kMaxPlotPoints = 4000;
 
 // What integrate reads and checks before integrating anything (Command::read_inputs).
 struct IntegrateInputs {
@@ -175,14 +179,10 @@ int RunIntegrate() {
     plot::Series& series = panel.series.emplace_back();
     series.label = name;
     series.dashed = method == IntegrationMethod::kRk4;
-    // At most ~4000 points per method in the picture.
-    const size_t stride = std::max<size_t>(1, trajectory.size() / 4000);
-    for (size_t k = 0; k < trajectory.size(); k += stride) {
+    for (size_t k : plot::DecimatedIndices(trajectory.size(), kMaxPlotPoints, /*keep_last=*/true)) {
       series.x.push_back(trajectory[k].p_w_s.x());
       series.y.push_back(trajectory[k].p_w_s.y());
     }
-    series.x.push_back(trajectory.back().p_w_s.x());
-    series.y.push_back(trajectory.back().p_w_s.y());
   }
   output.WriteFile("result.yaml", yaml.str());
   output.WriteFile("trajectory.svg", plot::RenderSvg(figure));

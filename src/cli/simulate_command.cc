@@ -2,22 +2,20 @@
 // analytic one (sim/trajectories.h) or a recorded one (--trajectory-file), turned into spline
 // control poses by a least-squares fit (estimation/pose_fit.h); the IMU readings are the spline's
 // IMU model plus Kalibr noise. Writes a EuRoC folder (mav0/imu0, mav0/state_groundtruth_estimate0),
-// spline.csv, imu.yaml and result.yaml to --out. See docs/simulate.md.
+// spline.csv, imu.yaml and result.yaml (sim/simulation_result.h) to --out. See docs/simulate.md.
 #include <gflags/gflags.h>
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "splinecal/estimation/pose_fit.h"
-#include "splinecal/sim/simulate_camera.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
-#include "splinecal/sim/simulate_imu.h"
-#include "splinecal/sim/trajectories.h"
+#include "splinecal/estimation/pose_fit.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
@@ -26,8 +24,11 @@
 #include "splinecal/io/poses.h"
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/target_yaml.h"
-#include "splinecal/io/yaml_writer.h"
-#include "splinecal/string_printf.h"
+#include "splinecal/sim/simulate_camera.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/simulation_result.h"
+#include "splinecal/sim/simulation_trajectory.h"
+#include "splinecal/sim/trajectories.h"
 
 DEFINE_string(trajectory,
               "vio_course",
@@ -190,11 +191,8 @@ SimulateInputs ReadSimulateInputs() {
 }
 
 int RunSimulate() {
-  const SimulateInputs in = ReadSimulateInputs();
+  SimulateInputs in = ReadSimulateInputs();
   const std::string& out_dir = in.out_dir;
-  const double rate_hz = in.rate_hz;
-  const double knot_spacing_s = in.knot_spacing_s;
-  const double duration_s = in.duration_s;
   const SimulationOptions& options = in.options;
   const Camchain& camchain = in.camchain;
   const CameraSimulationOptions& camera_options = in.camera_options;
@@ -202,47 +200,31 @@ int RunSimulate() {
   const int64_t end_ns = in.end_ns;
   OutputDir output(out_dir);  // an unwritable --out fails here, before any work
 
+  SimulationTrajectory trajectory;
+  trajectory.recorded_poses = std::move(in.poses);
+  trajectory.recorded_source = FLAGS_trajectory_file;
+  trajectory.name = FLAGS_trajectory;
+  trajectory.seed = options.seed;
+  trajectory.target_centre_w = in.target_centre_w;
+  if (!camchain.empty()) trajectory.T_cam_imu = camchain.front().T_cam_imu;
   PoseFitOptions fit_options;
   fit_options.progress = [](const std::string& line) { Progress(line); };
-  PoseFitResult fit;
-  std::string source;
-  if (!in.poses.empty()) {
-    source = FLAGS_trajectory_file;
-    Progress("simulate: fitting " + std::to_string(knot_spacing_s) + " s knots to " +
-             std::to_string(in.poses.size()) + " poses of " + source);
-    fit = FitControlPoses(
-        in.poses, KnotLayoutCovering(start_ns, end_ns, in.knot_spacing_ns), fit_options);
-  } else if (FLAGS_trajectory == "calibration") {
-    // The lively target-viewing motion of sim/simulate_camera.h, laid out for cam0.
-    source = "calibration";
-    Progress("simulate: fitting the calibration trajectory (" + std::to_string(duration_s) +
-             " s, knots every " + std::to_string(knot_spacing_s) + " s)");
-    fit = FitCalibrationTrajectory(in.target_centre_w,
-                                   camchain.front().T_cam_imu,
-                                   start_ns,
-                                   end_ns,
-                                   in.knot_spacing_ns,
-                                   options.seed);
-  } else {
-    const AnalyticTrajectory trajectory = MakeTrajectory(FLAGS_trajectory, options.seed);
-    source = trajectory.name();
-    Progress("simulate: fitting the " + source + " trajectory (" + std::to_string(duration_s) +
-             " s, knots every " + std::to_string(knot_spacing_s) + " s)");
-    fit = FitAnalyticTrajectory(trajectory, start_ns, end_ns, in.knot_spacing_ns, 0, fit_options);
-  }
-  Progress(
-      StringPrintf("simulate: spline fit position RMS %.3g m, rotation RMS %.3g deg (%d "
-                   "control poses)",
-                   fit.position_rms_m,
-                   fit.rotation_rms_deg,
-                   fit.layout.num_control_poses));
+  SimulationRun run;
+  run.spline =
+      FitSimulationTrajectory(trajectory, start_ns, end_ns, in.knot_spacing_ns, fit_options);
+  run.start_ns = start_ns;
+  run.end_ns = end_ns;
+  run.knot_spacing_s = in.knot_spacing_s;
+  run.options = options;
+  run.camchain = camchain;
+  run.camera_options = camera_options;
+  const PoseFitResult& fit = run.spline.fit;
 
   const SE3Splined spline = fit.MakeSpline();
-  std::vector<ImuSample> imu;
-  std::vector<GroundTruthState> truth;
-  SimulateImu(spline, start_ns, end_ns, options, &imu, &truth);
+  std::vector<ImuSample>& imu = run.imu;
+  SimulateImu(spline, start_ns, end_ns, options, &imu, &run.truth);
 
-  CameraSimulationResult cameras;
+  CameraSimulationResult& cameras = run.cameras;
   if (!camchain.empty()) {
     cameras = SimulateCameras(spline, camchain, start_ns, end_ns, camera_options);
     Progress("simulate: " + std::to_string(cameras.num_frames) + " camera frames, " +
@@ -258,52 +240,14 @@ int RunSimulate() {
   }
   std::ostringstream imu_csv, truth_csv, spline_csv;
   WriteEurocImu(imu, &imu_csv);
-  WriteEurocGroundTruth(truth, &truth_csv);
+  WriteEurocGroundTruth(run.truth, &truth_csv);
   WriteSplineCsv(spline, &spline_csv);
   output.WriteFile("mav0/imu0/data.csv", imu_csv.str());
   output.WriteFile("mav0/state_groundtruth_estimate0/data.csv", truth_csv.str());
   output.WriteFile("spline.csv", spline_csv.str());
   output.WriteFile("imu.yaml", ImuYamlText(options.noise));
 
-  YamlWriter yaml;
-  yaml.Comment(
-      "splinecal simulate: IMU readings of the spline in spline.csv plus Kalibr noise "
-      "(docs/simulate.md)");
-  yaml.Scalar("trajectory", source);
-  yaml.Scalar("start_t_ns", start_ns);
-  yaml.Scalar("end_t_ns", end_ns);
-  yaml.Scalar("duration_s", (end_ns - start_ns) * 1e-9);
-  yaml.Scalar("imu_rate_hz", rate_hz);
-  yaml.Scalar("num_imu_samples", static_cast<int64_t>(imu.size()));
-  yaml.Scalar("seed", static_cast<int64_t>(FLAGS_seed));
-  yaml.Scalar("gravity_m_s2", options.gravity_m_s2);
-  yaml.Vector("gravity_w", Eigen::Vector3d(0.0, 0.0, -options.gravity_m_s2));
-  yaml.Scalar("noise_free", options.noise_free);
-  yaml.BeginMap("noise");
-  yaml.Scalar("gyroscope_noise_density", options.noise.gyroscope_noise_density);
-  yaml.Scalar("gyroscope_random_walk", options.noise.gyroscope_random_walk);
-  yaml.Scalar("accelerometer_noise_density", options.noise.accelerometer_noise_density);
-  yaml.Scalar("accelerometer_random_walk", options.noise.accelerometer_random_walk);
-  yaml.EndMap();
-  yaml.Vector("initial_gyro_bias", options.gyro_bias);
-  yaml.Vector("initial_accel_bias", options.accel_bias);
-  yaml.Vector("final_gyro_bias", truth.back().gyro_bias);
-  yaml.Vector("final_accel_bias", truth.back().accel_bias);
-  yaml.BeginMap("spline");
-  yaml.Scalar("knot_spacing_s", knot_spacing_s);
-  yaml.Scalar("t0_ns", spline.t0_ns());
-  yaml.Scalar("num_control_poses", static_cast<int64_t>(spline.num_control_poses()));
-  yaml.Scalar("fit_num_poses", fit.num_poses);
-  yaml.Scalar("fit_position_rms_m", fit.position_rms_m);
-  yaml.Scalar("fit_rotation_rms_deg", fit.rotation_rms_deg);
-  yaml.Scalar("fit_max_position_error_m", fit.max_position_error_m);
-  yaml.Scalar("fit_max_rotation_error_deg", fit.max_rotation_error_deg);
-  yaml.Scalar("fit_converged", fit.converged);
-  yaml.EndMap();
-  if (!camchain.empty()) {
-    WriteCameraSimulationTruth(camchain, camera_options, cameras, &yaml);
-  }
-  output.WriteFile("result.yaml", yaml.str());
+  output.WriteFile("result.yaml", SimulationResultYaml(run));
   output.Commit();
 
   std::printf(
@@ -312,8 +256,8 @@ int RunSimulate() {
       "mav0/state_groundtruth_estimate0/data.csv, spline.csv, imu.yaml, result.yaml\n",
       imu.size(),
       (end_ns - start_ns) * 1e-9,
-      rate_hz,
-      source.c_str(),
+      options.imu_rate_hz,
+      run.spline.source.c_str(),
       fit.position_rms_m,
       fit.rotation_rms_deg,
       out_dir.c_str());

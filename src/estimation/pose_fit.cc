@@ -15,6 +15,7 @@
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
@@ -167,7 +168,7 @@ void PoseFitErrors(const SE3Splined& spline,
     const SE3d T_w_s = spline.PoseNs(pose.t_ns);
     const double e_p = (T_w_s.translation() - pose.p).norm();
     const double e_r =
-        (SO3d::FromQuaternion(pose.q).inverse() * T_w_s.so3()).Log().norm() * 180.0 / M_PI;
+        (SO3d::FromQuaternion(pose.q).inverse() * T_w_s.so3()).Log().norm() * 180.0 / kPi;
     sum_p += e_p * e_p;
     sum_r += e_r * e_r;
     result->max_position_error_m = std::max(result->max_position_error_m, e_p);

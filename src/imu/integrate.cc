@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
@@ -438,7 +439,7 @@ DriftMetrics ComputeDrift(const std::vector<NavState>& trajectory,
     ++metrics.num_compared;
     metrics.final_position_error_m = position_error;
     const SO3d R_gt = SO3d::FromQuaternion(truth.q_w_s);
-    metrics.final_rotation_error_deg = (R_gt.inverse() * state.R_w_s).Log().norm() * 180.0 / M_PI;
+    metrics.final_rotation_error_deg = (R_gt.inverse() * state.R_w_s).Log().norm() * 180.0 / kPi;
     metrics.final_t_ns = truth.t_ns;
   }
   if (metrics.num_compared == 0) {

@@ -1,18 +1,18 @@
 #include "splinecal/report/fit_report.h"
 
-#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "splinecal/io/yaml_writer.h"
+#include "splinecal/report/html_page.h"
+#include "splinecal/report/plot_decimation.h"
 #include "splinecal/report/svg_plot.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
 namespace {
-
-constexpr double kRadToDeg = 57.295779513082320876;
 
 std::string BiasModelName(BiasModel model) {
   return model == BiasModel::kConstant ? "constant" : "spline";
@@ -22,28 +22,10 @@ void Append3(const Eigen::Vector3d& v, std::string* row) {
   for (int a = 0; a < 3; ++a) *row += "," + FormatDouble(v[a]);
 }
 
-
 std::string Fixed(double value, int digits) { return StringPrintf("%.*g", digits, value); }
 
 std::string VectorText(const Eigen::Vector3d& v, int digits) {
   return "[" + Fixed(v[0], digits) + ", " + Fixed(v[1], digits) + ", " + Fixed(v[2], digits) + "]";
-}
-
-// Indices 0, k, 2k, ... so that at most max_points remain (always including the last).
-std::vector<size_t> Decimate(size_t n, int max_points) {
-  std::vector<size_t> indices;
-  if (n == 0) return indices;
-  const size_t step = std::max<size_t>(1, (n + max_points - 1) / std::max(1, max_points));
-  for (size_t i = 0; i < n; i += step) indices.push_back(i);
-  if (indices.back() != n - 1) indices.push_back(n - 1);
-  return indices;
-}
-
-// An SVG document without its XML declaration, for inline use in HTML.
-std::string InlineSvg(const plot::Figure& figure) {
-  std::string svg = plot::RenderSvg(figure);
-  if (svg.rfind("<?xml", 0) == 0) svg.erase(0, svg.find('\n') + 1);
-  return svg;
 }
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
@@ -156,8 +138,9 @@ std::string FitPoseResidualsCsv(const FitResult& r) {
 std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int max_points) {
   const std::vector<FitImuSample>& imu = r.imu_samples;
   const int64_t t_ref = imu.empty() ? r.layout.t0_ns : imu.front().t_ns;
-  auto seconds = [t_ref](int64_t t_ns) { return 1e-9 * static_cast<double>(t_ns - t_ref); };
-  const std::vector<size_t> keep = Decimate(imu.size(), max_points);
+  auto seconds = [t_ref](int64_t t_ns) { return NanosecondsToSeconds(t_ns - t_ref); };
+  const std::vector<size_t> keep =
+      plot::DecimatedIndices(imu.size(), max_points, /*keep_last=*/true);
 
   // Measured against fitted, one panel per axis.
   auto measured_vs_fitted = [&](bool gyro) {
@@ -214,7 +197,8 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
       }
     }
   }
-  const std::vector<size_t> keep_poses = Decimate(r.pose_samples.size(), max_points);
+  const std::vector<size_t> keep_poses =
+      plot::DecimatedIndices(r.pose_samples.size(), max_points, /*keep_last=*/true);
   for (int kind = 0; kind < 2; ++kind) {
     plot::Panel& panel = residuals.panels.emplace_back();
     panel.x = {"pose time, shifted like the IMU axis [s]", plot::Scale::kLinear};
@@ -257,19 +241,16 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
     }
   }
 
-  std::string html =
-      "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>splinecal fit</title>\n"
-      "<style>body{font-family:sans-serif;max-width:960px;margin:auto}"
-      "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
-      "text-align:left}.warn{color:#a00}</style></head><body>\n<h1>splinecal fit</h1>\n";
-  html += "<p>IMU: " + plot::EscapeXml(inputs.imu_path) + "<br>poses: " + plot::EscapeXml(inputs.poses_path) +
-          "<br>noise: " +
-          plot::EscapeXml(inputs.imu_yaml_path.empty() ? "ADIS16448 defaults" : inputs.imu_yaml_path) +
-          "</p>\n";
+  std::string html;
+  html +=
+      "<p>IMU: " + plot::EscapeXml(inputs.imu_path) +
+      "<br>poses: " + plot::EscapeXml(inputs.poses_path) + "<br>noise: " +
+      plot::EscapeXml(inputs.imu_yaml_path.empty() ? "ADIS16448 defaults" : inputs.imu_yaml_path) +
+      "</p>\n";
   html += "<table><tr><th>quantity</th><th>estimate</th><th>std</th></tr>\n";
   auto row = [&html](const std::string& name, const std::string& value, const std::string& std) {
-    html += "<tr><td>" + plot::EscapeXml(name) + "</td><td>" + plot::EscapeXml(value) + "</td><td>" +
-            plot::EscapeXml(std) + "</td></tr>\n";
+    html += "<tr><td>" + plot::EscapeXml(name) + "</td><td>" + plot::EscapeXml(value) +
+            "</td><td>" + plot::EscapeXml(std) + "</td></tr>\n";
   };
   row("gyro bias [rad/s]", VectorText(r.gyro_bias, 6), VectorText(r.gyro_bias_std, 3));
   row("accel bias [m/s^2]", VectorText(r.accel_bias, 6), VectorText(r.accel_bias_std, 3));
@@ -304,19 +285,18 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
       std::to_string(r.solve.iterations) + " iterations, " + Fixed(r.solve.solve_time_s, 3) + " s",
       r.solve.termination);
   html += "</table>\n";
-  if (!r.warnings.empty()) {
-    html += "<h2>Warnings</h2><ul class=\"warn\">\n";
-    for (const std::string& w : r.warnings) html += "<li>" + plot::EscapeXml(w) + "</li>\n";
-    html += "</ul>\n";
-  }
+  HtmlPage page("splinecal fit",
+                "body{max-width:960px;margin:auto}td,th{padding:2px 8px;text-align:left}"
+                ".warn{color:#a00}");
+  page.Append(html);
+  page.ListSection("Warnings", r.warnings, "warn");
   if (!imu.empty()) {
-    html += "<h2>Gyroscope</h2>\n" + measured_vs_fitted(true) + "\n";
-    html += "<h2>Accelerometer</h2>\n" + measured_vs_fitted(false) + "\n";
-    html += "<h2>Residuals</h2>\n" + InlineSvg(residuals) + "\n";
-    html += "<h2>Biases</h2>\n" + InlineSvg(biases) + "\n";
+    page.Section("Gyroscope", measured_vs_fitted(true));
+    page.Section("Accelerometer", measured_vs_fitted(false));
+    page.Section("Residuals", InlineSvg(residuals));
+    page.Section("Biases", InlineSvg(biases));
   }
-  html += "</body></html>\n";
-  return html;
+  return page.str();
 }
 
 }  // namespace splinecal

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace internal {
@@ -22,7 +23,7 @@ ZigguratTables MakeZigguratTables() {
   const double f_r = std::exp(-0.5 * r * r);
   // Area of each strip: the rectangle [0, r] x [0, f(r)] plus the tail, int_r^inf f(x) dx =
   // sqrt(pi / 2) erfc(r / sqrt(2)).
-  const double v = r * f_r + std::sqrt(M_PI / 2.0) * std::erfc(r / std::sqrt(2.0));
+  const double v = r * f_r + std::sqrt(kPi / 2.0) * std::erfc(r / std::sqrt(2.0));
   t.r = r;
   t.x[0] = v / f_r;
   t.f[0] = 0.0;  // Unused: strip 0 is handled by the tail sampler.

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
@@ -108,8 +109,8 @@ SinusoidChannel Channel(double offset, double rate, std::vector<Term> terms) {
 
 AnalyticTrajectory VioCourseTrajectory() {
   // [seed000 §2], the course's simulator: K = pi / 10; cos(x) = sin(x + pi/2).
-  const double k = M_PI / 10.0;
-  const double quarter = M_PI / 2.0;
+  const double k = kPi / 10.0;
+  const double quarter = kPi / 2.0;
   return AnalyticTrajectory("vio_course",
                             {Channel(5.0, 0.0, {{15.0, k, quarter}}),
                              Channel(5.0, 0.0, {{20.0, k, 0.0}}),
@@ -121,7 +122,7 @@ AnalyticTrajectory VioCourseTrajectory() {
 
 AnalyticTrajectory Figure8Trajectory() {
   // Lemniscate of Gerono x = a sin(W t), y = a sin(W t) cos(W t) = a/2 sin(2 W t), a = 10 m.
-  const double w = 2.0 * M_PI / 20.0;
+  const double w = 2.0 * kPi / 20.0;
   return AnalyticTrajectory("figure8",
                             {Channel(0.0, 0.0, {{10.0, w, 0.0}}),
                              Channel(0.0, 0.0, {{5.0, 2.0 * w, 0.0}}),
@@ -153,8 +154,8 @@ std::vector<Term> RandomTerms(std::mt19937_64* engine,
   double sum = 0.0;
   for (Term& term : terms) {
     const double period_s = Uniform(engine, options.min_period_s, options.max_period_s);
-    term.omega_rad_s = 2.0 * M_PI / period_s;
-    term.phase_rad = Uniform(engine, 0.0, 2.0 * M_PI);
+    term.omega_rad_s = 2.0 * kPi / period_s;
+    term.phase_rad = Uniform(engine, 0.0, 2.0 * kPi);
     term.amplitude = Uniform(engine, 0.2, 1.0);  // Relative weight; scaled below.
     sum += term.amplitude * std::pow(term.omega_rad_s, order);
   }

@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "splinecal/units.h"
 #include "testing/run_tool.h"
 #include "testing/temp_dir.h"
 
@@ -105,7 +106,7 @@ TEST(AllanCommand, PlainColumnsOfOneSensor) {
   EXPECT_EQ(run.err, "");
   const YAML::Node result = YAML::LoadFile(dir.File("out/result.yaml"));
   // White noise of 0.1 deg/s per sample at 100 Hz: N = 0.1 * pi / 180 / sqrt(100).
-  EXPECT_NEAR(result["gyroscope"]["x"]["noise_density"].as<double>() / (0.1 * M_PI / 180.0 / 10.0),
+  EXPECT_NEAR(result["gyroscope"]["x"]["noise_density"].as<double>() / (0.1 * kPi / 180.0 / 10.0),
               1.0,
               0.05);
   EXPECT_FALSE(result["accelerometer"]);

@@ -9,13 +9,12 @@
 
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
 
 using ::testing::HasSubstr;
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Errors {
   Eigen::Vector3d rotation_deg;
@@ -239,8 +238,8 @@ TEST_F(CalibrateRefuses, AKnotSpacingThatWouldExhaustMemory) {
   CalibrateOptions options = FastOptions();
   options.model.knot_spacing_s = 1e-9;
   try {
-    Calibrate(scenario_->imu, scenario_->observations, scenario_->start, &scenario_->target,
-              options);
+    Calibrate(
+        scenario_->imu, scenario_->observations, scenario_->start, &scenario_->target, options);
     ADD_FAILURE() << "no error for a 1 ns knot spacing";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("below two IMU periods"));

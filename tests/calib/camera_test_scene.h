@@ -15,6 +15,7 @@
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace testing {
@@ -57,7 +58,7 @@ struct CameraTestScene {
     }
     // Camera looking down: R_s_c = Rx(pi) times a small rotation; a lever arm of a few cm.
     const SO3d R_c_s =
-        SO3d::Exp(Eigen::Vector3d(0.02, -0.03, 0.01)) * SO3d::Exp(Eigen::Vector3d(M_PI, 0.0, 0.0));
+        SO3d::Exp(Eigen::Vector3d(0.02, -0.03, 0.01)) * SO3d::Exp(Eigen::Vector3d(kPi, 0.0, 0.0));
     PoseToBlock(SE3d(R_c_s, Eigen::Vector3d(0.05, -0.02, 0.01)), T_c_s.data());
     // Target centred below the spline, slightly rotated.
     PoseToBlock(

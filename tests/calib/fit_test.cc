@@ -10,6 +10,7 @@
 
 #include "calib/fit_test_data.h"
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
@@ -20,9 +21,6 @@ using testing::FitScenario;
 using ::testing::HasSubstr;
 using testing::MakeFitData;
 using testing::PerturbedControlPoses;
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
 
 // The noise-free recovery bounds. Noise-free data generated from a spline with the same
 // knots is fitted exactly: the minimum has zero cost, and the solver stops at cost ~1e-17 where
@@ -186,8 +184,9 @@ TEST(Fit, AutoDiffPerSampleUnsharedAndSchurPathsReachTheSameSolution) {
   variants[3].solver.linear_solver = LinearSolver::kSparseSchur;
   for (const FitOptions& variant : variants) {
     const FitResult result = Fit(data.imu, data.poses, variant);
-    EXPECT_NEAR(
-        result.solve.final_cost, reference.solve.final_cost, kSameSolutionCostTolerance * reference.solve.final_cost);
+    EXPECT_NEAR(result.solve.final_cost,
+                reference.solve.final_cost,
+                kSameSolutionCostTolerance * reference.solve.final_cost);
     EXPECT_LE((result.gyro_bias - reference.gyro_bias).cwiseAbs().maxCoeff(),
               kSameSolutionBiasTolerance);
     EXPECT_LE((result.accel_bias - reference.accel_bias).cwiseAbs().maxCoeff(),

@@ -15,11 +15,12 @@
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
-#include "splinecal/sim/simulate_imu.h"
-#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/lie/se3.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/spline/se3_spline.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace testing {
@@ -69,7 +70,7 @@ inline AnalyticTrajectory ScenarioTrajectory(const FitScenario& scenario) {
   const double periods[3] = {7.0, 5.0, 11.0};
   for (int a = 0; a < 3; ++a) {
     position[a].offset = 1.0;
-    position[a].terms.push_back({1.5, 2.0 * 3.14159265358979 / periods[a], 0.3 * a});
+    position[a].terms.push_back({1.5, 2.0 * kPi / periods[a], 0.3 * a});
   }
   std::array<SinusoidChannel, 3> attitude;
   attitude[0].offset = 0.1;

@@ -13,6 +13,7 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/units.h"
 #include "testing/numeric_diff.h"
 
 namespace splinecal {
@@ -64,7 +65,7 @@ TEST(PredictImu, LevelImuAtRestReadsPlusGOnZ) {
 }
 
 TEST(PredictImu, UpsideDownImuAtRestReadsMinusG) {
-  const SO3d flipped = SO3d::Exp(Eigen::Vector3d(M_PI, 0, 0));
+  const SO3d flipped = SO3d::Exp(Eigen::Vector3d(kPi, 0, 0));
   const std::vector<SE3d> poses(5, SE3d(flipped, Eigen::Vector3d::Zero()));
   const SE3Splined spline(poses, 0, testutil::kTestDtNs);
   Eigen::Vector3d accel;

@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "splinecal/error.h"
-#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/sim/trajectories.h"
+#include "splinecal/units.h"
 #include "testing/shared_data.h"
 
 namespace splinecal {
@@ -364,7 +365,7 @@ TEST(ComputeDrift, ZeroOnTheTruthAndExactForAKnownOffset) {
   EXPECT_LT(drift.final_rotation_error_deg, 1e-9);
   // A constant 3 cm offset and a 2 degree rotation about z at the end.
   for (NavState& state : trajectory) state.p_w_s += Eigen::Vector3d(0.0, 0.03, 0.0);
-  trajectory.back().R_w_s = trajectory.back().R_w_s * SO3d::Exp(Eigen::Vector3d(0, 0, M_PI / 90));
+  trajectory.back().R_w_s = trajectory.back().R_w_s * SO3d::Exp(Eigen::Vector3d(0, 0, kPi / 90));
   drift = ComputeDrift(trajectory, data.truth);
   EXPECT_NEAR(drift.ate_rmse_m, 0.03, 1e-12);
   EXPECT_NEAR(drift.final_position_error_m, 0.03, 1e-12);

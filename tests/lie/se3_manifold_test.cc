@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "splinecal/units.h"
 #include "testing/numeric_diff.h"
 
 namespace splinecal {
@@ -35,7 +36,6 @@ using ceres::XPlusZeroIsXAt;
 constexpr double kManifoldTolerance = 1e-9;
 // Plus/Minus against the group operations: a few dozen flops, translations up to ~10.
 constexpr double kExactTolerance = 1e-12;
-constexpr double kPi = M_PI;
 constexpr int kNumTrials = 200;
 
 Eigen::Quaterniond RandomQuaternion(std::mt19937* rng) {

@@ -13,6 +13,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
+#include "splinecal/units.h"
 #include "testing/numeric_diff.h"
 
 template class splinecal::SE3<double>;
@@ -34,8 +35,6 @@ constexpr double kJetTolerance = 1e-13;
 // Jet values against the double code path: same formulas, but Eigen vectorises the double
 // matrix products and not the Jet ones (different rounding); entries up to ~10.
 constexpr double kJetValueTolerance = 1e-13;
-
-constexpr double kPi = M_PI;
 
 const std::vector<double>& EdgeAngles() {
   static const std::vector<double> angles = {0.0,

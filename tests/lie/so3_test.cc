@@ -13,6 +13,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
+#include "splinecal/units.h"
 #include "testing/numeric_diff.h"
 
 // Every member compiled with every scalar (a missing ADL path or a std:: call that blocks Jets
@@ -39,8 +40,6 @@ constexpr double kIdentityTolerance = 1e-13;
 constexpr double kContinuityTolerance = 1e-14;
 // Relative offset of the arguments on either side of a series switch.
 constexpr double kSwitchOffset = 1e-12;
-
-constexpr double kPi = M_PI;
 
 // Angles [rad] at which every property is checked: zero, tiny, around the series switch, generic,
 // large, and just below pi.

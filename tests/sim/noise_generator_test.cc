@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
@@ -31,7 +32,7 @@ TEST(GaussianSampler, ZigguratTableClosesAtTheTop) {
   const internal::ZigguratTables& t = internal::GetZigguratTables();
   const double r = t.r;
   const double v =
-      r * std::exp(-0.5 * r * r) + std::sqrt(M_PI / 2.0) * std::erfc(r / std::sqrt(2.0));
+      r * std::exp(-0.5 * r * r) + std::sqrt(kPi / 2.0) * std::erfc(r / std::sqrt(2.0));
   EXPECT_NEAR(t.f[255] + v / t.x[255], 1.0, 1e-12);
   for (int i = 0; i < internal::ZigguratTables::kLayers; ++i) {
     ASSERT_GT(t.x[i], t.x[i + 1]) << "strip " << i;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
@@ -38,7 +39,7 @@ Eigen::Matrix3d EulerZyx(double roll, double pitch, double yaw) {
 
 TEST(VioCourseTrajectory, MatchesTheCourseFormula) {
   const AnalyticTrajectory trajectory = VioCourseTrajectory();
-  const double k = M_PI / 10.0;
+  const double k = kPi / 10.0;
   for (double t : {0.0, 0.37, 5.0, 12.25, 19.99}) {
     const SE3d T_w_s = trajectory.Pose(t);
     const Eigen::Vector3d p(

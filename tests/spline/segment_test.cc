@@ -12,6 +12,7 @@
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
@@ -29,7 +30,7 @@ constexpr double kBranchTolerance = 1e-13;
 // (0.1 rad), generic, and near pi.
 const std::vector<double>& TestAngles() {
   static const std::vector<double> angles = {
-      0.0, 1e-9, 1e-4, 0.05, 0.0999999, 0.1000001, 0.3, 1.0, 2.5, M_PI - 1e-6};
+      0.0, 1e-9, 1e-4, 0.05, 0.0999999, 0.1000001, 0.3, 1.0, 2.5, kPi - 1e-6};
   return angles;
 }
 

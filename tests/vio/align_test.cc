@@ -11,13 +11,14 @@
 #include <vector>
 
 #include "calib/align_test_data.h"
-#include "splinecal/estimation/gravity_tangent.h"
 #include "splinecal/error.h"
-#include "splinecal/sim/trajectories.h"
+#include "splinecal/estimation/gravity_tangent.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
 #include "testing/temp_dir.h"
@@ -26,8 +27,6 @@ namespace splinecal {
 namespace {
 
 using ::testing::HasSubstr;
-
-constexpr double kRadToDeg = 180.0 / M_PI;
 
 // The targets for data consistent with the preintegration model (noise-free).
 constexpr double kGravityToleranceDeg = 1e-6;
@@ -122,7 +121,7 @@ TEST(Align, NoiseFreeGravityAlongPlusAndMinusZOfC0) {
   for (double sign : {1.0, -1.0}) {
     testdata::ScenarioOptions options = DefaultOptions();
     // R_c_s = R_w_s0 makes R_w_c0 = I (gravity -z in c0); a half turn about x flips it.
-    const SO3d flip = sign > 0 ? SO3d() : SO3d::Exp(Eigen::Vector3d(M_PI, 0.0, 0.0));
+    const SO3d flip = sign > 0 ? SO3d() : SO3d::Exp(Eigen::Vector3d(kPi, 0.0, 0.0));
     options.T_cam_imu = SE3d(flip * R_w_s0, Eigen::Vector3d(0.02, -0.06, 0.01));
     const testdata::Scenario scenario = testdata::MakeScenario(trajectory, options);
     ASSERT_LT((scenario.gravity_c0 - Eigen::Vector3d(0, 0, -sign * 9.81)).norm(), 1e-12);
@@ -400,7 +399,7 @@ TEST(AlignmentProblem, RefineGravityConvergesFromFarStart) {
                                  ImuNoise());
   // 60 degrees away from the truth.
   const Eigen::Vector3d start =
-      SO3d::Exp(Eigen::Vector3d(M_PI / 3.0, 0.0, 0.0)) * scenario.gravity_c0;
+      SO3d::Exp(Eigen::Vector3d(kPi / 3.0, 0.0, 0.0)) * scenario.gravity_c0;
   ASSERT_GT(AngleDeg(start, scenario.gravity_c0), 59.0);
   AlignmentSolution initial;
   initial.gravity_c0 = start;

@@ -8,7 +8,8 @@
 //   line_delay         [s]   image row r of a frame stamped t_frame (camera clock) is exposed at
 //                            t_frame + r * line_delay; 0 is a global shutter.
 //
-// Reading and writing the YAML is io/camchain_yaml.h.
+// Reading and writing the YAML is io/camchain_yaml.h. CheckCameraIds refuses observations
+// (camera/observations.h) of a camera the camchain lacks.
 #ifndef SPLINECAL_CAMERA_CAMCHAIN_H_
 #define SPLINECAL_CAMERA_CAMCHAIN_H_
 
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "splinecal/camera/camera_model.h"
+#include "splinecal/camera/observations.h"
 #include "splinecal/lie/se3.h"
 
 namespace splinecal {
@@ -31,6 +33,20 @@ struct CameraCalibration {
 
 // cam0, cam1, ... in order.
 using Camchain = std::vector<CameraCalibration>;
+
+// The first observation whose cam_id names no camera of `camchain` (negative, or not below its
+// size); nullptr when every observation has its camera.
+const Observation* FindObservationWithoutCamera(const std::vector<Observation>& observations,
+                                                const Camchain& camchain);
+
+// Throws splinecal::Error naming observations_path for the first observation whose camera is not
+// in `camchain` (read from camchain_path): a cam_id beyond it means the camchain of another rig
+// or a column mix-up. One line: "cam_id N (frame t_ns T) has no camera in CAMCHAIN, which
+// describes K camera(s): wrong camchain or cam_id column".
+void CheckCameraIds(const std::vector<Observation>& observations,
+                    const Camchain& camchain,
+                    const std::string& observations_path,
+                    const std::string& camchain_path);
 
 }  // namespace splinecal
 

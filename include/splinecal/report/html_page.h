@@ -1,0 +1,49 @@
+// The page every splinecal HTML report is written on (report.html of `fit` and `calibrate`):
+// one skeleton (doctype, UTF-8, title, the <h1> heading) and one shared style sheet, so that the
+// reports look alike and a change of style is made once. The reports fill the body with their
+// own tables and SVG figures (report/svg_plot.h).
+//
+//   HtmlPage page("splinecal fit", "body{max-width:960px;margin:auto}");
+//   page.Append("<table>...</table>\n");
+//   page.Section("Residuals", InlineSvg(figure));
+//   output.WriteFile("report.html", page.str());
+#ifndef SPLINECAL_REPORT_HTML_PAGE_H_
+#define SPLINECAL_REPORT_HTML_PAGE_H_
+
+#include <string>
+#include <vector>
+
+#include "splinecal/report/svg_plot.h"
+
+namespace splinecal {
+
+class HtmlPage {
+ public:
+  // `title` becomes the page's <title> and <h1> (escaped here). `layout_css` follows the shared
+  // style sheet (sans-serif text, collapsed table borders), so it can override it: the page
+  // width, cell padding and alignment of one report.
+  HtmlPage(const std::string& title, const std::string& layout_css);
+
+  // HTML the caller built; text inside it must be escaped (plot::EscapeXml).
+  void Append(const std::string& html);
+  // <h2>heading</h2> (escaped), then `html` on the next line.
+  void Section(const std::string& heading, const std::string& html);
+  // <h2>heading</h2> and a bullet list of `items` (escaped); `list_class` is the <ul>'s CSS class
+  // (empty for none). Writes nothing when `items` is empty.
+  void ListSection(const std::string& heading,
+                   const std::vector<std::string>& items,
+                   const std::string& list_class = "");
+
+  // The whole document, closed.
+  std::string str() const;
+
+ private:
+  std::string html_;
+};
+
+// The SVG document of `figure` without its XML declaration, for inline use in HTML.
+std::string InlineSvg(const plot::Figure& figure);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_REPORT_HTML_PAGE_H_

@@ -1,0 +1,39 @@
+// result.yaml of `splinecal simulate` (docs/simulate.md, "Outputs"): what was simulated (the
+// trajectory, time range, rate, seed, gravity, noise densities, initial and final biases), how
+// well the spline fits the trajectory, and with cameras their truth (sim/simulate_camera.h,
+// WriteCameraSimulationTruth).
+#ifndef SPLINECAL_SIM_SIMULATION_RESULT_H_
+#define SPLINECAL_SIM_SIMULATION_RESULT_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "splinecal/camera/camchain.h"
+#include "splinecal/imu/imu_sample.h"
+#include "splinecal/io/euroc.h"
+#include "splinecal/sim/simulate_camera.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/simulation_trajectory.h"
+
+namespace splinecal {
+
+// One simulation run: its spline, its settings and what it produced.
+struct SimulationRun {
+  SimulationSpline spline;
+  int64_t start_ns = 0;  // the simulated range, IMU clock
+  int64_t end_ns = 0;
+  double knot_spacing_s = 0.0;  // as requested (spline.fit.layout has it in ns)
+  SimulationOptions options;
+  std::vector<ImuSample> imu;
+  std::vector<GroundTruthState> truth;  // not empty
+  Camchain camchain;                    // empty: no cameras
+  CameraSimulationOptions camera_options;
+  CameraSimulationResult cameras;
+};
+
+std::string SimulationResultYaml(const SimulationRun& run);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_SIM_SIMULATION_RESULT_H_

@@ -1,0 +1,282 @@
+#include "splinecal/report/calibrate_report.h"
+
+#include <algorithm>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "splinecal/io/yaml_writer.h"
+#include "splinecal/report/html_page.h"
+#include "splinecal/report/plot_decimation.h"
+#include "splinecal/report/svg_plot.h"
+#include "splinecal/string_printf.h"
+#include "splinecal/units.h"
+
+namespace splinecal {
+
+namespace {
+
+const char* const kAxisNames[3] = {"x", "y", "z"};
+
+void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
+  yaml->Matrix("T_cam_imu", c.calibration.T_cam_imu.matrix());
+  yaml->Vector("rotation_std_deg", c.rotation_std_deg);
+  yaml->Vector("translation_std_m", c.translation_std_m);
+  yaml->Scalar("timeshift_cam_imu", c.calibration.timeshift_cam_imu_s);
+  yaml->Scalar("timeshift_estimated", c.timeshift_estimated);
+  yaml->Scalar("timeshift_std_s", c.timeshift_std_s);
+  yaml->Scalar("line_delay", c.calibration.line_delay_s);
+  yaml->Scalar("line_delay_estimated", c.line_delay_estimated);
+  yaml->Scalar("line_delay_std", c.line_delay_std_s);
+  yaml->Scalar("reprojection_rms_px", c.reprojection_rms_px);
+  yaml->Scalar("num_frames", c.num_frames);
+  yaml->Scalar("num_observations", c.num_observations);
+}
+
+// "a, b, c" with one printf format per component.
+std::string Components(const char* format, const Eigen::Vector3d& v) {
+  return StringPrintf(format, v.x()) + ", " + StringPrintf(format, v.y()) + ", " +
+         StringPrintf(format, v.z());
+}
+
+// Reprojection errors: their scatter and their norm over time.
+plot::Figure ReprojectionFigure(const CalibrationResult& r, int max_points) {
+  plot::Figure figure;
+  figure.title = "Reprojection errors (predicted - observed)";
+  figure.columns = 2;
+  plot::Panel& scatter = figure.panels.emplace_back();
+  scatter.title = "error scatter";
+  scatter.x = {"u error [px]", plot::Scale::kLinear};
+  scatter.y = {"v error [px]", plot::Scale::kLinear};
+  scatter.equal_aspect = true;
+  scatter.legend = plot::LegendPosition::kNone;
+  plot::Panel& over_time = figure.panels.emplace_back();
+  over_time.title = "error norm over time";
+  over_time.x = {"time [s] (IMU spline)", plot::Scale::kLinear};
+  over_time.y = {"|error| [px]", plot::Scale::kLinear};
+  over_time.legend = plot::LegendPosition::kNone;
+  plot::Series& points = scatter.series.emplace_back();
+  points.line = false;
+  points.marker = plot::Marker::kCircle;
+  points.marker_size = 1.2;
+  plot::Series& norms = over_time.series.emplace_back();
+  norms.line = false;
+  norms.marker = plot::Marker::kCircle;
+  norms.marker_size = 1.2;
+  for (size_t k : plot::DecimatedIndices(r.reprojection_samples.size(), max_points, false)) {
+    const ReprojectionSample& s = r.reprojection_samples[k];
+    points.x.push_back(s.error.x());
+    points.y.push_back(s.error.y());
+    norms.x.push_back(NanosecondsToSeconds(s.t_ns - r.layout.t0_ns));
+    norms.y.push_back(s.error.norm());
+  }
+  return figure;
+}
+
+// Gyro and accelerometer residuals over time.
+plot::Figure ImuFigure(const CalibrationResult& r, int max_points) {
+  plot::Figure figure;
+  figure.title = "IMU residuals (predicted - measured)";
+  figure.columns = 1;
+  figure.panel_width = 880.0;
+  figure.panel_height = 260.0;
+  const std::vector<size_t> keep = plot::DecimatedIndices(r.imu_samples.size(), max_points, false);
+  for (int sensor = 0; sensor < 2; ++sensor) {
+    plot::Panel& panel = figure.panels.emplace_back();
+    panel.x = {"time [s] (IMU spline)", plot::Scale::kLinear};
+    panel.y = {sensor == 0 ? "gyro residual [rad/s]" : "accel residual [m/s^2]",
+               plot::Scale::kLinear};
+    for (int a = 0; a < 3; ++a) {
+      plot::Series& series = panel.series.emplace_back();
+      series.label = kAxisNames[a];
+      series.line_width = 0.8;
+      for (size_t k : keep) {
+        const ImuResidualRecord& s = r.imu_samples[k];
+        series.x.push_back(NanosecondsToSeconds(s.t_ns - r.layout.t0_ns));
+        series.y.push_back(sensor == 0 ? s.gyro_error[a] : s.accel_error[a]);
+      }
+    }
+  }
+  return figure;
+}
+
+// The spline's position: top view and over time (about 3000 evaluations).
+plot::Figure TrajectoryFigure(const CalibrationResult& r) {
+  plot::Figure figure;
+  figure.title = "IMU trajectory in the target frame";
+  figure.columns = 2;
+  plot::Panel& top = figure.panels.emplace_back();
+  top.title = "top view";
+  top.x = {"x [m]", plot::Scale::kLinear};
+  top.y = {"y [m]", plot::Scale::kLinear};
+  top.equal_aspect = true;
+  top.legend = plot::LegendPosition::kNone;
+  plot::Panel& height = figure.panels.emplace_back();
+  height.title = "position over time";
+  height.x = {"time [s] (IMU spline)", plot::Scale::kLinear};
+  height.y = {"position [m]", plot::Scale::kLinear};
+  const SE3Splined spline = r.MakeSpline();
+  plot::Series& xy = top.series.emplace_back();
+  std::vector<plot::Series> components(3);
+  for (int a = 0; a < 3; ++a) components[a].label = kAxisNames[a];
+  const int64_t step = std::max<int64_t>(1, (spline.end_time_ns() - spline.start_time_ns()) / 3000);
+  for (int64_t t = spline.start_time_ns(); t <= spline.end_time_ns(); t += step) {
+    const Eigen::Vector3d p = spline.PoseNs(t).translation();
+    xy.x.push_back(p.x());
+    xy.y.push_back(p.y());
+    for (int a = 0; a < 3; ++a) {
+      components[a].x.push_back(NanosecondsToSeconds(t - r.layout.t0_ns));
+      components[a].y.push_back(p[a]);
+    }
+  }
+  for (plot::Series& s : components) height.series.push_back(std::move(s));
+  return figure;
+}
+
+// The estimates: one block of rows per camera, then the IMU and the pixel noise.
+std::string EstimatesTable(const CalibrationResult& r) {
+  std::ostringstream html;
+  html << "<table>\n";
+  for (size_t c = 0; c < r.cameras.size(); ++c) {
+    const CameraEstimate& e = r.cameras[c];
+    const Eigen::Vector3d rpy = e.calibration.T_cam_imu.so3().Log() * 180.0 / kPi;
+    const Eigen::Vector3d t = e.calibration.T_cam_imu.translation();
+    html << "<tr><th colspan=3>cam" << c << "</th></tr>\n";
+    html << "<tr><th>T_cam_imu rotation vector [deg]</th><td>" << Components("%.4f", rpy)
+         << "</td><td>std " << Components("%.4f", e.rotation_std_deg) << "</td></tr>\n";
+    html << "<tr><th>T_cam_imu translation [mm]</th><td>" << Components("%.2f", 1e3 * t)
+         << "</td><td>std " << Components("%.2f", 1e3 * e.translation_std_m) << "</td></tr>\n";
+    html << "<tr><th>timeshift_cam_imu [ms]</th><td>"
+         << StringPrintf("%.4f", 1e3 * e.calibration.timeshift_cam_imu_s) << "</td><td>std "
+         << StringPrintf("%.4f", 1e3 * e.timeshift_std_s) << "</td></tr>\n";
+    html << "<tr><th>line_delay [us/row]</th><td>"
+         << StringPrintf("%.4f", 1e6 * e.calibration.line_delay_s) << "</td><td>std "
+         << StringPrintf("%.4f", 1e6 * e.line_delay_std_s) << "</td></tr>\n";
+    html << "<tr><th>reprojection RMS [px]</th><td>" << StringPrintf("%.3f", e.reprojection_rms_px)
+         << "</td><td>" << e.num_observations << " points in " << e.num_frames
+         << " frames</td></tr>\n";
+  }
+  html << "<tr><th>gyro bias [rad/s]</th><td colspan=2>" << Components("%.3e", r.gyro_bias)
+       << "</td></tr>\n";
+  html << "<tr><th>accel bias [m/s^2]</th><td colspan=2>" << Components("%.3e", r.accel_bias)
+       << "</td></tr>\n";
+  html << "<tr><th>IMU residual RMS</th><td colspan=2>gyro " << StringPrintf("%.3e", r.gyro_rms)
+       << " rad/s, accel " << StringPrintf("%.3e", r.accel_rms) << " m/s^2</td></tr>\n";
+  html << "<tr><th>pixel sigma [px]</th><td colspan=2>" << StringPrintf("%.3f", r.pixel_sigma_px)
+       << (r.pixel_sigma_estimated ? " (estimated)" : " (given)") << "</td></tr>\n";
+  html << "</table>\n";
+  return html.str();
+}
+
+}  // namespace
+
+std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptions& options) {
+  YamlWriter yaml;
+  yaml.Comment(
+      "splinecal calibrate: cam0's estimates at the top level (every camera under "
+      "cameras); T_cam_imu maps IMU points into the camera; t_imu = t_cam + "
+      "timeshift_cam_imu; row r is exposed at t_frame + r * line_delay; stds in the "
+      "right tangent of T_cam_imu (rotation, IMU frame) and of t_cam_imu (camera frame)");
+  WriteCameraYaml(r.cameras[0], &yaml);
+  yaml.Vector("gyro_bias", r.gyro_bias);
+  yaml.Vector("gyro_bias_std", r.gyro_bias_std);
+  yaml.Vector("accel_bias", r.accel_bias);
+  yaml.Vector("accel_bias_std", r.accel_bias_std);
+  yaml.Vector("gravity_w", r.gravity_w);
+  yaml.Scalar("reprojection_rms_px", r.reprojection_rms_px);
+  yaml.Scalar("pixel_sigma_px", r.pixel_sigma_px);
+  yaml.Scalar("pixel_sigma_estimated", r.pixel_sigma_estimated);
+  yaml.Scalar("gyro_rms", r.gyro_rms);
+  yaml.Scalar("accel_rms", r.accel_rms);
+  yaml.Scalar("num_imu_samples", r.num_imu_samples);
+  yaml.Scalar("num_landmarks", r.num_landmarks);
+  yaml.Scalar("knot_spacing_s", NanosecondsToSeconds(r.layout.dt_ns));
+  yaml.Scalar("bias_model", options.model.bias_model == BiasModel::kSpline ? "spline" : "constant");
+  yaml.Scalar("rolling_shutter", options.rolling_shutter);
+  yaml.Scalar("huber_px", options.huber_px);
+  yaml.Scalar("iterations", r.solve.iterations);
+  yaml.Scalar("rounds", r.solve.rounds);
+  yaml.Scalar("initialisation_time_s", r.initialisation_time_s);
+  yaml.Scalar("solve_time_s", r.solve.solve_time_s);
+  yaml.Scalar("covariance_time_s", r.covariance_time_s);
+  yaml.Scalar("covariance_ok", r.covariance_ok);
+  yaml.Scalar("termination", r.solve.termination);
+  if (r.cameras.size() > 1) {
+    yaml.BeginMap("cameras");
+    for (size_t c = 0; c < r.cameras.size(); ++c) {
+      yaml.BeginMap("cam" + std::to_string(c));
+      WriteCameraYaml(r.cameras[c], &yaml);
+      yaml.EndMap();
+    }
+    yaml.EndMap();
+  }
+  yaml.StringList("warnings", r.warnings);
+  return yaml.str();
+}
+
+std::string CalibrateReprojectionCsv(const CalibrationResult& r) {
+  std::ostringstream out;
+  out << "#t_ns,cam_id,point_id,u,v,error_u,error_v\n";
+  for (const ReprojectionSample& s : r.reprojection_samples) {
+    out << s.t_ns << ',' << s.cam_id << ',' << s.point_id << ',' << FormatDouble(s.uv.x()) << ','
+        << FormatDouble(s.uv.y()) << ',' << FormatDouble(s.error.x()) << ','
+        << FormatDouble(s.error.y()) << '\n';
+  }
+  return out.str();
+}
+
+std::string CalibrateReportHtml(const CalibrationResult& r,
+                                const std::string& title,
+                                int max_points) {
+  HtmlPage page(title,
+                "body{margin:2em;max-width:1000px}td,th{padding:3px 8px;text-align:right}"
+                "th{text-align:left}");
+  page.Append(EstimatesTable(r));
+  page.ListSection("Warnings", r.warnings);
+  page.Section("Reprojection", plot::RenderSvg(ReprojectionFigure(r, max_points)));
+  page.Section("IMU", plot::RenderSvg(ImuFigure(r, max_points)));
+  page.Section("Trajectory", plot::RenderSvg(TrajectoryFigure(r)));
+  return page.str();
+}
+
+std::string CalibrateSummaryText(const CalibrationResult& result) {
+  std::string text;
+  for (size_t c = 0; c < result.cameras.size(); ++c) {
+    const CameraEstimate& e = result.cameras[c];
+    const Eigen::Matrix4d T = e.calibration.T_cam_imu.matrix();
+    text += StringPrintf("cam%zu T_cam_imu:\n", c);
+    for (int row = 0; row < 4; ++row) {
+      text += StringPrintf(
+          "  [%12.9f %12.9f %12.9f %12.9f]\n", T(row, 0), T(row, 1), T(row, 2), T(row, 3));
+    }
+    text +=
+        StringPrintf("  rotation std [%.4f %.4f %.4f] deg, translation std [%.2f %.2f %.2f] mm\n",
+                     e.rotation_std_deg.x(),
+                     e.rotation_std_deg.y(),
+                     e.rotation_std_deg.z(),
+                     1e3 * e.translation_std_m.x(),
+                     1e3 * e.translation_std_m.y(),
+                     1e3 * e.translation_std_m.z());
+    text += StringPrintf("  timeshift_cam_imu %.6f ms (std %.4f ms)%s\n",
+                         1e3 * e.calibration.timeshift_cam_imu_s,
+                         1e3 * e.timeshift_std_s,
+                         e.timeshift_estimated ? "" : " (fixed)");
+    text += StringPrintf("  line_delay %.4f us/row (std %.4f us)%s\n",
+                         1e6 * e.calibration.line_delay_s,
+                         1e6 * e.line_delay_std_s,
+                         e.line_delay_estimated ? "" : " (fixed)");
+    text += StringPrintf("  reprojection RMS %.3f px over %d points in %d frames\n",
+                         e.reprojection_rms_px,
+                         e.num_observations,
+                         e.num_frames);
+  }
+  text += StringPrintf("gyro RMS %.3e rad/s, accel RMS %.3e m/s^2, pixel sigma %.3f px%s\n",
+                       result.gyro_rms,
+                       result.accel_rms,
+                       result.pixel_sigma_px,
+                       result.pixel_sigma_estimated ? " (estimated)" : "");
+  for (const std::string& w : result.warnings) text += "warning: " + w + "\n";
+  return text;
+}
+
+}  // namespace splinecal
