@@ -295,7 +295,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   }
 
   // Extrinsic: the given value, its rotation from hand-eye when estimated.
-  SE3d T_m_s = options.T_pose_imu;
+  SE3d T_m_s = options.T_m_s;
   if (options.estimate_extrinsic) {
     std::vector<SO3d> R_m_pairs;
     std::vector<SO3d> R_s_pairs;
@@ -527,7 +527,7 @@ FitResult FitProblem::Impl::Solve() {
   result.time_offset_estimated = options.estimate_time_offset;
   result.time_offset_s = time_offset;
   result.extrinsic_estimated = options.estimate_extrinsic;
-  result.T_pose_imu = PoseFromBlock(extrinsic.data());
+  result.T_m_s = PoseFromBlock(extrinsic.data());
   result.imu_rate_hz = imu_rate_hz;
   result.num_imu_samples = static_cast<int>(imu.size());
   result.num_poses = static_cast<int>(used_poses.size());
@@ -567,7 +567,7 @@ FitResult FitProblem::Impl::Solve() {
   result.gyro_bias = imu_stats.mean_gyro_bias;
   result.accel_bias = imu_stats.mean_accel_bias;
   const SE3Splined spline = spline_problem->Spline();
-  const SE3d T_s_m = result.T_pose_imu.inverse();
+  const SE3d T_s_m = result.T_m_s.inverse();
   double position_sq = 0.0;
   double rotation_sq = 0.0;
   for (int j : used_poses) {

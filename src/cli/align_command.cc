@@ -74,7 +74,7 @@ AlignInputs ReadAlignInputs() {
   if (!FLAGS_camchain.empty()) {
     const CameraCalibration cam0 = ReadCam0Extrinsics(FLAGS_camchain);
     options.T_cam_imu = cam0.T_cam_imu;
-    options.timeshift_cam_imu_s = cam0.timeshift_cam_imu_s;
+    options.time_offset_s = cam0.time_offset_s;
   }
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
   in.poses = ReadPoses(poses_path);

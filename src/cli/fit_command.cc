@@ -127,8 +127,8 @@ int RunFit() {
                 1e3 * result.time_offset_std_s);
   }
   if (result.extrinsic_estimated) {
-    const Eigen::Vector3d t = result.T_pose_imu.translation();
-    const Eigen::Vector3d r = result.T_pose_imu.so3().Log() * 57.295779513082320876;
+    const Eigen::Vector3d t = result.T_m_s.translation();
+    const Eigen::Vector3d r = result.T_m_s.so3().Log() * 57.295779513082320876;
     std::printf("T_pose_imu  t [%.5f %.5f %.5f] m, rotation vector [%.4f %.4f %.4f] deg\n",
                 t.x(),
                 t.y(),

@@ -77,11 +77,11 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   if (r.time_offset_estimated) yaml.Scalar("time_offset_s_std", r.time_offset_std_s);
   if (r.extrinsic_estimated) {
     yaml.Comment("T_pose_imu = T_m_s maps IMU-frame points into the pose source's body frame");
-    yaml.Matrix("T_pose_imu", r.T_pose_imu.matrix());
+    yaml.Matrix("T_pose_imu", r.T_m_s.matrix());
     yaml.BeginMap("T_pose_imu_std");
     yaml.Comment("right tangent of T_pose_imu: T Exp([rho; phi])");
-    yaml.Vector("translation_m", r.T_pose_imu_translation_std_m);
-    yaml.Vector("rotation_rad", r.T_pose_imu_rotation_std_rad);
+    yaml.Vector("translation_m", r.T_m_s_translation_std_m);
+    yaml.Vector("rotation_rad", r.T_m_s_rotation_std_rad);
     yaml.EndMap();
   }
   yaml.Scalar("covariance_ok", r.covariance_ok);
@@ -262,14 +262,15 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
       "<style>body{font-family:sans-serif;max-width:960px;margin:auto}"
       "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
       "text-align:left}.warn{color:#a00}</style></head><body>\n<h1>splinecal fit</h1>\n";
-  html += "<p>IMU: " + plot::EscapeXml(inputs.imu_path) + "<br>poses: " + plot::EscapeXml(inputs.poses_path) +
-          "<br>noise: " +
-          plot::EscapeXml(inputs.imu_yaml_path.empty() ? "ADIS16448 defaults" : inputs.imu_yaml_path) +
-          "</p>\n";
+  html +=
+      "<p>IMU: " + plot::EscapeXml(inputs.imu_path) +
+      "<br>poses: " + plot::EscapeXml(inputs.poses_path) + "<br>noise: " +
+      plot::EscapeXml(inputs.imu_yaml_path.empty() ? "ADIS16448 defaults" : inputs.imu_yaml_path) +
+      "</p>\n";
   html += "<table><tr><th>quantity</th><th>estimate</th><th>std</th></tr>\n";
   auto row = [&html](const std::string& name, const std::string& value, const std::string& std) {
-    html += "<tr><td>" + plot::EscapeXml(name) + "</td><td>" + plot::EscapeXml(value) + "</td><td>" +
-            plot::EscapeXml(std) + "</td></tr>\n";
+    html += "<tr><td>" + plot::EscapeXml(name) + "</td><td>" + plot::EscapeXml(value) +
+            "</td><td>" + plot::EscapeXml(std) + "</td></tr>\n";
   };
   row("gyro bias [rad/s]", VectorText(r.gyro_bias, 6), VectorText(r.gyro_bias_std, 3));
   row("accel bias [m/s^2]", VectorText(r.accel_bias, 6), VectorText(r.accel_bias_std, 3));
@@ -281,11 +282,11 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   }
   if (r.extrinsic_estimated) {
     row("T_pose_imu translation [m]",
-        VectorText(r.T_pose_imu.translation(), 6),
-        VectorText(r.T_pose_imu_translation_std_m, 3));
+        VectorText(r.T_m_s.translation(), 6),
+        VectorText(r.T_m_s_translation_std_m, 3));
     row("T_pose_imu rotation vector [deg]",
-        VectorText(kRadToDeg * r.T_pose_imu.so3().Log(), 6),
-        VectorText(kRadToDeg * r.T_pose_imu_rotation_std_rad, 3));
+        VectorText(kRadToDeg * r.T_m_s.so3().Log(), 6),
+        VectorText(kRadToDeg * r.T_m_s_rotation_std_rad, 3));
   }
   row("residual RMS gyro [rad/s]",
       Fixed(r.residual_rms.gyro_rad_s, 4),

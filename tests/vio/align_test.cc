@@ -11,12 +11,12 @@
 #include <vector>
 
 #include "calib/align_test_data.h"
-#include "splinecal/estimation/gravity_tangent.h"
 #include "splinecal/error.h"
-#include "splinecal/sim/trajectories.h"
+#include "splinecal/estimation/gravity_tangent.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/sim/trajectories.h"
 #include "splinecal/string_printf.h"
 #include "testing/run_tool.h"
 #include "testing/temp_dir.h"
@@ -151,7 +151,7 @@ TEST(Align, TimeshiftMovesCameraStampsIntoImuTime) {
   // The camera clock runs 5 ms behind: t_imu = t_cam + 0.005.
   for (StampedPose& pose : scenario.camera_poses) pose.t_ns -= 5000000;
   AlignOptions align_options = AlignOptionsFor(options);
-  align_options.timeshift_cam_imu_s = 0.005;
+  align_options.time_offset_s = 0.005;
   const AlignResult result = Align(scenario.imu, scenario.camera_poses, align_options);
   ExpectRecovered(result, scenario);
   EXPECT_EQ(result.states_w.front().t_ns, scenario.imu.front().t_ns);
