@@ -725,17 +725,6 @@ FitProblem::FitProblem(const std::vector<ImuSample>& imu,
 FitProblem::~FitProblem() = default;
 
 const KnotLayout& FitProblem::layout() const { return impl_->layout; }
-double FitProblem::knot_spacing_s() const { return impl_->dt_s; }
-int FitProblem::num_imu_samples() const { return static_cast<int>(impl_->imu.size()); }
-int FitProblem::num_poses() const { return static_cast<int>(impl_->used_poses.size()); }
-
-std::vector<SE3d> FitProblem::ControlPoses() const {
-  return impl_->spline_problem->ControlPoses();
-}
-
-Eigen::Vector3d FitProblem::GravityW() const {
-  return impl_->spline_problem->gravity_w();
-}
 
 void FitProblem::SetControlPoses(const std::vector<SE3d>& control_poses) {
   if (static_cast<int>(control_poses.size()) != impl_->num_control_poses()) {
@@ -758,16 +747,6 @@ void FitProblem::SetGravity(const Eigen::Vector3d& g_w) {
 void FitProblem::SetTimeOffset(double time_offset_s) {
   impl_->time_offset = time_offset_s;
   impl_->BuildProblem();  // re-attaches the pose residuals to the segments of the new offset
-}
-
-void FitProblem::SetExtrinsic(const SE3d& T_pose_imu) {
-  PoseToBlock(T_pose_imu, impl_->extrinsic.data());
-}
-
-double FitProblem::Cost() {
-  double cost = 0.0;
-  impl_->problem()->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
-  return cost;
 }
 
 FitResult FitProblem::Solve() { return impl_->Solve(); }

@@ -215,21 +215,12 @@ class FitProblem {
   FitProblem& operator=(const FitProblem&) = delete;
 
   const KnotLayout& layout() const;
-  double knot_spacing_s() const;
-  int num_imu_samples() const;
-  int num_poses() const;
 
-  // The current values of the parameters (initial guess before Solve()).
-  std::vector<SE3d> ControlPoses() const;
-  Eigen::Vector3d GravityW() const;
+  // Replace parts of the initial guess before Solve().
   void SetControlPoses(const std::vector<SE3d>& control_poses);  // same count as layout()
   void SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias);
   void SetGravity(const Eigen::Vector3d& g_w);  // norm replaced by FitOptions::gravity_m_s2
   void SetTimeOffset(double time_offset_s);
-  void SetExtrinsic(const SE3d& T_pose_imu);
-
-  // Total cost 1/2 sum |r|^2 at the current values.
-  double Cost();
 
   FitResult Solve();
 
