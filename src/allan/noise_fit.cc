@@ -11,11 +11,11 @@
 
 #include "splinecal/error.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kLn2 = 0.69314718055994530942;
 // A model term must hold at least this share of the model variance at some averaging time to
 // count as identified in the full fit.

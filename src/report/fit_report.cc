@@ -7,12 +7,11 @@
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/report/svg_plot.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
 namespace {
-
-constexpr double kRadToDeg = 57.295779513082320876;
 
 std::string BiasModelName(BiasModel model) {
   return model == BiasModel::kConstant ? "constant" : "spline";
@@ -21,7 +20,6 @@ std::string BiasModelName(BiasModel model) {
 void Append3(const Eigen::Vector3d& v, std::string* row) {
   for (int a = 0; a < 3; ++a) *row += "," + FormatDouble(v[a]);
 }
-
 
 std::string Fixed(double value, int digits) { return StringPrintf("%.*g", digits, value); }
 

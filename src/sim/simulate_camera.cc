@@ -10,12 +10,11 @@
 #include "splinecal/error.h"
 #include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/sim/noise_generator.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A world point seen by one camera of the rig from the spline.
 struct PointView {

@@ -10,11 +10,11 @@
 
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/calib/calibrate.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // The targets.
 constexpr double kMaxRotationErrorDeg = 0.05;
 constexpr double kMaxTranslationErrorM = 0.002;

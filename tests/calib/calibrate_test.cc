@@ -9,13 +9,12 @@
 
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/error.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
 
 using ::testing::HasSubstr;
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Errors {
   Eigen::Vector3d rotation_deg;

@@ -10,19 +10,19 @@
 
 #include "calib/fit_test_data.h"
 #include "splinecal/error.h"
+#include "splinecal/units.h"
+#include "testing/rotations.h"
 
 namespace splinecal {
 namespace {
 
+using testing::AngleDeg;
 using ::testing::AllOf;
 using testing::FitData;
 using testing::FitScenario;
 using ::testing::HasSubstr;
 using testing::MakeFitData;
 using testing::PerturbedControlPoses;
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
 
 // The noise-free recovery bounds. Noise-free data generated from a spline with the same
 // knots is fitted exactly: the minimum has zero cost, and the solver stops at cost ~1e-17 where
@@ -37,10 +37,6 @@ constexpr double kSigmaBound = 3.0;
 // well below their standard deviations (~1e-5 and up).
 constexpr double kSameSolutionCostTolerance = 1e-8;  // relative
 constexpr double kSameSolutionBiasTolerance = 1e-7;
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;
-}
 
 double MaxControlPoseError(const SE3Splined& truth, const std::vector<SE3d>& fitted) {
   EXPECT_EQ(static_cast<int>(fitted.size()), truth.num_control_poses());

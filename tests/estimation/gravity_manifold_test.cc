@@ -7,6 +7,8 @@
 #include <random>
 #include <vector>
 
+#include "splinecal/units.h"
+
 namespace splinecal {
 namespace {
 
@@ -25,7 +27,6 @@ using ceres::XPlusZeroIsXAt;
 // differentiation; 1e-9 leaves room for the numeric Jacobians' error (~1e-10 at |g| = 9.81).
 constexpr double kInvariantTolerance = 1e-9;
 constexpr double kG = 9.81;
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<Eigen::Vector3d> TestDirections() {
   std::vector<Eigen::Vector3d> directions = {

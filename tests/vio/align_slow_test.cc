@@ -9,17 +9,15 @@
 #include <vector>
 
 #include "calib/align_test_data.h"
-#include "splinecal/vio/align.h"
 #include "splinecal/sim/trajectories.h"
+#include "splinecal/units.h"
+#include "splinecal/vio/align.h"
+#include "testing/rotations.h"
 
 namespace splinecal {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / M_PI;
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;
-}
+using testing::AngleDeg;
 
 struct Figures {
   double gravity_linear_deg = 0.0;

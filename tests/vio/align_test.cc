@@ -18,15 +18,16 @@
 #include "splinecal/io/yaml_document.h"
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
+#include "testing/rotations.h"
 #include "testing/run_tool.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
 namespace {
 
+using testing::AngleDeg;
 using ::testing::HasSubstr;
-
-constexpr double kRadToDeg = 180.0 / M_PI;
 
 // The targets for data consistent with the preintegration model (noise-free).
 constexpr double kGravityToleranceDeg = 1e-6;
@@ -36,10 +37,6 @@ constexpr double kGyroBiasTolerance = 1e-9;  // [rad/s]
 // (1e-9 m/s against speeds of ~4 m/s; 1e-9 rad).
 constexpr double kVelocityTolerance = 1e-8;  // [m/s]
 constexpr double kRotationTolerance = 1e-9;  // [rad]
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;
-}
 
 testdata::ScenarioOptions DefaultOptions() {
   testdata::ScenarioOptions options;
