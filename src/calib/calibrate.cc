@@ -20,15 +20,15 @@
 
 #include "calibration_data.h"
 #include "splinecal/calib/fit.h"
-#include "splinecal/imu/imu_rate.h"
+#include "splinecal/camera/pnp.h"
+#include "splinecal/error.h"
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/imu_costs.h"
-#include "splinecal/camera/pnp.h"
-#include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/estimation/spline_problem.h"
-#include "splinecal/error.h"
+#include "splinecal/imu/imu_rate.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
@@ -106,7 +106,7 @@ class CalibrationProblem {
       const CameraCalibration& init = guess.camchain[c];
       CameraState& cam = cameras_[c];
       PoseToBlock(init.T_cam_imu, cam.extrinsic.data());
-      cam.shift = init.timeshift_cam_imu_s;
+      cam.time_offset_s = init.time_offset_s;
       cam.line_delay =
           options.rolling_shutter ? std::max(0.0, init.line_delay_s) : init.line_delay_s;
     }
@@ -142,11 +142,11 @@ class CalibrationProblem {
   };
   struct CameraState {
     std::array<double, 7> extrinsic{};
-    double shift = 0.0;
+    double time_offset_s = 0.0;
     double line_delay = 0.0;
-    double window_readout_s = 0.0;  // the readout the windows were built for
-    double window_before_s = 0.0;   // how far before the stamp + shift they reach
-    double built_shift = 0.0;       // the time offset they were built around
+    double window_readout_s = 0.0;     // the readout the windows were built for
+    double window_before_s = 0.0;      // how far before the stamp + time offset they reach
+    double built_time_offset_s = 0.0;  // the time offset they were built around
   };
 
   const std::vector<double*>& control_blocks() const { return spline_->control_blocks(); }
@@ -164,7 +164,7 @@ class CalibrationProblem {
   // The window of a frame's exposures for the camera's current state (false near the ends).
   bool FrameWindow(int cam, int64_t t_ns, double margin, ControlPoseWindow* window) const {
     const CameraState& c = cameras_[cam];
-    const double t = TimeSinceT0(t_ns) + c.shift;
+    const double t = TimeSinceT0(t_ns) + c.time_offset_s;
     return layout_.WindowCovering(
         t - std::max(margin, c.window_before_s), t + c.window_readout_s + margin, window);
   }
@@ -192,7 +192,7 @@ class CalibrationProblem {
   bool TimesInsideWindows() const {
     for (size_t c = 0; c < cameras_.size(); ++c) {
       const CameraState& cam = cameras_[c];
-      const double moved = cam.shift - cam.built_shift;
+      const double moved = cam.time_offset_s - cam.built_time_offset_s;
       const double readout = cam.line_delay * (camchain_[c].camera.height - 1);
       if (moved < -(cam.window_before_s - kWindowRebuildMargin_s) ||
           moved + readout > cam.window_readout_s + kWindowMargin_s - kWindowRebuildMargin_s) {
@@ -235,16 +235,17 @@ void CalibrationProblem::BuildProblem() {
   for (size_t c = 0; c < cameras_.size(); ++c) {
     CameraState& cam = cameras_[c];
     const int height = camchain_[c].camera.height;
-    cam.built_shift = cam.shift;
+    cam.built_time_offset_s = cam.time_offset_s;
     problem().AddParameterBlock(cam.extrinsic.data(), 7, spline_->se3_manifold());
-    problem().AddParameterBlock(&cam.shift, 1);
+    problem().AddParameterBlock(&cam.time_offset_s, 1);
     problem().AddParameterBlock(&cam.line_delay, 1);
     if (options_.estimate_time_offset) {
-      cam.shift = std::clamp(cam.shift, -options_.max_time_offset_s, options_.max_time_offset_s);
-      problem().SetParameterLowerBound(&cam.shift, 0, -options_.max_time_offset_s);
-      problem().SetParameterUpperBound(&cam.shift, 0, options_.max_time_offset_s);
+      cam.time_offset_s =
+          std::clamp(cam.time_offset_s, -options_.max_time_offset_s, options_.max_time_offset_s);
+      problem().SetParameterLowerBound(&cam.time_offset_s, 0, -options_.max_time_offset_s);
+      problem().SetParameterUpperBound(&cam.time_offset_s, 0, options_.max_time_offset_s);
     } else {
-      problem().SetParameterBlockConstant(&cam.shift);
+      problem().SetParameterBlockConstant(&cam.time_offset_s);
     }
     if (options_.rolling_shutter) {
       // The readout cannot exceed the frame period.
@@ -283,8 +284,9 @@ void CalibrationProblem::BuildProblem() {
         continue;
       }
       if (obs.cam_id != landmark.cam) continue;  // one camera per landmark (the reference's)
-      problem().AddResidualBlock(
-          LandmarkCost(residual, sigma_px_, options_.huber_px).release(), nullptr, Blocks(residual));
+      problem().AddResidualBlock(LandmarkCost(residual, sigma_px_, options_.huber_px).release(),
+                                 nullptr,
+                                 Blocks(residual));
       landmark_residuals_.push_back(residual);
       added_rho = true;
     }
@@ -321,7 +323,8 @@ std::vector<double*> CalibrationProblem::Blocks(const FrameResidual& r) {
   CameraState& cam = cameras_[target_frames_[r.frame].cam];
   std::vector<double*> blocks(control_blocks().begin() + r.window.first_index,
                               control_blocks().begin() + r.window.last_index() + 1);
-  blocks.insert(blocks.end(), {cam.extrinsic.data(), &cam.shift, &cam.line_delay, T_w_t_.data()});
+  blocks.insert(blocks.end(),
+                {cam.extrinsic.data(), &cam.time_offset_s, &cam.line_delay, T_w_t_.data()});
   return blocks;
 }
 
@@ -332,7 +335,8 @@ std::vector<double*> CalibrationProblem::Blocks(const LandmarkResidual& r) {
   for (int i : LandmarkCostFunction::UnionOfWindows(r.reference_window, r.window)) {
     blocks.push_back(control_blocks()[i]);
   }
-  blocks.insert(blocks.end(), {cam.extrinsic.data(), &cam.shift, &cam.line_delay, &landmark.rho});
+  blocks.insert(blocks.end(),
+                {cam.extrinsic.data(), &cam.time_offset_s, &cam.line_delay, &landmark.rho});
   return blocks;
 }
 
@@ -451,8 +455,8 @@ CalibrationResult CalibrationProblem::Run() {
     if (!again) break;
     if (round < options_.solver.max_rounds && options_.solver.progress) {
       options_.solver.progress("calibrate: pixel sigma " + StringPrintf("%.4g", sigma_px_) +
-                        " px; time windows " + (windows_valid ? "valid" : "moved") +
-                        ": solving again");
+                               " px; time windows " + (windows_valid ? "valid" : "moved") +
+                               ": solving again");
     }
   }
   result.solve = rounds.Summary();
@@ -480,7 +484,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   std::vector<const double*> wanted;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     wanted.push_back(cameras_[c].extrinsic.data());
-    if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].shift);
+    if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].time_offset_s);
     if (options_.rolling_shutter) wanted.push_back(&cameras_[c].line_delay);
   }
   if (constant_bias) {
@@ -519,7 +523,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     estimate.rotation_std_deg =
         cov6.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * kRadToDeg;
     if (options_.estimate_time_offset) {
-      estimate.timeshift_std_s = std::sqrt(std::max(0.0, block(&cam.shift, 1)(0, 0)));
+      estimate.time_offset_std_s = std::sqrt(std::max(0.0, block(&cam.time_offset_s, 1)(0, 0)));
     }
     if (options_.rolling_shutter) {
       estimate.line_delay_std_s = std::sqrt(std::max(0.0, block(&cam.line_delay, 1)(0, 0)));
@@ -537,9 +541,10 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
           StringPrintf("%.3g", 1e3 * estimate.translation_std_m.maxCoeff()) +
           " mm): it shows only through rotational accelerations; rotate faster and longer");
     }
-    if (options_.estimate_time_offset && estimate.timeshift_std_s > options_.warn_time_offset_std_s) {
+    if (options_.estimate_time_offset &&
+        estimate.time_offset_std_s > options_.warn_time_offset_std_s) {
       result->warnings.push_back(name + ": the time offset is poorly determined (std " +
-                                 StringPrintf("%.3g", 1e3 * estimate.timeshift_std_s) +
+                                 StringPrintf("%.3g", 1e3 * estimate.time_offset_std_s) +
                                  " ms): the motion is too slow or too smooth");
     }
     if (options_.rolling_shutter && cam.line_delay > 0.0 &&
@@ -550,15 +555,15 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
           StringPrintf("%.3g", 100.0 * estimate.line_delay_std_s / cam.line_delay) +
           "% of its value)");
     }
-    if (std::abs(cam.shift) > 0.99 * options_.max_time_offset_s && options_.estimate_time_offset) {
+    if (std::abs(cam.time_offset_s) > 0.99 * options_.max_time_offset_s &&
+        options_.estimate_time_offset) {
       result->warnings.push_back(name + ": the time offset ended at its bound +-" +
                                  StringPrintf("%.3g", options_.max_time_offset_s) + " s");
     }
   }
   if (constant_bias) {
     result->gyro_bias_std = block(spline_->gyro_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
-    result->accel_bias_std =
-        block(spline_->accel_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
+    result->accel_bias_std = block(spline_->accel_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
   }
 }
 
@@ -572,10 +577,10 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   for (size_t c = 0; c < cameras_.size(); ++c) {
     CameraCalibration& out = result->camchain[c];
     out.T_cam_imu = PoseFromBlock(cameras_[c].extrinsic.data());
-    out.timeshift_cam_imu_s = cameras_[c].shift;
+    out.time_offset_s = cameras_[c].time_offset_s;
     out.line_delay_s = cameras_[c].line_delay;
     result->cameras[c].calibration = out;
-    result->cameras[c].timeshift_estimated = options_.estimate_time_offset;
+    result->cameras[c].time_offset_estimated = options_.estimate_time_offset;
     result->cameras[c].line_delay_estimated = options_.rolling_shutter;
   }
   // IMU residuals.
@@ -688,7 +693,8 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
       throw Error("calibrate: the initial guess does not match the camchain or its layout");
     }
   } else if (target != nullptr) {
-    if (options.solver.progress) options.solver.progress("calibrate: initial guess (PnP per frame, then fit)");
+    if (options.solver.progress)
+      options.solver.progress("calibrate: initial guess (PnP per frame, then fit)");
     initial = InitialGuessFromTarget(imu, observations, camchain, *target, options, &warnings);
   } else {
     throw Error(

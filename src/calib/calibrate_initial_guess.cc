@@ -130,21 +130,21 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
                         " target frames gave no usable PnP pose (they still enter the "
                         "calibration)");
   }
-  // The continuous-time fit to those camera poses: T_pose_imu = T_c_s.
+  // The continuous-time fit to those camera poses: T_m_s = T_c_s (the camera is the pose source).
   FitOptions fit_options;
   fit_options.pose_sigma_m = kPnpSigma.m;
   fit_options.pose_sigma_rad = kPnpSigma.rad;
   fit_options.estimate_time_offset = options.estimate_time_offset;
-  fit_options.time_offset_s = camchain[0].timeshift_cam_imu_s;
+  fit_options.time_offset_s = camchain[0].time_offset_s;
   fit_options.max_time_offset_s = options.max_time_offset_s;
   fit_options.estimate_extrinsic = true;
-  fit_options.T_pose_imu = camchain[0].T_cam_imu;
+  fit_options.T_m_s = camchain[0].T_cam_imu;
   fit_options.solver.progress = nullptr;
   FitResult fit;
   CalibrationInitialGuess guess = GuessFromFit(
       imu, poses, observations, camchain, options, fit_options, "target poses", warnings, &fit);
-  guess.camchain[0].T_cam_imu = fit.T_pose_imu;
-  guess.camchain[0].timeshift_cam_imu_s = fit.time_offset_s;
+  guess.camchain[0].T_cam_imu = fit.T_m_s;
+  guess.camchain[0].time_offset_s = fit.time_offset_s;
   return guess;
 }
 

@@ -84,7 +84,7 @@ std::vector<Observation> ObservationsInsideImu(const std::vector<ImuSample>& imu
   int64_t last = observations.front().t_ns;
   for (const Observation& o : observations) {
     const CameraCalibration& cam = camchain[o.cam_id];
-    const int64_t t = o.t_ns + std::llround(cam.timeshift_cam_imu_s * 1e9);
+    const int64_t t = o.t_ns + std::llround(cam.time_offset_s * 1e9);
     const int64_t readout = std::llround(cam.line_delay_s * (cam.camera.height - 1) * 1e9);
     frames.insert({o.t_ns, o.cam_id});
     first = std::min(first, o.t_ns);
@@ -154,7 +154,7 @@ std::pair<int64_t, int64_t> SpanOfFrames(const std::vector<ImuSample>& imu,
   int64_t last = std::numeric_limits<int64_t>::min();
   for (const Observation& o : observations) {
     const CameraCalibration& cam = camchain[o.cam_id];
-    const int64_t t = o.t_ns + std::llround(cam.timeshift_cam_imu_s * 1e9);
+    const int64_t t = o.t_ns + std::llround(cam.time_offset_s * 1e9);
     first = std::min(first, t);
     last =
         std::max<int64_t>(last, t + std::llround(cam.line_delay_s * (cam.camera.height - 1) * 1e9));
@@ -233,7 +233,7 @@ std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations
     for (size_t k = 0; k < obs.size() && ok; ++k) {
       const CameraCalibration& c = camchain[obs[k].cam_id];
       const double t =
-          spline.TimeSinceT0(obs[k].t_ns) + c.timeshift_cam_imu_s + c.line_delay_s * obs[k].uv.y();
+          spline.TimeSinceT0(obs[k].t_ns) + c.time_offset_s + c.line_delay_s * obs[k].uv.y();
       Eigen::Vector3d ray;
       if (!(t >= spline.start_time() && t <= spline.end_time()) ||
           !c.camera.Unproject(obs[k].uv, &ray)) {

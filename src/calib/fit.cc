@@ -295,7 +295,7 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   }
 
   // Extrinsic: the given value, its rotation from hand-eye when estimated.
-  SE3d T_m_s = options.T_pose_imu;
+  SE3d T_m_s = options.T_m_s;
   if (options.estimate_extrinsic) {
     std::vector<SO3d> R_m_pairs;
     std::vector<SO3d> R_s_pairs;
@@ -527,7 +527,7 @@ FitResult FitProblem::Impl::Solve() {
   result.time_offset_estimated = options.estimate_time_offset;
   result.time_offset_s = time_offset;
   result.extrinsic_estimated = options.estimate_extrinsic;
-  result.T_pose_imu = PoseFromBlock(extrinsic.data());
+  result.T_m_s = PoseFromBlock(extrinsic.data());
   result.imu_rate_hz = imu_rate_hz;
   result.num_imu_samples = static_cast<int>(imu.size());
   result.num_poses = static_cast<int>(used_poses.size());
@@ -567,7 +567,7 @@ FitResult FitProblem::Impl::Solve() {
   result.gyro_bias = imu_stats.mean_gyro_bias;
   result.accel_bias = imu_stats.mean_accel_bias;
   const SE3Splined spline = spline_problem->Spline();
-  const SE3d T_s_m = result.T_pose_imu.inverse();
+  const SE3d T_s_m = result.T_m_s.inverse();
   double position_sq = 0.0;
   double rotation_sq = 0.0;
   for (int j : used_poses) {
@@ -725,17 +725,6 @@ FitProblem::FitProblem(const std::vector<ImuSample>& imu,
 FitProblem::~FitProblem() = default;
 
 const KnotLayout& FitProblem::layout() const { return impl_->layout; }
-double FitProblem::knot_spacing_s() const { return impl_->dt_s; }
-int FitProblem::num_imu_samples() const { return static_cast<int>(impl_->imu.size()); }
-int FitProblem::num_poses() const { return static_cast<int>(impl_->used_poses.size()); }
-
-std::vector<SE3d> FitProblem::ControlPoses() const {
-  return impl_->spline_problem->ControlPoses();
-}
-
-Eigen::Vector3d FitProblem::GravityW() const {
-  return impl_->spline_problem->gravity_w();
-}
 
 void FitProblem::SetControlPoses(const std::vector<SE3d>& control_poses) {
   if (static_cast<int>(control_poses.size()) != impl_->num_control_poses()) {
@@ -758,16 +747,6 @@ void FitProblem::SetGravity(const Eigen::Vector3d& g_w) {
 void FitProblem::SetTimeOffset(double time_offset_s) {
   impl_->time_offset = time_offset_s;
   impl_->BuildProblem();  // re-attaches the pose residuals to the segments of the new offset
-}
-
-void FitProblem::SetExtrinsic(const SE3d& T_pose_imu) {
-  PoseToBlock(T_pose_imu, impl_->extrinsic.data());
-}
-
-double FitProblem::Cost() {
-  double cost = 0.0;
-  impl_->problem()->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
-  return cost;
 }
 
 FitResult FitProblem::Solve() { return impl_->Solve(); }

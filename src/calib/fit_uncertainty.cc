@@ -31,8 +31,8 @@ void ReportFitUncertainty(const FitOptions& options, const Eigen::MatrixXd& C, F
   int next = 8;
   if (options.estimate_time_offset) result->time_offset_std_s = std_dev[next++];
   if (options.estimate_extrinsic) {
-    result->T_pose_imu_translation_std_m = std_dev.segment<3>(next);
-    result->T_pose_imu_rotation_std_rad = std_dev.segment<3>(next + 3);
+    result->T_m_s_translation_std_m = std_dev.segment<3>(next);
+    result->T_m_s_rotation_std_rad = std_dev.segment<3>(next + 3);
   }
 
   // Plain-words excitation warnings.
@@ -68,23 +68,23 @@ void ReportFitUncertainty(const FitOptions& options, const Eigen::MatrixXd& C, F
         "rotational accelerations");
   }
   if (options.estimate_extrinsic) {
-    if (max_of(result->T_pose_imu_translation_std_m) > limit.extrinsic_translation_std_m ||
-        max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg >
+    if (max_of(result->T_m_s_translation_std_m) > limit.extrinsic_translation_std_m ||
+        max_of(result->T_m_s_rotation_std_rad) * kRadToDeg >
             limit.extrinsic_rotation_std_deg) {
       result->not_determined.push_back("T_pose_imu");
     }
-    if (max_of(result->T_pose_imu_translation_std_m) > limit.extrinsic_translation_std_m) {
+    if (max_of(result->T_m_s_translation_std_m) > limit.extrinsic_translation_std_m) {
       result->warnings.push_back(
           "the translation of T_pose_imu is not determined by this data (std up to " +
-          StringPrintf("%.3g", max_of(result->T_pose_imu_translation_std_m)) +
+          StringPrintf("%.3g", max_of(result->T_m_s_translation_std_m)) +
           " m): it shows only through lever-arm accelerations; rotate faster about at least two "
           "axes");
     }
-    if (max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg >
+    if (max_of(result->T_m_s_rotation_std_rad) * kRadToDeg >
         limit.extrinsic_rotation_std_deg) {
       result->warnings.push_back(
           "the rotation of T_pose_imu is not determined by this data (std up to " +
-          StringPrintf("%.3g", max_of(result->T_pose_imu_rotation_std_rad) * kRadToDeg) +
+          StringPrintf("%.3g", max_of(result->T_m_s_rotation_std_rad) * kRadToDeg) +
           " deg): rotate about at least two axes");
     }
   }
@@ -114,8 +114,8 @@ void ReportSingularFitInformation(const FitOptions& options, FitResult* result) 
   result->gravity_w_std.setConstant(nan);
   result->gravity_direction_std_deg = nan;
   result->time_offset_std_s = nan;
-  result->T_pose_imu_translation_std_m.setConstant(nan);
-  result->T_pose_imu_rotation_std_rad.setConstant(nan);
+  result->T_m_s_translation_std_m.setConstant(nan);
+  result->T_m_s_rotation_std_rad.setConstant(nan);
   result->not_determined = {"gyro_bias", "accel_bias", "gravity_w"};
   if (options.estimate_time_offset) result->not_determined.push_back("time_offset_s");
   if (options.estimate_extrinsic) result->not_determined.push_back("T_pose_imu");

@@ -66,7 +66,7 @@ AlignInputs ReadAlignInputs() {
   if (!FLAGS_camchain.empty()) {
     const CameraCalibration cam0 = ReadCam0Extrinsics(FLAGS_camchain);
     options.T_cam_imu = cam0.T_cam_imu;
-    options.timeshift_cam_imu_s = cam0.timeshift_cam_imu_s;
+    options.time_offset_s = cam0.time_offset_s;
   }
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
   in.poses = ReadPoses(poses_path);
@@ -128,8 +128,10 @@ int RunAlign() {
 Command AlignCommand() {
   return {"align",
           "visual-inertial alignment: scale, gravity, gyro bias from up-to-scale camera poses",
-          "splinecal align --imu FILE --camera-poses FILE [--camchain FILE] [--imu-yaml FILE] "
-          "[--estimate-rotation-extrinsic] [--gravity M_S2] [--accel-bias X,Y,Z] --out DIR",
+          "splinecal align --imu FILE --camera-poses FILE [--camchain FILE] [--imu-yaml FILE]\n"
+          "    [--estimate-rotation-extrinsic] [--gravity M_S2] [--accel-bias X,Y,Z]\n"
+          "    [--camera-position-std M] [--camera-rotation-std RAD] [--accel-unit m/s^2|g]\n"
+          "    [--gyro-unit rad/s|deg/s] --out DIR",
           "Aligns camera poses T_c0_c known only up to scale (monocular SLAM, SfM) with IMU\n"
           "readings: preintegrates the IMU between camera frames, estimates the gyro bias from\n"
           "the relative rotations (and the camera-IMU rotation by hand-eye when asked), solves\n"

@@ -140,8 +140,9 @@ Command AllanCommand() {
   command.summary =
       "IMU noise densities from a static recording (Allan deviation, Kalibr imu.yaml)";
   command.usage =
-      "splinecal allan (--imu imu0/data.csv | --columns FILE --rate HZ [--sensor gyro|accel]) "
-      "--out DIR";
+      "splinecal allan (--imu imu0/data.csv | --columns FILE --rate HZ [--sensor gyro|accel])\n"
+      "    [--taus-per-decade N] [--max-tau-fraction F] [--combine mean|max] [--gyro-scale S]\n"
+      "    [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g] --out DIR";
   command.description =
       "Computes the overlapping Allan deviation of every axis at log-spaced averaging times, "
       "reads the white-noise density N off the -1/2 slope line at tau = 1 s, the random walk K "

@@ -53,8 +53,6 @@ namespace splinecal {
 namespace cli {
 namespace {
 
-constexpr double kDefaultCalibrateKnotSpacingS = 0.05;
-
 // What calibrate reads and checks before the initial guess and the solve
 // (Command::read_inputs); Calibrate() checks the rest (time ranges, motion) before it allocates.
 struct CalibrateInputs {
@@ -79,19 +77,15 @@ CalibrateInputs ReadCalibrateInputs() {
   CalibrateInputs in;
   CalibrateOptions& options = in.options;
   options.model.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
-  options.model.knot_spacing_s = kDefaultCalibrateKnotSpacingS;
-  if (FLAGS_knot_spacing != 0.0) {
-    SpanFlagNs("knot-spacing", FLAGS_knot_spacing);  // bounded: int64 knot times cannot overflow
-    options.model.knot_spacing_s = FLAGS_knot_spacing;
-  }
+  // 0: chosen from the IMU data (CalibrateOptions, estimation/knot_spacing.h).
+  options.model.knot_spacing_s = KnotSpacingFlag(/*can_choose=*/true);
   options.rolling_shutter = FLAGS_rolling_shutter;
   options.estimate_time_offset = !FLAGS_no_time_offset;
   options.pixel_sigma_px = NonNegativeFlag("pixel-sigma", FLAGS_pixel_sigma);
   options.huber_px = NonNegativeFlag("huber", FLAGS_huber);
   if (FLAGS_min_corners < 4) throw Error("--min-corners: must be at least 4");
   options.min_corners_per_frame = FLAGS_min_corners;
-  if (FLAGS_threads < 1) throw Error("--threads: must be at least 1");
-  options.solver.num_threads = FLAGS_threads;
+  options.solver.num_threads = ThreadsFlag();
   options.solver.progress = [](const std::string& line) { Progress(line); };
   if (!FLAGS_imu_yaml.empty()) options.model.noise = ReadImuYaml(FLAGS_imu_yaml);
 
@@ -161,10 +155,11 @@ Command CalibrateCommand() {
   return {"calibrate",
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
-          "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE] "
-          "[--initial-poses FILE] [--imu-yaml FILE] [--rolling-shutter] [--no-time-offset] "
-          "[--knot-spacing S] "
-          "[--threads N] --out DIR",
+          "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE]\n"
+          "    [--initial-poses FILE] [--imu-yaml FILE] [--rolling-shutter] [--no-time-offset]\n"
+          "    [--knot-spacing S] [--pixel-sigma PX] [--huber PX] [--min-corners N]\n"
+          "    [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s] [--threads N]\n"
+          "    --out DIR",
           "Fits camera observations (a calibration target's corners and/or natural landmarks,\n"
           "one row per detected point in observations.csv) and IMU readings jointly on one\n"
           "SE(3) spline: estimates T_cam_imu, timeshift_cam_imu (t_imu = t_cam + shift) and,\n"
@@ -189,7 +184,7 @@ Command CalibrateCommand() {
             "(default: ADIS16448)"},
            {"rolling_shutter", ""},
            {"no_time_offset", ""},
-           {"knot_spacing", "Spline knot spacing [s]; 0 = 0.05 s"},
+           {"knot_spacing", "Spline knot spacing dt [s]; 0 chooses it from the IMU data", "0.05"},
            {"pixel_sigma", ""},
            {"huber", ""},
            {"min_corners", ""},

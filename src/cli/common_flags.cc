@@ -16,8 +16,11 @@ DEFINE_string(imu_yaml, "", "IMU noise, Kalibr imu.yaml [path]");
 DEFINE_string(poses, "", "Pose source, EuRoC ground truth or TUM trajectory [path]");
 DEFINE_double(gravity, 9.81, "Gravity magnitude g [m/s^2]; g_w = (0, 0, -g)");
 DEFINE_int32(seed, 1, "Random seed; the same seed gives byte-identical output");
-DEFINE_int32(threads, 1, "Worker threads");
-DEFINE_double(knot_spacing, 0.0, "Spline knot spacing dt [s]; 0 chooses the command's default");
+DEFINE_int32(threads, 1, "Worker threads, 1 to 256");
+DEFINE_double(knot_spacing,
+              0.0,
+              "Spline knot spacing dt [s]; 0 chooses it from the data (commands with data)");
+DEFINE_double(duration, 0.0, "Duration [s] from the start; 0: until the end of the data");
 DEFINE_string(accel_unit, "m/s^2", "Unit of the accelerometer columns: m/s^2 or g");
 DEFINE_string(camchain, "", "Kalibr camchain.yaml [path]");
 DEFINE_string(target, "", "Calibration target: Kalibr aprilgrid YAML or a points YAML [path]");
@@ -49,6 +52,24 @@ int64_t SpanFlagNs(const std::string& name, double seconds, bool allow_zero) {
     throw Error("--" + name + ": at most 1e9 s, got " + std::to_string(seconds));
   }
   return static_cast<int64_t>(std::llround(seconds * 1e9));
+}
+
+int ThreadsFlag() {
+  constexpr int kMaxThreads = 256;
+  if (FLAGS_threads < 1 || FLAGS_threads > kMaxThreads) {
+    throw Error("--threads: expected 1 to 256, got " + std::to_string(FLAGS_threads));
+  }
+  return FLAGS_threads;
+}
+
+double KnotSpacingFlag(bool can_choose) {
+  if (FLAGS_knot_spacing == 0.0 && !can_choose) {
+    throw Error(
+        "--knot-spacing: 0 (chosen from the IMU data) needs IMU data to choose from; give the "
+        "spacing in seconds");
+  }
+  SpanFlagNs("knot-spacing", FLAGS_knot_spacing, /*allow_zero=*/can_choose);
+  return FLAGS_knot_spacing;
 }
 
 const std::string& RequiredFlag(const std::string& name, const std::string& value) {

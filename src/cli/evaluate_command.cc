@@ -171,7 +171,8 @@ int RunEvaluate() {
 Command EvaluateCommand() {
   return {"evaluate",
           "evaluate a spline.csv: pose, rates, IMU prediction",
-          "splinecal evaluate --spline FILE --out DIR [--samples N] [--every S]",
+          "splinecal evaluate --spline FILE --out DIR [--samples N] [--every S]\n"
+          "    [--gravity M_S2] [--gyro-bias X,Y,Z] [--accel-bias X,Y,Z]",
           "Reads the control poses of a spline (spline.csv) and evaluates the spline at N evenly\n"
           "spaced times of its valid range [t_1, t_{n-2}]: pose T_w_s, body angular velocity,\n"
           "world velocity and acceleration, and the IMU reading it predicts for the given biases\n"

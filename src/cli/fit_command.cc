@@ -53,8 +53,7 @@ FitInputs ReadFitInputs() {
   FitInputs in;
   FitOptions& options = in.options;
   // Time spans through SpanFlagNs: bounded, so that the fit's int64 knot times cannot overflow.
-  SpanFlagNs("knot-spacing", FLAGS_knot_spacing, /*allow_zero=*/true);
-  options.model.knot_spacing_s = FLAGS_knot_spacing;
+  options.model.knot_spacing_s = KnotSpacingFlag(/*can_choose=*/true);
   options.model.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
   options.pose_sigma_m = PositiveFlag("pose-sigma-m", FLAGS_pose_sigma_m);
   options.pose_sigma_rad = PositiveFlag("pose-sigma-rad", FLAGS_pose_sigma_rad);
@@ -71,10 +70,7 @@ FitInputs ReadFitInputs() {
   }
   SpanFlagNs("bias-knot-spacing", FLAGS_bias_knot_spacing);
   options.model.bias_knot_spacing_s = FLAGS_bias_knot_spacing;
-  if (FLAGS_threads < 1 || FLAGS_threads > 256) {
-    throw Error("--threads: expected 1 to 256, got " + std::to_string(FLAGS_threads));
-  }
-  options.solver.num_threads = FLAGS_threads;
+  options.solver.num_threads = ThreadsFlag();
   if (!Quiet()) options.solver.progress = [](const std::string& line) { Progress(line); };
 
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
@@ -128,8 +124,8 @@ int RunFit() {
                 1e3 * result.time_offset_std_s);
   }
   if (result.extrinsic_estimated) {
-    const Eigen::Vector3d t = result.T_pose_imu.translation();
-    const Eigen::Vector3d r = result.T_pose_imu.so3().Log() * kRadToDeg;
+    const Eigen::Vector3d t = result.T_m_s.translation();
+    const Eigen::Vector3d r = result.T_m_s.so3().Log() * kRadToDeg;
     std::printf("T_pose_imu  t [%.5f %.5f %.5f] m, rotation vector [%.4f %.4f %.4f] deg\n",
                 t.x(),
                 t.y(),
@@ -157,38 +153,39 @@ int RunFit() {
 }  // namespace
 
 Command FitCommand() {
-  return {
-      "fit",
-      "fit IMU biases, gravity, time offset and extrinsic to IMU data and poses",
-      "splinecal fit --imu FILE --poses FILE --out DIR [--imu-yaml FILE] [--knot-spacing S]\n"
-      "    [--pose-sigma-m M] [--pose-sigma-rad R] [--estimate-time-offset]\n"
-      "    [--estimate-extrinsic] [--bias-model constant|spline] [--gravity M_S2] [--threads N]",
-      "Fits a continuous-time spline T_w_s(t) of the IMU to its readings and to a pose source\n"
-      "(motion capture, EuRoC ground truth or a TUM trajectory), with the gyro and\n"
-      "accelerometer biases, the gravity direction and optionally the time offset\n"
-      "(t_imu = t_pose + offset) and the extrinsic T_pose_imu. Standard deviations come from\n"
-      "the solver's covariance; a parameter the data does not excite is named in plain words\n"
-      "instead. Writes result.yaml, spline.csv, residuals.csv, pose_residuals.csv and\n"
-      "report.html. See docs/fit.md.",
-      {{"imu", ""},
-       {"poses", ""},
-       {"out", ""},
-       {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; default ADIS16448"},
-       {"knot_spacing", "Spline knot spacing dt [s]; 0 (default) chooses it from the data"},
-       {"pose_sigma_m", ""},
-       {"pose_sigma_rad", ""},
-       {"estimate_time_offset", ""},
-       {"max_time_offset", ""},
-       {"estimate_extrinsic", ""},
-       {"bias_model", ""},
-       {"bias_knot_spacing", ""},
-       {"gravity", ""},
-       {"accel_unit", ""},
-       {"gyro_unit", ""},
-       {"threads", ""},
-       {"quiet", ""}},
-      &RunFit,
-      [] { ReadFitInputs(); }};
+  return {"fit",
+          "fit IMU biases, gravity, time offset and extrinsic to IMU data and poses",
+          "splinecal fit --imu FILE --poses FILE --out DIR [--imu-yaml FILE] [--knot-spacing S]\n"
+          "    [--pose-sigma-m M] [--pose-sigma-rad R] [--estimate-time-offset]\n"
+          "    [--max-time-offset S] [--estimate-extrinsic] [--bias-model constant|spline]\n"
+          "    [--bias-knot-spacing S] [--gravity M_S2] [--accel-unit m/s^2|g]\n"
+          "    [--gyro-unit rad/s|deg/s] [--threads N]",
+          "Fits a continuous-time spline T_w_s(t) of the IMU to its readings and to a pose source\n"
+          "(motion capture, EuRoC ground truth or a TUM trajectory), with the gyro and\n"
+          "accelerometer biases, the gravity direction and optionally the time offset\n"
+          "(t_imu = t_pose + offset) and the extrinsic T_pose_imu. Standard deviations come from\n"
+          "the solver's covariance; a parameter the data does not excite is named in plain words\n"
+          "instead. Writes result.yaml, spline.csv, residuals.csv, pose_residuals.csv and\n"
+          "report.html. See docs/fit.md.",
+          {{"imu", ""},
+           {"poses", ""},
+           {"out", ""},
+           {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; default ADIS16448"},
+           {"knot_spacing", "Spline knot spacing dt [s]; 0 chooses it from the IMU data", "0"},
+           {"pose_sigma_m", ""},
+           {"pose_sigma_rad", ""},
+           {"estimate_time_offset", ""},
+           {"max_time_offset", ""},
+           {"estimate_extrinsic", ""},
+           {"bias_model", ""},
+           {"bias_knot_spacing", ""},
+           {"gravity", ""},
+           {"accel_unit", ""},
+           {"gyro_unit", ""},
+           {"threads", ""},
+           {"quiet", ""}},
+          &RunFit,
+          [] { ReadFitInputs(); }};
 }
 
 }  // namespace cli

@@ -50,6 +50,25 @@ const Command* FindCommand(const std::string& name) {
   return nullptr;
 }
 
+// The DEFINE_* default of every flag, read once before any command set its own defaults.
+const std::map<std::string, std::string>& DefinedDefaults() {
+  static const std::map<std::string, std::string>* const defaults = [] {
+    auto* map = new std::map<std::string, std::string>;
+    std::vector<gflags::CommandLineFlagInfo> flags;
+    gflags::GetAllFlags(&flags);
+    for (const gflags::CommandLineFlagInfo& info : flags) (*map)[info.name] = info.default_value;
+    return map;
+  }();
+  return *defaults;
+}
+
+// The flag's default in this command.
+std::string CommandDefault(const FlagDoc& flag) {
+  if (!flag.default_value.empty()) return flag.default_value;
+  const auto found = DefinedDefaults().find(flag.name);
+  return found == DefinedDefaults().end() ? "" : found->second;
+}
+
 std::vector<FlagDoc> AcceptedFlags(const Command& command) {
   std::vector<FlagDoc> flags = command.flags;
   bool has_quiet = false;
@@ -68,27 +87,34 @@ void PrintGeneralHelp(std::FILE* out) {
   }
   std::fprintf(out, "  %-10s %s\n", "help", "this list; 'splinecal help COMMAND' for a command");
   std::fprintf(out, "  %-10s %s\n", "version", "print the version");
-  std::fprintf(out, "\nBad input exits with code 2 and one line naming the file and line.\n");
+  std::fprintf(out, "\nEvery command takes --quiet (no progress on stderr).\n");
+  std::fprintf(out, "Bad input exits with code 2 and one line naming the file and line.\n");
 }
 
 void PrintCommandHelp(const Command& command, std::FILE* out) {
-  std::fprintf(out, "usage: %s\n\n%s\n\n%s\n\nflags:\n", command.usage.c_str(),
-               command.summary.c_str(), command.description.c_str());
+  std::fprintf(out,
+               "usage: %s\n\n%s\n\n%s\n\nflags:\n",
+               command.usage.c_str(),
+               command.summary.c_str(),
+               command.description.c_str());
   for (const FlagDoc& flag : AcceptedFlags(command)) {
     gflags::CommandLineFlagInfo info;
     if (!gflags::GetCommandLineFlagInfo(flag.name.c_str(), &info)) continue;
     const std::string& help = flag.help.empty() ? info.description : flag.help;
+    const std::string default_value = CommandDefault(flag);
     std::string default_text;
     if (info.type == "string") {
-      default_text = info.default_value.empty() ? "" : " (default: " + info.default_value + ")";
+      default_text = default_value.empty() ? "" : " (default: " + default_value + ")";
     } else if (info.type == "double") {
       // gflags prints 17 digits (9.8100000000000005); show the value as typed.
-      default_text =
-          StringPrintf(" (default: %.10g)", std::strtod(info.default_value.c_str(), nullptr));
+      default_text = StringPrintf(" (default: %.10g)", std::strtod(default_value.c_str(), nullptr));
     } else {
-      default_text = " (default: " + info.default_value + ")";
+      default_text = " (default: " + default_value + ")";
     }
-    std::fprintf(out, "  --%s\n      %s%s\n", DisplayName(flag.name).c_str(), help.c_str(),
+    std::fprintf(out,
+                 "  --%s\n      %s%s\n",
+                 DisplayName(flag.name).c_str(),
+                 help.c_str(),
                  default_text.c_str());
   }
 }
@@ -100,7 +126,13 @@ bool ParseFlags(const Command& command,
                 bool* help,
                 std::string* error) {
   std::set<std::string> accepted;
-  for (const FlagDoc& flag : AcceptedFlags(command)) accepted.insert(flag.name);
+  for (const FlagDoc& flag : AcceptedFlags(command)) {
+    accepted.insert(flag.name);
+    // The command's default, as gflags' default: the flag still reads as not given.
+    const std::string set = gflags::SetCommandLineOptionWithMode(
+        flag.name.c_str(), CommandDefault(flag).c_str(), gflags::SET_FLAGS_DEFAULT);
+    CHECK(!set.empty()) << "bad default '" << CommandDefault(flag) << "' of --" << flag.name;
+  }
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     if (arg == "--help" || arg == "-h" || arg == "-help") {
@@ -166,8 +198,8 @@ int Main(int argc, char** argv) {
     }
     const Command* command = FindCommand(args[1]);
     if (command == nullptr) {
-      std::fprintf(stderr, "splinecal: unknown command '%s' (see 'splinecal help')\n",
-                   args[1].c_str());
+      std::fprintf(
+          stderr, "splinecal: unknown command '%s' (see 'splinecal help')\n", args[1].c_str());
       return kExitBadInput;
     }
     PrintCommandHelp(*command, stdout);
@@ -179,14 +211,13 @@ int Main(int argc, char** argv) {
   }
   const Command* command = FindCommand(name);
   if (command == nullptr) {
-    std::fprintf(stderr, "splinecal: unknown command '%s' (see 'splinecal help')\n",
-                 name.c_str());
+    std::fprintf(stderr, "splinecal: unknown command '%s' (see 'splinecal help')\n", name.c_str());
     return kExitBadInput;
   }
   bool help = false;
   std::string error;
-  if (!ParseFlags(*command, std::vector<std::string>(args.begin() + 1, args.end()), &help,
-                  &error)) {
+  if (!ParseFlags(
+          *command, std::vector<std::string>(args.begin() + 1, args.end()), &help, &error)) {
     std::fprintf(stderr, "splinecal %s: %s\n", name.c_str(), error.c_str());
     return kExitBadInput;
   }

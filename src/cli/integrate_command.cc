@@ -33,7 +33,6 @@ DEFINE_double(start,
               0.0,
               "Start [s] after the first IMU sample; the integration starts at the "
               "first ground-truth row at or after it");
-DECLARE_double(duration);  // src/cli/simulate_command.cc
 
 namespace splinecal {
 namespace cli {
@@ -62,9 +61,9 @@ IntegrateInputs ReadIntegrateInputs() {
   in.gravity = PositiveFlag("gravity", FLAGS_gravity);
   const double start_s = FLAGS_start;
   const int64_t start_ns = SpanFlagNs("start", start_s, /*allow_zero=*/true);
-  const bool duration_given = !gflags::GetCommandLineFlagInfoOrDie("duration").is_default;
   const double duration_s = FLAGS_duration;
-  const int64_t duration_ns = duration_given ? SpanFlagNs("duration", duration_s) : 0;
+  const int64_t duration_ns = SpanFlagNs("duration", duration_s, /*allow_zero=*/true);
+  const bool duration_given = duration_s > 0.0;  // 0: until the end of the data
 
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
   in.truth = ReadEurocGroundTruth(truth_path);
@@ -196,8 +195,9 @@ int RunIntegrate() {
 Command IntegrateCommand() {
   return {"integrate",
           "IMU dead reckoning (euler, midpoint, rk4) and its drift against ground truth",
-          "splinecal integrate --imu FILE --groundtruth FILE [--method euler,midpoint,rk4] "
-          "[--start S] [--duration S] [--gravity M_S2] --out DIR",
+          "splinecal integrate --imu FILE --groundtruth FILE [--method euler,midpoint,rk4]\n"
+          "    [--start S] [--duration S] [--gravity M_S2] [--accel-unit m/s^2|g]\n"
+          "    [--gyro-unit rad/s|deg/s] --out DIR",
           "Integrates the IMU readings from the ground-truth state (position, orientation,\n"
           "world velocity) and biases of the first ground-truth row at or after --start, with\n"
           "each --method: euler, midpoint (the seed's two) and rk4 (exact SO(3) exponential for\n"
@@ -211,7 +211,7 @@ Command IntegrateCommand() {
            {"groundtruth", ""},
            {"method", ""},
            {"start", ""},
-           {"duration", "Duration [s] from the start; default until the end of the data"},
+           {"duration", "Duration [s] from the start; 0: until the end of the data", "0"},
            {"gravity", ""},
            {"accel_unit", ""},
            {"gyro_unit", ""},

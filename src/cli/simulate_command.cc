@@ -38,10 +38,6 @@ DEFINE_string(trajectory_file,
               "",
               "Recorded trajectory to simulate instead, TUM or EuRoC ground truth [path]; its "
               "timestamps are kept");
-DEFINE_double(duration,
-              20.0,
-              "Duration [s] (simulate: default 20 s, or the whole --trajectory-file; integrate: "
-              "default until the end of the data)");
 DEFINE_double(imu_rate, 200.0, "IMU sample rate [Hz]");
 DEFINE_double(camera_rate, 20.0, "Camera frame rate with --camchain [Hz]");
 DEFINE_double(pixel_noise, 0.5, "Pixel noise with --camchain, std per coordinate [px]");
@@ -58,7 +54,6 @@ namespace splinecal {
 namespace cli {
 namespace {
 
-constexpr double kDefaultKnotSpacingS = 0.05;
 // Beyond this many IMU samples the outputs no longer fit comfortably in memory (~200 bytes per
 // sample with its ground truth): 2e7 is 27 hours at 200 Hz.
 constexpr double kMaxSamples = 2e7;
@@ -107,8 +102,7 @@ SimulateInputs ReadSimulateInputs() {
   SimulateInputs in;
   in.out_dir = RequiredFlag("out", FLAGS_out);
   in.rate_hz = PositiveFlag("imu-rate", FLAGS_imu_rate);
-  in.knot_spacing_s = FLAGS_knot_spacing == 0.0 ? kDefaultKnotSpacingS
-                                                : PositiveFlag("knot-spacing", FLAGS_knot_spacing);
+  in.knot_spacing_s = KnotSpacingFlag(/*can_choose=*/false);  // no IMU data to choose it from
   in.knot_spacing_ns = SpanFlagNs("knot-spacing", in.knot_spacing_s);
   if (in.knot_spacing_ns < 1'000'000) {
     throw Error("--knot-spacing: must be at least 0.001 s, got " +
@@ -270,10 +264,13 @@ Command SimulateCommand() {
   return {
       "simulate",
       "simulate IMU data (EuRoC format) with Kalibr noise from a spline trajectory",
-      "splinecal simulate [--trajectory vio_course|figure8|random | --trajectory-file FILE] "
-      "[--duration S] [--imu-rate HZ] [--knot-spacing S] [--seed N] [--gravity M_S2] "
-      "[--imu-yaml FILE | --gyroscope_noise_density ...] [--noise-free] [--gyro-bias x,y,z] "
-      "[--accel-bias x,y,z] --out DIR",
+      "splinecal simulate [--trajectory vio_course|figure8|random|calibration |\n"
+      "    --trajectory-file FILE] [--duration S] [--imu-rate HZ] [--knot-spacing S] [--seed N]\n"
+      "    [--gravity M_S2] [--imu-yaml FILE | --gyroscope_noise_density D\n"
+      "    --gyroscope_random_walk D --accelerometer_noise_density D\n"
+      "    --accelerometer_random_walk D] [--noise-free] [--camchain FILE [--target FILE]\n"
+      "    [--landmarks N] [--camera-rate HZ] [--pixel-noise PX]] [--gyro-bias X,Y,Z]\n"
+      "    [--accel-bias X,Y,Z] --out DIR",
       "Turns a trajectory into spline control poses (a least-squares fit to dense pose\n"
       "samples, or to the poses of --trajectory-file) and writes the spline's IMU readings\n"
       "at --imu-rate with Kalibr's noise model: white noise sigma*sqrt(f) per sample, a bias\n"
@@ -285,9 +282,13 @@ Command SimulateCommand() {
       "IMU file is exactly the spline's prediction. See docs/simulate.md.",
       {{"trajectory", ""},
        {"trajectory_file", ""},
-       {"duration", "Duration [s]; default 20 s, or the whole --trajectory-file"},
+       {"duration",
+        "Duration [s] from the start; without the flag 20 s, or the whole --trajectory-file",
+        "20"},
        {"imu_rate", ""},
-       {"knot_spacing", "Spline knot spacing dt [s]; default 0.05 s"},
+       {"knot_spacing",
+        "Spline knot spacing dt [s]; 0 is refused (no IMU data to choose it from)",
+        "0.05"},
        {"seed", ""},
        {"gravity", ""},
        {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path] (instead of the flags below)"},

@@ -10,23 +10,24 @@ BiasSpline::BiasSpline(BiasModel model, const KnotLayout& pose_layout, double bi
   if (model_ == BiasModel::kConstant) return;
   pose_knots_per_bias_knot_ =
       std::max(1, static_cast<int>(std::lround(bias_knot_spacing_s / pose_layout.dt_s())));
-  dt_ns_ = static_cast<int64_t>(pose_knots_per_bias_knot_) * pose_layout.dt_ns;
-  t0_ns_ = pose_layout.start_time_ns() - dt_ns_;
+  const int64_t dt_ns = static_cast<int64_t>(pose_knots_per_bias_knot_) * pose_layout.dt_ns;
   const int64_t span = pose_layout.end_time_ns() - pose_layout.start_time_ns();
-  num_points_ = static_cast<int>(span / dt_ns_ + (span % dt_ns_ != 0 ? 1 : 0)) + 3;
+  layout_.dt_ns = dt_ns;
+  layout_.t0_ns = pose_layout.start_time_ns() - dt_ns;
+  layout_.num_control_poses = static_cast<int>(span / dt_ns + (span % dt_ns != 0 ? 1 : 0)) + 3;
 }
 
 int BiasSpline::SegmentOfPoseSegment(int pose_segment) const {
   if (is_constant()) return 0;
-  return std::clamp(1 + (pose_segment - 1) / pose_knots_per_bias_knot_, 1, num_points_ - 3);
+  return std::clamp(1 + (pose_segment - 1) / pose_knots_per_bias_knot_, 1, num_points() - 3);
 }
 
 BiasWeights BiasSpline::WeightsInSegment(int64_t t_ns, int segment) const {
   BiasWeights w;
   if (is_constant()) return w;
-  const int64_t tb = t0_ns_ + static_cast<int64_t>(segment) * dt_ns_;
+  const int64_t tb = layout_.knot_time_ns(segment);
   const double u =
-      std::clamp(static_cast<double>(t_ns - tb) / static_cast<double>(dt_ns_), 0.0, 1.0);
+      std::clamp(static_cast<double>(t_ns - tb) / static_cast<double>(layout_.dt_ns), 0.0, 1.0);
   w.first_point = segment - 1;
   w.weights = BiasSplineWeights(u);
   return w;
@@ -34,8 +35,7 @@ BiasWeights BiasSpline::WeightsInSegment(int64_t t_ns, int segment) const {
 
 BiasWeights BiasSpline::WeightsAt(int64_t t_ns) const {
   if (is_constant()) return BiasWeights();
-  const int segment = std::clamp(static_cast<int>((t_ns - t0_ns_) / dt_ns_), 1, num_points_ - 3);
-  return WeightsInSegment(t_ns, segment);
+  return WeightsInSegment(t_ns, layout_.ClampedSegmentAtNs(t_ns));
 }
 
 Eigen::Vector3d BiasSpline::Evaluate(const double* values, int64_t t_ns) const {

@@ -229,7 +229,7 @@ TargetFrameCostFunction::TargetFrameCostFunction(const ReprojectionSettings& set
   set_num_residuals(2 * static_cast<int>(corners_.size()));
   for (int i = 0; i < window_.num_poses; ++i) mutable_parameter_block_sizes()->push_back(7);
   mutable_parameter_block_sizes()->push_back(7);  // T_cam_imu
-  mutable_parameter_block_sizes()->push_back(1);  // timeshift
+  mutable_parameter_block_sizes()->push_back(1);  // time offset
   mutable_parameter_block_sizes()->push_back(1);  // line delay
   mutable_parameter_block_sizes()->push_back(7);  // T_w_t
 }
@@ -323,7 +323,7 @@ LandmarkCostFunction::LandmarkCostFunction(const ReprojectionSettings& settings,
   set_num_residuals(2);
   for (size_t i = 0; i < pose_indices_.size(); ++i) mutable_parameter_block_sizes()->push_back(7);
   mutable_parameter_block_sizes()->push_back(7);  // T_cam_imu
-  mutable_parameter_block_sizes()->push_back(1);  // timeshift
+  mutable_parameter_block_sizes()->push_back(1);  // time offset
   mutable_parameter_block_sizes()->push_back(1);  // line delay
   mutable_parameter_block_sizes()->push_back(1);  // rho
 }

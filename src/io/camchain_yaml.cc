@@ -25,7 +25,7 @@ constexpr int64_t kMaxResolution = 1 << 20;
 // int64 nanosecond stamps: 1e9 s keeps them far from overflow), line delay [s per row].
 constexpr double kMaxIntrinsic = 1e6;
 constexpr double kMaxDistortionCoefficient = 1e3;
-constexpr double kMaxTimeshift = 1e9;
+constexpr double kMaxTimeOffsetS = 1e9;
 constexpr double kMaxLineDelay = 1e-2;
 // The keys of a camN map: ours and the others Kalibr writes (ignored); near misses are typos.
 const std::vector<std::string> kCameraKeys = {"camera_model",
@@ -82,11 +82,11 @@ SE3d ReadRigidTransform(const YamlDocument& yaml, const std::string& key) {
   return SE3d(SO3d::FromMatrix(R), t);
 }
 
-// T_cam_imu and timeshift_cam_imu of `cam`, when present.
+// T_cam_imu and the time offset (Kalibr's key timeshift_cam_imu) of `cam`, when present.
 void ReadExtrinsics(const YamlDocument& yaml, const std::string& cam, CameraCalibration* c) {
   if (yaml.Has(cam + "/T_cam_imu")) c->T_cam_imu = ReadRigidTransform(yaml, cam + "/T_cam_imu");
   if (yaml.Has(cam + "/timeshift_cam_imu")) {
-    c->timeshift_cam_imu_s = yaml.BoundedNumber(cam + "/timeshift_cam_imu", kMaxTimeshift, "s");
+    c->time_offset_s = yaml.BoundedNumber(cam + "/timeshift_cam_imu", kMaxTimeOffsetS, "s");
   }
 }
 
@@ -206,7 +206,7 @@ std::string CamchainYamlText(const Camchain& camchain) {
     }
     yaml.Vector("resolution", Eigen::Vector2d(c.camera.width, c.camera.height));
     yaml.Matrix("T_cam_imu", c.T_cam_imu.matrix());
-    yaml.Scalar("timeshift_cam_imu", c.timeshift_cam_imu_s);
+    yaml.Scalar("timeshift_cam_imu", c.time_offset_s);  // Kalibr's key
     yaml.Scalar("line_delay", c.line_delay_s);
     if (!c.rostopic.empty()) yaml.Scalar("rostopic", c.rostopic);
     yaml.EndMap();

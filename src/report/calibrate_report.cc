@@ -22,9 +22,9 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
   yaml->Matrix("T_cam_imu", c.calibration.T_cam_imu.matrix());
   yaml->Vector("rotation_std_deg", c.rotation_std_deg);
   yaml->Vector("translation_std_m", c.translation_std_m);
-  yaml->Scalar("timeshift_cam_imu", c.calibration.timeshift_cam_imu_s);
-  yaml->Scalar("timeshift_estimated", c.timeshift_estimated);
-  yaml->Scalar("timeshift_std_s", c.timeshift_std_s);
+  yaml->Scalar("timeshift_cam_imu", c.calibration.time_offset_s);
+  yaml->Scalar("timeshift_estimated", c.time_offset_estimated);
+  yaml->Scalar("timeshift_std_s", c.time_offset_std_s);
   yaml->Scalar("line_delay", c.calibration.line_delay_s);
   yaml->Scalar("line_delay_estimated", c.line_delay_estimated);
   yaml->Scalar("line_delay_std", c.line_delay_std_s);
@@ -147,8 +147,8 @@ std::string EstimatesTable(const CalibrationResult& r) {
     html << "<tr><th>T_cam_imu translation [mm]</th><td>" << Components("%.2f", 1e3 * t)
          << "</td><td>std " << Components("%.2f", 1e3 * e.translation_std_m) << "</td></tr>\n";
     html << "<tr><th>timeshift_cam_imu [ms]</th><td>"
-         << StringPrintf("%.4f", 1e3 * e.calibration.timeshift_cam_imu_s) << "</td><td>std "
-         << StringPrintf("%.4f", 1e3 * e.timeshift_std_s) << "</td></tr>\n";
+         << StringPrintf("%.4f", 1e3 * e.calibration.time_offset_s) << "</td><td>std "
+         << StringPrintf("%.4f", 1e3 * e.time_offset_std_s) << "</td></tr>\n";
     html << "<tr><th>line_delay [us/row]</th><td>"
          << StringPrintf("%.4f", 1e6 * e.calibration.line_delay_s) << "</td><td>std "
          << StringPrintf("%.4f", 1e6 * e.line_delay_std_s) << "</td></tr>\n";
@@ -258,9 +258,9 @@ std::string CalibrateSummaryText(const CalibrationResult& result) {
                      1e3 * e.translation_std_m.y(),
                      1e3 * e.translation_std_m.z());
     text += StringPrintf("  timeshift_cam_imu %.6f ms (std %.4f ms)%s\n",
-                         1e3 * e.calibration.timeshift_cam_imu_s,
-                         1e3 * e.timeshift_std_s,
-                         e.timeshift_estimated ? "" : " (fixed)");
+                         1e3 * e.calibration.time_offset_s,
+                         1e3 * e.time_offset_std_s,
+                         e.time_offset_estimated ? "" : " (fixed)");
     text += StringPrintf("  line_delay %.4f us/row (std %.4f us)%s\n",
                          1e6 * e.calibration.line_delay_s,
                          1e6 * e.line_delay_std_s,

@@ -59,11 +59,11 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   if (r.time_offset_estimated) yaml.Scalar("time_offset_s_std", r.time_offset_std_s);
   if (r.extrinsic_estimated) {
     yaml.Comment("T_pose_imu = T_m_s maps IMU-frame points into the pose source's body frame");
-    yaml.Matrix("T_pose_imu", r.T_pose_imu.matrix());
+    yaml.Matrix("T_pose_imu", r.T_m_s.matrix());
     yaml.BeginMap("T_pose_imu_std");
     yaml.Comment("right tangent of T_pose_imu: T Exp([rho; phi])");
-    yaml.Vector("translation_m", r.T_pose_imu_translation_std_m);
-    yaml.Vector("rotation_rad", r.T_pose_imu_rotation_std_rad);
+    yaml.Vector("translation_m", r.T_m_s_translation_std_m);
+    yaml.Vector("rotation_rad", r.T_m_s_rotation_std_rad);
     yaml.EndMap();
   }
   yaml.Scalar("covariance_ok", r.covariance_ok);
@@ -262,11 +262,11 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   }
   if (r.extrinsic_estimated) {
     row("T_pose_imu translation [m]",
-        VectorText(r.T_pose_imu.translation(), 6),
-        VectorText(r.T_pose_imu_translation_std_m, 3));
+        VectorText(r.T_m_s.translation(), 6),
+        VectorText(r.T_m_s_translation_std_m, 3));
     row("T_pose_imu rotation vector [deg]",
-        VectorText(kRadToDeg * r.T_pose_imu.so3().Log(), 6),
-        VectorText(kRadToDeg * r.T_pose_imu_rotation_std_rad, 3));
+        VectorText(kRadToDeg * r.T_m_s.so3().Log(), 6),
+        VectorText(kRadToDeg * r.T_m_s_rotation_std_rad, 3));
   }
   row("residual RMS gyro [rad/s]",
       Fixed(r.residual_rms.gyro_rad_s, 4),

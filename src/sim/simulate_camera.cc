@@ -20,7 +20,7 @@ namespace {
 struct PointView {
   const SE3Splined* spline;
   const CameraCalibration* camera;
-  double t_base_s;  // frame stamp + timeshift, seconds since the spline's t0 (IMU clock)
+  double t_base_s;  // frame stamp + time offset, seconds since the spline's t0 (IMU clock)
   Eigen::Vector3d p_w;
 
   bool Row(double tau, double* v, double* v_dot) const {
@@ -123,7 +123,7 @@ CameraSimulationResult SimulateCameras(const SE3Splined& spline,
   const int64_t period_ns = static_cast<int64_t>(std::llround(1e9 / options.camera_rate_hz));
   for (size_t cam_id = 0; cam_id < camchain.size(); ++cam_id) {
     const CameraCalibration& cam = camchain[cam_id];
-    const int64_t shift_ns = static_cast<int64_t>(std::llround(cam.timeshift_cam_imu_s * 1e9));
+    const int64_t shift_ns = static_cast<int64_t>(std::llround(cam.time_offset_s * 1e9));
     const int64_t readout_ns =
         static_cast<int64_t>(std::ceil(cam.line_delay_s * (cam.camera.height - 1) * 1e9));
     const int64_t first_ns = start_ns - shift_ns;  // camera clock
@@ -134,7 +134,7 @@ CameraSimulationResult SimulateCameras(const SE3Splined& spline,
       if (t_cam_ns + shift_ns + readout_ns + 1 > end_ns) break;
       if (k > 0 && period_ns <= 0) break;
       ++result.num_frames;
-      const double t_base = spline.TimeSinceT0(t_cam_ns) + cam.timeshift_cam_imu_s;
+      const double t_base = spline.TimeSinceT0(t_cam_ns) + cam.time_offset_s;
       bool saw_target = false;
       auto add = [&](int64_t id, const Eigen::Vector2d& uv) {
         Observation o;
@@ -183,7 +183,7 @@ void WriteCameraSimulationTruth(const Camchain& camchain,
   for (size_t i = 0; i < camchain.size(); ++i) {
     yaml->BeginMap("cam" + std::to_string(i));
     yaml->Matrix("T_cam_imu", camchain[i].T_cam_imu.matrix());
-    yaml->Scalar("timeshift_cam_imu", camchain[i].timeshift_cam_imu_s);
+    yaml->Scalar("timeshift_cam_imu", camchain[i].time_offset_s);  // Kalibr's key
     yaml->Scalar("line_delay", camchain[i].line_delay_s);
     yaml->EndMap();
   }

@@ -413,7 +413,7 @@ AlignResult Align(const std::vector<ImuSample>& imu,
 
   AlignResult result;
   // Camera poses in IMU time, inside the IMU data, relative to the first one used.
-  const int64_t shift_ns = std::llround(options.timeshift_cam_imu_s * 1e9);
+  const int64_t shift_ns = std::llround(options.time_offset_s * 1e9);
   std::vector<AlignmentFrame> frames;
   SE3d T_first_c0;  // T_c0_input: the inverse of the first used pose
   for (const StampedPose& pose : camera_poses) {

@@ -18,7 +18,7 @@ namespace {
 // The targets.
 constexpr double kMaxRotationErrorDeg = 0.05;
 constexpr double kMaxTranslationErrorM = 0.002;
-constexpr double kMaxTimeshiftErrorS = 1e-4;
+constexpr double kMaxTimeOffsetErrorS = 1e-4;
 constexpr double kMaxLineDelayRelativeError = 0.01;
 constexpr double kStdFactor = 3.0;
 constexpr double kTrueLineDelay = 3e-5;
@@ -26,7 +26,7 @@ constexpr double kTrueLineDelay = 3e-5;
 struct Errors {
   Eigen::Vector3d rotation_deg;
   Eigen::Vector3d translation_m;
-  double timeshift_s;
+  double time_offset_s;
   double line_delay_s;
 };
 
@@ -43,7 +43,7 @@ Errors CalibrateAndCompare(const testing::CalibrationScenario& s,
   Errors e;
   e.rotation_deg = (truth.T_cam_imu.so3().inverse() * est.T_cam_imu.so3()).Log() * 180.0 / kPi;
   e.translation_m = est.T_cam_imu.translation() - truth.T_cam_imu.translation();
-  e.timeshift_s = est.timeshift_cam_imu_s - truth.timeshift_cam_imu_s;
+  e.time_offset_s = est.time_offset_s - truth.time_offset_s;
   e.line_delay_s = est.line_delay_s - truth.line_delay_s;
   const CameraEstimate& c = result->cameras[0];
   std::printf(
@@ -60,8 +60,8 @@ Errors CalibrateAndCompare(const testing::CalibrationScenario& s,
       1e3 * c.translation_std_m.x(),
       1e3 * c.translation_std_m.y(),
       1e3 * c.translation_std_m.z(),
-      1e3 * e.timeshift_s,
-      1e3 * c.timeshift_std_s,
+      1e3 * e.time_offset_s,
+      1e3 * c.time_offset_std_s,
       1e6 * est.line_delay_s,
       1e6 * truth.line_delay_s,
       1e6 * c.line_delay_std_s,
@@ -85,13 +85,13 @@ TEST(CalibrateSlow, RollingShutterSixtySeconds) {
   ASSERT_TRUE(r.covariance_ok);
   EXPECT_LT(e.rotation_deg.norm(), kMaxRotationErrorDeg);
   EXPECT_LT(e.translation_m.norm(), kMaxTranslationErrorM);
-  EXPECT_LT(std::abs(e.timeshift_s), kMaxTimeshiftErrorS);
+  EXPECT_LT(std::abs(e.time_offset_s), kMaxTimeOffsetErrorS);
   EXPECT_LT(std::abs(e.line_delay_s), kMaxLineDelayRelativeError * kTrueLineDelay);
   for (int a = 0; a < 3; ++a) {
     EXPECT_LT(std::abs(e.rotation_deg[a]), kStdFactor * c.rotation_std_deg[a]) << a;
     EXPECT_LT(std::abs(e.translation_m[a]), kStdFactor * c.translation_std_m[a]) << a;
   }
-  EXPECT_LT(std::abs(e.timeshift_s), kStdFactor * c.timeshift_std_s);
+  EXPECT_LT(std::abs(e.time_offset_s), kStdFactor * c.time_offset_std_s);
   EXPECT_LT(std::abs(e.line_delay_s), kStdFactor * c.line_delay_std_s);
   EXPECT_TRUE(r.warnings.size() <= 1u);  // at most "frames outside the IMU's time range"
 }
@@ -111,7 +111,7 @@ TEST(CalibrateSlow, GlobalShutterDataGivesALineDelayConsistentWithZero) {
   EXPECT_LT(c.calibration.line_delay_s, 0.01 * kTrueLineDelay);
   EXPECT_LT(e.rotation_deg.norm(), kMaxRotationErrorDeg);
   EXPECT_LT(e.translation_m.norm(), kMaxTranslationErrorM);
-  EXPECT_LT(std::abs(e.timeshift_s), kMaxTimeshiftErrorS);
+  EXPECT_LT(std::abs(e.time_offset_s), kMaxTimeOffsetErrorS);
 }
 
 TEST(CalibrateSlow, RollingShutterDataWithoutTheModelIsBiased) {
@@ -127,8 +127,8 @@ TEST(CalibrateSlow, RollingShutterDataWithoutTheModelIsBiased) {
   // Measured (seed 1): time offset 7.4 ms off (the half readout is 7.2 ms), rotation 0.15 deg
   // (~20 std), translation 1.7 mm (~10 std), RMS 0.91 px against 0.71 px with the model.
   const CameraEstimate& c = r.cameras[0];
-  EXPECT_GT(std::abs(e.timeshift_s), 3e-3);
-  EXPECT_GT(std::abs(e.timeshift_s), 10.0 * c.timeshift_std_s);
+  EXPECT_GT(std::abs(e.time_offset_s), 3e-3);
+  EXPECT_GT(std::abs(e.time_offset_s), 10.0 * c.time_offset_std_s);
   EXPECT_GT(e.rotation_deg.norm(), 5.0 * c.rotation_std_deg.maxCoeff());
   EXPECT_GT(r.reprojection_rms_px, 1.2 * 0.5 * std::sqrt(2.0));
 }

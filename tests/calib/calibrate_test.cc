@@ -19,7 +19,7 @@ using ::testing::HasSubstr;
 struct Errors {
   Eigen::Vector3d rotation_deg;
   Eigen::Vector3d translation_m;
-  double timeshift_s;
+  double time_offset_s;
   double line_delay_s;
 };
 
@@ -27,7 +27,7 @@ Errors ErrorsOf(const CameraCalibration& estimate, const CameraCalibration& trut
   Errors e;
   e.rotation_deg = (truth.T_cam_imu.so3().inverse() * estimate.T_cam_imu.so3()).Log() * 180.0 / kPi;
   e.translation_m = estimate.T_cam_imu.translation() - truth.T_cam_imu.translation();
-  e.timeshift_s = estimate.timeshift_cam_imu_s - truth.timeshift_cam_imu_s;
+  e.time_offset_s = estimate.time_offset_s - truth.time_offset_s;
   e.line_delay_s = estimate.line_delay_s - truth.line_delay_s;
   return e;
 }
@@ -52,8 +52,8 @@ void Print(const char* name, const CalibrationResult& r, const Errors& e) {
       1e3 * c.translation_std_m.x(),
       1e3 * c.translation_std_m.y(),
       1e3 * c.translation_std_m.z(),
-      1e3 * e.timeshift_s,
-      1e3 * c.timeshift_std_s,
+      1e3 * e.time_offset_s,
+      1e3 * c.time_offset_std_s,
       100.0 * e.line_delay_s / 3e-5,
       1e6 * c.line_delay_std_s,
       r.reprojection_rms_px,
@@ -71,7 +71,7 @@ void Print(const char* name, const CalibrationResult& r, const Errors& e) {
 // 0.1 ms, line delay 1%; and every error within 3 reported standard deviations.
 constexpr double kMaxRotationErrorDeg = 0.05;
 constexpr double kMaxTranslationErrorM = 0.002;
-constexpr double kMaxTimeshiftErrorS = 1e-4;
+constexpr double kMaxTimeOffsetErrorS = 1e-4;
 constexpr double kMaxLineDelayRelativeError = 0.01;
 constexpr double kStdFactor = 3.0;
 constexpr double kTrueLineDelay = 3e-5;  // testing::ScenarioOptions' default [s/row]
@@ -81,12 +81,12 @@ void ExpectWithinTargetsAndStds(const CalibrationResult& r, const Errors& e, boo
   ASSERT_TRUE(r.covariance_ok);
   EXPECT_LT(e.rotation_deg.norm(), kMaxRotationErrorDeg);
   EXPECT_LT(e.translation_m.norm(), kMaxTranslationErrorM);
-  EXPECT_LT(std::abs(e.timeshift_s), kMaxTimeshiftErrorS);
+  EXPECT_LT(std::abs(e.time_offset_s), kMaxTimeOffsetErrorS);
   for (int a = 0; a < 3; ++a) {
     EXPECT_LT(std::abs(e.rotation_deg[a]), kStdFactor * c.rotation_std_deg[a]) << a;
     EXPECT_LT(std::abs(e.translation_m[a]), kStdFactor * c.translation_std_m[a]) << a;
   }
-  EXPECT_LT(std::abs(e.timeshift_s), kStdFactor * c.timeshift_std_s);
+  EXPECT_LT(std::abs(e.time_offset_s), kStdFactor * c.time_offset_std_s);
   if (line_delay) {
     EXPECT_LT(std::abs(e.line_delay_s), kMaxLineDelayRelativeError * kTrueLineDelay);
     EXPECT_LT(std::abs(e.line_delay_s), kStdFactor * c.line_delay_std_s);
@@ -141,7 +141,7 @@ TEST(Calibrate, NaturalLandmarksOnlyFromInitialPoses) {
     poses.push_back({t, T.translation(), T.so3().quaternion()});
   }
   Camchain start = s.start;
-  start[0].timeshift_cam_imu_s = 0.003;  // a guess within a few ms
+  start[0].time_offset_s = 0.003;  // a guess within a few ms
   CalibrateOptions guess_options = FastOptions();
   const CalibrationInitialGuess guess =
       InitialGuessFromImuPoses(s.imu, poses, s.observations, start, guess_options, nullptr);
@@ -163,12 +163,12 @@ TEST(Calibrate, NaturalLandmarksOnlyFromInitialPoses) {
     EXPECT_LT(std::abs(e.rotation_deg[a]), kLandmarkStdFactor * c.rotation_std_deg[a]) << a;
     EXPECT_LT(std::abs(e.translation_m[a]), kLandmarkStdFactor * c.translation_std_m[a]) << a;
   }
-  EXPECT_LT(std::abs(e.timeshift_s), kLandmarkStdFactor * c.timeshift_std_s);
+  EXPECT_LT(std::abs(e.time_offset_s), kLandmarkStdFactor * c.time_offset_std_s);
   EXPECT_LT(std::abs(e.line_delay_s), kLandmarkStdFactor * c.line_delay_std_s);
   // 6 s of landmarks (a fast test) rather than 60 s of target: twice the targets.
   EXPECT_LT(e.rotation_deg.norm(), 2.0 * kMaxRotationErrorDeg);
   EXPECT_LT(e.translation_m.norm(), 2.0 * kMaxTranslationErrorM);
-  EXPECT_LT(std::abs(e.timeshift_s), 2.0 * kMaxTimeshiftErrorS);
+  EXPECT_LT(std::abs(e.time_offset_s), 2.0 * kMaxTimeOffsetErrorS);
   EXPECT_LT(std::abs(e.line_delay_s), 2.0 * kMaxLineDelayRelativeError * kTrueLineDelay);
 }
 

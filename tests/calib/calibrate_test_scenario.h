@@ -31,7 +31,7 @@ struct CalibrationScenario {
 struct ScenarioOptions {
   double duration_s = 20.0;
   double line_delay_s = 3e-5;  // 0 = global shutter
-  double timeshift_s = 0.0042;
+  double time_offset_s = 0.0042;
   double pixel_noise_px = 0.5;
   bool imu_noise = true;
   int num_landmarks = 0;
@@ -46,14 +46,14 @@ inline CalibrationScenario MakeCalibrationScenario(const ScenarioOptions& o) {
   cam.camera = EurocCamera();
   cam.T_cam_imu =
       SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)), Eigen::Vector3d(0.06, -0.02, 0.01));
-  cam.timeshift_cam_imu_s = o.timeshift_s;
+  cam.time_offset_s = o.time_offset_s;
   cam.line_delay_s = o.line_delay_s;
   s.truth = {cam};
   CameraCalibration given = cam;
   // 3 degrees and 3 cm off, no time offset, global shutter.
   given.T_cam_imu =
       cam.T_cam_imu * SE3d::Exp((Vector6d() << 0.02, -0.015, 0.01, 0.03, -0.035, 0.02).finished());
-  given.timeshift_cam_imu_s = 0.0;
+  given.time_offset_s = 0.0;
   given.line_delay_s = 0.0;
   s.start = {given};
   CalibrationSequenceOptions options;

@@ -45,7 +45,7 @@ TEST(ReadCamchainYaml, ReadsKalibrCamchainImucam) {
   EXPECT_EQ(c.camera.distortion_coeffs(3), 1.76187114e-05);
   EXPECT_EQ(c.camera.width, 752);
   EXPECT_EQ(c.camera.height, 480);
-  EXPECT_EQ(c.timeshift_cam_imu_s, 0.0012);
+  EXPECT_EQ(c.time_offset_s, 0.0012);
   EXPECT_EQ(c.line_delay_s, 2.5e-5);
   EXPECT_EQ(c.rostopic, "/cam0/image_raw");
   EXPECT_NEAR(c.T_cam_imu.translation().x(), 0.0652229868707, 1e-15);
@@ -64,7 +64,7 @@ TEST(ReadCamchainYaml, DefaultsWithoutImuKeys) {
   ASSERT_EQ(camchain.size(), 2u);
   EXPECT_EQ(camchain[0].camera.distortion, DistortionModel::kNone);
   EXPECT_EQ(camchain[0].T_cam_imu.matrix(), Eigen::Matrix4d::Identity());
-  EXPECT_EQ(camchain[0].timeshift_cam_imu_s, 0.0);
+  EXPECT_EQ(camchain[0].time_offset_s, 0.0);
   EXPECT_EQ(camchain[0].line_delay_s, 0.0);
   EXPECT_EQ(camchain[1].camera.distortion, DistortionModel::kEquidistant);
   EXPECT_EQ(camchain[1].camera.distortion_coeffs(2), -0.001);
@@ -75,14 +75,14 @@ TEST(CamchainYamlText, RoundTripsExactly) {
   Camchain camchain = ReadCamchainYaml(dir.Write("in.yaml", kKalibrCamchain));
   camchain[0].T_cam_imu = camchain[0].T_cam_imu *
                           SE3d::Exp((Vector6d() << 0.01, -0.02, 0.03, 0.1, 0.2, -0.3).finished());
-  camchain[0].timeshift_cam_imu_s = -1.0 / 3.0;
+  camchain[0].time_offset_s = -1.0 / 3.0;
   camchain[0].line_delay_s = 1.0 / 30000.0;
   const std::string text = CamchainYamlText(camchain);
   const Camchain back = ReadCamchainYaml(dir.Write("out.yaml", text));
   ASSERT_EQ(back.size(), 1u);
   EXPECT_EQ(back[0].camera.intrinsics(), camchain[0].camera.intrinsics());
   EXPECT_EQ(back[0].camera.width, 752);
-  EXPECT_EQ(back[0].timeshift_cam_imu_s, camchain[0].timeshift_cam_imu_s);
+  EXPECT_EQ(back[0].time_offset_s, camchain[0].time_offset_s);
   EXPECT_EQ(back[0].line_delay_s, camchain[0].line_delay_s);
   EXPECT_LT((back[0].T_cam_imu.matrix() - camchain[0].T_cam_imu.matrix()).cwiseAbs().maxCoeff(),
             1e-15);

@@ -11,10 +11,12 @@
 #include "calib/fit_test_data.h"
 #include "splinecal/error.h"
 #include "splinecal/units.h"
+#include "testing/rotations.h"
 
 namespace splinecal {
 namespace {
 
+using testing::AngleDeg;
 using ::testing::AllOf;
 using testing::FitData;
 using testing::FitScenario;
@@ -35,10 +37,6 @@ constexpr double kSigmaBound = 3.0;
 // well below their standard deviations (~1e-5 and up).
 constexpr double kSameSolutionCostTolerance = 1e-8;  // relative
 constexpr double kSameSolutionBiasTolerance = 1e-7;
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;
-}
 
 double MaxControlPoseError(const SE3Splined& truth, const std::vector<SE3d>& fitted) {
   EXPECT_EQ(static_cast<int>(fitted.size()), truth.num_control_poses());
@@ -118,8 +116,8 @@ TEST(Fit, RecoversTimeOffsetAndExtrinsicWithinThreeStandardDeviations) {
   scenario.pose_rate_hz = 20.0;
   scenario.time_offset_s = 0.005;  // 5 ms
   const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 2.0, -1.0).normalized();
-  scenario.T_pose_imu = SE3d(SO3d::Exp(5.0 / kRadToDeg * axis),    // 5 degrees
-                             Eigen::Vector3d(0.06, -0.05, 0.06));  // ~10 cm
+  scenario.T_m_s = SE3d(SO3d::Exp(5.0 / kRadToDeg * axis),    // 5 degrees
+                        Eigen::Vector3d(0.06, -0.05, 0.06));  // ~10 cm
   const FitData data = MakeFitData(scenario);
   FitOptions options = QuietOptions();
   options.model.noise = scenario.noise;
@@ -129,14 +127,14 @@ TEST(Fit, RecoversTimeOffsetAndExtrinsicWithinThreeStandardDeviations) {
   ASSERT_TRUE(result.covariance_ok);
   EXPECT_LE(std::abs(result.time_offset_s - scenario.time_offset_s),
             kSigmaBound * result.time_offset_std_s);
-  // Errors in the tangent of T_pose_imu (right perturbation): rho = R^T dt, phi = Log(R^T R').
-  const SE3d& truth = scenario.T_pose_imu;
+  // Errors in the tangent of T_m_s (right perturbation): rho = R^T dt, phi = Log(R^T R').
+  const SE3d& truth = scenario.T_m_s;
   const Eigen::Vector3d rho =
-      truth.so3().inverse() * (result.T_pose_imu.translation() - truth.translation());
-  const Eigen::Vector3d phi = (truth.so3().inverse() * result.T_pose_imu.so3()).Log();
+      truth.so3().inverse() * (result.T_m_s.translation() - truth.translation());
+  const Eigen::Vector3d phi = (truth.so3().inverse() * result.T_m_s.so3()).Log();
   for (int a = 0; a < 3; ++a) {
-    EXPECT_LE(std::abs(rho[a]), kSigmaBound * result.T_pose_imu_translation_std_m[a]);
-    EXPECT_LE(std::abs(phi[a]), kSigmaBound * result.T_pose_imu_rotation_std_rad[a]);
+    EXPECT_LE(std::abs(rho[a]), kSigmaBound * result.T_m_s_translation_std_m[a]);
+    EXPECT_LE(std::abs(phi[a]), kSigmaBound * result.T_m_s_rotation_std_rad[a]);
     EXPECT_LE(std::abs(result.gyro_bias[a] - scenario.gyro_bias[a]),
               kSigmaBound * result.gyro_bias_std[a]);
     EXPECT_LE(std::abs(result.accel_bias[a] - scenario.accel_bias[a]),
@@ -422,7 +420,7 @@ TEST(EstimateTimeOffsetByCorrelation, FindsAnInjectedOffsetDespiteBiasAndNoise) 
   scenario.pose_noise = true;
   scenario.pose_rate_hz = 20.0;
   scenario.time_offset_s = 0.012;
-  scenario.T_pose_imu = SE3d(SO3d::Exp(Eigen::Vector3d(0.5, -0.3, 1.0)), Eigen::Vector3d::Zero());
+  scenario.T_m_s = SE3d(SO3d::Exp(Eigen::Vector3d(0.5, -0.3, 1.0)), Eigen::Vector3d::Zero());
   const FitData data = MakeFitData(scenario);
   double offset = 0.0;
   bool at_edge = true;

@@ -49,7 +49,7 @@ struct FitScenario {
   double pose_sigma_m = 1e-3;
   double pose_sigma_rad = 1e-3;
   double time_offset_s = 0.0;
-  SE3d T_pose_imu;
+  SE3d T_m_s;
   SO3d R_world;
 };
 
@@ -106,7 +106,7 @@ inline FitData MakeFitData(const FitScenario& scenario) {
   std::normal_distribution<double> normal(0.0, 1.0);
   const int64_t step_ns = std::llround(1e9 / scenario.pose_rate_hz);
   const int64_t offset_ns = std::llround(scenario.time_offset_s * 1e9);
-  const SE3d T_s_m = scenario.T_pose_imu.inverse();
+  const SE3d T_s_m = scenario.T_m_s.inverse();
   for (int64_t t = data.truth.start_time_ns(); t <= data.truth.end_time_ns(); t += step_ns) {
     SE3d T_w_m = data.truth.PoseNs(t) * T_s_m;
     if (scenario.pose_noise) {

@@ -1,15 +1,24 @@
 // The command-line rules of docs/conventions.md, checked on the real binary.
+#include <gflags/gflags.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <regex>
+#include <set>
+#include <string>
+
+#include "splinecal/cli/command.h"
+#include "splinecal/cli/common_flags.h"
 #include "testing/run_tool.h"
+#include "testing/temp_dir.h"
 
 namespace splinecal {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::CountLines;
+using ::testing::HasSubstr;
 using testing::RunTool;
+using testing::TempDir;
 
 TEST(FrontEnd, VersionAndHelpSucceed) {
   EXPECT_EQ(RunTool({"version"}).exit_code, 0);
@@ -31,6 +40,77 @@ TEST(FrontEnd, UnknownCommandIsOneLineAndExitTwo) {
   EXPECT_EQ(CountLines(result.err), 1);
   EXPECT_THAT(result.err, HasSubstr("unknown command 'frobnicate'"));
   EXPECT_EQ(RunTool({"help", "frobnicate"}).exit_code, 2);
+}
+
+const cli::Command& FindCommand(const std::string& name) {
+  for (const cli::Command& command : cli::AllCommands()) {
+    if (command.name == name) return command;
+  }
+  ADD_FAILURE() << "no command " << name;
+  return cli::AllCommands().front();
+}
+
+// The gflags name of a flag as the usage line spells it (--imu-rate -> imu_rate).
+std::string Underscored(std::string name) {
+  for (char& c : name) {
+    if (c == '-') c = '_';
+  }
+  return name;
+}
+
+// Each usage line names exactly the flags its --help documents. --quiet, taken by every command
+// (cli/command.h), is in neither.
+TEST(FrontEnd, UsageLineListsExactlyTheDocumentedFlags) {
+  const std::regex flag_pattern("--([A-Za-z0-9_-]+)");
+  for (const cli::Command& command : cli::AllCommands()) {
+    std::set<std::string> in_usage;
+    for (auto it = std::sregex_iterator(command.usage.begin(), command.usage.end(), flag_pattern);
+         it != std::sregex_iterator();
+         ++it) {
+      in_usage.insert(Underscored((*it)[1].str()));
+    }
+    std::set<std::string> documented;
+    for (const cli::FlagDoc& flag : command.flags) {
+      if (flag.name != "quiet") documented.insert(flag.name);
+    }
+    for (const std::string& name : documented) {
+      EXPECT_EQ(in_usage.count(name), 1u)
+          << command.name << ": --" << name << " is documented but not in the usage line";
+    }
+    for (const std::string& name : in_usage) {
+      EXPECT_EQ(documented.count(name), 1u)
+          << command.name << ": --" << name << " is in the usage line but not documented";
+    }
+  }
+}
+
+// A shared flag keeps its meaning; only its default is the command's.
+TEST(FrontEnd, KnotSpacingDefaultIsPerCommand) {
+  const auto parsed_knot_spacing = [](const std::string& command) {
+    gflags::FlagSaver restore_flags_afterwards;
+    bool help = false;
+    std::string error;
+    EXPECT_TRUE(cli::ParseFlags(FindCommand(command), {}, &help, &error)) << error;
+    EXPECT_TRUE(gflags::GetCommandLineFlagInfoOrDie("knot_spacing").is_default);
+    return FLAGS_knot_spacing;
+  };
+  EXPECT_EQ(parsed_knot_spacing("fit"), 0.0);  // chosen from the IMU data
+  EXPECT_EQ(parsed_knot_spacing("calibrate"), 0.05);
+  EXPECT_EQ(parsed_knot_spacing("simulate"), 0.05);
+  EXPECT_EQ(parsed_knot_spacing("fit"), 0.0);  // not left at the previous command's default
+
+  EXPECT_THAT(RunTool({"calibrate", "--help"}).out,
+              HasSubstr("0 chooses it from the IMU data (default: 0.05)"));
+  EXPECT_THAT(RunTool({"fit", "--help"}).out,
+              HasSubstr("0 chooses it from the IMU data (default: 0)"));
+}
+
+TEST(FrontEnd, SimulateRefusesKnotSpacingZero) {
+  TempDir dir;
+  const auto result = RunTool({"simulate", "--knot-spacing", "0", "--out", dir.File("sim")});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(CountLines(result.err), 1);
+  EXPECT_THAT(result.err, HasSubstr("--knot-spacing: 0 (chosen from the IMU data) needs IMU data"));
 }
 
 }  // namespace

@@ -97,7 +97,7 @@ inline void ReadCamchainRoundTrip(const std::string& path) {
     Expect(a.camera.intrinsics() == b.camera.intrinsics() &&
                a.camera.distortion == b.camera.distortion && a.camera.width == b.camera.width &&
                a.camera.height == b.camera.height &&
-               a.timeshift_cam_imu_s == b.timeshift_cam_imu_s && a.line_delay_s == b.line_delay_s &&
+               a.time_offset_s == b.time_offset_s && a.line_delay_s == b.line_delay_s &&
                a.rostopic == b.rostopic,
            "camchain read back exactly");
     // The rotation goes through a quaternion each way: equal to rounding.

@@ -15,9 +15,12 @@
 
 #include "splinecal/units.h"
 #include "testing/numeric_diff.h"
+#include "testing/rotations.h"
 
 namespace splinecal {
 namespace {
+
+using testing::RandomQuaternion;
 
 using ceres::Matrix;
 using ceres::Vector;
@@ -37,11 +40,6 @@ constexpr double kManifoldTolerance = 1e-9;
 // Plus/Minus against the group operations: a few dozen flops, translations up to ~10.
 constexpr double kExactTolerance = 1e-12;
 constexpr int kNumTrials = 200;
-
-Eigen::Quaterniond RandomQuaternion(std::mt19937* rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Quaterniond(normal(*rng), normal(*rng), normal(*rng), normal(*rng)).normalized();
-}
 
 SE3d RandomPose(std::mt19937* rng) {
   std::normal_distribution<double> normal;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "splinecal/units.h"
+#include "testing/jet_values.h"
 #include "testing/numeric_diff.h"
 
 template class splinecal::SE3<double>;
@@ -21,6 +22,9 @@ template class splinecal::SE3<ceres::Jet<double, 6>>;
 
 namespace splinecal {
 namespace {
+
+using testing::Value;
+using testing::Values;
 
 using Jet6 = ceres::Jet<double, 6>;
 
@@ -296,20 +300,6 @@ template <typename T>
 class SE3Typed : public ::testing::Test {};
 using Scalars = ::testing::Types<double, Jet6>;
 TYPED_TEST_SUITE(SE3Typed, Scalars);
-
-double Value(double x) { return x; }
-template <int N>
-double Value(const ceres::Jet<double, N>& x) {
-  return x.a;
-}
-template <typename Derived>
-Eigen::MatrixXd Values(const Eigen::MatrixBase<Derived>& m) {
-  Eigen::MatrixXd out(m.rows(), m.cols());
-  for (int r = 0; r < m.rows(); ++r) {
-    for (int c = 0; c < m.cols(); ++c) out(r, c) = Value(m(r, c));
-  }
-  return out;
-}
 
 TYPED_TEST(SE3Typed, ExpLogAndJacobiansMatchDouble) {
   using T = TypeParam;

@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "splinecal/units.h"
+#include "testing/jet_values.h"
 #include "testing/numeric_diff.h"
+#include "testing/rotations.h"
 
 // Every member compiled with every scalar (a missing ADL path or a std:: call that blocks Jets
 // fails here, not in a user's cost function).
@@ -23,6 +25,10 @@ template class splinecal::SO3<ceres::Jet<double, 6>>;
 
 namespace splinecal {
 namespace {
+
+using testing::RandomQuaternion;
+using testing::Value;
+using testing::Values;
 
 using Jet6 = ceres::Jet<double, 6>;
 using Jet3 = ceres::Jet<double, 3>;
@@ -87,28 +93,9 @@ std::vector<Eigen::Vector3d> RandomRotationVectors(int count, double max_angle, 
   return out;
 }
 
-Eigen::Quaterniond RandomQuaternion(std::mt19937* rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Quaterniond(normal(*rng), normal(*rng), normal(*rng), normal(*rng)).normalized();
-}
-
 // q and -q are the same rotation.
 double QuaternionDistance(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());
-}
-
-double Value(double x) { return x; }
-template <int N>
-double Value(const ceres::Jet<double, N>& x) {
-  return x.a;
-}
-template <typename Derived>
-Eigen::MatrixXd Values(const Eigen::MatrixBase<Derived>& m) {
-  Eigen::MatrixXd out(m.rows(), m.cols());
-  for (int r = 0; r < m.rows(); ++r) {
-    for (int c = 0; c < m.cols(); ++c) out(r, c) = Value(m(r, c));
-  }
-  return out;
 }
 
 TEST(SO3, DefaultIsIdentity) {

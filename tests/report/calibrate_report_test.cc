@@ -25,12 +25,12 @@ CameraEstimate Camera(double shift_s) {
   CameraEstimate e;
   e.calibration.T_cam_imu =
       SE3d(SO3d::Exp(Eigen::Vector3d(0.1, -0.2, 0.3)), Eigen::Vector3d(0.01, 0.02, -0.03));
-  e.calibration.timeshift_cam_imu_s = shift_s;
+  e.calibration.time_offset_s = shift_s;
   e.calibration.line_delay_s = 2e-5;
   e.rotation_std_deg = Eigen::Vector3d(0.01, 0.02, 0.03);
   e.translation_std_m = Eigen::Vector3d(1e-3, 2e-3, 3e-3);
-  e.timeshift_std_s = 1e-4;
-  e.timeshift_estimated = true;
+  e.time_offset_std_s = 1e-4;
+  e.time_offset_estimated = true;
   e.reprojection_rms_px = 0.4;
   e.num_frames = 12;
   e.num_observations = 340;

@@ -23,7 +23,7 @@ Camchain RollingShutterRig() {
   c.camera = testing::EurocCamera();
   c.T_cam_imu =
       SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)), Eigen::Vector3d(0.06, -0.02, 0.01));
-  c.timeshift_cam_imu_s = 0.0042;
+  c.time_offset_s = 0.0042;
   c.line_delay_s = 3e-5;
   return {c};
 }
@@ -81,7 +81,7 @@ TEST_F(SimulateCamerasTest, NoiseFreeObservationsAreTheReprojectionModel) {
   }
   std::array<double, 7> T_c_s;
   PoseToBlock(rig_[0].T_cam_imu, T_c_s.data());
-  double shift = rig_[0].timeshift_cam_imu_s;
+  double shift = rig_[0].time_offset_s;
   double line_delay = rig_[0].line_delay_s;
   std::array<double, 7> T_w_t;
   PoseToBlock(SE3d(), T_w_t.data());

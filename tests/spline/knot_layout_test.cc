@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 
 #include "splinecal/error.h"
@@ -65,6 +66,11 @@ TEST(KnotLayout, ClampedSegmentStaysInsideTheSpline) {
   EXPECT_EQ(layout.ClampedSegmentAt(-5.0), 1);
   EXPECT_EQ(layout.ClampedSegmentAt(0.35), 3);
   EXPECT_EQ(layout.ClampedSegmentAt(50.0), 7);
+  EXPECT_EQ(layout.ClampedSegmentAt(std::nan("")), 1);
+  EXPECT_EQ(layout.ClampedSegmentAtNs(layout.t0_ns - 1), 1);
+  EXPECT_EQ(layout.ClampedSegmentAtNs(layout.knot_time_ns(3) + 50'000'000), 3);
+  EXPECT_EQ(layout.ClampedSegmentAtNs(layout.end_time_ns()), 7);
+  EXPECT_EQ(layout.ClampedSegmentAtNs(layout.end_time_ns() + 1'000'000'000), 7);
 }
 
 TEST(KnotLayout, CoveringLayoutStartsAtTheFirstSampleAndEndsAfterTheLast) {

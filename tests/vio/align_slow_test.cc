@@ -12,13 +12,12 @@
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/units.h"
 #include "splinecal/vio/align.h"
+#include "testing/rotations.h"
 
 namespace splinecal {
 namespace {
 
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;
-}
+using testing::AngleDeg;
 
 struct Figures {
   double gravity_linear_deg = 0.0;

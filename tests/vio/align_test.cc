@@ -19,6 +19,7 @@
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
+#include "testing/rotations.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
 #include "testing/temp_dir.h"
@@ -26,6 +27,7 @@
 namespace splinecal {
 namespace {
 
+using testing::AngleDeg;
 using ::testing::HasSubstr;
 
 // The targets for data consistent with the preintegration model (noise-free).
@@ -36,10 +38,6 @@ constexpr double kGyroBiasTolerance = 1e-9;  // [rad/s]
 // (1e-9 m/s against speeds of ~4 m/s; 1e-9 rad).
 constexpr double kVelocityTolerance = 1e-8;  // [m/s]
 constexpr double kRotationTolerance = 1e-9;  // [rad]
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;
-}
 
 testdata::ScenarioOptions DefaultOptions() {
   testdata::ScenarioOptions options;
@@ -151,7 +149,7 @@ TEST(Align, TimeshiftMovesCameraStampsIntoImuTime) {
   // The camera clock runs 5 ms behind: t_imu = t_cam + 0.005.
   for (StampedPose& pose : scenario.camera_poses) pose.t_ns -= 5000000;
   AlignOptions align_options = AlignOptionsFor(options);
-  align_options.timeshift_cam_imu_s = 0.005;
+  align_options.time_offset_s = 0.005;
   const AlignResult result = Align(scenario.imu, scenario.camera_poses, align_options);
   ExpectRecovered(result, scenario);
   EXPECT_EQ(result.states_w.front().t_ns, scenario.imu.front().t_ns);

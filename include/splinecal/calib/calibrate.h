@@ -2,7 +2,7 @@
 // [Lovegrove13], [seed002]). docs/calibrate.md is the user's guide; this comment is the
 // contract.
 //
-// The problem (CONVENTIONS.md for frames, units, T_cam_imu, timeshift_cam_imu, line_delay):
+// The problem (CONVENTIONS.md for frames, units, T_cam_imu, the time offset, line_delay):
 //
 //   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (estimation/imu_costs.h)
 //           + sum_m |r_rw,m|^2                         bias random walk (estimation/bias_costs.h)
@@ -11,15 +11,15 @@
 //                                                      (estimation/reprojection_cost.h, Huber rho)
 //
 // over the control poses of T_w_s(t) (IMU clock, SE3Manifold), the biases (constant or a bias
-// spline), gravity g_w (|g_w| fixed, GravityManifold), and per camera T_cam_imu,
-// timeshift_cam_imu (unless fixed) and line_delay (with rolling_shutter; else fixed at the
-// camchain's value, normally 0), plus the inverse depths of natural landmarks. The world is the
-// target's frame (T_w_t = identity, fixed: it removes the 6 gauge freedoms of world position and
-// orientation; gravity is estimated in it). Without a target the first control pose is held
-// fixed instead. IMU residuals are weighted by Kalibr's densities (sigma = density sqrt(rate)),
-// pixels by pixel_sigma_px: given, or estimated from the residuals (1.4826 x the median absolute
-// pixel error, robust to outliers) and the problem solved again with it, so that the reported
-// standard deviations reflect the data's own pixel noise.
+// spline), gravity g_w (|g_w| fixed, GravityManifold), and per camera T_cam_imu, the time
+// offset t_imu = t_cam + time_offset_s (unless fixed) and line_delay (with rolling_shutter; else
+// fixed at the camchain's value, normally 0), plus the inverse depths of natural landmarks. The
+// world is the target's frame (T_w_t = identity, fixed: it removes the 6 gauge freedoms of world
+// position and orientation; gravity is estimated in it). Without a target the first control pose is
+// held fixed instead. IMU residuals are weighted by Kalibr's densities (sigma = density
+// sqrt(rate)), pixels by pixel_sigma_px: given, or estimated from the residuals (1.4826 x the
+// median absolute pixel error, robust to outliers) and the problem solved again with it, so that
+// the reported standard deviations reflect the data's own pixel noise.
 //
 // Initialisation (target present): the target's pose in every frame by PnP (camera/pnp.h); those
 // camera poses as the pose source of `splinecal fit` (calib/fit.h) with the time offset (gyro vs
@@ -53,12 +53,12 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/estimation/bias_costs.h"
-#include "splinecal/estimation/options.h"
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/observations.h"
-#include "splinecal/estimation/pose_fit.h"
 #include "splinecal/camera/target.h"
+#include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/options.h"
+#include "splinecal/estimation/pose_fit.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
@@ -77,8 +77,8 @@ struct CalibrateOptions {
     return model;
   }();
   bool rolling_shutter = false;           // estimate line_delay (else fixed at the camchain's)
-  bool estimate_time_offset = true;       // else timeshift_cam_imu fixed at the camchain's
-  double max_time_offset_s = 0.1;         // |timeshift_cam_imu| bound and correlation search range
+  bool estimate_time_offset = true;       // else time_offset_s fixed at the camchain's
+  double max_time_offset_s = 0.1;         // |time_offset_s| bound and correlation search range
   double pixel_sigma_px = 0.0;            // pixel noise std [px]; 0 = estimated from the residuals
   double huber_px = 2.0;                  // Huber threshold [px]; 0 = plain least squares
   int min_corners_per_frame = 8;          // frames with fewer target corners are not used
@@ -108,7 +108,7 @@ struct CalibrationInitialGuess {
   Eigen::Vector3d gravity_w = Eigen::Vector3d(0.0, 0.0, -kDefaultGravity);
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
-  Camchain camchain;  // T_cam_imu, timeshift_cam_imu, line_delay per camera
+  Camchain camchain;  // T_cam_imu, time_offset_s, line_delay_s per camera
 };
 
 struct CameraEstimate {
@@ -119,9 +119,9 @@ struct CameraEstimate {
       Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   Eigen::Vector3d translation_std_m =
       Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  double timeshift_std_s = std::numeric_limits<double>::quiet_NaN();
+  double time_offset_std_s = std::numeric_limits<double>::quiet_NaN();
   double line_delay_std_s = std::numeric_limits<double>::quiet_NaN();
-  bool timeshift_estimated = false;
+  bool time_offset_estimated = false;
   bool line_delay_estimated = false;
   double reprojection_rms_px = 0.0;  // RMS of the 2-D pixel errors
   int num_frames = 0;

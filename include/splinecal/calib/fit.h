@@ -12,13 +12,13 @@
 //
 // over the control poses T_i of the spline T_w_s(t) (IMU clock; uniform knots, SE3Manifold),
 // the biases (constant or a bias spline), g_w (|g_w| fixed, GravityManifold), the time offset
-// t_imu = t_pose + time_offset (optional) and T_pose_imu = T_m_s (optional). Residuals:
-// estimation/imu_costs.h (sigma = Kalibr density * sqrt(rate)), estimation/pose_cost.h (pose_sigma_m,
-// pose_sigma_rad), estimation/bias_costs.h (random walk).
+// t_imu = t_pose + time_offset (optional) and the extrinsic T_m_s (optional). Residuals:
+// estimation/imu_costs.h (sigma = Kalibr density * sqrt(rate)), estimation/pose_cost.h
+// (pose_sigma_m, pose_sigma_rad), estimation/bias_costs.h (random walk).
 //
 // Initialisation (docs/fit.md, "Initialisation"): control poses by least squares on the poses
-// (estimation/pose_fit.h); gravity g_w = g * unit(mean(a_w) - mean(R_w_s f)) over the whole overlap,
-// mean(a_w) = (v_end - v_start) / duration from that spline (the platform's accelerations
+// (estimation/pose_fit.h); gravity g_w = g * unit(mean(a_w) - mean(R_w_s f)) over the whole
+// overlap, mean(a_w) = (v_end - v_start) / duration from that spline (the platform's accelerations
 // average out; no static period needed); biases zero; the time offset, when estimated, from the
 // best alignment of the gyro's and the poses' angular speed within +-max_time_offset_s; the
 // extrinsic rotation, when estimated, by hand-eye on relative rotations (vio/hand_eye.h).
@@ -42,9 +42,9 @@
 #include "splinecal/estimation/bias_costs.h"
 #include "splinecal/estimation/knot_spacing.h"
 #include "splinecal/estimation/options.h"
+#include "splinecal/estimation/pose_fit.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/estimation/spline_problem.h"
-#include "splinecal/estimation/pose_fit.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
@@ -84,10 +84,11 @@ struct FitOptions {
   bool estimate_time_offset = false;
   double time_offset_s = 0.0;
   double max_time_offset_s = 0.1;  // search range +-max [s] when estimated
-  // Extrinsic T_pose_imu (the IMU in the pose source's frame m): fixed, or the initial guess
-  // when estimated.
+  // Extrinsic T_m_s: the IMU s in the pose source's frame m (CONVENTIONS.md frames; maps
+  // IMU-frame points into m). Fixed, or the initial guess when estimated. result.yaml writes it
+  // under the key T_pose_imu.
   bool estimate_extrinsic = false;
-  SE3d T_pose_imu;
+  SE3d T_m_s;
   // Levenberg-Marquardt, up to 4 rounds (pose residuals re-attached after the time offset moved
   // them across knots). The residuals are weighted by their noise, so Gauss-Newton steps are
   // good from the start: a first trust region of 1e6 (Ceres' default is 1e4) saves one or two
@@ -168,9 +169,9 @@ struct FitResult {
   double time_offset_std_s = 0.0;
 
   bool extrinsic_estimated = false;
-  SE3d T_pose_imu;
-  Eigen::Vector3d T_pose_imu_translation_std_m = Eigen::Vector3d::Zero();
-  Eigen::Vector3d T_pose_imu_rotation_std_rad = Eigen::Vector3d::Zero();
+  SE3d T_m_s;  // FitOptions::T_m_s
+  Eigen::Vector3d T_m_s_translation_std_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d T_m_s_rotation_std_rad = Eigen::Vector3d::Zero();
 
   // Joint covariance of the estimated global quantities in tangent coordinates, in this order:
   // gyro bias (3), accel bias (3) (the time averages for kSpline), gravity direction (2, rad),
@@ -192,7 +193,8 @@ struct FitResult {
 
   std::vector<std::string> warnings;
   // Quantities the data does not determine (std above ExcitationThresholds, or a singular
-  // information matrix): "gyro_bias", "accel_bias", "gravity_w", "time_offset_s", "T_pose_imu".
+  // information matrix), by their result.yaml keys: "gyro_bias", "accel_bias", "gravity_w",
+  // "time_offset_s", "T_pose_imu" (T_m_s).
   std::vector<std::string> not_determined;
 
   std::vector<FitImuSample> imu_samples;    // when FitOptions::keep_samples
@@ -213,21 +215,12 @@ class FitProblem {
   FitProblem& operator=(const FitProblem&) = delete;
 
   const KnotLayout& layout() const;
-  double knot_spacing_s() const;
-  int num_imu_samples() const;
-  int num_poses() const;
 
-  // The current values of the parameters (initial guess before Solve()).
-  std::vector<SE3d> ControlPoses() const;
-  Eigen::Vector3d GravityW() const;
+  // Replace parts of the initial guess before Solve().
   void SetControlPoses(const std::vector<SE3d>& control_poses);  // same count as layout()
   void SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias);
   void SetGravity(const Eigen::Vector3d& g_w);  // norm replaced by FitOptions::gravity_m_s2
   void SetTimeOffset(double time_offset_s);
-  void SetExtrinsic(const SE3d& T_pose_imu);
-
-  // Total cost 1/2 sum |r|^2 at the current values.
-  double Cost();
 
   FitResult Solve();
 

@@ -1,12 +1,12 @@
 // A camera rig as Kalibr describes it in camchain.yaml / camchain-imucam.yaml (CONVENTIONS.md
 // "Camera, time offset, rolling shutter"): per camera the intrinsics and distortion
-// (camera/camera_model.h), the image size, the extrinsic T_cam_imu, the time offset
-// timeshift_cam_imu and the rolling-shutter line delay.
+// (camera/camera_model.h), the image size, the extrinsic T_cam_imu, the camera-IMU time offset
+// and the rolling-shutter line delay.
 //
-//   T_cam_imu          maps IMU-frame points into the camera frame: p_c = T_cam_imu * p_s.
-//   timeshift_cam_imu  [s]   t_imu = t_cam + timeshift_cam_imu.
-//   line_delay         [s]   image row r of a frame stamped t_frame (camera clock) is exposed at
-//                            t_frame + r * line_delay; 0 is a global shutter.
+//   T_cam_imu      maps IMU-frame points into the camera frame: p_c = T_cam_imu * p_s.
+//   time_offset_s  [s]   t_imu = t_cam + time_offset_s (Kalibr's key for it: timeshift_cam_imu).
+//   line_delay_s   [s]   image row r of a frame stamped t_frame (camera clock) is exposed at
+//                        t_frame + r * line_delay; 0 is a global shutter.
 //
 // Reading and writing the YAML is io/camchain_yaml.h. CheckCameraIds refuses observations
 // (camera/observations.h) of a camera the camchain lacks.
@@ -26,7 +26,7 @@ namespace splinecal {
 struct CameraCalibration {
   PinholeCamera camera;
   SE3d T_cam_imu;  // identity when the file has none
-  double timeshift_cam_imu_s = 0.0;
+  double time_offset_s = 0.0;
   double line_delay_s = 0.0;
   std::string rostopic;  // kept from the input, written back when not empty
 };

@@ -2,9 +2,9 @@
 // shutter").
 //
 // Image row r of a frame stamped t_frame (camera clock) is exposed at t_frame + r * line_delay.
-// In the IMU clock (t_imu = t_cam + timeshift_cam_imu) a point seen in that frame is exposed at
+// In the IMU clock (t_imu = t_cam + time_offset) a point seen in that frame is exposed at
 //
-//     t = t_frame + timeshift + tau,      tau = line_delay * v(t)
+//     t = t_frame + time_offset + tau,      tau = line_delay * v(t)
 //
 // where v(t) is the image row the point projects to at time t: the exposure time depends on the
 // row, which depends on the exposure time. We solve the scalar equation
@@ -48,7 +48,7 @@ struct ExposureSolveOptions {
 };
 
 struct ExposureSolution {
-  double tau_s = 0.0;       // exposure time after t_frame + timeshift [s]
+  double tau_s = 0.0;       // exposure time after t_frame + time_offset [s]
   double row = 0.0;         // v at tau (the predicted row) [px]
   double row_rate = 0.0;    // dv/dt at tau [px/s]
   double derivative = 1.0;  // D = 1 - line_delay * row_rate

@@ -9,28 +9,41 @@
 //
 // Flag spelling: `--imu-rate 200`, `--imu-rate=200` and `--imu_rate=200` are the same flag
 // (dashes become underscores); booleans take `--flag`, `--noflag`, `--flag=true|false`.
+//
+// A flag means the same in every command that takes it (its unit, and what 0 or an empty value
+// means); only its default may differ per command (FlagDoc::default_value). `--quiet` is taken
+// by every command and is not repeated in the usage lines.
 #ifndef SPLINECAL_CLI_COMMAND_H_
 #define SPLINECAL_CLI_COMMAND_H_
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace splinecal {
 namespace cli {
 
 struct FlagDoc {
+  // Implicit, so that a command lists its flags as {"name", "help"} or {"name", "help", "0.05"}.
+  FlagDoc(std::string name, std::string help = "", std::string default_value = "")
+      : name(std::move(name)), help(std::move(help)), default_value(std::move(default_value)) {}
+
   // The gflags name, with underscores (`imu_rate`); shown with dashes unless it is a Kalibr key.
   std::string name;
   // Help text for this command; empty means the flag's gflags description. Give the unit.
   std::string help;
+  // This command's default, when it differs from the DEFINE_* default (e.g. --knot-spacing:
+  // 0.05 s in calibrate, 0 = from the data in fit). ParseFlags sets it before parsing and
+  // --help shows it.
+  std::string default_value;
 };
 
 struct Command {
   std::string name;
-  std::string summary;              // one line, for `splinecal help`
-  std::string usage;                // e.g. "splinecal fit --imu FILE --poses FILE --out DIR"
-  std::string description;          // a paragraph for `splinecal SUB --help`
-  std::vector<FlagDoc> flags;       // every flag the command accepts
+  std::string summary;         // one line, for `splinecal help`
+  std::string usage;           // every flag of `flags` but --quiet, e.g. "splinecal fit ..."
+  std::string description;     // a paragraph for `splinecal SUB --help`
+  std::vector<FlagDoc> flags;  // every flag the command accepts
   // Runs the command after its flags were set. Throws splinecal::Error for bad input (the front
   // end prints it on one line and exits 2). Returns the exit code.
   int (*run)();
@@ -48,8 +61,10 @@ const std::vector<Command>& AllCommands();
 int Main(int argc, char** argv);
 
 // Sets the gflags values of `args` (the arguments after the command name), accepting only the
-// command's flags. Returns false and fills `error` on the first problem; sets `help` when --help
-// was asked for.
+// command's flags, after setting each of them to the command's default (FlagDoc::default_value,
+// else its DEFINE_* default) with gflags' SET_FLAGS_DEFAULT: a flag the arguments do not set
+// still reads as not given (CommandLineFlagInfo::is_default). Returns false and fills `error`
+// on the first problem; sets `help` when --help was asked for.
 bool ParseFlags(const Command& command,
                 const std::vector<std::string>& args,
                 bool* help,

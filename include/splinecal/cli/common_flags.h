@@ -3,10 +3,10 @@
 #ifndef SPLINECAL_CLI_COMMON_FLAGS_H_
 #define SPLINECAL_CLI_COMMON_FLAGS_H_
 
-#include <string>
+#include <gflags/gflags.h>
 
 #include <Eigen/Core>
-#include <gflags/gflags.h>
+#include <string>
 
 #include "splinecal/io/euroc.h"
 
@@ -19,6 +19,7 @@ DECLARE_double(gravity);
 DECLARE_int32(seed);
 DECLARE_int32(threads);
 DECLARE_double(knot_spacing);
+DECLARE_double(duration);
 DECLARE_string(accel_unit);
 DECLARE_string(gyro_unit);
 DECLARE_string(camchain);
@@ -36,6 +37,11 @@ double NonNegativeFlag(const std::string& name, double value);
 // unless finite, > 0 (>= 0 with allow_zero) and at most 1e9 s (31 years), which keeps its sum
 // with any timestamp (at most 4e18 ns, io/text_file.h) far from int64 overflow.
 int64_t SpanFlagNs(const std::string& name, double seconds, bool allow_zero = false);
+// --threads, refused unless 1 to 256 (the same range in every command).
+int ThreadsFlag();
+// --knot-spacing [s], checked as a span (SpanFlagNs). 0 means "chosen from the data": accepted
+// where the command can choose (can_choose), else refused with a message that says why.
+double KnotSpacingFlag(bool can_choose);
 // A required path flag: refused when empty.
 const std::string& RequiredFlag(const std::string& name, const std::string& value);
 

@@ -21,7 +21,7 @@ namespace splinecal {
 
 // The control points a bias sample depends on and their weights.
 struct BiasWeights {
-  int first_point = 0;                           // c_{first} .. c_{first + num - 1}
+  int first_point = 0;  // c_{first} .. c_{first + num - 1}
   std::array<double, 4> weights = {1.0, 0.0, 0.0, 0.0};
 };
 
@@ -35,12 +35,12 @@ class BiasSpline {
 
   BiasModel model() const { return model_; }
   bool is_constant() const { return model_ == BiasModel::kConstant; }
-  int num_points() const { return num_points_; }
+  int num_points() const { return layout_.num_control_poses; }
   // Control points per residual: 1 (constant) or 4 (one bias segment).
   int points_per_segment() const { return is_constant() ? 1 : 4; }
-  int64_t t0_ns() const { return t0_ns_; }  // tb_0 (kSpline)
-  int64_t dt_ns() const { return dt_ns_; }  // db (kSpline)
-  double dt_s() const { return 1e-9 * static_cast<double>(dt_ns_); }
+  int64_t t0_ns() const { return layout_.t0_ns; }  // tb_0 (kSpline)
+  int64_t dt_ns() const { return layout_.dt_ns; }  // db (kSpline)
+  double dt_s() const { return layout_.dt_s(); }
 
   // The bias segment of pose segment i (its first control point is the returned index - 1).
   int SegmentOfPoseSegment(int pose_segment) const;
@@ -53,10 +53,9 @@ class BiasSpline {
 
  private:
   BiasModel model_ = BiasModel::kConstant;
-  int num_points_ = 1;
   int pose_knots_per_bias_knot_ = 1;
-  int64_t t0_ns_ = 0;
-  int64_t dt_ns_ = 1;
+  // The bias control points' knots (kSpline); one point at spacing 1 ns for kConstant.
+  KnotLayout layout_{0, 1, 1};
 };
 
 }  // namespace splinecal

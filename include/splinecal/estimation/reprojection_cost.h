@@ -9,9 +9,9 @@
 //                           r = the reference observation's ray (x, y, 1) (camera model's
 //                           Unproject), rho = 1 / depth in the reference camera, t_r the
 //                           reference exposure time (its row is OBSERVED, so t_r is explicit:
-//                           t_frame_r + timeshift + line_delay * v_r).
+//                           t_frame_r + time_offset + line_delay * v_r).
 // Seen in a frame stamped t_frame (camera clock) at the exposure time (camera/rolling_shutter.h)
-//   t = t_frame + timeshift + tau,   tau = line_delay * v(t),
+//   t = t_frame + time_offset + tau,   tau = line_delay * v(t),
 // the point in the IMU and camera frames and the pixel are
 //   x_s = R_w_s^T (x_w - p_w_s w),   x_c = R_c_s x_s + t_c_s w,   uv = pi(x_c)
 // (pi = PinholeCamera::Project; a homogeneous point projects like x_c / w for w > 0, and
@@ -31,7 +31,7 @@
 //   T_w_t -> T_w_t Exp(d):       d x_w / d d = R_w_t [I, -[p_t]x]
 //   landmark, with x_sr = R_s_c r + t_s_c rho, x_w = R_w_sr x_sr + p_w_sr rho, w = rho:
 //     reference pose T_w_sr Exp(e_r):   d x_w / d e_r = A_r = R_w_sr [rho I, -[x_sr]x]
-//     reference time t_r:               d x_w / d t_r = A_r xi_r;  d t_r / d timeshift = 1,
+//     reference time t_r:               d x_w / d t_r = A_r xi_r;  d t_r / d time_offset = 1,
 //                                       d t_r / d line_delay = v_r (observed row)
 //     T_c_s in T_s_c = T_c_s^-1:        d x_w / d d = R_w_sr [-rho I, [x_sr]x]
 //     rho:                              d x_w / d rho = R_w_sr t_s_c + p_w_sr, d w / d rho = 1
@@ -92,7 +92,7 @@ struct TargetCornerObservation {
 
 // Every target corner of one frame: 2 rows per corner.
 // Parameter blocks: window.num_poses control poses (7 each, first_index first), T_cam_imu (7),
-// timeshift_cam_imu (1) [s], line_delay (1) [s/row], T_w_t (7).
+// time offset (1) [s], line_delay (1) [s/row], T_w_t (7).
 class TargetFrameCostFunction : public ceres::CostFunction {
  public:
   // t_frame_s: the frame stamp (camera clock) in seconds since the spline's t0.
@@ -126,7 +126,7 @@ struct LandmarkObservation {
 };
 
 // 2 rows. Parameter blocks: the control poses listed in pose_indices (sorted, unique; they must
-// contain both windows), T_cam_imu (7), timeshift (1), line_delay (1), rho (1) [1/m].
+// contain both windows), T_cam_imu (7), time offset (1), line_delay (1), rho (1) [1/m].
 class LandmarkCostFunction : public ceres::CostFunction {
  public:
   LandmarkCostFunction(const ReprojectionSettings& settings,

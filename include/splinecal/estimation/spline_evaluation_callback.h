@@ -62,7 +62,6 @@ class SplineEvaluationCallback : public ceres::EvaluationCallback {
 
   const SE3Splined& spline() const { return spline_; }
   int num_control_poses() const { return static_cast<int>(blocks_.size()); }
-  int64_t num_updates() const { return num_updates_; }
 
   // True when parameters[0..3] hold exactly the values of control poses first_index ..
   // first_index + 3 from which the spline was last built.

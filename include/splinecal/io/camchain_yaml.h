@@ -9,7 +9,7 @@
 //   distortion_coeffs  radtan [k1, k2, p1, p2]; equidistant [k1, k2, k3, k4]; none [] (optional)
 //   resolution         [width, height]                                   [px]
 //   T_cam_imu          4x4, list of rows (optional: identity)
-//   timeshift_cam_imu  [s] (optional: 0)
+//   timeshift_cam_imu  [s] (optional: 0), CameraCalibration::time_offset_s
 //   line_delay         [s] per image row (optional: 0, a global shutter)
 //   rostopic           (optional, kept)
 // Other keys (T_cn_cnm1, cam_overlaps) are ignored.

@@ -126,12 +126,6 @@ class ImuNoiseGenerator {
     if (accel_bias != nullptr) *accel_bias = accel_bias_;
   }
 
-  // Per-sample standard deviations in use.
-  double gyro_white_std() const { return gyro_white_std_; }
-  double accel_white_std() const { return accel_white_std_; }
-  double gyro_step_std() const { return gyro_step_std_; }
-  double accel_step_std() const { return accel_step_std_; }
-
  private:
   GaussianSampler gaussian_;
   double gyro_white_std_;

@@ -3,7 +3,7 @@
 // T_w_s(t), with the rolling-shutter exposure time solved per point (camera/rolling_shutter.h).
 //
 // Frames. Camera n takes frames at t_cam_k = t_first + k / camera_rate (camera clock, t_first the
-// first stamp whose whole readout [t_cam + timeshift, t_cam + timeshift + (height - 1)
+// first stamp whose whole readout [t_cam + time_offset, t_cam + time_offset + (height - 1)
 // line_delay] lies in [start_ns, end_ns] in the IMU clock, CONVENTIONS.md). Every stamp is
 // rounded to the nanosecond once, never accumulated.
 //
@@ -87,7 +87,8 @@ CameraSimulationResult SimulateCameras(const SE3Splined& spline,
                                        int64_t end_ns,
                                        const CameraSimulationOptions& options);
 
-// Writes the camera truth for result.yaml: per camera T_cam_imu, timeshift_cam_imu, line_delay,
+// Writes the camera truth for result.yaml: per camera T_cam_imu, the time offset (under Kalibr's
+// key timeshift_cam_imu), line_delay,
 // and the target pose T_w_t, the counts of frames and observations, the landmark count.
 void WriteCameraSimulationTruth(const Camchain& camchain,
                                 const CameraSimulationOptions& options,

@@ -81,11 +81,18 @@ struct KnotLayout {
     return true;
   }
 
-  // The segment index of a time in seconds since t0, clamped into 1..n-3 (for attaching a
-  // residual whose time may still move, e.g. with an estimated time offset).
+  // The segment index of a time clamped into the valid range: SegmentAt / SegmentAtNs of the
+  // nearest valid time (for attaching a residual whose time may still move, e.g. with an
+  // estimated time offset, and for a spline evaluated a little past its ends). 1 for NaN.
   int ClampedSegmentAt(double t_s) const {
-    const int index = static_cast<int>(std::floor(t_s / dt_s()));
-    return std::clamp(index, 1, num_control_poses - 3);
+    SegmentPosition position;
+    SegmentAt(std::clamp(t_s, start_time(), end_time()), &position);
+    return position.index;
+  }
+  int ClampedSegmentAtNs(int64_t t_ns) const {
+    SegmentPosition position;
+    SegmentAtNs(std::clamp(t_ns, start_time_ns(), end_time_ns()), &position);
+    return position.index;
   }
 
   // The smallest window of control poses whose segments cover every time in [t_lo_s, t_hi_s]

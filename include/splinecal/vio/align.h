@@ -30,8 +30,8 @@
 //      (CameraNoise), and solved in O(n): block-tridiagonal elimination of the velocities, then
 //      a 4x4 system. s = 1/u, g = g'/u, v = v'/u.
 //   4. Gravity refinement with the known norm G: g = G d, d on the unit sphere with 2 tangent
-//      coordinates w (estimation/gravity_tangent.h), g' = u G Retract(d, w) ~ G d u + G u0 B(d) w. At
-//      every iteration the system is REBUILT at the current (d, u0), solved for (v', w, u), d
+//      coordinates w (estimation/gravity_tangent.h), g' = u G Retract(d, w) ~ G d u + G u0 B(d) w.
+//      At every iteration the system is REBUILT at the current (d, u0), solved for (v', w, u), d
 //      moved by w; stop when |w| < tolerance. (VINS-Mono keeps adding each iteration's rows to
 //      those linearised at older estimates: internal::RefineGravityAccumulating.)
 //   5. Acceptance checks that gate: the free system's condition number (excitation), s > 0,
@@ -52,13 +52,13 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/vio/preintegration.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"
+#include "splinecal/vio/preintegration.h"
 
 namespace splinecal {
 
@@ -79,8 +79,9 @@ struct AlignOptions {
   // translation is always used as known (metric).
   SE3d T_cam_imu;
   bool estimate_rotation_extrinsic = false;
-  // Camera timestamps are in the camera's clock: t_imu = t_cam + timeshift (Kalibr).
-  double timeshift_cam_imu_s = 0.0;
+  // Camera timestamps are in the camera's clock: t_imu = t_cam + time_offset_s (Kalibr's
+  // timeshift_cam_imu).
+  double time_offset_s = 0.0;
   ImuNoise noise;                                        // weights (Kalibr densities)
   CameraNoise camera_noise;                              // weights
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // known [m/s^2]
