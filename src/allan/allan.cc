@@ -12,7 +12,7 @@
 #include "splinecal/imu/noise.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/yaml_writer.h"
-#include "splinecal/report/svg_plot.h"
+#include "splinecal/plot/svg_plot.h"
 #include "splinecal/string_printf.h"
 
 namespace splinecal {

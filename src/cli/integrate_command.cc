@@ -18,8 +18,8 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/yaml_writer.h"
-#include "splinecal/report/plot_decimation.h"
-#include "splinecal/report/svg_plot.h"
+#include "splinecal/plot/plot_decimation.h"
+#include "splinecal/plot/svg_plot.h"
 
 DEFINE_string(groundtruth,
               "",

@@ -7,8 +7,8 @@
 
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/report/html_page.h"
-#include "splinecal/report/plot_decimation.h"
-#include "splinecal/report/svg_plot.h"
+#include "splinecal/plot/plot_decimation.h"
+#include "splinecal/plot/svg_plot.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 

@@ -8,7 +8,7 @@
 //                            when there are several, and `warnings` in plain words.
 //   reprojection_errors.csv  one row per used observation: #t_ns,cam_id,point_id,u,v,error_u,
 //                            error_v (camera clock [ns], pixel and predicted - observed [px]).
-//   report.html              a table of the estimates and SVG plots (report/svg_plot.h):
+//   report.html              a table of the estimates and SVG plots (plot/svg_plot.h):
 //                            reprojection errors, IMU residuals, the trajectory.
 //   summary                  the lines printed on stdout: each camera's T_cam_imu and stds,
 //                            the residual RMS and the warnings.

@@ -11,7 +11,7 @@
 //                       fitted xyz, gyro bias xyz, accel bias xyz
 //   pose_residuals.csv  one row per pose (pose clock): #t_ns, position error xyz [m] (world),
 //                       rotation error xyz [rad] (Log(R_measured^T R_fitted))
-//   report.html         the summary and SVG plots (report/svg_plot.h): measured against fitted gyro
+//   report.html         the summary and SVG plots (plot/svg_plot.h): measured against fitted gyro
 //                       and accelerometer, residuals over time, biases over time.
 #ifndef SPLINECAL_REPORT_FIT_REPORT_H_
 #define SPLINECAL_REPORT_FIT_REPORT_H_

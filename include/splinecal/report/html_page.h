@@ -1,7 +1,7 @@
 // The page every splinecal HTML report is written on (report.html of `fit` and `calibrate`):
 // one skeleton (doctype, UTF-8, title, the <h1> heading) and one shared style sheet, so that the
 // reports look alike and a change of style is made once. The reports fill the body with their
-// own tables and SVG figures (report/svg_plot.h).
+// own tables and SVG figures (plot/svg_plot.h).
 //
 //   HtmlPage page("splinecal fit", "body{max-width:960px;margin:auto}");
 //   page.Append("<table>...</table>\n");
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/report/svg_plot.h"
+#include "splinecal/plot/svg_plot.h"
 
 namespace splinecal {
 

@@ -2,8 +2,8 @@
 // series". A report (report.html of `fit` and `calibrate`) or a picture (trajectory.svg of
 // `integrate`) plots every k-th sample, with the smallest stride k that leaves at most N of them,
 // so that the files stay a few MB however long the recording is.
-#ifndef SPLINECAL_REPORT_PLOT_DECIMATION_H_
-#define SPLINECAL_REPORT_PLOT_DECIMATION_H_
+#ifndef SPLINECAL_PLOT_PLOT_DECIMATION_H_
+#define SPLINECAL_PLOT_PLOT_DECIMATION_H_
 
 #include <cstddef>
 #include <vector>
@@ -19,4 +19,4 @@ std::vector<size_t> DecimatedIndices(size_t n, int max_points, bool keep_last);
 }  // namespace plot
 }  // namespace splinecal
 
-#endif  // SPLINECAL_REPORT_PLOT_DECIMATION_H_
+#endif  // SPLINECAL_PLOT_PLOT_DECIMATION_H_

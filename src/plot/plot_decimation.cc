@@ -1,4 +1,4 @@
-#include "splinecal/report/plot_decimation.h"
+#include "splinecal/plot/plot_decimation.h"
 
 #include <algorithm>
 

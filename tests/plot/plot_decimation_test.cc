@@ -1,4 +1,4 @@
-#include "splinecal/report/plot_decimation.h"
+#include "splinecal/plot/plot_decimation.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

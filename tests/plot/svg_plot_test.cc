@@ -1,4 +1,4 @@
-#include "splinecal/report/svg_plot.h"
+#include "splinecal/plot/svg_plot.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -27,8 +27,8 @@
 //   adev.x = tau_s;  adev.y = sigma;  adev.y_low = lower;  adev.y_high = upper;
 //   adev.marker = plot::Marker::kCircle;
 //   const std::string svg = plot::RenderSvg(figure);
-#ifndef SPLINECAL_REPORT_SVG_PLOT_H_
-#define SPLINECAL_REPORT_SVG_PLOT_H_
+#ifndef SPLINECAL_PLOT_SVG_PLOT_H_
+#define SPLINECAL_PLOT_SVG_PLOT_H_
 
 #include <deque>
 #include <limits>
@@ -122,4 +122,4 @@ void AutoRange(double lo, double hi, Scale scale, double* range_lo, double* rang
 }  // namespace plot
 }  // namespace splinecal
 
-#endif  // SPLINECAL_REPORT_SVG_PLOT_H_
+#endif  // SPLINECAL_PLOT_SVG_PLOT_H_
