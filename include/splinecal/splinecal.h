@@ -2,19 +2,21 @@
 //
 //   #include <splinecal/splinecal.h>
 //
-// Areas, from the bottom up: an area includes only areas listed before it (no cycles; a ctest
-// checks it).
+// Areas, from the bottom up: an area includes only areas listed before it, so no two areas
+// include each other (tests/architecture/layering_test.cc checks both).
 //   lie/         SO(3), SE(3), their Jacobians and Ceres manifolds
 //   spline/      the uniform cumulative cubic B-spline on SE(3), its knot layout and derivatives
 //   imu/         IMU samples, the measurement model, noise densities, dead reckoning
 //   camera/      camera models, camchains, targets, observations, PnP, rolling shutter
-//   allan/       Allan deviation and noise identification
 //   io/          readers and writers of every file format (plain data types in, out)
+//   plot/        SVG plots and the one plot decimation (knows nothing of what it plots)
 //   estimation/  residuals, the spline problem, covariance, solver rounds: the estimation core
 //   vio/         preintegration, hand-eye, visual-inertial alignment, clock correlation
 //   sim/         IMU and camera simulation, trajectories, noise
+//   allan/       Allan deviation and noise identification
 //   calib/       fit (IMU + poses) and calibrate (camera-IMU)
-//   report/      result files, SVG plots and HTML reports
+//   report/      result files and HTML reports of fit, calibrate and align
+// (cli/, the command-line front end, sits on top and is not part of the library.)
 // docs/library.md shows a complete program. Each header's comment is its contract.
 #ifndef SPLINECAL_SPLINECAL_H_
 #define SPLINECAL_SPLINECAL_H_
@@ -53,22 +55,25 @@
 #include "splinecal/camera/rolling_shutter.h"
 #include "splinecal/camera/target.h"
 
-// allan/
-#include "splinecal/allan/allan.h"
-#include "splinecal/allan/allan_deviation.h"
-#include "splinecal/allan/noise_fit.h"
-
 // io/
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
+#include "splinecal/io/parallel_euroc_imu.h"
 #include "splinecal/io/poses.h"
+#include "splinecal/io/row_checks.h"
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/static_recording.h"
 #include "splinecal/io/target_yaml.h"
+#include "splinecal/io/text_file.h"
+#include "splinecal/io/yaml_document.h"
 #include "splinecal/io/yaml_writer.h"
+
+// plot/
+#include "splinecal/plot/plot_decimation.h"
+#include "splinecal/plot/svg_plot.h"
 
 // estimation/
 #include "splinecal/estimation/bias_costs.h"
@@ -85,6 +90,7 @@
 #include "splinecal/estimation/pose_fit.h"
 #include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/estimation/solver_progress.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/estimation/spline_problem.h"
 
@@ -102,6 +108,11 @@
 #include "splinecal/sim/simulation_trajectory.h"
 #include "splinecal/sim/trajectories.h"
 
+// allan/
+#include "splinecal/allan/allan.h"
+#include "splinecal/allan/allan_deviation.h"
+#include "splinecal/allan/noise_fit.h"
+
 // calib/
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/calib/fit.h"
@@ -111,7 +122,5 @@
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"
-#include "splinecal/report/plot_decimation.h"
-#include "splinecal/report/svg_plot.h"
 
 #endif  // SPLINECAL_SPLINECAL_H_
