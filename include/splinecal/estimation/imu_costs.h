@@ -309,15 +309,39 @@ class AccelSegmentCostFunction : public ceres::CostFunction {
 
 // ---- Evaluate: the residual rows and their Jacobians ----
 
+namespace internal {
+
+// The rows of `num_samples` samples of one segment, 3 per sample, stacked: the segment's knot
+// data is prepared once and kSampleRows (GyroSampleRows or AccelSampleRows, a compile-time
+// constant so that it inlines) writes each sample's residual and Jacobian rows.
+template <auto kSampleRows>
+void EvaluateSegmentSamples(const ImuResidualSegment& segment,
+                            const ImuResidualSample* samples,
+                            size_t num_samples,
+                            double const* const* parameters,
+                            double* residuals,
+                            double** jacobians) {
+  SegmentEvaluation evaluation;
+  PrepareSegmentEvaluation(segment, parameters, AnyPoseJacobian(jacobians), &evaluation);
+  for (size_t s = 0; s < num_samples; ++s) {
+    kSampleRows(evaluation,
+                segment,
+                samples[s],
+                parameters,
+                residuals + 3 * s,
+                jacobians,
+                3 * static_cast<int>(s));
+  }
+}
+
+}  // namespace internal
+
 template <int kBiasBlocks>
 bool GyroCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
                                              double* residuals,
                                              double** jacobians) const {
-  internal::SegmentEvaluation evaluation;
-  internal::PrepareSegmentEvaluation(
-      segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
-  internal::GyroSampleRows<kBiasBlocks>(
-      evaluation, segment_, sample_, parameters, residuals, jacobians, 0);
+  internal::EvaluateSegmentSamples<internal::GyroSampleRows<kBiasBlocks>>(
+      segment_, &sample_, 1, parameters, residuals, jacobians);
   return true;
 }
 
@@ -325,11 +349,8 @@ template <int kBiasBlocks>
 bool AccelCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
                                               double* residuals,
                                               double** jacobians) const {
-  internal::SegmentEvaluation evaluation;
-  internal::PrepareSegmentEvaluation(
-      segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
-  internal::AccelSampleRows<kBiasBlocks>(
-      evaluation, segment_, sample_, parameters, residuals, jacobians, 0);
+  internal::EvaluateSegmentSamples<internal::AccelSampleRows<kBiasBlocks>>(
+      segment_, &sample_, 1, parameters, residuals, jacobians);
   return true;
 }
 
@@ -337,18 +358,8 @@ template <int kBiasBlocks>
 bool GyroSegmentCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
                                                     double* residuals,
                                                     double** jacobians) const {
-  internal::SegmentEvaluation evaluation;
-  internal::PrepareSegmentEvaluation(
-      segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
-  for (size_t s = 0; s < samples_.size(); ++s) {
-    internal::GyroSampleRows<kBiasBlocks>(evaluation,
-                                          segment_,
-                                          samples_[s],
-                                          parameters,
-                                          residuals + 3 * s,
-                                          jacobians,
-                                          3 * static_cast<int>(s));
-  }
+  internal::EvaluateSegmentSamples<internal::GyroSampleRows<kBiasBlocks>>(
+      segment_, samples_.data(), samples_.size(), parameters, residuals, jacobians);
   return true;
 }
 
@@ -356,18 +367,8 @@ template <int kBiasBlocks>
 bool AccelSegmentCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
                                                      double* residuals,
                                                      double** jacobians) const {
-  internal::SegmentEvaluation evaluation;
-  internal::PrepareSegmentEvaluation(
-      segment_, parameters, internal::AnyPoseJacobian(jacobians), &evaluation);
-  for (size_t s = 0; s < samples_.size(); ++s) {
-    internal::AccelSampleRows<kBiasBlocks>(evaluation,
-                                           segment_,
-                                           samples_[s],
-                                           parameters,
-                                           residuals + 3 * s,
-                                           jacobians,
-                                           3 * static_cast<int>(s));
-  }
+  internal::EvaluateSegmentSamples<internal::AccelSampleRows<kBiasBlocks>>(
+      segment_, samples_.data(), samples_.size(), parameters, residuals, jacobians);
   return true;
 }
 
