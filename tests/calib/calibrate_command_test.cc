@@ -77,7 +77,7 @@ TEST_F(CalibrateCommand, WritesKalibrCamchainResultAndReport) {
                           "rotation_std_deg:",
                           "translation_std_m:",
                           "timeshift_cam_imu:",
-                          "time_offset_std_s:",
+                          "timeshift_std_s:",
                           "line_delay:",
                           "line_delay_std:",
                           "gyro_bias:",
