@@ -23,11 +23,6 @@ using testing::RunTool;
 using ::testing::StartsWith;
 using testing::TempDir;
 
-bool AllanRegistered() { return RunTool({"help"}).out.find("allan") != std::string::npos; }
-
-#define SKIP_UNLESS_REGISTERED() \
-  if (!AllanRegistered()) GTEST_SKIP() << "allan is not in src/cli/commands.cc yet"
-
 // A static EuRoC file: ADIS16448-like white noise and bias random walk on six axes.
 std::string WriteStaticEuroc(const TempDir& dir, const std::string& name, int rows) {
   std::mt19937_64 engine(17);
@@ -62,7 +57,6 @@ std::string WriteStaticEuroc(const TempDir& dir, const std::string& name, int ro
 }
 
 TEST(AllanCommand, WritesItsFourFiles) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   const std::string imu = WriteStaticEuroc(dir, "imu0.csv", 200 * 600);
   const testing::ToolResult run = RunTool({"allan", "--imu", imu, "--out", dir.File("out")});
@@ -79,7 +73,6 @@ TEST(AllanCommand, WritesItsFourFiles) {
 }
 
 TEST(AllanCommand, PlainColumnsOfOneSensor) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   std::mt19937_64 engine(3);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -115,7 +108,6 @@ TEST(AllanCommand, PlainColumnsOfOneSensor) {
 }
 
 TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   const std::string header =
       "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"

@@ -24,16 +24,6 @@ using testing::ReadFileText;
 using testing::RunTool;
 using testing::TempDir;
 
-// The command is registered by the front end (src/cli/commands.cc); skip until it is.
-bool FitCommandRegistered() {
-  static const bool registered = [] {
-    const auto help = RunTool({"help"});
-    return help.out.find("\n  fit") != std::string::npos ||
-           help.out.find(" fit ") != std::string::npos;
-  }();
-  return registered;
-}
-
 struct Files {
   std::string imu;
   std::string poses;
@@ -48,7 +38,6 @@ Files WriteScenario(const TempDir& dir, const FitData& data) {
 }
 
 TEST(FitCommand, WritesEveryOutputAndTheEstimates) {
-  if (!FitCommandRegistered()) GTEST_SKIP() << "`splinecal fit` is not registered yet";
   TempDir dir;
   FitScenario scenario;
   scenario.duration_s = 8.0;
@@ -100,7 +89,6 @@ TEST(FitCommand, WritesEveryOutputAndTheEstimates) {
 }
 
 TEST(FitCommand, QuietSilencesProgress) {
-  if (!FitCommandRegistered()) GTEST_SKIP() << "`splinecal fit` is not registered yet";
   TempDir dir;
   FitScenario scenario;
   scenario.duration_s = 5.0;
@@ -120,7 +108,6 @@ TEST(FitCommand, QuietSilencesProgress) {
 }
 
 TEST(FitCommand, BadInputIsOneLineExitTwoAndNoOutput) {
-  if (!FitCommandRegistered()) GTEST_SKIP() << "`splinecal fit` is not registered yet";
   TempDir dir;
   FitScenario scenario;
   scenario.duration_s = 5.0;

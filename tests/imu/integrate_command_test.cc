@@ -26,14 +26,6 @@ using testing::ReadFileText;
 using testing::RunTool;
 using testing::TempDir;
 
-bool IntegrateRegistered() {
-  static const bool registered = RunTool({"help"}).out.find("\n  integrate") != std::string::npos;
-  return registered;
-}
-
-#define SKIP_UNLESS_REGISTERED() \
-  if (!IntegrateRegistered()) GTEST_SKIP() << "`splinecal integrate` is not registered yet"
-
 struct Files {
   std::string imu;
   std::string truth;
@@ -57,7 +49,6 @@ Files WriteCourse(const TempDir& dir) {
 }
 
 TEST(IntegrateCommand, MidpointBeatsEulerTenfoldAndRk4BeatsMidpoint) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   const Files files = WriteCourse(dir);
   const std::string out = dir.File("out");
@@ -84,7 +75,6 @@ TEST(IntegrateCommand, MidpointBeatsEulerTenfoldAndRk4BeatsMidpoint) {
 }
 
 TEST(IntegrateCommand, StartDurationAndMethodSelectAWindow) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   const Files files = WriteCourse(dir);
   const std::string out = dir.File("out");
@@ -112,7 +102,6 @@ TEST(IntegrateCommand, StartDurationAndMethodSelectAWindow) {
 }
 
 TEST(IntegrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   const Files files = WriteCourse(dir);
   // The same IMU in units of g, and with a row out of order.
@@ -170,7 +159,6 @@ TEST(IntegrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
 
 // Real data: EuRoC V1_01_easy, first 10 s. The numbers go to docs/integrate.md.
 TEST(IntegrateCommand, EurocV101EasyFirstTenSeconds) {
-  SKIP_UNLESS_REGISTERED();
   const std::string data = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy";
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");
   TempDir dir;

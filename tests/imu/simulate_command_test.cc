@@ -30,15 +30,6 @@ using testing::TempDir;
 // 17-digit text round trip and the knot placement of a file's own time base.
 constexpr double kTrajectoryFileTolerance = 1e-4;
 
-// The command is registered by the front end (src/cli/commands.cc); skip until it is.
-bool SimulateRegistered() {
-  static const bool registered = RunTool({"help"}).out.find("\n  simulate") != std::string::npos;
-  return registered;
-}
-
-#define SKIP_UNLESS_REGISTERED() \
-  if (!SimulateRegistered()) GTEST_SKIP() << "`splinecal simulate` is not registered yet"
-
 struct Outputs {
   std::string imu, truth, spline, imu_yaml, result;
 };
@@ -52,7 +43,6 @@ Outputs OutputsIn(const std::string& dir) {
 }
 
 TEST(SimulateCommand, WritesEveryOutput) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   const std::string out = dir.File("sim");
   const auto result = RunTool({"simulate", "--duration", "2", "--out", out, "--quiet"});
@@ -80,7 +70,6 @@ TEST(SimulateCommand, WritesEveryOutput) {
 }
 
 TEST(SimulateCommand, NoiseFreeZeroBiasFileIsExactlyTheSplinePrediction) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   const std::string out = dir.File("sim");
   const auto result = RunTool(
@@ -107,7 +96,6 @@ TEST(SimulateCommand, NoiseFreeZeroBiasFileIsExactlyTheSplinePrediction) {
 }
 
 TEST(SimulateCommand, SameSeedSameBytes) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   auto run = [&](const std::string& name, const std::string& seed) {
     const auto result = RunTool({"simulate",
@@ -136,7 +124,6 @@ TEST(SimulateCommand, SameSeedSameBytes) {
 }
 
 TEST(SimulateCommand, RecoversASmoothTrajectoryFileWellUnderAMillimetre) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   // vio_course at 100 Hz in TUM format, on a EuRoC-like time base near 1.4e18 ns.
   const int64_t start_ns = 1'403'715'273'262'142'976;
@@ -163,7 +150,6 @@ TEST(SimulateCommand, RecoversASmoothTrajectoryFileWellUnderAMillimetre) {
 }
 
 TEST(SimulateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
-  SKIP_UNLESS_REGISTERED();
   TempDir dir;
   const std::string out = dir.File("sim");
   struct Case {

@@ -435,14 +435,6 @@ TEST(GravityAlignedRotation, MapsGravityDownWithoutYaw) {
 // ---------------------------------------------------------------------------------------------
 // The command line, end to end.
 
-// The lead registers `align` in src/cli/commands.cc; until then the CLI tests skip.
-bool AlignCommandRegistered() {
-  return testing::RunTool({"help"}).out.find("\n  align ") != std::string::npos;
-}
-
-#define SKIP_UNLESS_ALIGN_REGISTERED() \
-  if (!AlignCommandRegistered()) GTEST_SKIP() << "`splinecal align` is not registered yet"
-
 void WriteAlignInputs(const testdata::Scenario& scenario,
                       const testing::TempDir& dir,
                       const SE3d& T_cam_imu) {
@@ -464,7 +456,6 @@ void WriteAlignInputs(const testdata::Scenario& scenario,
 }
 
 TEST(AlignCommand, WritesResultAndAlignedPoses) {
-  SKIP_UNLESS_ALIGN_REGISTERED();
   const testdata::ScenarioOptions options = DefaultOptions();
   const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
   testing::TempDir dir;
@@ -501,7 +492,6 @@ TEST(AlignCommand, WritesResultAndAlignedPoses) {
 }
 
 TEST(AlignCommand, EstimatesRotationExtrinsicWhenAsked) {
-  SKIP_UNLESS_ALIGN_REGISTERED();
   const testdata::ScenarioOptions options = DefaultOptions();
   const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
   testing::TempDir dir;
@@ -527,7 +517,6 @@ TEST(AlignCommand, EstimatesRotationExtrinsicWhenAsked) {
 }
 
 TEST(AlignCommand, FailedCheckExitsTwoWithoutOutput) {
-  SKIP_UNLESS_ALIGN_REGISTERED();
   const testdata::ScenarioOptions options = DefaultOptions();
   const testdata::Scenario scenario =
       testdata::MakeScenario(testdata::ConstantVelocityTrajectory(), options);
@@ -549,7 +538,6 @@ TEST(AlignCommand, FailedCheckExitsTwoWithoutOutput) {
 }
 
 TEST(AlignCommand, BadInputNamesTheFile) {
-  SKIP_UNLESS_ALIGN_REGISTERED();
   testing::TempDir dir;
   dir.Write("imu.csv", "#t,gx,gy,gz,ax,ay,az\n1000,0,0,0,0,0,9.81\n2000,0,0,0,0,0,9.81\n");
   dir.Write("poses.txt", "0.000001 0 0 0 0 0 0 1\n0.000002 0 0 zero 0 0 0 1\n");
