@@ -10,6 +10,7 @@
 //   camera/      camera models, camchains, targets, observations, PnP, rolling shutter
 //   io/          readers and writers of every file format (plain data types in, out)
 //   plot/        SVG plots and the one plot decimation (knows nothing of what it plots)
+//   detect/      target corners in images (library splinecal::detect: OpenCV, libapriltag)
 //   estimation/  residuals, the spline problem, covariance, solver rounds: the estimation core
 //   vio/         preintegration, hand-eye, visual-inertial alignment, clock correlation
 //   sim/         IMU and camera simulation, trajectories, noise
@@ -58,6 +59,7 @@
 // io/
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/io/image_folder.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
@@ -74,6 +76,14 @@
 // plot/
 #include "splinecal/plot/plot_decimation.h"
 #include "splinecal/plot/svg_plot.h"
+
+// detect/ (link splinecal::detect)
+#include "splinecal/detect/detect_folders.h"
+#include "splinecal/detect/detect_report.h"
+#include "splinecal/detect/gray_image.h"
+#include "splinecal/detect/image_file.h"
+#include "splinecal/detect/saddle_point.h"
+#include "splinecal/detect/target_detector.h"
 
 // estimation/
 #include "splinecal/estimation/bias_costs.h"

@@ -30,6 +30,10 @@ CalibrationTarget MakeAprilGrid(int tag_cols,
   }
   CalibrationTarget target;
   target.type = "aprilgrid";
+  target.grid_cols = tag_cols;
+  target.grid_rows = tag_rows;
+  target.tag_size_m = tag_size_m;
+  target.tag_spacing_ratio = tag_spacing_ratio;
   const double pitch = (1.0 + tag_spacing_ratio) * tag_size_m;
   const int grid_cols = 2 * tag_cols;
   for (int r = 0; r < 2 * tag_rows; ++r) {
@@ -53,6 +57,8 @@ CalibrationTarget MakeCheckerboard(int cols, int rows, double col_spacing_m, dou
   }
   CalibrationTarget target;
   target.type = "checkerboard";
+  target.grid_cols = cols;
+  target.grid_rows = rows;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       target.points[static_cast<int64_t>(r) * cols + c] =

@@ -13,6 +13,7 @@ const std::vector<Command>& AllCommands() {
       EvaluateCommand(),
       AlignCommand(),
       FitCommand(),
+      DetectCommand(),
       CalibrateCommand(),
   };
   return commands;

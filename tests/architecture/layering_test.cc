@@ -30,6 +30,7 @@ const std::vector<std::string> kLayers = {
     "camera",       // camera models, camchains, targets, observations, PnP
     "io",           // readers and writers of every file format (plain data in, out)
     "plot",         // SVG plots (no knowledge of what is plotted)
+    "detect",       // target corners in images (the image front end, OpenCV and libapriltag)
     "estimation",   // residuals, the spline problem, covariance, solver rounds
     "vio",          // preintegration, hand-eye, alignment, clock correlation
     "sim",          // IMU and camera simulation, trajectories

@@ -26,6 +26,14 @@ struct CalibrationTarget {
   std::string type;                           // "aprilgrid", "checkerboard" or "points"
   std::map<int64_t, Eigen::Vector3d> points;  // id -> p_t [m]
 
+  // The printed layout of a grid target, which a corner detector (detect/) needs: aprilgrid:
+  // tagCols x tagRows tags; checkerboard: targetCols x targetRows inner corners; 0 for points.
+  int grid_cols = 0;
+  int grid_rows = 0;
+  // aprilgrid only: the black square's side [m] and the gap between tags as a ratio of it.
+  double tag_size_m = 0.0;
+  double tag_spacing_ratio = 0.0;
+
   // The point of `id`, or nullptr when the target has no such id.
   const Eigen::Vector3d* Find(int64_t id) const {
     const auto it = points.find(id);

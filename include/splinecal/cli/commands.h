@@ -14,6 +14,7 @@ Command AllanCommand();
 Command AlignCommand();
 Command FitCommand();
 Command CalibrateCommand();
+Command DetectCommand();
 
 }  // namespace cli
 }  // namespace splinecal

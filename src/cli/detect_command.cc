@@ -1,0 +1,172 @@
+// `splinecal detect`: AprilGrid or checkerboard corners in camera image folders, written as the
+// observations.csv that `calibrate` reads (detect/detect_folders.h, docs/detect.md).
+#include <gflags/gflags.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "splinecal/cli/command.h"
+#include "splinecal/cli/commands.h"
+#include "splinecal/cli/common_flags.h"
+#include "splinecal/detect/detect_folders.h"
+#include "splinecal/detect/detect_report.h"
+#include "splinecal/detect/image_file.h"
+#include "splinecal/error.h"
+#include "splinecal/io/image_folder.h"
+#include "splinecal/io/observations_csv.h"
+#include "splinecal/io/output_dir.h"
+#include "splinecal/io/target_yaml.h"
+#include "splinecal/string_printf.h"
+
+DEFINE_string(images,
+              "",
+              "Image folders, comma separated; the i-th is camera i: an EuRoC/ASL camera folder "
+              "(data.csv and data/) or a folder of <t_ns>.png / <t_ns>.jpg [paths]");
+DEFINE_bool(draw, false, "Also write one overlay PNG per frame with corners under overlays/camN/");
+
+namespace splinecal {
+namespace cli {
+namespace {
+
+struct DetectInputs {
+  std::vector<ImageFolder> folders;
+  CalibrationTarget target;
+  int threads = 1;
+};
+
+DetectInputs ReadDetectInputs() {
+  RequiredFlag("images", FLAGS_images);
+  RequiredFlag("target", FLAGS_target);
+  RequiredFlag("out", FLAGS_out);
+  DetectInputs in;
+  in.threads = ThreadsFlag();
+  in.target = ReadTargetYaml(FLAGS_target);
+  if (in.target.type != "aprilgrid" && in.target.type != "checkerboard") {
+    throw Error(FLAGS_target, 0,
+                "detect finds aprilgrid and checkerboard targets, not '" + in.target.type + "'");
+  }
+  std::stringstream list(FLAGS_images);
+  std::string dir;
+  while (std::getline(list, dir, ',')) {
+    if (dir.empty()) throw Error("--images: empty folder name in '" + FLAGS_images + "'");
+    in.folders.push_back(ListImageFolder(dir));
+  }
+  if (in.folders.empty()) throw Error("--images: no folder given");
+  return in;
+}
+
+// "detect: [=======>      ] 1234/2880 frames, 85.3 frames/s, 19 s left": redrawn in place on a
+// terminal, a line per tenth of the work otherwise (a log file stays short).
+class ProgressBar {
+ public:
+  void Update(const DetectProgress& p) {
+    if (Quiet()) return;
+    const double fraction = p.frames_total > 0 ? double(p.frames_done) / p.frames_total : 1.0;
+    const double rate = p.elapsed_s > 0 ? p.frames_done / p.elapsed_s : 0.0;
+    const double left = rate > 0 ? (p.frames_total - p.frames_done) / rate : 0.0;
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(fraction * kWidth);
+    const std::string bar = std::string(filled, '=') + (filled < kWidth ? ">" : "") +
+                            std::string(std::max(0, kWidth - filled - 1), ' ');
+    const std::string line =
+        StringPrintf("detect: [%s] %lld/%lld frames, %.1f frames/s, %.0f s left", bar.c_str(),
+                     static_cast<long long>(p.frames_done),
+                     static_cast<long long>(p.frames_total), rate, left);
+    const bool finished = p.frames_done == p.frames_total;
+    if (terminal_) {
+      std::fprintf(stderr, "\r%s%s", line.c_str(), finished ? "\n" : "");
+    } else if (finished || static_cast<int>(fraction * 10) > tenths_) {
+      tenths_ = static_cast<int>(fraction * 10);
+      std::fprintf(stderr, "%s\n", line.c_str());
+    }
+  }
+
+ private:
+  bool terminal_ = isatty(fileno(stderr)) != 0;
+  int tenths_ = 0;
+};
+
+int RunDetect() {
+  DetectInputs in = ReadDetectInputs();
+  OutputDir output(FLAGS_out);
+  int64_t frames = 0;
+  for (const ImageFolder& folder : in.folders) frames += folder.frames.size();
+  Progress(StringPrintf("detect: %lld frames of %zu camera%s, %s target, %d thread%s",
+                        static_cast<long long>(frames), in.folders.size(),
+                        in.folders.size() == 1 ? "" : "s", in.target.type.c_str(), in.threads,
+                        in.threads == 1 ? "" : "s"));
+
+  DetectFoldersOptions options;
+  options.threads = in.threads;
+  ProgressBar bar;
+  options.progress = [&bar](const DetectProgress& p) { bar.Update(p); };
+  std::mutex staging;
+  if (FLAGS_draw) {
+    options.on_detection = [&](int cam_id, const ImageFrame& frame, const GrayImage& image,
+                               const TargetDetection& detection) {
+      std::vector<OverlayCorner> corners;
+      for (const CornerDetection& c : detection.corners) corners.push_back({c.point_id, c.uv});
+      const std::string relative =
+          "overlays/cam" + std::to_string(cam_id) + "/" + std::to_string(frame.t_ns) + ".png";
+      std::string path;
+      {
+        std::lock_guard<std::mutex> lock(staging);
+        path = output.StagedPath(relative);
+      }
+      WriteOverlayPng(image.view(), corners,
+                      StringPrintf("cam%d %lld: %zu corners", cam_id,
+                                   static_cast<long long>(frame.t_ns), corners.size()),
+                      path);
+    };
+  }
+  const DetectFoldersResult result = DetectFolders(in.folders, in.target, options);
+  for (const std::string& warning : result.warnings) Progress("detect: warning: " + warning);
+
+  std::ostringstream csv;
+  WriteObservationsCsv(result.observations, &csv);
+  output.WriteFile("observations.csv", csv.str());
+  output.WriteFile("result.yaml",
+                   DetectResultYamlText(result, in.target, FLAGS_target, in.threads));
+  output.Commit();
+  if (!Quiet()) std::fputs(DetectSummaryText(result).c_str(), stderr);
+  if (result.observations.empty()) {
+    throw Error("detect: the target was found in no image (result.yaml lists what was read)");
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command DetectCommand() {
+  Command command;
+  command.name = "detect";
+  command.summary = "AprilGrid or checkerboard corners in image folders (observations.csv)";
+  command.usage =
+      "splinecal detect --images DIR[,DIR...] --target FILE [--threads N] [--draw] --out DIR";
+  command.description =
+      "Finds the calibration target of --target (a Kalibr aprilgrid of tag family 36h11 with a "
+      "2-bit black border, or a checkerboard) in every image of every folder; the i-th folder is "
+      "camera i. Corners are refined to sub-pixel precision and get the target's point ids; a "
+      "partly seen aprilgrid gives the corners seen, a tag whose id or place does not fit the "
+      "grid is dropped. Writes observations.csv (#t_ns,cam_id,point_id,u,v, what calibrate "
+      "reads), result.yaml (per camera: resolution, images read, images with the target, "
+      "corners, detection time) and with --draw one overlay per frame under overlays/camN/. A "
+      "frame that cannot be read is a warning; no readable frame at all, or no frame with the "
+      "target, is an error. See docs/detect.md.";
+  command.flags = {{"images", ""},
+                   {"target", "Calibration target: Kalibr aprilgrid or checkerboard YAML [path]"},
+                   {"out", ""},
+                   {"threads", "", "2"},
+                   {"draw", ""},
+                   {"quiet", ""}};
+  command.run = &RunDetect;
+  command.read_inputs = [] { ReadDetectInputs(); };
+  return command;
+}
+
+}  // namespace cli
+}  // namespace splinecal

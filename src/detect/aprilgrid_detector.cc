@@ -1,0 +1,211 @@
+#include "aprilgrid_detector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+extern "C" {
+#include <apriltag/apriltag.h>
+#include <apriltag/tag36h11.h>
+}
+
+#include "splinecal/detect/saddle_point.h"
+#include "splinecal/error.h"
+
+namespace splinecal {
+namespace {
+
+// One decoded tag of the grid: its id and its corners in the order of camera/target.h's tag-local
+// corners: (0, 0), (1, 0), (1, 1), (0, 1) in units of the tag side, i.e. the corner ids
+// 2r (2 cols) + 2c, +1, +2 cols + 1, +2 cols for tag row r and column c.
+struct GridTag {
+  int id = 0;
+  cv::Point2d corners[4];
+  bool kept = true;
+};
+
+// libapriltag reports p[0..3] at the tag-local corners (-1, 1), (1, 1), (1, -1), (-1, -1) of
+// its own frame, whose y axis points down the printed tag, while Kalibr's target frame has y up
+// the printed grid: p[k] is our corner k. (The EuRoC frame checks this: a wrong order puts the
+// corners 30 px off the grid's homography, tests/detect/target_detector_test.cc.)
+constexpr int kLocalX[4] = {0, 1, 1, 0};
+constexpr int kLocalY[4] = {0, 0, 1, 1};
+
+int64_t CornerId(const CalibrationTarget& target, int tag_id, int k) {
+  const int tag_row = tag_id / target.grid_cols;
+  const int tag_col = tag_id % target.grid_cols;
+  const int64_t r = 2 * tag_row + kLocalY[k];
+  const int64_t c = 2 * tag_col + kLocalX[k];
+  return r * 2 * target.grid_cols + c;
+}
+
+double MeanSide(const GridTag& tag) {
+  double sum = 0.0;
+  for (int k = 0; k < 4; ++k) sum += cv::norm(tag.corners[k] - tag.corners[(k + 1) % 4]);
+  return sum / 4.0;
+}
+
+// Keeps a tag only when its own corners predict another decoded tag of the grid where it was
+// found: a tag decoded with a wrong id (a misread code, a tag on the wall that belongs to no
+// grid) has no such neighbour, since its grid neighbours are elsewhere in the image. Prediction
+// uses the tag's own homography (tag plane to image), so lens distortion only enters over the
+// short distance to the neighbour.
+void RejectInconsistentTags(const CalibrationTarget& target,
+                            int neighbour_steps,
+                            std::vector<GridTag>* tags) {
+  const double pitch = 1.0 + target.tag_spacing_ratio;  // tag-to-tag step in tag sides
+  std::vector<cv::Mat> homographies;
+  for (const GridTag& tag : *tags) {
+    std::vector<cv::Point2f> local, image;
+    for (int k = 0; k < 4; ++k) {
+      local.emplace_back(static_cast<float>(kLocalX[k]), static_cast<float>(kLocalY[k]));
+      image.emplace_back(tag.corners[k]);
+    }
+    homographies.push_back(cv::getPerspectiveTransform(local, image));
+  }
+  std::vector<bool> supported(tags->size(), false);
+  for (size_t i = 0; i < tags->size(); ++i) {
+    const GridTag& a = (*tags)[i];
+    const int ar = a.id / target.grid_cols, ac = a.id % target.grid_cols;
+    const double tolerance = 0.3 * MeanSide(a);
+    for (size_t j = 0; j < tags->size() && !supported[i]; ++j) {
+      const GridTag& b = (*tags)[j];
+      const int dr = b.id / target.grid_cols - ar, dc = b.id % target.grid_cols - ac;
+      if (j == i || std::abs(dr) > neighbour_steps || std::abs(dc) > neighbour_steps) continue;
+      std::vector<cv::Point2d> local, predicted;
+      for (int k = 0; k < 4; ++k) {
+        local.emplace_back(dc * pitch + kLocalX[k], dr * pitch + kLocalY[k]);
+      }
+      cv::perspectiveTransform(local, predicted, homographies[i]);
+      bool agrees = true;
+      for (int k = 0; k < 4; ++k) agrees &= cv::norm(predicted[k] - b.corners[k]) < tolerance;
+      supported[i] = agrees;
+    }
+  }
+  for (size_t i = 0; i < tags->size(); ++i) (*tags)[i].kept = supported[i];
+}
+
+}  // namespace
+
+AprilGridDetector::AprilGridDetector(const CalibrationTarget& target,
+                                     const DetectorOptions& options)
+    : target_(target), options_(options) {
+  if (target.type != "aprilgrid" || target.grid_cols < 1 || target.grid_rows < 1) {
+    throw Error("aprilgrid detector: the target is not an aprilgrid");
+  }
+  // Kalibr prints tag36h11 with a black border 2 bits wide: the black square is 10 bits across
+  // (6 data bits, 2 border bits each side) and the quiet zone 1 bit more. The codes are
+  // tag36h11's; the data bits sit one bit further in than in the standard 8-bit-wide tag.
+  family_ = tag36h11_create();
+  family_->width_at_border = 10;
+  family_->total_width = 12;
+  for (uint32_t i = 0; i < family_->nbits; ++i) {
+    family_->bit_x[i] += 1;
+    family_->bit_y[i] += 1;
+  }
+  detector_ = apriltag_detector_create();
+  apriltag_detector_add_family_bits(detector_, family_, 2);
+  detector_->quad_decimate = static_cast<float>(options.quad_decimate);
+  detector_->quad_sigma = 0.0f;
+  detector_->nthreads = 1;  // the caller parallelises over frames
+  detector_->refine_edges = 1;
+}
+
+AprilGridDetector::~AprilGridDetector() {
+  apriltag_detector_destroy(detector_);
+  tag36h11_destroy(family_);
+}
+
+TargetDetection AprilGridDetector::Detect(const cv::Mat& image) {
+  TargetDetection result;
+  // In a Kalibr grid each tag's corners touch the small squares between tags, so a tag and its
+  // four squares form one black region and the quad finder sees no square. Growing the white by
+  // one pixel (a 2 x 2 maximum) cuts those contacts; the corners it shifts by a pixel are then
+  // placed by the sub-pixel refinement on the original image.
+  cv::Mat separated;
+  cv::dilate(image, separated, cv::Mat::ones(2, 2, CV_8U));
+  image_u8_t frame = {separated.cols, separated.rows, static_cast<int32_t>(separated.step),
+                      separated.data};
+  zarray_t* detections = apriltag_detector_detect(detector_, &frame);
+
+  const int tag_count = target_.grid_cols * target_.grid_rows;
+  std::map<int, int> seen;  // id -> times decoded
+  std::vector<GridTag> tags;
+  for (int i = 0; i < zarray_size(detections); ++i) {
+    apriltag_detection_t* detection = nullptr;
+    zarray_get(detections, i, &detection);
+    if (detection->id < 0 || detection->id >= tag_count) {
+      ++result.tags_rejected;  // a tag of another grid or on the wall
+      continue;
+    }
+    ++seen[detection->id];
+    GridTag tag;
+    tag.id = detection->id;
+    for (int k = 0; k < 4; ++k) tag.corners[k] = {detection->p[k][0], detection->p[k][1]};
+    tags.push_back(tag);
+  }
+  apriltag_detections_destroy(detections);
+  // An id decoded twice cannot be trusted in either place.
+  tags.erase(std::remove_if(tags.begin(), tags.end(),
+                            [&](const GridTag& tag) {
+                              const bool duplicate = seen[tag.id] > 1;
+                              result.tags_rejected += duplicate;
+                              return duplicate;
+                            }),
+             tags.end());
+  if (options_.neighbour_steps > 0) {
+    RejectInconsistentTags(target_, options_.neighbour_steps, &tags);
+  }
+  std::vector<GridTag> kept;
+  for (const GridTag& tag : tags) {
+    if (tag.kept) {
+      kept.push_back(tag);
+    } else {
+      ++result.tags_rejected;
+    }
+  }
+  if (kept.empty() || static_cast<int>(kept.size()) < options_.min_tags) return result;
+
+  // Sub-pixel refinement at the scale of the tags in this frame: a window of a twentieth of the
+  // tag side (2 px for EuRoC's 40 px tags), inside the small square's half.
+  std::vector<double> sides;
+  for (const GridTag& tag : kept) sides.push_back(MeanSide(tag));
+  std::nth_element(sides.begin(), sides.begin() + sides.size() / 2, sides.end());
+  const double side = sides[sides.size() / 2];
+  const double gap = target_.tag_spacing_ratio * side;
+  SaddleOptions saddle;
+  saddle.half_window = std::clamp(static_cast<int>(std::lround(side / 20.0)), 2, 6);
+  saddle.half_window = std::max(2, std::min(saddle.half_window, static_cast<int>(0.35 * gap)));
+  saddle.blur_sigma = 0.75 * saddle.half_window;
+  saddle.max_shift = std::max(2.0, 0.1 * side);
+
+  std::vector<Eigen::Vector2d> points;
+  std::vector<int64_t> ids;
+  for (const GridTag& tag : kept) {
+    for (int k = 0; k < 4; ++k) {
+      points.emplace_back(tag.corners[k].x, tag.corners[k].y);
+      ids.push_back(CornerId(target_, tag.id, k));
+    }
+  }
+  const GrayImageView view{image.cols, image.rows, static_cast<std::ptrdiff_t>(image.step),
+                           image.data};
+  const std::vector<bool> converged = RefineSaddlePoints(view, saddle, &points);
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (converged[i]) {
+      result.corners.push_back({ids[i], points[i]});
+    } else {
+      ++result.corners_rejected;
+    }
+  }
+  std::sort(result.corners.begin(), result.corners.end(),
+            [](const CornerDetection& a, const CornerDetection& b) {
+              return a.point_id < b.point_id;
+            });
+  result.tags_found = static_cast<int>(kept.size());
+  return result;
+}
+
+}  // namespace splinecal

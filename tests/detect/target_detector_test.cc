@@ -1,0 +1,224 @@
+// The AprilGrid detector on a real EuRoC frame pair (../shared/data/euroc_april_frames): how many
+// corners, whether every id is right, and how well the corners fit the grid's geometry once the
+// published intrinsics undo the lens distortion.
+#include "splinecal/detect/target_detector.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "splinecal/detect/image_file.h"
+#include "splinecal/error.h"
+#include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/target_yaml.h"
+#include "testing/shared_data.h"
+
+namespace splinecal {
+namespace {
+
+constexpr char kFrames[] = "euroc_april_frames";
+constexpr char kStamp[] = "1403709395937837056";
+
+std::string FramePath(int cam) {
+  return testing::SharedDataPath(std::string(kFrames) + "/cam" + std::to_string(cam) + "_" +
+                                 kStamp + ".png");
+}
+
+CalibrationTarget EurocGrid() {
+  return ReadTargetYaml(testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"));
+}
+
+struct HomographyFit {
+  double rms_px = 0;                 // of the 2-D residual
+  double max_px = 0;
+  std::map<int64_t, double> error;  // per point id
+};
+
+// Undistorts the corners with the camera's published model (splinecal's own Unproject), fits one
+// homography from the target plane to the ideal pinhole image (OpenCV: DLT, then
+// Levenberg-Marquardt on the reprojection error) and measures the residuals in pixels of the
+// pinhole image. A corner with a wrong id lands a tag pitch (50 px here) away from the fit.
+HomographyFit FitGridHomography(const TargetDetection& detection,
+                                const CalibrationTarget& target,
+                                const PinholeCamera& camera) {
+  std::vector<cv::Point2d> plane, ideal;
+  const double fx = camera.fu, fy = camera.fv, cx = camera.pu, cy = camera.pv;
+  for (const CornerDetection& corner : detection.corners) {
+    Eigen::Vector3d ray;
+    EXPECT_TRUE(camera.Unproject(corner.uv, &ray));
+    const Eigen::Vector3d& p = target.points.at(corner.point_id);
+    plane.emplace_back(p.x(), p.y());
+    ideal.emplace_back(fx * ray.x() + cx, fy * ray.y() + cy);
+  }
+  HomographyFit fit;
+  const cv::Mat H = cv::findHomography(plane, ideal, 0);
+  std::vector<cv::Point2d> projected;
+  cv::perspectiveTransform(plane, projected, H);
+  double sum = 0;
+  for (size_t i = 0; i < plane.size(); ++i) {
+    const double e = cv::norm(projected[i] - ideal[i]);
+    fit.error[detection.corners[i].point_id] = e;
+    fit.max_px = std::max(fit.max_px, e);
+    sum += e * e;
+  }
+  fit.rms_px = std::sqrt(sum / plane.size());
+  return fit;
+}
+
+struct EurocFrameResult {
+  TargetDetection detection;
+  HomographyFit fit;
+};
+
+// Detects the grid in camera `cam`'s frame and fits it with that camera's published model.
+EurocFrameResult DetectEurocFrame(int cam) {
+  const CalibrationTarget target = EurocGrid();
+  const Camchain camchain =
+      ReadCamchainYaml(testing::SharedDataPath("euroc_imu_april/camchain_euroc.yaml"));
+  const GrayImage image = ReadGrayImage(FramePath(cam));
+  EurocFrameResult result;
+  result.detection = DetectTargetCorners(image.view(), target);
+  for (size_t i = 1; i < result.detection.corners.size(); ++i) {
+    EXPECT_LT(result.detection.corners[i - 1].point_id, result.detection.corners[i].point_id);
+  }
+  result.fit = FitGridHomography(result.detection, target, camchain[cam].camera);
+  return result;
+}
+
+TEST(AprilGridDetector, FindsTheEurocGridInCam0WithEveryIdRight) {
+  SPLINECAL_REQUIRE_SHARED_DATA(kFrames);
+  const EurocFrameResult r = DetectEurocFrame(0);
+  // All 36 tags are in view; the issue asks for 140 of the 144 corners.
+  EXPECT_EQ(r.detection.tags_found, 36);
+  EXPECT_EQ(r.detection.tags_rejected, 0);
+  EXPECT_GE(r.detection.corners.size(), 140u);
+  // Every id right: no corner more than 1 px off the grid (a wrong id is 35 px or more off).
+  EXPECT_LT(r.fit.max_px, 1.0);
+  // The issue's bound. What remains is mostly the board's own shape: a cubic warp of the target
+  // plane takes the residual to 0.08 px (docs/detect.md).
+  EXPECT_LT(r.fit.rms_px, 0.15);
+  RecordProperty("homography_rms_px", std::to_string(r.fit.rms_px));
+  RecordProperty("homography_max_px", std::to_string(r.fit.max_px));
+}
+
+TEST(AprilGridDetector, FindsTheEurocGridInCam1WithEveryIdRight) {
+  SPLINECAL_REQUIRE_SHARED_DATA(kFrames);
+  const EurocFrameResult r = DetectEurocFrame(1);
+  EXPECT_GE(r.detection.corners.size(), 140u);
+  EXPECT_LT(r.fit.max_px, 1.0);
+  // cam1 sees the board more obliquely and its published model fits it less well (0.25 px with
+  // any sub-pixel method tried, docs/detect.md): bounded, not held to the cam0 figure.
+  EXPECT_LT(r.fit.rms_px, 0.3);
+  RecordProperty("homography_rms_px", std::to_string(r.fit.rms_px));
+}
+
+// Cuts `image` to the columns [x0, x0 + width).
+GrayImage Crop(const GrayImage& image, int x0, int width) {
+  GrayImage out;
+  out.width = width;
+  out.height = image.height;
+  for (int v = 0; v < image.height; ++v) {
+    const uint8_t* row = image.pixels.data() + static_cast<size_t>(v) * image.width + x0;
+    out.pixels.insert(out.pixels.end(), row, row + width);
+  }
+  return out;
+}
+
+std::map<int64_t, Eigen::Vector2d> ById(const TargetDetection& detection) {
+  std::map<int64_t, Eigen::Vector2d> by_id;
+  for (const CornerDetection& c : detection.corners) by_id[c.point_id] = c.uv;
+  return by_id;
+}
+
+TEST(AprilGridDetector, PartOfTheGridGivesTheCornersSeenWithTheirIds) {
+  SPLINECAL_REQUIRE_SHARED_DATA(kFrames);
+  const CalibrationTarget target = EurocGrid();
+  const GrayImage image = ReadGrayImage(FramePath(0));
+  const auto full = ById(DetectTargetCorners(image.view(), target));
+  // The board spans u = 215..510; keep u >= 340, which cuts through the third tag column.
+  const int x0 = 340;
+  const GrayImage right = Crop(image, x0, image.width - x0);
+  const TargetDetection part = DetectTargetCorners(right.view(), target);
+  EXPECT_GE(part.corners.size(), 40u);
+  EXPECT_LT(part.corners.size(), full.size());
+  for (const CornerDetection& c : part.corners) {
+    ASSERT_EQ(full.count(c.point_id), 1u) << "id " << c.point_id << " not in the full frame";
+    // Same corner, same place: only the crop offset differs (the refinement sees the same
+    // pixels; a corner at the cut may differ by the blur's border handling).
+    EXPECT_NEAR(c.uv.x() + x0, full.at(c.point_id).x(), 0.02) << "id " << c.point_id;
+    EXPECT_NEAR(c.uv.y(), full.at(c.point_id).y(), 0.02) << "id " << c.point_id;
+  }
+}
+
+TEST(AprilGridDetector, HalfTurnedImageGivesTheSameIdsAtTheTurnedPlaces) {
+  SPLINECAL_REQUIRE_SHARED_DATA(kFrames);
+  const CalibrationTarget target = EurocGrid();
+  const GrayImage image = ReadGrayImage(FramePath(0));
+  GrayImage turned = image;
+  std::reverse(turned.pixels.begin(), turned.pixels.end());  // (u, v) -> (w-1-u, h-1-v)
+  const auto upright = ById(DetectTargetCorners(image.view(), target));
+  const auto flipped = ById(DetectTargetCorners(turned.view(), target));
+  ASSERT_GE(flipped.size(), 140u);
+  for (const auto& [id, uv] : flipped) {
+    ASSERT_EQ(upright.count(id), 1u);
+    const Eigen::Vector2d back(image.width - 1 - uv.x(), image.height - 1 - uv.y());
+    // The saddle fit is symmetric under a half turn up to the start point's rounding.
+    EXPECT_LT((back - upright.at(id)).norm(), 0.05) << "id " << id;
+  }
+}
+
+TEST(AprilGridDetector, DropsBothCopiesOfATagSeenTwice) {
+  SPLINECAL_REQUIRE_SHARED_DATA(kFrames);
+  const CalibrationTarget target = EurocGrid();
+  GrayImage image = ReadGrayImage(FramePath(0));
+  const auto original = ById(DetectTargetCorners(image.view(), target));
+  // Paste the tag owning corner 0 (tag 0, its black square and a margin) onto the wall at the
+  // left: the same id decoded twice.
+  const Eigen::Vector2d a = original.at(0), b = original.at(2 * 6 * 2 + 1);  // corners 0 and 25
+  const int u0 = static_cast<int>(std::min(a.x(), b.x())) - 6;
+  const int v0 = static_cast<int>(std::min(a.y(), b.y())) - 6;
+  const int size = static_cast<int>(std::abs(b.x() - a.x())) + 12;
+  cv::Mat pixels(image.height, image.width, CV_8UC1, image.pixels.data());
+  pixels(cv::Rect(u0, v0, size, size)).copyTo(pixels(cv::Rect(60, 150, size, size)));
+  const TargetDetection detection = DetectTargetCorners(image.view(), target);
+  const auto by_id = ById(detection);
+  EXPECT_GE(detection.tags_rejected, 2);
+  for (int64_t id : {0, 1, 12, 13}) EXPECT_EQ(by_id.count(id), 0u) << "id " << id;
+  // The rest is untouched.
+  EXPECT_GE(by_id.size(), 136u);
+  for (const auto& [id, uv] : by_id) EXPECT_LT((uv - original.at(id)).norm(), 1e-9);
+}
+
+TEST(AprilGridDetector, AnImageWithoutTheTargetGivesNoCorners) {
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
+  GrayImage image;
+  image.width = 320;
+  image.height = 240;
+  image.pixels.assign(320 * 240, 128);
+  cv::Mat pixels(240, 320, CV_8UC1, image.pixels.data());
+  cv::randn(pixels, 128, 40);  // noise, no tags
+  cv::rectangle(pixels, cv::Rect(100, 80, 60, 60), cv::Scalar(0), cv::FILLED);  // a plain square
+  const TargetDetection detection = DetectTargetCorners(image.view(), target);
+  EXPECT_TRUE(detection.corners.empty());
+  EXPECT_EQ(detection.tags_found, 0);
+}
+
+TEST(TargetDetector, RefusesTargetsItCannotDetectAndEmptyImages) {
+  CalibrationTarget points;
+  points.type = "points";
+  EXPECT_THROW(TargetDetector detector(points), Error);
+  TargetDetector detector(MakeAprilGrid(2, 2, 0.1, 0.3));
+  EXPECT_THROW(detector.Detect(GrayImageView{}), Error);
+  const uint8_t pixel = 0;
+  EXPECT_THROW(detector.Detect(GrayImageView{4, 4, 2, &pixel}), Error);  // stride < width
+}
+
+}  // namespace
+}  // namespace splinecal
