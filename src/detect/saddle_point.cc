@@ -56,11 +56,52 @@ bool FitSaddle(const cv::Mat& image, const QuadraticFit& fit, int cx, int cy,
   return true;
 }
 
+// Keys' cubic convolution weights (a = -1/2) of the 4 samples at -1, 0, 1, 2 around a point t
+// in [0, 1) past the second one.
+void CubicWeights(double t, double w[4]) {
+  const double t2 = t * t, t3 = t2 * t;
+  w[0] = -0.5 * t3 + t2 - 0.5 * t;
+  w[1] = 1.5 * t3 - 2.5 * t2 + 1.0;
+  w[2] = -1.5 * t3 + 2.0 * t2 + 0.5 * t;
+  w[3] = 0.5 * t3 - 0.5 * t2;
+}
+
+// The window of `fit` resampled around the sub-pixel point q by bicubic interpolation in double
+// precision (every sample has q's fractional offset, so one set of weights serves all). Bilinear
+// interpolation's error on the blurred junction, or OpenCV's remap with its positions rounded
+// to 1/32 px, would bias the saddle by some 0.03 px. False when the samples leave the image.
+bool ResampleWindow(const cv::Mat& image, const QuadraticFit& fit, const Eigen::Vector2d& q,
+                    cv::Mat* patch) {
+  const int side = 2 * fit.half + 1;
+  const int x0 = static_cast<int>(std::floor(q.x())), y0 = static_cast<int>(std::floor(q.y()));
+  if (x0 - fit.half - 1 < 0 || y0 - fit.half - 1 < 0 || x0 + fit.half + 2 >= image.cols ||
+      y0 + fit.half + 2 >= image.rows) {
+    return false;
+  }
+  double wx[4], wy[4];
+  CubicWeights(q.x() - x0, wx);
+  CubicWeights(q.y() - y0, wy);
+  patch->create(side, side, CV_32F);
+  for (int dy = -fit.half; dy <= fit.half; ++dy) {
+    for (int dx = -fit.half; dx <= fit.half; ++dx) {
+      double value = 0.0;
+      for (int j = 0; j < 4; ++j) {
+        const float* row = image.ptr<float>(y0 + dy - 1 + j);
+        const int u = x0 + dx - 1;
+        value += wy[j] * (wx[0] * row[u] + wx[1] * row[u + 1] + wx[2] * row[u + 2] +
+                          wx[3] * row[u + 3]);
+      }
+      patch->at<float>(dy + fit.half, dx + fit.half) = static_cast<float>(value);
+    }
+  }
+  return true;
+}
+
 // Moves the window toward the saddle, at most one pixel per step (far from the junction the
 // quadratic is a poor model and its saddle may lie pixels away in the wrong direction), until the
 // saddle lies in the window's centre pixel. False when the window leaves the image (with the
 // blur's support), the fit is not a saddle, or max_iterations pass.
-bool SaddleNear(const cv::Mat& smooth,
+bool SaddleNear(const cv::Mat& image,
                 const QuadraticFit& fit,
                 const SaddleOptions& options,
                 const Eigen::Vector2d& start,
@@ -71,23 +112,24 @@ bool SaddleNear(const cv::Mat& smooth,
     if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return false;
     const int cx = static_cast<int>(std::lround(p.x()));
     const int cy = static_cast<int>(std::lround(p.y()));
-    if (cx < margin || cy < margin || cx >= smooth.cols - margin || cy >= smooth.rows - margin) {
+    if (cx < margin || cy < margin || cx >= image.cols - margin || cy >= image.rows - margin) {
       return false;
     }
     Eigen::Vector2d step;
-    if (!FitSaddle(smooth, fit, cx, cy, &step)) return false;
+    if (!FitSaddle(image, fit, cx, cy, &step)) return false;
     if (step.cwiseAbs().maxCoeff() <= 0.5) {
       // The saddle is in the centre pixel. A window on the pixel grid biases the fit by where
-      // the saddle falls inside that pixel (up to 0.07 px on real frames); re-centre a
-      // bilinearly resampled window on the estimate until it stops moving.
+      // the saddle falls inside that pixel (up to 0.07 px on real frames: the junction is not a
+      // quadratic, and the pixels are symmetric about the window's centre, not the junction);
+      // resample the window centred on the estimate until it stops moving.
       Eigen::Vector2d q = Eigen::Vector2d(cx, cy) + step;
+      cv::Mat patch;
       for (int refine = 0; refine < options.max_iterations; ++refine) {
-        cv::Mat patch;
-        cv::getRectSubPix(smooth, cv::Size(2 * fit.half + 1, 2 * fit.half + 1),
-                          cv::Point2f(static_cast<float>(q.x()), static_cast<float>(q.y())),
-                          patch, CV_32F);
         Eigen::Vector2d delta;
-        if (!FitSaddle(patch, fit, fit.half, fit.half, &delta) || delta.norm() > 0.5) break;
+        if (!ResampleWindow(image, fit, q, &patch) ||
+            !FitSaddle(patch, fit, fit.half, fit.half, &delta) || delta.norm() > 0.5) {
+          break;
+        }
         q += delta;
         if (delta.norm() < 1e-4) break;
       }
@@ -111,13 +153,13 @@ std::vector<bool> RefineSaddlePoints(const GrayImageView& image,
   std::vector<bool> converged(points->size(), false);
   if (points->empty()) return converged;
 
+  // Blurred in float: OpenCV blurs 8-bit images in fixed point and rounds the result to whole
+  // grey levels, which alone moves a junction by hundredths of a pixel.
   cv::Mat smooth;
+  pixels.convertTo(smooth, CV_32F);
   if (options.blur_sigma > 0.0) {
-    cv::GaussianBlur(pixels, smooth, cv::Size(0, 0), options.blur_sigma, options.blur_sigma,
+    cv::GaussianBlur(smooth, smooth, cv::Size(0, 0), options.blur_sigma, options.blur_sigma,
                      cv::BORDER_REFLECT);
-    smooth.convertTo(smooth, CV_32F);
-  } else {
-    pixels.convertTo(smooth, CV_32F);
   }
   // Coarse to fine: a window twice as wide first, since a start a pixel or two inside a black
   // square sees a curvature of one sign only in the small window (an extremum, not a saddle).
