@@ -49,13 +49,16 @@ DetectInputs ReadDetectInputs() {
     throw Error(FLAGS_target, 0,
                 "detect finds aprilgrid and checkerboard targets, not '" + in.target.type + "'");
   }
-  std::stringstream list(FLAGS_images);
-  std::string dir;
-  while (std::getline(list, dir, ',')) {
+  // Split at every comma (getline would drop a trailing empty name): cam_id i is the i-th.
+  size_t begin = 0;
+  while (true) {
+    const size_t comma = FLAGS_images.find(',', begin);
+    const std::string dir = FLAGS_images.substr(begin, comma - begin);
     if (dir.empty()) throw Error("--images: empty folder name in '" + FLAGS_images + "'");
     in.folders.push_back(ListImageFolder(dir));
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
   }
-  if (in.folders.empty()) throw Error("--images: no folder given");
   return in;
 }
 
@@ -126,6 +129,16 @@ int RunDetect() {
   const DetectFoldersResult result = DetectFolders(in.folders, in.target, options);
   for (const std::string& warning : result.warnings) Progress("detect: warning: " + warning);
 
+  if (result.observations.empty()) {
+    int64_t read = 0;
+    for (const CameraDetectionSummary& camera : result.cameras) read += camera.images_read;
+    const std::string hint = in.target.type == "aprilgrid"
+                                 ? "do tagCols and tagRows match the printed grid?"
+                                 : "do targetCols and targetRows count the inner corners?";
+    throw Error(FLAGS_target, 0,
+                "this " + in.target.type + " was found in none of the " + std::to_string(read) +
+                    " images read; nothing was written (" + hint + ")");
+  }
   std::ostringstream csv;
   WriteObservationsCsv(result.observations, &csv);
   output.WriteFile("observations.csv", csv.str());
@@ -133,9 +146,6 @@ int RunDetect() {
                    DetectResultYamlText(result, in.target, FLAGS_target, in.threads));
   output.Commit();
   if (!Quiet()) std::fputs(DetectSummaryText(result).c_str(), stderr);
-  if (result.observations.empty()) {
-    throw Error("detect: the target was found in no image (result.yaml lists what was read)");
-  }
   return 0;
 }
 

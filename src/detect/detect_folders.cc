@@ -101,7 +101,10 @@ DetectFoldersResult DetectFolders(const std::vector<ImageFolder>& folders,
     CameraDetectionSummary& summary = result.cameras[cam];
     summary.detection_time_s += outcome.seconds;
     if (!outcome.read) {
-      result.warnings.push_back(outcome.problem + " (" + frame.origin + "), frame skipped");
+      // A data.csv row names the frame: say which (a plain folder's origin is the file itself).
+      result.warnings.push_back(outcome.problem +
+                                (frame.origin != frame.path ? " (" + frame.origin + ")" : "") +
+                                ", frame skipped");
       continue;
     }
     if (summary.width == 0) {

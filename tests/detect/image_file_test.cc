@@ -1,0 +1,105 @@
+// Reading images: real PNG and JPEG files, and each kind of bad file refused with its path.
+#include "splinecal/detect/image_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "splinecal/error.h"
+#include "testing/shared_data.h"
+#include "testing/temp_dir.h"
+
+namespace splinecal {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::string ErrorOf(const std::string& path) {
+  try {
+    ReadGrayImage(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReadGrayImage, ReadsPngAndJpegAsOpenCvDecodesThem) {
+  SPLINECAL_REQUIRE_SHARED_DATA("opencv_chessboard");
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_april_frames");
+  for (const std::string relative :
+       {"opencv_chessboard/left01.jpg", "euroc_april_frames/cam0_1403709395937837056.png"}) {
+    const std::string path = testing::SharedDataPath(relative);
+    const GrayImage image = ReadGrayImage(path);
+    const cv::Mat reference = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    ASSERT_EQ(image.width, reference.cols);
+    ASSERT_EQ(image.height, reference.rows);
+    EXPECT_EQ(0, std::memcmp(image.pixels.data(), reference.data, image.pixels.size()));
+  }
+}
+
+TEST(ReadGrayImage, ConvertsColourToGrey) {
+  testing::TempDir dir;
+  cv::Mat colour(4, 6, CV_8UC3, cv::Scalar(10, 200, 30));  // B, G, R
+  const std::string path = dir.File("c.png");
+  ASSERT_TRUE(cv::imwrite(path, colour));
+  const GrayImage image = ReadGrayImage(path);
+  EXPECT_EQ(image.width, 6);
+  EXPECT_EQ(image.height, 4);
+  EXPECT_NEAR(image.pixels[0], 0.114 * 10 + 0.587 * 200 + 0.299 * 30, 1.0);
+}
+
+TEST(ReadGrayImage, RefusesMissingNonImageAndTruncatedFiles) {
+  SPLINECAL_REQUIRE_SHARED_DATA("opencv_chessboard");
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_april_frames");
+  testing::TempDir dir;
+  EXPECT_THAT(ErrorOf(dir.File("absent.png")), HasSubstr("absent.png: cannot open the image"));
+  EXPECT_THAT(ErrorOf(dir.Write("text.png", "not an image\n")),
+              HasSubstr("text.png: not a PNG or JPEG image"));
+  EXPECT_THAT(ErrorOf(dir.Write("empty.jpg", "")), HasSubstr("not a PNG or JPEG image"));
+  const std::string png =
+      ReadBytes(testing::SharedDataPath("euroc_april_frames/cam0_1403709395937837056.png"));
+  EXPECT_THAT(ErrorOf(dir.Write("cut.png", png.substr(0, png.size() / 2))),
+              HasSubstr("cut.png: truncated PNG"));
+  const std::string jpeg = ReadBytes(testing::SharedDataPath("opencv_chessboard/left01.jpg"));
+  EXPECT_THAT(ErrorOf(dir.Write("cut.jpg", jpeg.substr(0, jpeg.size() / 2))),
+              HasSubstr("cut.jpg: truncated JPEG"));
+  // A PNG damaged in the middle but ending properly: its chunk CRC finds it (before libpng
+  // would print its own message).
+  std::string damaged = png;
+  for (size_t i = 100; i < 2000; ++i) damaged[i] = static_cast<char>(0x55);
+  EXPECT_THAT(ErrorOf(dir.Write("damaged.png", damaged)),
+              HasSubstr("damaged.png: corrupt PNG (chunk IDAT at byte"));
+  // The same for a JPEG: libjpeg's "Corrupt JPEG data" becomes the error (not a printed line).
+  std::string damaged_jpeg = jpeg;
+  for (size_t i = 2000; i < 2600; ++i) damaged_jpeg[i] = static_cast<char>(0x55);
+  EXPECT_THAT(ErrorOf(dir.Write("damaged.jpg", damaged_jpeg)),
+              HasSubstr("damaged.jpg: corrupt JPEG (Corrupt JPEG data"));
+}
+
+TEST(WriteOverlayPng, WritesAColourPngOfTheImageSize) {
+  testing::TempDir dir;
+  GrayImage image;
+  image.width = 64;
+  image.height = 48;
+  image.pixels.assign(64 * 48, 100);
+  const std::string path = dir.File("overlay.png");
+  WriteOverlayPng(image.view(), {{7, Eigen::Vector2d(20.25, 30.5)}}, "cam0 1: 1 corners", path);
+  const cv::Mat written = cv::imread(path, cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(written.empty());
+  EXPECT_EQ(written.cols, 64);
+  EXPECT_EQ(written.rows, 48);
+  EXPECT_EQ(written.channels(), 3);
+  EXPECT_THROW(WriteOverlayPng(image.view(), {}, "", dir.File("no/such/dir/x.png")), Error);
+}
+
+}  // namespace
+}  // namespace splinecal
