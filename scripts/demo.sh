@@ -17,11 +17,19 @@ mkdir -p "$out"
 yaml() { grep -E "^ *$2:" "$1" | head -1 | sed 's/^ *//'; }
 
 echo
-echo "== 1. the spline: evaluate the bundled control poses (data/vio_course_spline.csv) =="
+echo "== 1. detect: AprilGrid corners in a real EuRoC stereo frame (data/euroc_april_frames) =="
+$sc detect --images data/euroc_april_frames/cam0,data/euroc_april_frames/cam1 \
+  --target data/euroc_april_frames/aprilgrid.yaml --draw --out "$out/detect" 2>&1 | grep -v '\[='
+echo "first corners of observations.csv (what calibrate reads):"
+head -4 "$out/detect/observations.csv"
+echo "(overlays: $out/detect/overlays/cam0/, cam1/)"
+
+echo
+echo "== 2. the spline: evaluate the bundled control poses (data/vio_course_spline.csv) =="
 $sc evaluate --spline data/vio_course_spline.csv --samples 5 --out "$out/evaluate"
 
 echo
-echo "== 2. simulate 20 s of noise-free IMU on the VIO-course trajectory, integrate it =="
+echo "== 3. simulate 20 s of noise-free IMU on the VIO-course trajectory, integrate it =="
 $sc simulate --trajectory vio_course --duration 20 --noise-free --quiet --out "$out/simulate"
 $sc integrate --imu "$out/simulate/mav0/imu0/data.csv" \
   --groundtruth "$out/simulate/mav0/state_groundtruth_estimate0/data.csv" \
@@ -29,13 +37,13 @@ $sc integrate --imu "$out/simulate/mav0/imu0/data.csv" \
 echo "(top view: $out/integrate_sim/trajectory.svg)"
 
 echo
-echo "== 3. integrate the first 10 s of real EuRoC V1_01_easy from its ground-truth start =="
+echo "== 4. integrate the first 10 s of real EuRoC V1_01_easy from its ground-truth start =="
 $sc integrate --imu data/euroc_v1_01_easy_20s/imu0.csv \
   --groundtruth data/euroc_v1_01_easy_20s/groundtruth.csv --duration 10 --quiet \
   --out "$out/integrate_euroc"
 
 echo
-echo "== 4. Allan deviation of a simulated static hour (ADIS16448 noise) =="
+echo "== 5. Allan deviation of a simulated static hour (ADIS16448 noise) =="
 printf '0 0 0 0 0 0 0 1\n3600 0 0 0 0 0 0 1\n' > "$out/static_pose.txt"
 $sc simulate --trajectory-file "$out/static_pose.txt" --knot-spacing 60 --seed 7 --quiet \
   --out "$out/static" >/dev/null
@@ -49,7 +57,7 @@ done
 echo "(plot: $out/allan/allan.svg)"
 
 echo
-echo "== 5. align up-to-scale camera poses (true scale 1/0.37 = 2.7027) with noisy IMU =="
+echo "== 6. align up-to-scale camera poses (true scale 1/0.37 = 2.7027) with noisy IMU =="
 $sc simulate --trajectory random --duration 10 --seed 3 --quiet --out "$out/simulate_random" >/dev/null
 python3 scripts/up_to_scale_camera.py \
   "$out/simulate_random/mav0/state_groundtruth_estimate0/data.csv" 0.37 20 \
@@ -59,7 +67,7 @@ $sc align --imu "$out/simulate_random/mav0/imu0/data.csv" \
 echo "truth: $(cat "$out/camera_truth.txt")"
 
 echo
-echo "== 6. fit: simulated vio_course with constant biases, ADIS16448 white noise =="
+echo "== 7. fit: simulated vio_course with constant biases, ADIS16448 white noise =="
 $sc simulate --trajectory vio_course --duration 20 --gyro-bias 0.01,-0.02,0.015 \
   --accel-bias 0.1,-0.05,0.08 --gyroscope_random_walk 1e-12 --accelerometer_random_walk 1e-12 \
   --seed 5 --quiet --out "$out/simulate_biased" >/dev/null
@@ -70,7 +78,7 @@ echo "truth: gyro_bias [0.01 -0.02 0.015] rad/s, accel_bias [0.1 -0.05 0.08] m/s
 echo "(report: $out/fit_sim/report.html)"
 
 echo
-echo "== 7. fit: the bundled EuRoC V1_01_easy excerpt, ground truth as the pose source =="
+echo "== 8. fit: the bundled EuRoC V1_01_easy excerpt, ground truth as the pose source =="
 $sc fit --imu data/euroc_v1_01_easy_20s/imu0.csv --poses data/euroc_v1_01_easy_20s/groundtruth.csv \
   --imu-yaml data/euroc_v1_01_easy_20s/sensor.yaml --knot-spacing 0.05 --quiet \
   --out "$out/fit_euroc" 2>&1 | grep -v '^warning'
@@ -78,7 +86,7 @@ echo "reference (the dataset's estimator, first row): $(awk -F, 'NR==2{printf "g
 echo "(on 20 mostly static seconds the accel bias is weakly separated from gravity; see docs/fit.md)"
 
 echo
-echo "== 8. camera-IMU calibration of a simulated rolling-shutter camera (30 s, AprilGrid) =="
+echo "== 9. camera-IMU calibration of a simulated rolling-shutter camera (30 s, AprilGrid) =="
 $sc simulate --trajectory calibration --duration 30 --camchain data/calibration/camchain_truth.yaml \
   --target data/calibration/aprilgrid.yaml --seed 2 --quiet --out "$out/simulate_camera" >/dev/null
 $sc calibrate --imu "$out/simulate_camera/mav0/imu0/data.csv" \

@@ -125,8 +125,13 @@ TargetDetection AprilGridDetector::Detect(const cv::Mat& image) {
   // four squares form one black region and the quad finder sees no square. Growing the white by
   // one pixel (a 2 x 2 maximum) cuts those contacts; the corners it shifts by a pixel are then
   // placed by the sub-pixel refinement on the original image.
+  // (A new matrix: dilating into a header of `image` would write into the caller's pixels.)
   cv::Mat separated;
-  cv::dilate(image, separated, cv::Mat::ones(2, 2, CV_8U));
+  if (options_.separate_corner_squares) {
+    cv::dilate(image, separated, cv::Mat::ones(2, 2, CV_8U));
+  } else {
+    separated = image;
+  }
   image_u8_t frame = {separated.cols, separated.rows, static_cast<int32_t>(separated.step),
                       separated.data};
   zarray_t* detections = apriltag_detector_detect(detector_, &frame);
