@@ -5,8 +5,8 @@ set -euo pipefail
 packages=(build-essential cmake ninja-build libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
           # the image front end (splinecal detect, docs/detect.md): OpenCV (with the contrib
-          # modules: ArUco is benchmarked against libapriltag), libapriltag, libjpeg, zlib
-          libopencv-dev libopencv-contrib-dev libapriltag-dev libjpeg-dev zlib1g-dev)
+          # modules: ArUco is benchmarked against libapriltag), libapriltag, libjpeg, libpng, zlib
+          libopencv-dev libopencv-contrib-dev libapriltag-dev libjpeg-dev libpng-dev zlib1g-dev)
 if [[ "${1:-}" == "--fuzz" ]]; then packages+=(clang libclang-rt-14-dev); fi
 
 missing=()

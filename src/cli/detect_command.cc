@@ -98,10 +98,9 @@ int RunDetect() {
   OutputDir output(FLAGS_out);
   int64_t frames = 0;
   for (const ImageFolder& folder : in.folders) frames += folder.frames.size();
-  Progress(StringPrintf("detect: %lld frames of %zu camera%s, %s target, %d thread%s",
+  Progress(StringPrintf("detect: %lld frames of %zu camera%s, %s target",
                         static_cast<long long>(frames), in.folders.size(),
-                        in.folders.size() == 1 ? "" : "s", in.target.type.c_str(), in.threads,
-                        in.threads == 1 ? "" : "s"));
+                        in.folders.size() == 1 ? "" : "s", in.target.type.c_str()));
 
   DetectFoldersOptions options;
   options.threads = in.threads;
@@ -143,7 +142,7 @@ int RunDetect() {
   WriteObservationsCsv(result.observations, &csv);
   output.WriteFile("observations.csv", csv.str());
   output.WriteFile("result.yaml",
-                   DetectResultYamlText(result, in.target, FLAGS_target, in.threads));
+                   DetectResultYamlText(result, in.target, FLAGS_target));
   output.Commit();
   if (!Quiet()) std::fputs(DetectSummaryText(result).c_str(), stderr);
   return 0;

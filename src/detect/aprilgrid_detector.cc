@@ -96,6 +96,10 @@ AprilGridDetector::AprilGridDetector(const CalibrationTarget& target,
   if (target.type != "aprilgrid" || target.grid_cols < 1 || target.grid_rows < 1) {
     throw Error("aprilgrid detector: the target is not an aprilgrid");
   }
+  if (target.grid_cols * target.grid_rows > 587) {
+    throw Error("aprilgrid detector: " + std::to_string(target.grid_cols * target.grid_rows) +
+                " tags need more than the 587 codes of tag family 36h11");
+  }
   // Kalibr prints tag36h11 with a black border 2 bits wide: the black square is 10 bits across
   // (6 data bits, 2 border bits each side) and the quiet zone 1 bit more. The codes are
   // tag36h11's; the data bits sit one bit further in than in the standard 8-bit-wide tag.
@@ -120,6 +124,12 @@ AprilGridDetector::~AprilGridDetector() {
 }
 
 TargetDetection AprilGridDetector::Detect(const cv::Mat& image) {
+  // libapriltag 3.3 reads past a buffer for images of 4 rows or fewer and asserts on sides of
+  // 32768 px or more (after decimation): refused here, as a problem of this frame.
+  if (image.cols < 16 || image.rows < 16 || image.cols >= 32768 || image.rows >= 32768) {
+    throw Error("image of " + std::to_string(image.cols) + " x " + std::to_string(image.rows) +
+                " pixels: the AprilGrid detector needs 16 to 32767 pixels per side");
+  }
   TargetDetection result;
   // In a Kalibr grid each tag's corners touch the small squares between tags, so a tag and its
   // four squares form one black region and the quad finder sees no square. Growing the white by

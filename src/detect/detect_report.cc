@@ -7,8 +7,7 @@ namespace splinecal {
 
 std::string DetectResultYamlText(const DetectFoldersResult& result,
                                  const CalibrationTarget& target,
-                                 const std::string& target_path,
-                                 int threads) {
+                                 const std::string& target_path) {
   YamlWriter yaml;
   yaml.Comment("splinecal detect: target corners found in the images (docs/detect.md)");
   yaml.BeginMap("target");
@@ -17,7 +16,7 @@ std::string DetectResultYamlText(const DetectFoldersResult& result,
   yaml.Scalar("points", static_cast<int64_t>(target.points.size()));
   yaml.EndMap();
   yaml.Scalar("observations", "observations.csv");
-  yaml.Scalar("threads", threads);
+  yaml.Scalar("threads", result.threads);
   yaml.Scalar("wall_time_s", result.wall_time_s);
   yaml.BeginMap("cameras");
   for (const CameraDetectionSummary& camera : result.cameras) {
@@ -53,8 +52,9 @@ std::string DetectSummaryText(const DetectFoldersResult& result) {
     for (const CameraDetectionSummary& camera : result.cameras) n += camera.images_listed;
     return n;
   }();
-  text += StringPrintf("detect: %lld frames in %.2f s (%.1f frames/s)%s\n",
-                       static_cast<long long>(frames), result.wall_time_s,
+  text += StringPrintf("detect: %lld frames in %.2f s on %d thread%s (%.1f frames/s)%s\n",
+                       static_cast<long long>(frames), result.wall_time_s, result.threads,
+                       result.threads == 1 ? "" : "s",
                        result.wall_time_s > 0 ? frames / result.wall_time_s : 0.0,
                        result.warnings.empty()
                            ? ""

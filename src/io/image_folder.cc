@@ -43,7 +43,10 @@ void ReadEurocFrames(const fs::path& dir, ImageFolder* folder) {
     frame.path = (dir / "data" / std::string(fields[1])).string();
     frame.origin = csv.string() + ":" + std::to_string(reader.line_number());
     if (!IsRegularFile(frame.path)) {
-      folder->warnings.push_back(frame.origin + ": image " + frame.path + " is missing");
+      std::error_code error;
+      folder->warnings.push_back(frame.origin + ": image " + frame.path +
+                                 (fs::exists(frame.path, error) ? " is not a regular file"
+                                                                : " is missing"));
       continue;
     }
     folder->frames.push_back(std::move(frame));
@@ -56,8 +59,16 @@ void ReadPlainFrames(const fs::path& dir, ImageFolder* folder) {
   std::error_code error;
   fs::directory_iterator it(dir, error);
   if (error) throw Error(dir.string(), 0, "cannot list the folder: " + error.message());
-  for (const fs::directory_entry& entry : it) {
-    if (!entry.is_regular_file(error) || !HasImageExtension(entry.path())) continue;
+  // Incremented with an error code: a failing readdir is a clear error, not an exception.
+  for (; it != fs::directory_iterator(); it.increment(error)) {
+    if (error) throw Error(dir.string(), 0, "cannot list the folder: " + error.message());
+    const fs::directory_entry& entry = *it;
+    if (!HasImageExtension(entry.path())) continue;
+    if (!entry.is_regular_file(error)) {
+      folder->warnings.push_back(entry.path().string() +
+                                 ": not a regular file (a folder or a broken link), skipped");
+      continue;
+    }
     ImageFrame frame;
     frame.path = entry.path().string();
     frame.origin = frame.path;
@@ -78,6 +89,9 @@ ImageFolder ListImageFolder(const std::string& dir) {
   folder.dir = dir;
   std::error_code error;
   if (!fs::is_directory(dir, error)) {
+    if (error && error != std::errc::no_such_file_or_directory) {
+      throw Error(dir, 0, "cannot open the folder: " + error.message());  // e.g. no permission
+    }
     throw Error(dir, 0, fs::exists(dir, error) ? "not a folder" : "no such folder");
   }
   folder.euroc = IsRegularFile(fs::path(dir) / "data.csv");

@@ -16,6 +16,11 @@ namespace {
 
 // Tag and corner counts beyond this per side are refused as implausible (a corrupt file).
 constexpr int64_t kMaxGridSide = 10000;
+// An AprilGrid's tags are tag36h11's codes 0, 1, 2, ...: the family has 587 of them, so a larger
+// grid cannot be printed (Kalibr's limit too).
+constexpr int64_t kTag36h11Codes = 587;
+// A checkerboard of more inner corners is no printable target (and would build 10^8 points).
+constexpr int64_t kMaxCheckerboardCorners = 1'000'000;
 // Point ids are integers stored in doubles by the YAML layer: exact up to 2^53.
 constexpr double kMaxPointId = 9007199254740992.0;
 // Sizes [m] and the tag spacing ratio beyond these are refused as implausible (a corrupt file or
@@ -56,14 +61,24 @@ CalibrationTarget ReadTargetYaml(const std::string& path) {
         throw Error(
             path, yaml.Line("tagSpacing"), "'tagSpacing' must be >= 0 (a ratio of tagSize)");
       }
-      return MakeAprilGrid(GridCount(yaml, "tagCols"),
-                           GridCount(yaml, "tagRows"),
-                           yaml.PositiveNumber("tagSize", kMaxTargetSize, "m"),
+      const int cols = GridCount(yaml, "tagCols"), rows = GridCount(yaml, "tagRows");
+      if (int64_t{cols} * rows > kTag36h11Codes) {
+        throw Error(path, yaml.Line("tagRows"),
+                    "an aprilgrid of " + std::to_string(cols) + " x " + std::to_string(rows) +
+                        " tags needs more than the 587 codes of tag family 36h11");
+      }
+      return MakeAprilGrid(cols, rows, yaml.PositiveNumber("tagSize", kMaxTargetSize, "m"),
                            spacing);
     }
     if (type == "checkerboard") {
-      return MakeCheckerboard(GridCount(yaml, "targetCols"),
-                              GridCount(yaml, "targetRows"),
+      const int cols = GridCount(yaml, "targetCols"), rows = GridCount(yaml, "targetRows");
+      if (int64_t{cols} * rows > kMaxCheckerboardCorners) {
+        throw Error(path, yaml.Line("targetRows"),
+                    "a checkerboard of " + std::to_string(cols) + " x " + std::to_string(rows) +
+                        " inner corners is beyond the plausible " +
+                        std::to_string(kMaxCheckerboardCorners));
+      }
+      return MakeCheckerboard(cols, rows,
                               yaml.PositiveNumber("colSpacingMeters", kMaxTargetSize, "m"),
                               yaml.PositiveNumber("rowSpacingMeters", kMaxTargetSize, "m"));
     }

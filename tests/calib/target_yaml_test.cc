@@ -63,6 +63,11 @@ TEST(ReadTargetYaml, RefusesBadFiles) {
       {"target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: -0.1\ntagSpacing: 0.3\n",
        "tagSize"},
       {"target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: 0.1\n", "tagSpacing"},
+      {"target_type: aprilgrid\ntagCols: 30\ntagRows: 20\ntagSize: 0.1\ntagSpacing: 0.3\n",
+       "bad.yaml:3: an aprilgrid of 30 x 20 tags needs more than the 587 codes"},
+      {"target_type: checkerboard\ntargetCols: 2000\ntargetRows: 1000\nrowSpacingMeters: 0.1\n"
+       "colSpacingMeters: 0.1\n",
+       "bad.yaml:3: a checkerboard of 2000 x 1000 inner corners is beyond the plausible 1000000"},
       {"target_type: points\npoints:\n  - [1, 0, 0, 0]\n  - [1, 1, 0, 0]\n  - [2, 0, 1, 0]\n"
        "  - [3, 1, 1, 0]\n",
        "duplicate point id 1"},

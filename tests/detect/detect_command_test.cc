@@ -86,7 +86,7 @@ TEST(DetectCommand, RefusesFoldersWithNothingUsable) {
   dir.Write("text/100.png", "not an image");
   dir.Write("text/200.png", ReadBytes(kBundled + "/cam0/data/" + kFrame + ".png").substr(0, 5000));
   ExpectRefused({"detect", "--images", dir.File("text"), "--target", kGrid, "--out", out}, out,
-                "detect: no image could be read (first problem: ");
+                "text: none of cam0's 2 images could be read (first problem: ");
   dir.Write("nofile/data.csv", "100,100.png\n");
   ExpectRefused({"detect", "--images", dir.File("nofile"), "--target", kGrid, "--out", out}, out,
                 "nofile/data.csv: no image of data.csv exists under data/");
@@ -112,7 +112,11 @@ TEST(DetectCommand, RefusesFoldersWithNothingUsable) {
 TEST(DetectCommand, ABadFrameIsAWarningAndTheRestIsProcessed) {
   testing::TempDir dir;
   const std::string good = ReadBytes(kBundled + "/cam0/data/" + kFrame + ".png");
-  dir.Write("cam0/data.csv", "#timestamp [ns],filename\n100,a.png\n200,b.png\n300,c.png\n");
+  dir.Write("cam0/data.csv",
+            "#timestamp [ns],filename\n50,tiny.png\n100,a.png\n200,b.png\n300,c.png\n");
+  // A 1 x 1 image first (it must neither crash the tag detector nor decide the resolution).
+  std::filesystem::create_directories(dir.File("cam0/data"));
+  ASSERT_TRUE(cv::imwrite(dir.File("cam0/data/tiny.png"), cv::Mat(1, 1, CV_8UC1, cv::Scalar(0))));
   dir.Write("cam0/data/a.png", good);
   dir.Write("cam0/data/b.png", good.substr(0, good.size() - 100));  // truncated
   // c.png is missing
@@ -120,12 +124,14 @@ TEST(DetectCommand, ABadFrameIsAWarningAndTheRestIsProcessed) {
   const testing::ToolResult r = testing::RunTool(
       {"detect", "--images", dir.File("cam0"), "--target", kGrid, "--out", out});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.err, HasSubstr("warning: " + dir.File("cam0/data.csv") + ":4: image "));
+  EXPECT_THAT(r.err, HasSubstr("warning: " + dir.File("cam0/data.csv") + ":5: image "));
   EXPECT_THAT(r.err, HasSubstr("b.png: truncated PNG (it ends before its IEND chunk) (" +
-                               dir.File("cam0/data.csv") + ":3), frame skipped"));
+                               dir.File("cam0/data.csv") + ":4), frame skipped"));
+  EXPECT_THAT(r.err, HasSubstr("tiny.png: 1 x 1 pixels, but cam0's frames are 752 x 480"));
   EXPECT_EQ(ReadObservationsCsv(out + "/observations.csv").size(), 144u);
   const YamlDocument result(out + "/result.yaml");
-  EXPECT_EQ(result.Integer("cameras/cam0/images_listed"), 2);  // c.png is not listed
+  EXPECT_EQ(result.Numbers("cameras/cam0/resolution"), (std::vector<double>{752, 480}));
+  EXPECT_EQ(result.Integer("cameras/cam0/images_listed"), 3);  // c.png is not listed
   EXPECT_EQ(result.Integer("cameras/cam0/images_read"), 1);
   EXPECT_THAT(testing::ReadFileText(out + "/result.yaml"), HasSubstr("b.png: truncated PNG"));
 }

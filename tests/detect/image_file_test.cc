@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include <opencv2/imgcodecs.hpp>
+#include <zlib.h>
 
 #include "splinecal/error.h"
 #include "testing/shared_data.h"
@@ -71,7 +72,7 @@ TEST(ReadGrayImage, RefusesMissingNonImageAndTruncatedFiles) {
               HasSubstr("cut.png: truncated PNG"));
   const std::string jpeg = ReadBytes(testing::SharedDataPath("opencv_chessboard/left01.jpg"));
   EXPECT_THAT(ErrorOf(dir.Write("cut.jpg", jpeg.substr(0, jpeg.size() / 2))),
-              HasSubstr("cut.jpg: truncated JPEG"));
+              HasSubstr("cut.jpg: damaged JPEG (Premature end of JPEG file)"));
   // A PNG damaged in the middle but ending properly: its chunk CRC finds it (before libpng
   // would print its own message).
   std::string damaged = png;
@@ -82,7 +83,42 @@ TEST(ReadGrayImage, RefusesMissingNonImageAndTruncatedFiles) {
   std::string damaged_jpeg = jpeg;
   for (size_t i = 2000; i < 2600; ++i) damaged_jpeg[i] = static_cast<char>(0x55);
   EXPECT_THAT(ErrorOf(dir.Write("damaged.jpg", damaged_jpeg)),
-              HasSubstr("damaged.jpg: corrupt JPEG (Corrupt JPEG data"));
+              HasSubstr("damaged.jpg: damaged JPEG (Corrupt JPEG data"));
+}
+
+// A PNG whose IHDR asks for 10^10 pixels (CRCs right): refused before any allocation.
+TEST(ReadGrayImage, RefusesImplausiblyLargeImagesBeforeDecoding) {
+  testing::TempDir dir;
+  std::string png = "\x89PNG\r\n\x1a\n";
+  const auto be32 = [](uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+  };
+  const auto chunk = [&](const std::string& type, const std::string& data) {
+    const std::string body = type + data;
+    const uint32_t crc = static_cast<uint32_t>(
+        crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size())));
+    return be32(static_cast<uint32_t>(data.size())) + body + be32(crc);
+  };
+  png += chunk("IHDR", be32(100000) + be32(100000) + std::string("\x08\x00\x00\x00\x00", 5));
+  png += chunk("IEND", "");
+  EXPECT_THAT(ErrorOf(dir.Write("huge.png", png)),
+              HasSubstr("huge.png: image of 100000 x 100000 pixels is beyond the plausible"));
+}
+
+// A PNG whose CRCs hold but whose header is invalid (bit depth 3): libpng's complaint becomes the
+// error instead of a line it prints itself.
+TEST(ReadGrayImage, RefusesAnInvalidPngHeaderWithLibpngsReason) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_april_frames");
+  testing::TempDir dir;
+  std::string png =
+      ReadBytes(testing::SharedDataPath("euroc_april_frames/cam0_1403709395937837056.png"));
+  png[24] = 3;  // IHDR: length (4), "IHDR" (4), width (4), height (4), then the bit depth
+  const uint32_t crc = static_cast<uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(png.data() + 12), 17));
+  for (int i = 0; i < 4; ++i) png[29 + i] = static_cast<char>(crc >> (24 - 8 * i));
+  EXPECT_THAT(ErrorOf(dir.Write("depth3.png", png)),
+              HasSubstr("depth3.png: cannot decode the PNG (Invalid IHDR data)"));
 }
 
 TEST(WriteOverlayPng, WritesAColourPngOfTheImageSize) {

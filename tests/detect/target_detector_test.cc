@@ -217,6 +217,13 @@ TEST(TargetDetector, RefusesTargetsItCannotDetectAndEmptyImages) {
   EXPECT_THROW(detector.Detect(GrayImageView{}), Error);
   const uint8_t pixel = 0;
   EXPECT_THROW(detector.Detect(GrayImageView{4, 4, 2, &pixel}), Error);  // stride < width
+  // libapriltag 3.3 reads out of bounds on images of 4 rows or fewer: refused before it runs.
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1, 1}, {4, 4}, {752, 3}, {15, 480}}) {
+    const std::vector<uint8_t> pixels(static_cast<size_t>(w) * h, 255);
+    EXPECT_THROW(detector.Detect(GrayImageView{w, h, w, pixels.data()}), Error) << w << " x " << h;
+  }
+  const std::vector<uint8_t> small(16 * 16, 255);
+  EXPECT_TRUE(detector.Detect(GrayImageView{16, 16, 16, small.data()}).corners.empty());
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "splinecal/error.h"
 #include "testing/temp_dir.h"
 
@@ -59,13 +61,16 @@ TEST(ListImageFolder, ReadsAPlainFolderOfTimestampNamedImages) {
   dir.Write("imgs/200.jpeg", "x");
   dir.Write("imgs/notes.txt", "ignored");
   dir.Write("imgs/frame_a.png", "x");
+  std::filesystem::create_directories(dir.File("imgs/400.png"));  // a folder with an image name
   const ImageFolder folder = ListImageFolder(dir.File("imgs"));
   EXPECT_FALSE(folder.euroc);
   ASSERT_EQ(folder.frames.size(), 3u);
   EXPECT_EQ(folder.frames[0].t_ns, 100);
   EXPECT_EQ(folder.frames[2].t_ns, 300);
-  ASSERT_EQ(folder.warnings.size(), 1u);
-  EXPECT_THAT(folder.warnings[0], HasSubstr("frame_a.png: the name is not a timestamp"));
+  ASSERT_EQ(folder.warnings.size(), 2u);
+  const std::string warnings = folder.warnings[0] + "\n" + folder.warnings[1];
+  EXPECT_THAT(warnings, HasSubstr("frame_a.png: the name is not a timestamp"));
+  EXPECT_THAT(warnings, HasSubstr("400.png: not a regular file"));
 }
 
 TEST(ListImageFolder, RefusesWhatNamesNoFrames) {

@@ -20,10 +20,10 @@ namespace splinecal {
 struct CameraDetectionSummary {
   int cam_id = 0;
   std::string dir;
-  int width = 0;  // the resolution of the camera's frames (of its first readable frame)
+  int width = 0;  // the camera's resolution (the most common of its first 5 readable frames)
   int height = 0;
   int64_t images_listed = 0;       // frames the folder names
-  int64_t images_read = 0;         // frames decoded with the camera's resolution
+  int64_t images_read = 0;         // frames decoded with the camera's resolution and searched
   int64_t images_with_target = 0;  // frames that gave at least one corner
   int64_t corners = 0;
   int64_t tags_rejected = 0;     // aprilgrid: decoded tags dropped (wrong id or place)
@@ -37,6 +37,7 @@ struct DetectFoldersResult {
   // (io/image_folder.h), in frame order.
   std::vector<std::string> warnings;
   double wall_time_s = 0;
+  int threads = 1;  // workers that ran: min(options.threads, cores, frames)
 };
 
 struct DetectProgress {
@@ -58,10 +59,13 @@ struct DetectFoldersOptions {
       on_detection;
 };
 
-// Runs the detector over the frames of `folders` (folder i is camera i). A frame that cannot be
-// decoded, or whose size differs from the camera's first frame, becomes a warning and is
-// skipped. Throws splinecal::Error when no frame of any camera could be read; a camera without any
-// frame with the target is reported in its summary (the caller decides).
+// Runs the detector over the frames of `folders` (folder i is camera i) on min(threads, cores)
+// workers. A camera's resolution is the most common size among its first 5 readable frames. A frame that cannot be
+// decoded, has another size, or that the detector refuses (too small) becomes a warning and is
+// skipped. Throws splinecal::Error naming the folder when no frame of some camera can be read;
+// rethrows, after stopping every worker, what an on_detection callback throws and any other
+// exception (out of memory). A camera without any frame with the target is reported in its
+// summary (the caller decides). A checkerboard that is symmetric under a half turn is a warning.
 DetectFoldersResult DetectFolders(const std::vector<ImageFolder>& folders,
                                   const CalibrationTarget& target,
                                   const DetectFoldersOptions& options);

@@ -15,8 +15,7 @@ namespace splinecal {
 // corners, tags_rejected and detection_time_s; then the warnings.
 std::string DetectResultYamlText(const DetectFoldersResult& result,
                                  const CalibrationTarget& target,
-                                 const std::string& target_path,
-                                 int threads);
+                                 const std::string& target_path);
 
 // "detect: cam0 752 x 480: 1440 of 1440 images read, 1389 with the target, 190208 corners".
 std::string DetectSummaryText(const DetectFoldersResult& result);

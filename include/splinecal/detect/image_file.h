@@ -1,6 +1,6 @@
 // Reading and writing image files (PNG, JPEG) for detect/: the one place splinecal decodes
-// pixels. libjpeg decodes JPEGs (so that corrupt data is an error, not a printed warning and a
-// grey image), OpenCV's codecs the rest, after the checks they lack.
+// pixels. libpng and libjpeg decode, with splinecal's own error handlers (by default both print
+// to stderr and go on with made-up rows); OpenCV writes the overlays.
 #ifndef SPLINECAL_DETECT_IMAGE_FILE_H_
 #define SPLINECAL_DETECT_IMAGE_FILE_H_
 
@@ -13,11 +13,12 @@
 
 namespace splinecal {
 
-// Reads a PNG or JPEG file as 8-bit grey (colour is converted, 16-bit scaled down). Throws
-// splinecal::Error(path, 0, ...) for a missing or unreadable file, a file that is not an image, a
-// truncated one (a PNG that ends before its IEND chunk, a JPEG without its end-of-image marker:
-// decoders fill the missing rows with grey and go on, which would give corners in made-up
-// pixels), a PNG chunk that fails its CRC, corrupt JPEG data, and data a decoder refuses.
+// Reads a PNG or JPEG file as 8-bit grey (colour weighted 0.299 R + 0.587 G + 0.114 B, 16-bit
+// reduced to its high byte). Throws splinecal::Error(path, 0, ...) for a missing or unreadable
+// file, a file over 1 GiB or that is not a PNG or JPEG, a truncated PNG (it ends before IEND) or
+// one with a chunk failing its CRC, a damaged or truncated JPEG (libjpeg's "Corrupt JPEG data",
+// "Premature end of JPEG file"), an image over 10^8 pixels (refused from its header, before
+// decoding), and a format the decoders do not support.
 GrayImage ReadGrayImage(const std::string& path);
 
 // A detection drawn over its image, for people to check (`detect --draw`): each corner as a
