@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "fuzz_input.h"
+#include "splinecal/detect/image_file.h"
+#include "splinecal/detect/target_detector.h"
 #include "splinecal/error.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
@@ -71,6 +73,19 @@ inline void ReadYamlKeys(const std::string& path) {
 inline void ReadImuYamlAndKeys(const std::string& path) {
   Refusable([&] { ReadImuYaml(path); });
   ReadYamlKeys(path);
+}
+
+// An image file through the decoders and, when it decodes, through the AprilGrid detector (one
+// detector for all inputs: building its decode table takes 20 ms).
+inline void ReadImageAndDetect(const std::string& path) {
+  const GrayImage image = ReadGrayImage(path);
+  static TargetDetector* detector = new TargetDetector(MakeAprilGrid(6, 6, 0.088, 0.3));
+  const TargetDetection detection = detector->Detect(image.view());
+  for (const CornerDetection& corner : detection.corners) {
+    Expect(corner.uv.x() >= 0 && corner.uv.y() >= 0 && corner.uv.x() <= image.width - 1 &&
+               corner.uv.y() <= image.height - 1,
+           "a detected corner lies inside the image");
+  }
 }
 
 inline void ReadObservationsRoundTrip(const std::string& path) {
@@ -169,6 +184,7 @@ inline const std::vector<Reader>& Readers() {
       {"target_yaml", ".yaml", ReadTargetRoundTrip},
       {"spline_csv", ".csv", ReadSplineRoundTrip},
       {"static_recording", ".csv", ReadStaticRecordings},
+      {"image_file", ".png", ReadImageAndDetect},
   };
   return readers;
 }
