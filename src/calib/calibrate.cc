@@ -24,6 +24,7 @@
 #include "splinecal/error.h"
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/estimation/solve_rounds.h"
@@ -96,8 +97,8 @@ class CalibrationProblem {
         guess.control_poses,
         BiasSpline(options.model.bias_model, layout_, options.model.bias_knot_spacing_s));
     imu_rate_hz_ = ImuRateHz(imu_);
-    sigma_g_ = options.model.noise.GyroWhiteStd(imu_rate_hz_);
-    sigma_a_ = options.model.noise.AccelWhiteStd(imu_rate_hz_);
+    imu_noise_ = std::make_unique<ImuNoiseEstimator>(
+        options.model.noise, imu_rate_hz_, options.model.imu_noise);
     spline_->SetGravity(options.model.gravity_m_s2 * guess.gravity_w.normalized());
     spline_->SetBiases(guess.gyro_bias, guess.accel_bias);
     // Cameras.
@@ -211,8 +212,7 @@ class CalibrationProblem {
   bool has_target_;
   double dt_s_ = 0.0;
   double imu_rate_hz_ = 0.0;
-  double sigma_g_ = 0.0;
-  double sigma_a_ = 0.0;
+  std::unique_ptr<ImuNoiseEstimator> imu_noise_;  // the densities weighting the IMU residuals
   double sigma_px_ = 1.0;
 
   std::unique_ptr<SplineProblem> spline_;  // control poses, biases, gravity
@@ -257,8 +257,8 @@ void CalibrationProblem::BuildProblem() {
       problem().SetParameterBlockConstant(&cam.line_delay);
     }
   }
-  spline_->AddImuResiduals(imu_, sigma_g_, sigma_a_);
-  spline_->AddBiasRandomWalkResiduals(options_.model.noise);
+  spline_->AddImuResiduals(imu_, imu_noise_->gyro_sigma(), imu_noise_->accel_sigma());
+  spline_->AddBiasRandomWalkResiduals(imu_noise_->densities());
   frame_residuals_.clear();
   for (size_t f = 0; f < target_frames_.size(); ++f) {
     const TargetFrame& frame = target_frames_[f];
@@ -438,6 +438,10 @@ CalibrationResult CalibrationProblem::Run() {
       if (std::abs(sigma / sigma_px_ - 1.0) > kSigmaChangeForNewRound) again = true;
       sigma_px_ = sigma;
     }
+    // The IMU noise from the residuals (variance components): weights that match the data's
+    // own noise, so that the covariance below reflects it.
+    const double noise_change = imu_noise_->Update(spline_.get());
+    if (noise_change > kSigmaChangeForNewRound) again = true;
     const bool windows_valid = !guard.triggered() && WindowsStillValid();
     if (!windows_valid) again = true;
     // Later rounds: windows sized to the estimate with room to grow.
@@ -454,9 +458,12 @@ CalibrationResult CalibrationProblem::Run() {
     }
     if (!again) break;
     if (round < options_.solver.max_rounds && options_.solver.progress) {
-      options_.solver.progress("calibrate: pixel sigma " + StringPrintf("%.4g", sigma_px_) +
-                               " px; time windows " + (windows_valid ? "valid" : "moved") +
-                               ": solving again");
+      const ImuNoise& noise = imu_noise_->densities();
+      options_.solver.progress(
+          "calibrate: pixel sigma " + StringPrintf("%.4g", sigma_px_) + " px, gyro noise " +
+          StringPrintf("%.3g", noise.gyroscope_noise_density) + " rad/s/sqrt(Hz), accel noise " +
+          StringPrintf("%.3g", noise.accelerometer_noise_density) + " m/s^2/sqrt(Hz); time windows " +
+          (windows_valid ? "valid" : "moved") + ": solving again");
     }
   }
   result.solve = rounds.Summary();
@@ -464,6 +471,7 @@ CalibrationResult CalibrationProblem::Run() {
     result.warnings.push_back(rounds.NoConvergenceWarning());
   }
   result.pixel_sigma_px = sigma_px_;
+  result.imu_noise = imu_noise_->estimate();
   Collect(&result);
   if (options_.covariance.compute) {
     const auto start = std::chrono::steady_clock::now();
@@ -500,6 +508,18 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   MarginalCovarianceOptions covariance_options;
   covariance_options.backend = CovarianceBackend::kSchur;
   covariance_options.num_threads = options_.solver.num_threads;
+  const double window_s = options_.covariance.robust_window_s;
+  if (window_s > 0.0) {
+    covariance_options.cluster_of = [this, window_s](ceres::ResidualBlockId id) {
+      return spline_->TimeWindowOf(id, window_s);
+    };
+  }
+  covariance_options.noise_factors = imu_noise_->NoiseFactors();
+  if (!covariance_options.noise_factors.empty()) {
+    covariance_options.group_of = [this](ceres::ResidualBlockId id) {
+      return ImuNoiseEstimator::GroupOf(*spline_, id);
+    };
+  }
   const MarginalCovariance marginal =
       ComputeMarginalCovariance(&problem(), wanted, covariance_options);
   if (!marginal.ok) {
@@ -508,7 +528,23 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
         "not determined by the data); standard deviations are not reported");
     return;
   }
-  const Eigen::MatrixXd& cov = marginal.covariance;
+  // Each variance: the largest of the weights' (the assumed noise), the measured noise's and
+  // the cluster-robust one.
+  Eigen::MatrixXd cov = marginal.covariance;
+  for (const Eigen::MatrixXd* other : {&marginal.noise_covariance, &marginal.robust_covariance}) {
+    if (other->size() != cov.size()) continue;
+    for (int k = 0; k < cov.rows(); ++k) {
+      const double ratio = (*other)(k, k) / cov(k, k);
+      if (ratio > 1.0) {
+        // Scale row and column k so that the correlations are kept.
+        cov.row(k) *= std::sqrt(ratio);
+        cov.col(k) *= std::sqrt(ratio);
+      }
+    }
+  }
+  result->std_inflation =
+      std::sqrt((cov.diagonal().array() / marginal.covariance.diagonal().array()).maxCoeff());
+  result->robust_clusters = marginal.num_clusters;
   auto block = [&](const double* a, int rows) {
     return Eigen::MatrixXd(cov.block(offset[a], offset[a], rows, rows));
   };

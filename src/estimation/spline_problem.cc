@@ -88,6 +88,7 @@ ceres::Problem& SplineProblem::Reset(bool hold_first_pose) {
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.evaluation_callback = callback_.get();
   problem_ = std::make_unique<ceres::Problem>(problem_options);
+  kinds_.clear();
   for (double* block : control_blocks_) {
     problem_->AddParameterBlock(block, kPoseBlockSize, &se3_manifold_);
   }
@@ -152,10 +153,12 @@ void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
 
     if (!analytic) {
       for (size_t s = 0; s < gyro_samples.size(); ++s) {
-        problem_->AddResidualBlock(
-            NewAutoDiffGyroCost(nb, gyro_segment, gyro_samples[s]), nullptr, gyro_blocks);
-        problem_->AddResidualBlock(
-            NewAutoDiffAccelCost(nb, accel_segment, accel_samples[s]), nullptr, accel_blocks);
+        kinds_[problem_->AddResidualBlock(
+            NewAutoDiffGyroCost(nb, gyro_segment, gyro_samples[s]), nullptr, gyro_blocks)] =
+            ImuResidualKind::kGyro;
+        kinds_[problem_->AddResidualBlock(
+            NewAutoDiffAccelCost(nb, accel_segment, accel_samples[s]), nullptr, accel_blocks)] =
+            ImuResidualKind::kAccel;
       }
     } else if (options_.layout == ImuResidualLayout::kPerSample) {
       for (size_t s = 0; s < gyro_samples.size(); ++s) {
@@ -168,8 +171,10 @@ void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
           gyro_cost = new GyroCostFunction<4>(gyro_segment, gyro_samples[s]);
           accel_cost = new AccelCostFunction<4>(accel_segment, accel_samples[s]);
         }
-        problem_->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
-        problem_->AddResidualBlock(accel_cost, nullptr, accel_blocks);
+        kinds_[problem_->AddResidualBlock(gyro_cost, nullptr, gyro_blocks)] =
+            ImuResidualKind::kGyro;
+        kinds_[problem_->AddResidualBlock(accel_cost, nullptr, accel_blocks)] =
+            ImuResidualKind::kAccel;
       }
     } else {
       ceres::CostFunction* gyro_cost;
@@ -181,8 +186,10 @@ void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
         gyro_cost = new GyroSegmentCostFunction<4>(gyro_segment, std::move(gyro_samples));
         accel_cost = new AccelSegmentCostFunction<4>(accel_segment, std::move(accel_samples));
       }
-      problem_->AddResidualBlock(gyro_cost, nullptr, gyro_blocks);
-      problem_->AddResidualBlock(accel_cost, nullptr, accel_blocks);
+      kinds_[problem_->AddResidualBlock(gyro_cost, nullptr, gyro_blocks)] =
+          ImuResidualKind::kGyro;
+      kinds_[problem_->AddResidualBlock(accel_cost, nullptr, accel_blocks)] =
+          ImuResidualKind::kAccel;
     }
   }
 }
@@ -191,15 +198,46 @@ void SplineProblem::AddBiasRandomWalkResiduals(const ImuNoise& noise) {
   if (bias_.is_constant()) return;
   const double db = bias_.dt_s();
   for (int m = 1; m + 2 < bias_.num_points(); ++m) {
-    problem_->AddResidualBlock(
+    kinds_[problem_->AddResidualBlock(
         new BiasRandomWalkCostFunction(db, noise.gyroscope_random_walk),
         nullptr,
-        {gyro_bias(m - 1), gyro_bias(m), gyro_bias(m + 1), gyro_bias(m + 2)});
-    problem_->AddResidualBlock(
+        {gyro_bias(m - 1), gyro_bias(m), gyro_bias(m + 1), gyro_bias(m + 2)})] =
+        ImuResidualKind::kGyroRandomWalk;
+    kinds_[problem_->AddResidualBlock(
         new BiasRandomWalkCostFunction(db, noise.accelerometer_random_walk),
         nullptr,
-        {accel_bias(m - 1), accel_bias(m), accel_bias(m + 1), accel_bias(m + 2)});
+        {accel_bias(m - 1), accel_bias(m), accel_bias(m + 1), accel_bias(m + 2)})] =
+        ImuResidualKind::kAccelRandomWalk;
   }
+}
+
+ImuResidualKind SplineProblem::ResidualKind(ceres::ResidualBlockId id) const {
+  const auto it = kinds_.find(id);
+  return it == kinds_.end() ? ImuResidualKind::kNotImu : it->second;
+}
+
+int SplineProblem::TimeWindowOf(ceres::ResidualBlockId id, double window_s) const {
+  std::vector<double*> blocks;
+  problem_->GetParameterBlocksForResidualBlock(id, &blocks);
+  auto index_in = [](const std::vector<double>& values, int stride, const double* block) {
+    if (values.empty() || block < values.data() || block >= values.data() + values.size()) {
+      return -1;
+    }
+    return static_cast<int>((block - values.data()) / stride);
+  };
+  for (const double* block : blocks) {
+    double t_s = -1.0;
+    const int pose = index_in(control_values_, kPoseBlockSize, block);
+    if (pose >= 0) t_s = pose * layout_.dt_s();
+    int bias = index_in(gyro_bias_values_, 3, block);
+    if (bias < 0) bias = index_in(accel_bias_values_, 3, block);
+    if (pose < 0 && bias >= 0) {
+      t_s = bias_.is_constant() ? -1.0 : 1e-9 * static_cast<double>(bias_.t0_ns() - layout_.t0_ns) +
+                                              bias * bias_.dt_s();
+    }
+    if (t_s >= 0.0) return static_cast<int>(t_s / window_s);
+  }
+  return 0;
 }
 
 ImuResidualStatistics SplineProblem::EvaluateImu(

@@ -57,6 +57,7 @@
 #include "splinecal/camera/observations.h"
 #include "splinecal/camera/target.h"
 #include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/pose_fit.h"
 #include "splinecal/imu/imu_model.h"
@@ -161,6 +162,9 @@ struct CalibrationResult {
   Eigen::Vector3d accel_bias_std =
       Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 
+  // The IMU noise densities that weighted the last round: re-estimated from the residuals
+  // (variance components) unless model.estimate_imu_noise is false.
+  ImuNoiseEstimate imu_noise;
   double pixel_sigma_px = 1.0;  // the weight used in the last round
   bool pixel_sigma_estimated = false;
   double reprojection_rms_px = 0.0;  // all cameras
@@ -170,6 +174,10 @@ struct CalibrationResult {
   int num_imu_samples = 0;
 
   SolveSummary solve;  // rounds: the time windows were rebuilt or the pixel noise re-estimated
+  // The largest factor by which a reported std exceeds the noise model's (the cluster-robust
+  // covariance over robust_clusters time windows; 1: the noise model explains the scatter).
+  double std_inflation = 1.0;
+  int robust_clusters = 0;
   double covariance_time_s = 0.0;
   double initialisation_time_s = 0.0;
   bool covariance_ok = false;

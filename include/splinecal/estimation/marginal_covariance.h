@@ -25,6 +25,8 @@
 #include <ceres/problem.h>
 
 #include <Eigen/Core>
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -43,12 +45,33 @@ struct MarginalCovarianceOptions {
   // 200 Hz IMU at dt = 0.1 s), the Schur complement above.
   double max_ceres_covariance_entries = 3e6;
   int num_threads = 1;
+  // Residual clusters for the cluster-robust covariance (below): the cluster (>= 0) of each
+  // residual block, e.g. its time window. Empty: not computed. Uses the Schur backend.
+  std::function<int(ceres::ResidualBlockId)> cluster_of;
+  // Noise levels the data shows (estimation/variance_components.h): residual group l's variance
+  // is noise_factors[l] times what its weights assume (groups by group_of; groups not listed:
+  // 1). Empty: not computed. Uses the Schur backend.
+  std::function<int(ceres::ResidualBlockId)> group_of;
+  std::map<int, double> noise_factors;
 };
 
 struct MarginalCovariance {
   bool ok = false;             // false: H is singular (some direction is not determined)
   Eigen::MatrixXd covariance;  // the requested blocks' tangent coordinates, in request order
   std::string method;          // which backend ran, in words
+  // With MarginalCovarianceOptions::cluster_of: the cluster-robust ("sandwich") covariance of
+  // the same blocks (White 1982; Liang & Zeger 1986),
+  //   (H^-1 M H^-1)_cc,   M = G / (G - 1) sum_k g_k g_k^T,   g_k = sum_{i in cluster k} J_i^T e_i,
+  // which stays honest when the residuals are correlated within a cluster or the model misses
+  // something (vibration, a knot spacing too coarse, unmodelled sensor errors): it measures how
+  // much the clusters' pulls on the solution actually scatter instead of assuming it from the
+  // weights. Empty when not asked for or with fewer than 2 clusters.
+  Eigen::MatrixXd robust_covariance;
+  int num_clusters = 0;
+  // With noise_factors: the covariance of the same estimate when the residuals' noise is the one
+  // the data shows, H^-1 (sum_l f_l H_l) H^-1 (the weights stay as they were: an estimate
+  // weighted by assumed noise, whose covariance uses the measured noise). Empty otherwise.
+  Eigen::MatrixXd noise_covariance;
 };
 
 // The marginal covariance of `blocks` (free parameter blocks of `problem`, each at most once)

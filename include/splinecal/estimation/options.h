@@ -10,6 +10,7 @@
 #define SPLINECAL_ESTIMATION_OPTIONS_H_
 
 #include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/imu_noise_mode.h"
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/imu/imu_model.h"
@@ -27,6 +28,10 @@ struct SplineModelOptions {
   // IMU noise, Kalibr densities. The weights use density * sqrt(rate) with the rate measured
   // from the IMU timestamps.
   ImuNoise noise;
+  // The IMU noise from the residuals between solver rounds (variance components,
+  // estimation/imu_noise_estimate.h), so that the standard deviations reflect the noise the
+  // data shows; kGiven trusts `noise` as it is.
+  ImuNoiseMode imu_noise = ImuNoiseMode::kEstimated;
   // Biases: constant, or a cubic B-spline with Kalibr's random-walk prior whose knots are
   // bias_knot_spacing_s apart (rounded to a whole number of pose knot intervals).
   BiasModel bias_model = BiasModel::kConstant;
@@ -39,6 +44,11 @@ struct CovarianceOptions {
   CovarianceBackend backend = CovarianceBackend::kAuto;
   // kAuto: ceres::Covariance up to this many compressed Jacobian entries, Schur above.
   double max_ceres_covariance_entries = 3e6;
+  // Cluster-robust standard deviations over time windows of this length [s] (0: the noise
+  // model's only): each reported std is the larger of the noise model's and the cluster-robust
+  // one (estimation/marginal_covariance.h), so that model error and correlated noise the data
+  // shows enter the error bars. Where it applies (calibrate, fit), it uses the Schur backend.
+  double robust_window_s = 1.0;
 };
 
 // Throws splinecal::Error, in plain words, for model values no estimate can use.

@@ -31,6 +31,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "splinecal/estimation/bias_spline.h"
@@ -72,6 +73,17 @@ struct ImuPrediction {
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
 };
+
+// The residual blocks SplineProblem adds, by kind (the groups of variance components,
+// estimation/variance_components.h).
+enum class ImuResidualKind {
+  kNotImu = -1,          // a caller's own residual
+  kGyro = 0,             // AddImuResiduals
+  kAccel = 1,            // AddImuResiduals
+  kGyroRandomWalk = 2,   // AddBiasRandomWalkResiduals
+  kAccelRandomWalk = 3,  // AddBiasRandomWalkResiduals
+};
+inline constexpr int kNumImuResidualKinds = 4;
 
 // Residuals of the IMU samples at the problem's current values.
 struct ImuResidualStatistics {
@@ -134,6 +146,14 @@ class SplineProblem {
   // The random-walk prior of the bias spline (nothing for a constant bias), Kalibr densities.
   void AddBiasRandomWalkResiduals(const ImuNoise& noise);
 
+  // Which of this object's residuals `id` is (kNotImu for the caller's own).
+  ImuResidualKind ResidualKind(ceres::ResidualBlockId id) const;
+  // The time window of `window_s` seconds (0, 1, ... from the layout's start) that residual
+  // block `id` belongs to, by its first control-pose or bias block's knot time: the clusters of
+  // the cluster-robust covariance (estimation/marginal_covariance.h). 0 for a residual with
+  // neither.
+  int TimeWindowOf(ceres::ResidualBlockId id, double window_s) const;
+
   // The IMU model at every sample (visit may be empty) and the residual statistics.
   ImuResidualStatistics EvaluateImu(
       const std::vector<ImuSample>& imu,
@@ -155,6 +175,7 @@ class SplineProblem {
   GravityManifold gravity_manifold_;
   std::unique_ptr<SplineEvaluationCallback> callback_;
   std::unique_ptr<ceres::Problem> problem_;
+  std::unordered_map<ceres::ResidualBlockId, ImuResidualKind> kinds_;  // of problem_'s blocks
 };
 
 }  // namespace splinecal

@@ -1,0 +1,337 @@
+#include "compressed_information.h"
+
+#include <ceres/ceres.h>
+#include <glog/logging.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace splinecal {
+namespace estimation_internal {
+
+namespace {
+
+// The diagonally scaled Schur complement must have eigenvalues above this fraction of its
+// largest: below, a parameter is not determined (its std would be > ~1e6 x its scale).
+constexpr double kMinScaledEigenvalue = 1e-12;
+// Hutchinson's probes are reproducible: the same problem gives the same traces.
+constexpr uint32_t kProbeSeed = 20261124;
+
+// r = R [d_0; d_1; ...]: a linear residual over Euclidean (tangent) blocks d_k.
+class LinearCostFunction : public ceres::CostFunction {
+ public:
+  LinearCostFunction(Eigen::MatrixXd R, const std::vector<int>& block_sizes) : R_(std::move(R)) {
+    set_num_residuals(static_cast<int>(R_.rows()));
+    *mutable_parameter_block_sizes() = block_sizes;
+  }
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    Eigen::Map<Eigen::VectorXd> r(residuals, R_.rows());
+    r.setZero();
+    int column = 0;
+    const std::vector<int32_t>& sizes = parameter_block_sizes();
+    for (size_t k = 0; k < sizes.size(); ++k) {
+      r += R_.middleCols(column, sizes[k]) *
+           Eigen::Map<const Eigen::VectorXd>(parameters[k], sizes[k]);
+      if (jacobians != nullptr && jacobians[k] != nullptr) {
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
+            jacobians[k], R_.rows(), sizes[k]);
+        J = R_.middleCols(column, sizes[k]);
+      }
+      column += sizes[k];
+    }
+    return true;
+  }
+
+ private:
+  Eigen::MatrixXd R_;
+};
+
+}  // namespace
+
+int CompressedInformation::Group::Index(const double* block, int size) {
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    if (blocks[k] == block) return static_cast<int>(k);
+  }
+  blocks.push_back(block);
+  sizes.push_back(size);
+  offsets.push_back(offsets.empty() ? 0 : offsets.back() + sizes[sizes.size() - 2]);
+  return static_cast<int>(blocks.size()) - 1;
+}
+
+void CompressedInformation::Group::Resize() {
+  const int n = offsets.empty() ? 0 : offsets.back() + sizes.back();
+  if (H.rows() == n) return;
+  Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(n, n);
+  bigger.topLeftCorner(H.rows(), H.cols()) = H;
+  H = std::move(bigger);
+}
+
+CompressedInformation::CompressedInformation(ceres::Problem* problem,
+                                             const ResidualLabel& label_of,
+                                             const ResidualLabel& cluster_of) {
+  std::vector<ceres::ResidualBlockId> residual_blocks;
+  problem->GetResidualBlocks(&residual_blocks);
+  std::vector<double*> blocks;
+  std::vector<std::vector<double>> jacobians;
+  std::vector<double*> jacobian_pointers;
+  std::vector<double> residuals;
+  for (ceres::ResidualBlockId id : residual_blocks) {
+    const int label = label_of ? label_of(id) : 0;
+    if (label < 0) continue;
+    const ceres::CostFunction* cost = problem->GetCostFunctionForResidualBlock(id);
+    problem->GetParameterBlocksForResidualBlock(id, &blocks);
+    const int rows = cost->num_residuals();
+    residuals.resize(rows);
+    jacobians.resize(blocks.size());
+    jacobian_pointers.resize(blocks.size());
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      if (problem->IsParameterBlockConstant(blocks[k])) {
+        jacobian_pointers[k] = nullptr;
+        continue;
+      }
+      jacobians[k].resize(static_cast<size_t>(rows) * problem->ParameterBlockSize(blocks[k]));
+      jacobian_pointers[k] = jacobians[k].data();
+    }
+    if (!cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data())) {
+      evaluation_failed_ = true;
+      continue;
+    }
+    num_residuals_[label] += rows;
+    double& squares = squared_sum_[label];
+    for (double r : residuals) squares += r * r;
+    Group& group = groups_[GroupKey(label, blocks[0])];
+    // Tangent Jacobians of this residual block, column-stacked in the group's block order.
+    std::vector<std::pair<int, Eigen::MatrixXd>> parts;
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      if (jacobian_pointers[k] == nullptr) continue;
+      const int ambient = problem->ParameterBlockSize(blocks[k]);
+      const int tangent = problem->ParameterBlockTangentSize(blocks[k]);
+      Eigen::MatrixXd J =
+          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+              jacobians[k].data(), rows, ambient);
+      const ceres::Manifold* manifold = problem->GetManifold(blocks[k]);
+      if (manifold != nullptr) {
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> plus(ambient,
+                                                                                    tangent);
+        CHECK(manifold->PlusJacobian(blocks[k], plus.data()));
+        J = J * plus;
+      }
+      block_sizes_[blocks[k]] = tangent;
+      parts.emplace_back(group.Index(blocks[k], tangent), std::move(J));
+    }
+    group.Resize();
+    if (cluster_of) {
+      std::map<const double*, Eigen::VectorXd>& gradient = cluster_gradients_[cluster_of(id)];
+      const Eigen::Map<const Eigen::VectorXd> e(residuals.data(), rows);
+      for (const auto& [a, J_a] : parts) {
+        Eigen::VectorXd& g = gradient[group.blocks[a]];
+        if (g.size() == 0) g = Eigen::VectorXd::Zero(J_a.cols());
+        g += J_a.transpose() * e;
+      }
+    }
+    for (const auto& [a, J_a] : parts) {
+      for (const auto& [b, J_b] : parts) {
+        group.H.block(group.offsets[a], group.offsets[b], J_a.cols(), J_b.cols()) +=
+            J_a.transpose() * J_b;
+      }
+    }
+  }
+}
+
+double CompressedInformation::CompressedEntries() const {
+  double entries = 0.0;
+  for (const auto& [key, group] : groups_) entries += static_cast<double>(group.H.size());
+  return entries;
+}
+
+void CompressedInformation::BuildCeresProblem() {
+  ceres::Problem::Options options;
+  options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  compressed_ = std::make_unique<ceres::Problem>(options);
+  for (auto it = groups_.begin(); it != groups_.end(); it = groups_.erase(it)) {
+    const Group& group = it->second;
+    std::vector<double*> tangent_blocks;
+    for (size_t k = 0; k < group.blocks.size(); ++k) {
+      std::vector<double>& storage = tangent_blocks_[group.blocks[k]];
+      storage.assign(group.sizes[k], 0.0);
+      tangent_blocks.push_back(storage.data());
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(group.H);
+    const Eigen::VectorXd& lambda = eigen.eigenvalues();
+    const double floor = 1e-14 * std::max(0.0, lambda.maxCoeff());
+    int rank = 0;
+    for (int k = 0; k < lambda.size(); ++k) rank += lambda[k] > floor ? 1 : 0;
+    if (rank == 0) continue;
+    Eigen::MatrixXd R(rank, group.H.cols());
+    int row = 0;
+    for (int k = 0; k < lambda.size(); ++k) {
+      if (lambda[k] <= floor) continue;
+      R.row(row++) = std::sqrt(lambda[k]) * eigen.eigenvectors().col(k).transpose();
+    }
+    compressed_->AddResidualBlock(
+        new LinearCostFunction(std::move(R), group.sizes), nullptr, tangent_blocks);
+  }
+}
+
+const double* CompressedInformation::TangentBlock(const double* block) const {
+  const auto it = tangent_blocks_.find(block);
+  return it == tangent_blocks_.end() ? nullptr : it->second.data();
+}
+
+Eigen::SparseMatrix<double> CompressedInformation::Assemble(
+    const std::map<const double*, int>& offsets, int size) const {
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (const auto& [key, group] : groups_) {
+    for (size_t a = 0; a < group.blocks.size(); ++a) {
+      const int row0 = offsets.at(group.blocks[a]);
+      for (size_t b = 0; b < group.blocks.size(); ++b) {
+        const int col0 = offsets.at(group.blocks[b]);
+        for (int r = 0; r < group.sizes[a]; ++r) {
+          for (int c = 0; c < group.sizes[b]; ++c) {
+            triplets.emplace_back(
+                row0 + r, col0 + c, group.H(group.offsets[a] + r, group.offsets[b] + c));
+          }
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> H(size, size);
+  H.setFromTriplets(triplets.begin(), triplets.end());  // sums duplicates
+  return H;
+}
+
+bool CompressedInformation::SchurCovariance(const std::vector<const double*>& requested,
+                                            Eigen::MatrixXd* covariance,
+                                            Eigen::MatrixXd* robust,
+                                            const std::map<int, double>& label_factors,
+                                            Eigen::MatrixXd* noise_scaled) {
+  std::map<const double*, int> wanted_offsets;
+  int num_wanted = 0;
+  for (const double* block : requested) {
+    const auto size = block_sizes_.find(block);
+    if (size == block_sizes_.end() || wanted_offsets.count(block) != 0) return false;
+    wanted_offsets[block] = num_wanted;
+    num_wanted += size->second;
+  }
+  // Nuisance blocks first (in the order they were met), then the wanted ones.
+  std::map<const double*, int> offsets;
+  int num_nuisance = 0;
+  for (const auto& [key, group] : groups_) {
+    for (size_t k = 0; k < group.blocks.size(); ++k) {
+      const double* block = group.blocks[k];
+      if (wanted_offsets.count(block) != 0) continue;
+      if (offsets.emplace(block, num_nuisance).second) num_nuisance += group.sizes[k];
+    }
+  }
+  for (const auto& [block, offset] : wanted_offsets) offsets[block] = num_nuisance + offset;
+  const int size = num_nuisance + num_wanted;
+  const Eigen::SparseMatrix<double> H = Assemble(offsets, size);
+  const int na = num_nuisance;
+  Eigen::MatrixXd schur = Eigen::MatrixXd(H.bottomRightCorner(num_wanted, num_wanted));
+  Eigen::MatrixXd X;  // H_aa^-1 H_ac
+  if (na > 0) {
+    const Eigen::SparseMatrix<double> H_aa = H.topLeftCorner(na, na);
+    const Eigen::MatrixXd H_ac = Eigen::MatrixXd(H.topRightCorner(na, num_wanted));
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H_aa);
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0.0)) return false;
+    X = ldlt.solve(H_ac);
+    if (ldlt.info() != Eigen::Success || !X.allFinite()) return false;
+    schur -= H_ac.transpose() * X;
+  }
+  // Inverse through the eigen-decomposition of the diagonally scaled complement: refuses one
+  // that is numerically singular (a parameter the data does not determine).
+  const Eigen::VectorXd scale = schur.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd scaled = scale.asDiagonal() * schur * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
+  const Eigen::VectorXd lambda = eigen.eigenvalues();
+  if (!(lambda.minCoeff() > kMinScaledEigenvalue * lambda.maxCoeff())) return false;
+  *covariance = scale.asDiagonal() *
+                (eigen.eigenvectors() * lambda.cwiseInverse().asDiagonal() *
+                 eigen.eigenvectors().transpose()) *
+                scale.asDiagonal();
+  if (robust != nullptr && cluster_gradients_.size() >= 2) {
+    // (H^-1 g)_c = Cov(c) (g_c - X^T g_a) for each cluster's gradient g (block elimination).
+    const double clusters = static_cast<double>(cluster_gradients_.size());
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(num_wanted, num_wanted);
+    for (const auto& [cluster, gradient] : cluster_gradients_) {
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(size);
+      for (const auto& [block, g_block] : gradient) {
+        const auto offset = offsets.find(block);
+        if (offset != offsets.end()) g.segment(offset->second, g_block.size()) += g_block;
+      }
+      Eigen::VectorXd v = g.tail(num_wanted);
+      if (na > 0) v -= X.transpose() * g.head(na);
+      const Eigen::VectorXd x = *covariance * v;
+      meat += x * x.transpose();
+    }
+    *robust = clusters / (clusters - 1.0) * meat;  // small-sample correction G / (G - 1)
+  }
+  if (noise_scaled != nullptr && !label_factors.empty()) {
+    // T's rows of a block: -X's rows for a nuisance block, the identity's for a wanted one.
+    auto T_rows = [&](const double* block, int rows) {
+      const int offset = offsets.at(block);
+      if (offset >= na) {
+        Eigen::MatrixXd identity_rows = Eigen::MatrixXd::Zero(rows, num_wanted);
+        identity_rows.middleCols(offset - na, rows).setIdentity();
+        return identity_rows;
+      }
+      return Eigen::MatrixXd(-X.middleRows(offset, rows));
+    };
+    Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(num_wanted, num_wanted);
+    for (const auto& [key, group] : groups_) {
+      const auto factor = label_factors.find(key.first);
+      const double f = factor == label_factors.end() ? 1.0 : factor->second;
+      Eigen::MatrixXd T_g(group.H.rows(), num_wanted);
+      for (size_t k = 0; k < group.blocks.size(); ++k) {
+        T_g.middleRows(group.offsets[k], group.sizes[k]) = T_rows(group.blocks[k], group.sizes[k]);
+      }
+      Q += f * T_g.transpose() * group.H * T_g;
+    }
+    *noise_scaled = *covariance * Q * *covariance;
+  }
+  groups_.clear();
+  return covariance->allFinite();
+}
+
+bool CompressedInformation::LabelTraces(int probes, std::map<int, double>* traces) const {
+  std::map<const double*, int> offsets;
+  int size = 0;
+  for (const auto& [key, group] : groups_) {
+    for (size_t k = 0; k < group.blocks.size(); ++k) {
+      if (offsets.emplace(group.blocks[k], size).second) size += group.sizes[k];
+    }
+  }
+  traces->clear();
+  for (const auto& [label, rows] : num_residuals_) (*traces)[label] = 0.0;
+  if (size == 0 || probes < 1) return size == 0;
+  const Eigen::SparseMatrix<double> H = Assemble(offsets, size);
+  const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(H);
+  if (llt.info() != Eigen::Success) return false;
+  std::mt19937 random(kProbeSeed);
+  std::bernoulli_distribution coin(0.5);
+  Eigen::VectorXd z(size);
+  for (int p = 0; p < probes; ++p) {
+    for (int i = 0; i < size; ++i) z[i] = coin(random) ? 1.0 : -1.0;
+    // w = P^T L^-T z: E[w w^T] = P^T L^-T L^-1 P = H^-1 (Eigen factors P H P^T = L L^T).
+    const Eigen::VectorXd v = llt.matrixU().solve(z);
+    const Eigen::VectorXd w = llt.permutationPinv() * v;
+    if (!w.allFinite()) return false;
+    for (const auto& [key, group] : groups_) {
+      Eigen::VectorXd w_group(group.H.rows());
+      for (size_t k = 0; k < group.blocks.size(); ++k) {
+        w_group.segment(group.offsets[k], group.sizes[k]) =
+            w.segment(offsets.at(group.blocks[k]), group.sizes[k]);
+      }
+      (*traces)[key.first] += w_group.dot(group.H * w_group) / probes;
+    }
+  }
+  return true;
+}
+
+}  // namespace estimation_internal
+}  // namespace splinecal
