@@ -393,8 +393,8 @@ TEST(ComputeDrift, ZeroOnTheTruthAndExactForAKnownOffset) {
 // Measured: dv 0.015 m/s, a_still 0.037 m/s^2, dtheta 0.18 deg (0.030 m/s^2), db_a up to 0.037
 // m/s^2: window bounds 0.052-0.068 m, worst window error 0.032 m for every method; the ten
 // windows from 4.5 s on move by 0.056-0.38 m, more than their bounds, so a trajectory that stays
-// put fails, and so does one that drops the accelerometer bias (0.084 m). The rotation bound is 0.96 deg (1.4e-3 rad/s over 10
-// s, 0.18 deg), the errors 0.31-0.36 deg, the true rotation 75 deg.
+// put fails, and so does one that drops the accelerometer bias (0.084 m). The rotation bound is
+// 0.96 deg (1.4e-3 rad/s over 10 s, 0.18 deg), the errors 0.31-0.36 deg, the true rotation 75 deg.
 TEST(IntegrateImu, EurocV101EasyFirstTenSeconds) {
   const std::string dir = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy";
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");

@@ -29,8 +29,8 @@ struct StaticPhase {
   Eigen::Vector3d mean_specific_force_w = Eigen::Vector3d::Zero();
   // Mean of gyro - b_g: the ground truth's gyro bias error [rad/s].
   Eigen::Vector3d gyro_bias_error = Eigen::Vector3d::Zero();
-  double max_speed_m_s = 0.0;      // largest ground-truth |v_w|: its velocity error
-  double max_rotation_rad = 0.0;   // largest angle from the first ground-truth orientation
+  double max_speed_m_s = 0.0;     // largest ground-truth |v_w|: its velocity error
+  double max_rotation_rad = 0.0;  // largest angle from the first ground-truth orientation
   int num_imu_samples = 0;
 };
 
@@ -58,9 +58,9 @@ inline StaticPhase MeasureStaticPhase(const std::vector<ImuSample>& imu,
   for (const GroundTruthState& state : truth) {
     if (state.t_ns > end_ns) break;
     phase.max_speed_m_s = std::max(phase.max_speed_m_s, state.v_w.norm());
-    phase.max_rotation_rad = std::max(
-        phase.max_rotation_rad,
-        (R_first.inverse() * SO3d::FromQuaternion(state.q_w_s)).Log().norm());
+    phase.max_rotation_rad =
+        std::max(phase.max_rotation_rad,
+                 (R_first.inverse() * SO3d::FromQuaternion(state.q_w_s)).Log().norm());
   }
   return phase;
 }
