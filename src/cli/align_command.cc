@@ -104,11 +104,13 @@ int RunAlign() {
   output.Commit();
 
   const Eigen::Vector3d g_w = result.R_w_c0 * result.gravity_c0;
+  for (const std::string& warning : result.warnings) std::printf("warning: %s\n", warning.c_str());
   std::printf(
-      "scale %.9g\ngravity_c0 [%.9f %.9f %.9f] m/s^2 (world: [%.3g %.3g %.6f])\n"
+      "scale %.9g (std %.3g)\ngravity_c0 [%.9f %.9f %.9f] m/s^2 (world: [%.3g %.3g %.6f])\n"
       "gyro_bias [%.9f %.9f %.9f] rad/s\nwrote %s/result.yaml and aligned_poses.csv "
       "(%d frames)\n",
       result.scale,
+      result.scale_std,
       result.gravity_c0.x(),
       result.gravity_c0.y(),
       result.gravity_c0.z(),

@@ -25,11 +25,17 @@
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/report/calibrate_report.h"
+#include "camera_selection.h"
 
 DEFINE_string(observations,
               "",
               "Detected points, observations.csv: #t_ns,cam_id,point_id,u,v (frame stamp in the "
               "camera clock [ns], pixel [px]) [path]");
+DEFINE_string(cameras,
+              "",
+              "Calibrate only these cameras of the camchain, comma-separated indices in "
+              "increasing order (e.g. 0,2); the output camchain numbers them cam0, cam1, ... in "
+              "this order. Default: all");
 DEFINE_bool(rolling_shutter,
             false,
             "Estimate each camera's line_delay [s/row] (rolling shutter); without it the "
@@ -95,6 +101,10 @@ CalibrateInputs ReadCalibrateInputs() {
   }
   in.observations = ReadObservationsCsv(observations_path);
   CheckCameraIds(in.observations, in.camchain, observations_path, camchain_path);
+  const std::vector<int> selection =
+      ParseCameraSelection(FLAGS_cameras, static_cast<int>(in.camchain.size()));
+  SelectCameras(selection, &in.camchain, &in.observations);
+  CheckEveryCameraObserved(in.observations, in.camchain, selection, observations_path);
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
   if (!FLAGS_initial_poses.empty()) in.initial_poses = ReadPoses(FLAGS_initial_poses);
   return in;
@@ -156,7 +166,7 @@ Command CalibrateCommand() {
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
           "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE]\n"
-          "    [--initial-poses FILE] [--imu-yaml FILE] [--rolling-shutter] [--no-time-offset]\n"
+          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--rolling-shutter] [--no-time-offset]\n"
           "    [--knot-spacing S] [--pixel-sigma PX] [--huber PX] [--min-corners N]\n"
           "    [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s] [--threads N]\n"
           "    --out DIR",
@@ -178,6 +188,7 @@ Command CalibrateCommand() {
            {"target",
             "Calibration target: Kalibr aprilgrid/checkerboard YAML or target_type: "
             "points [path]; point ids not in it are natural landmarks"},
+           {"cameras", ""},
            {"initial_poses", ""},
            {"imu_yaml",
             "IMU noise densities, Kalibr imu.yaml [path]; weights the IMU residuals "

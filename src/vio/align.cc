@@ -78,12 +78,16 @@ AlignmentProblem::AlignmentProblem(const std::vector<ImuSample>& imu,
 
 NormalEquations AlignmentProblem::Build(
     const Eigen::Vector3d& gravity_per_u,
-    const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>& gravity_basis) const {
+    const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>& gravity_basis,
+    bool with_accel_bias) const {
   const int n = num_frames();
   const int m_g = static_cast<int>(gravity_basis.cols());
-  const int m = m_g + 1;  // gravity coordinates, then u = 1 / s
+  const int m_b = with_accel_bias ? 3 : 0;
+  const int m = m_g + m_b + 1;  // gravity coordinates, accel bias b'_a, then u = 1 / s
+  const int col_u = 6 + m - 1;
   NormalEquations eq;
   eq.m = m;
+  eq.num_rows = 6 * (n - 1);
   eq.D.assign(n, Eigen::Matrix3d::Zero());
   eq.C.assign(n - 1, Eigen::Matrix3d::Zero());
   eq.H_vy.assign(n, NormalEquations::Matrix3Y::Zero(3, m));
@@ -93,7 +97,8 @@ NormalEquations AlignmentProblem::Build(
 
   const SO3d& R_c_s = T_cam_imu_.so3();
   const Eigen::Vector3d& t_c_s = T_cam_imu_.translation();
-  using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 10>;
+  constexpr int kMaxCols = 6 + NormalEquations::kMaxM;
+  using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, kMaxCols>;
   for (int k = 0; k + 1 < n; ++k) {
     const AlignmentFrame& f0 = frames_[k];
     const AlignmentFrame& f1 = frames_[k + 1];
@@ -106,25 +111,32 @@ NormalEquations AlignmentProblem::Build(
 
     // Residual r = J x - b in camera units, x = (v'_k, v'_k+1, y_g, u) (align.h, step 3), with
     // g' = gravity_per_u u + gravity_basis y_g:
-    //   r_p = Rt (v'_k T + g' T^2/2 - u dl) + u dp - Rt dp_bar
-    //   r_v = Rt (v'_k+1 - v'_k - g' T) - u dv
+    //   r_p = Rt (v'_k T + g' T^2/2 - u dl) + u dp - Rt dp_bar [+ J_dp_ba b'_a]
+    //   r_v = Rt (v'_k+1 - v'_k - g' T) - u dv                   [- J_dv_ba b'_a]
+    // (u dp(b_a + db) ~ u dp + J_dp_ba u db, preintegration.h; b'_a = u db is linear.)
     const Eigen::Vector3d g_u_rot = Rt * gravity_per_u;
     const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3> basis_rot = Rt * gravity_basis;
     Jacobian J = Jacobian::Zero(6, 6 + m);
     J.block<3, 3>(0, 0) = T * Rt;
     J.block(0, 6, 3, m_g) = (0.5 * T * T) * basis_rot;
-    J.block<3, 1>(0, 6 + m_g) = 0.5 * T * T * g_u_rot - Rt * delta_lever + pre.delta_p;
+    J.block<3, 1>(0, col_u) = 0.5 * T * T * g_u_rot - Rt * delta_lever + pre.delta_p;
     J.block<3, 3>(3, 0) = -Rt;
     J.block<3, 3>(3, 3) = Rt;
     J.block(3, 6, 3, m_g) = -T * basis_rot;
-    J.block<3, 1>(3, 6 + m_g) = -T * g_u_rot - pre.delta_v;
+    J.block<3, 1>(3, col_u) = -T * g_u_rot - pre.delta_v;
+    if (with_accel_bias) {
+      J.block<3, 3>(0, 6 + m_g) = pre.J_dp_ba;
+      J.block<3, 3>(3, 6 + m_g) = -pre.J_dv_ba;
+    }
     Eigen::Matrix<double, 6, 1> b;
     b.head<3>() = Rt * delta_p_bar;
     b.tail<3>().setZero();
 
-    const Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 10, 6> JtW = J.transpose() * information_[k];
-    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 10, 10> H = JtW * J;
-    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 10, 1> g = JtW * b;
+    const Eigen::Matrix<double, Eigen::Dynamic, 6, 0, kMaxCols, 6> JtW =
+        J.transpose() * information_[k];
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCols, kMaxCols> H = JtW * J;
+    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCols, 1> g = JtW * b;
+    eq.rhs_weighted_sq += b.dot(information_[k] * b);
     eq.D[k] += H.block<3, 3>(0, 0);
     eq.D[k + 1] += H.block<3, 3>(3, 3);
     eq.C[k] += H.block<3, 3>(0, 3);
@@ -149,11 +161,16 @@ void NormalEquations::AccumulateScaled(const NormalEquations& other, double fact
   for (size_t k = 0; k < C.size(); ++k) C[k] = factor * (C[k] + other.C[k]);
   H_yy = factor * (H_yy + other.H_yy);
   b_y = factor * (b_y + other.b_y);
+  rhs_weighted_sq = factor * (rhs_weighted_sq + other.rhs_weighted_sq);
+  num_rows += other.num_rows;
 }
 
-double NormalEquations::Solve(std::vector<Eigen::Vector3d>* v, VectorY* y) const {
+double NormalEquations::Solve(std::vector<Eigen::Vector3d>* v,
+                              VectorY* y,
+                              MatrixY* inverse_schur,
+                              double* chi2) const {
   const int n = static_cast<int>(D.size());
-  using Matrix3Yb = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 5>;  // [H_vy | b_v]
+  using Matrix3Yb = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxM + 1>;  // [H_vy | b_v]
   // Block Thomas algorithm on H_vv (block tridiagonal, symmetric positive definite):
   //   P_0 = D_0,  P_k = D_k - C_k-1^T P_k-1^-1 C_k-1,   Z_k = X_k - C_k-1^T P_k-1^-1 Z_k-1
   // then Y_n-1 = P_n-1^-1 Z_n-1, Y_k = P_k^-1 (Z_k - C_k Y_k+1), so Y = H_vv^-1 [H_vy | b_v].
@@ -200,23 +217,99 @@ double NormalEquations::Solve(std::vector<Eigen::Vector3d>* v, VectorY* y) const
   *y = scaling.asDiagonal() * y_hat;
   v->resize(n);
   for (int k = 0; k < n; ++k) (*v)[k] = Y[k].col(m) - Y[k].leftCols(m) * (*y);
+  if (inverse_schur != nullptr) {
+    // S^-1 = D^-1/2 S_hat^-1 D^-1/2, from the eigen-decomposition already at hand.
+    const MatrixY S_hat_inverse = eigen.eigenvectors() *
+                                  eigen.eigenvalues().cwiseInverse().asDiagonal() *
+                                  eigen.eigenvectors().transpose();
+    *inverse_schur = scaling.asDiagonal() * S_hat_inverse * scaling.asDiagonal();
+  }
+  if (chi2 != nullptr) {
+    // r^T W r = b^T W b - 2 x^T g + x^T H x = b^T W b - x^T g at H x = g. Cancellation leaves
+    // rounding-sized negatives on noise-free data: clamp.
+    double x_dot_g = y->dot(b_y);
+    for (int k = 0; k < n; ++k) x_dot_g += (*v)[k].dot(b_v[k]);
+    *chi2 = std::max(0.0, rhs_weighted_sq - x_dot_g);
+  }
   return std::sqrt(lambda_max / lambda_min);
 }
 
-AlignmentSolution AlignmentProblem::SolveFreeGravity() const {
-  AlignmentSolution solution;
-  const NormalEquations eq = Build(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());
+namespace {
+
+// Solves eq and fills the scale, the velocities and the uncertainty of equation (2) in align.h.
+// Returns y (u last), the covariance of y with the residual-estimated noise in *covariance_y;
+// an empty y when the system is singular.
+NormalEquations::VectorY SolveWithUncertainty(const NormalEquations& eq,
+                                              AlignmentSolution* solution,
+                                              NormalEquations::MatrixY* covariance_y) {
   std::vector<Eigen::Vector3d> v_prime;
   NormalEquations::VectorY y;
-  solution.condition_number = eq.Solve(&v_prime, &y);
+  NormalEquations::MatrixY inverse_schur;
+  double chi2 = 0.0;
+  solution->condition_number = eq.Solve(&v_prime, &y, &inverse_schur, &chi2);
+  const int m = eq.m;
+  if (!std::isfinite(solution->condition_number) || !(y(m - 1) != 0.0)) {
+    solution->condition_number = kInfinity;
+    return NormalEquations::VectorY();
+  }
+  // x' = x / s: s = 1 / u, v = v' / u.
+  const double u = y(m - 1);
+  solution->scale = 1.0 / u;
+  for (size_t k = 0; k < v_prime.size(); ++k) solution->v_c0[k] = v_prime[k] / u;
+  // Equation (2): the residuals are in camera units, r = r_metric / s, weighted with the metric
+  // information W: chi2 = chi2_metric / s^2. The variance factor chi2 / dof then scales S^-1
+  // to the covariance of y, and sqrt(chi2_metric / dof) compares the residuals with the
+  // assumed noise. s = 1/u: sigma_s = sigma_u / u^2 (first order).
+  const int dof = eq.num_rows - eq.num_unknowns();
+  if (dof <= 0) {
+    solution->scale_std = kInfinity;
+    solution->residual_noise_ratio = kInfinity;
+    *covariance_y = NormalEquations::MatrixY::Constant(m, m, kInfinity);
+    return y;
+  }
+  const double variance_factor = chi2 / dof;
+  *covariance_y = variance_factor * inverse_schur;
+  solution->scale_std = std::sqrt(std::max(0.0, (*covariance_y)(m - 1, m - 1))) / (u * u);
+  solution->residual_noise_ratio = std::sqrt(variance_factor) * std::abs(solution->scale);
+  return y;
+}
+
+}  // namespace
+
+AlignmentSolution AlignmentProblem::SolveFreeGravity() const {
+  AlignmentSolution solution;
   solution.iterations = 1;
   solution.v_c0.assign(frames_.size(), Eigen::Vector3d::Zero());
-  if (!std::isfinite(solution.condition_number)) return solution;
-  // x' = x / s: s = 1 / u, g = g' / u, v = v' / u.
-  const double u = y(3);
-  solution.scale = 1.0 / u;
+  NormalEquations::MatrixY covariance_y;
+  const NormalEquations::VectorY y = SolveWithUncertainty(
+      Build(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()), &solution, &covariance_y);
+  if (y.size() == 0) return solution;
+  solution.gravity_c0 = y.head<3>() / y(3);  // g = g' / u
+  solution.converged = true;
+  return solution;
+}
+
+AlignmentSolution AlignmentProblem::SolveFreeGravityWithAccelBias() const {
+  AlignmentSolution solution;
+  solution.iterations = 1;
+  solution.v_c0.assign(frames_.size(), Eigen::Vector3d::Zero());
+  NormalEquations::MatrixY covariance_y;
+  const NormalEquations::VectorY y =
+      SolveWithUncertainty(Build(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), true),
+                           &solution,
+                           &covariance_y);
+  if (y.size() == 0) return solution;
+  // y = (g', b'_a, u): g = g' / u, db_a = b'_a / u; its covariance to first order through
+  // d(b'/u) = db' / u - b' du / u^2.
+  const double u = y(6);
   solution.gravity_c0 = y.head<3>() / u;
-  for (size_t k = 0; k < v_prime.size(); ++k) solution.v_c0[k] = v_prime[k] / u;
+  const Eigen::Vector3d b_prime = y.segment<3>(3);
+  solution.accel_bias = preintegrations_.front().accel_bias + b_prime / u;
+  Eigen::Matrix<double, 3, 4> J_b;
+  J_b << Eigen::Matrix3d::Identity() / u, -b_prime / (u * u);
+  const Eigen::Matrix4d covariance_bu = covariance_y.bottomRightCorner(4, 4);
+  solution.accel_bias_std =
+      (J_b * covariance_bu * J_b.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
   solution.converged = true;
   return solution;
 }
@@ -231,26 +324,21 @@ AlignmentSolution AlignmentProblem::RefineGravity(const AlignmentSolution& initi
   Eigen::Vector3d direction = initial.gravity_c0.normalized();
   double u0 = 1.0 / initial.scale;
   double previous_step = kInfinity;
-  std::vector<Eigen::Vector3d> v_prime;
   for (int iteration = 1; iteration <= max_iterations; ++iteration) {
     // Rebuild the rows at the current (d, u0) [seed001]: g' = u G Retract(d, w)
     //   ~ G d u + G u0 B(d) w   (w in radians; first order in w and in u - u0).
+    // The last iteration's uncertainty is the solution's (its step is below the tolerance).
     const Eigen::Matrix<double, 3, 2> basis = GravityTangentBasis(direction);
-    const NormalEquations eq = Build(gravity_norm * direction, (gravity_norm * u0) * basis);
-    NormalEquations::VectorY y;
-    solution.condition_number = eq.Solve(&v_prime, &y);
+    NormalEquations::MatrixY covariance_y;
+    const NormalEquations::VectorY y = SolveWithUncertainty(
+        Build(gravity_norm * direction, (gravity_norm * u0) * basis), &solution, &covariance_y);
     solution.iterations = iteration;
-    if (!std::isfinite(solution.condition_number) || !(y(2) != 0.0)) {
-      solution.condition_number = kInfinity;
-      break;
-    }
+    if (y.size() == 0) break;
     const double u = y(2);
     // The tangent step the solve found is G u0 B w, the model's is G u B w: rescale.
     const Eigen::Vector2d w = y.head<2>() * (u0 / u);
     direction = RetractGravity(direction, w);
     u0 = u;
-    solution.scale = 1.0 / u;
-    for (size_t k = 0; k < v_prime.size(); ++k) solution.v_c0[k] = v_prime[k] / u;
     const double step = w.norm();
     if (Converged(step, previous_step, tolerance_rad)) {
       solution.converged = true;
@@ -395,6 +483,82 @@ SO3d GravityAlignedRotation(const Eigen::Vector3d& gravity_c0) {
 // ---------------------------------------------------------------------------------------------
 // The whole alignment
 
+namespace {
+
+std::string FormatVector(const Eigen::Vector3d& v) {
+  return StringPrintf("%.3g,%.3g,%.3g", v.x(), v.y(), v.z());
+}
+
+// Step 5's uncertainty checks (align.h, AlignOptions). Returns false with result->message set
+// when the refined scale is not determined or biased; adds a warning for a smaller bias.
+bool CheckUncertainty(const AlignmentSolution& free,
+                      const AlignmentSolution& refined,
+                      const AlignmentSolution& with_bias,
+                      const AlignOptions& options,
+                      AlignResult* result) {
+  const double s = refined.scale;
+  const double relative_std = refined.scale_std / s;
+  // What the bias-estimating solve says, for the messages: the user can pass that bias.
+  const std::string bias_hint =
+      with_bias.scale > 0.0
+          ? StringPrintf("; with an estimated accelerometer bias (%s m/s^2) the free scale is "
+                         "%.4g +- %.2g: pass a bias with --accel-bias X,Y,Z (that estimate, or "
+                         "one from `splinecal fit` or `calibrate`)",
+                         FormatVector(with_bias.accel_bias).c_str(),
+                         with_bias.scale,
+                         with_bias.scale_std)
+          : std::string();
+  if (!(relative_std <= options.max_scale_relative_std)) {
+    result->message = StringPrintf(
+        "the scale is not determined: %.4g with a standard deviation of %.3g (%.3g%%, allowed "
+        "%.3g%%); the motion does not excite it enough (longer windows with changes of "
+        "acceleration help)",
+        s,
+        refined.scale_std,
+        100.0 * relative_std,
+        100.0 * options.max_scale_relative_std);
+    return false;
+  }
+  if (!(refined.residual_noise_ratio <= options.max_residual_noise_ratio)) {
+    result->message =
+        StringPrintf(
+            "the residuals are %.3g times the assumed noise (allowed %.3g): the camera poses "
+            "and the IMU disagree beyond noise (an accelerometer bias, which is not modelled, "
+            "--camera-position-std too small, a wrong T_cam_imu or time offset); scale %.4g",
+            refined.residual_noise_ratio,
+            options.max_residual_noise_ratio,
+            s) +
+        bias_hint;
+    return false;
+  }
+  // The bias check: imposing the known norm moves an unmodelled accelerometer bias along
+  // gravity into the scale (docs/align.md, "Limits"), so the refined scale departs from the
+  // free one. The two variances are added (conservative: the estimates share data, so the
+  // difference's variance is smaller); a shift within max_scale_relative_std only warns.
+  const double shift = s - free.scale;
+  const double shift_std = std::hypot(refined.scale_std, free.scale_std);
+  if (std::abs(shift) <= options.max_accel_bias_scale_shift_sigmas * shift_std) return true;
+  const std::string what = StringPrintf(
+      "imposing the known gravity norm moves the scale from %.4g +- %.2g (free gravity, norm "
+      "%.4g m/s^2) to %.4g +- %.2g (%.3g standard deviations, %.3g%%): an accelerometer bias "
+      "along gravity, which is not modelled, goes into the scale",
+      free.scale,
+      free.scale_std,
+      free.gravity_c0.norm(),
+      s,
+      refined.scale_std,
+      std::abs(shift) / shift_std,
+      100.0 * std::abs(shift) / s);
+  if (std::abs(shift) / s > options.max_scale_relative_std) {
+    result->message = "the scale is biased: " + what + bias_hint;
+    return false;
+  }
+  result->warnings.push_back(what);
+  return true;
+}
+
+}  // namespace
+
 AlignResult Align(const std::vector<ImuSample>& imu,
                   const std::vector<StampedPose>& camera_poses,
                   const AlignOptions& options) {
@@ -487,6 +651,7 @@ AlignResult Align(const std::vector<ImuSample>& imu,
   const AlignmentSolution free = problem.SolveFreeGravity();
   result.free_gravity_c0 = free.gravity_c0;
   result.free_scale = free.scale;
+  result.free_scale_std = free.scale_std;
   result.free_condition_number = free.condition_number;
   const std::string excitation_advice =
       "the motion does not determine scale and gravity (it needs changes of acceleration and "
@@ -543,6 +708,16 @@ AlignResult Align(const std::vector<ImuSample>& imu,
     return result;
   }
 
+  // Step 5: the uncertainty checks (align.h, equation (2)).
+  result.scale_std = refined.scale_std;
+  result.residual_noise_ratio = refined.residual_noise_ratio;
+  const AlignmentSolution with_bias = problem.SolveFreeGravityWithAccelBias();
+  result.scale_with_accel_bias = with_bias.scale;
+  result.scale_with_accel_bias_std = with_bias.scale_std;
+  result.accel_bias_estimate = with_bias.accel_bias;
+  result.accel_bias_estimate_std = with_bias.accel_bias_std;
+  if (!CheckUncertainty(free, refined, with_bias, options, &result)) return result;
+
   // Step 6: the gravity-aligned world.
   result.scale = refined.scale;
   result.gravity_c0 = refined.gravity_c0;
@@ -570,6 +745,7 @@ AlignResult Align(const std::vector<ImuSample>& imu,
       result.scale,
       result.iterations,
       result.condition_number);
+  result.message += StringPrintf(", scale std %.2g", result.scale_std);
   if (result.num_ignored_frames > 0) {
     result.message += StringPrintf("; %d camera poses outside the IMU data were ignored",
                                    result.num_ignored_frames);

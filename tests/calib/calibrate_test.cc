@@ -10,11 +10,14 @@
 #include "calib/calibrate_test_checks.h"
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/error.h"
+#include "splinecal/imu/noise.h"
 #include "splinecal/units.h"
+#include "testing/rotations.h"
 
 namespace splinecal {
 namespace {
 
+using ::testing::Contains;
 using ::testing::HasSubstr;
 using namespace ::splinecal::testing;  // the calibrate checks (calib/calibrate_test_checks.h)
 
@@ -34,7 +37,15 @@ TEST(Calibrate, RollingShutterRoundTrip) {
   // ~0.01 m/s^2 over 15 s).
   EXPECT_LT((r.gyro_bias - s.gyro_bias).norm(), 5e-4);
   EXPECT_LT((r.accel_bias - s.accel_bias).norm(), 0.05);
-  EXPECT_NEAR(r.gravity_w.norm(), 9.81, 1e-9);
+  // Gravity's direction in the target's frame (the simulator's world: T_w_t = identity); its
+  // norm is fixed by the GravityManifold. A tilt dtheta of g_w reads like a horizontal
+  // accelerometer bias g dtheta, and the simulated bias wanders by the random walk
+  // sigma_rw sqrt(T) = 3e-3 m/s^3/sqrt(Hz) sqrt(15 s) = 0.012 m/s^2 over the recording: the
+  // tolerance is that over g, 0.068 deg. Measured: 0.0048 deg.
+  const double bias_wander_m_s2 =
+      ImuNoise::Adis16448().accelerometer_random_walk * std::sqrt(o.duration_s);
+  EXPECT_LT(AngleDeg(r.gravity_w, Eigen::Vector3d(0.0, 0.0, -kDefaultGravity)),
+            bias_wander_m_s2 / kDefaultGravity * kRadToDeg);
   EXPECT_FALSE(r.reprojection_samples.empty());
   EXPECT_FALSE(r.imu_samples.empty());
 }
@@ -130,16 +141,19 @@ TEST_F(CalibrateRefuses, LandmarksWithoutAnInitialGuess) {
 
 TEST_F(CalibrateRefuses, ATargetOfTheWrongSizeIsNotAConfidentAnswer) {
   // Corner ids match but the geometry does not (tags twice as large): the trajectory is then
-  // twice as large as the IMU's; the result must show it (an error, or reprojection errors far
-  // above the 0.5 px noise), never a clean-looking calibration.
+  // twice as large as the IMU's. Calibrate has no refusal for this (it used to be accepted as
+  // "any splinecal::Error"); it returns, and the result must show the mismatch, never look like
+  // a clean calibration: the initial fit's warning that the camera poses disagree with the IMU
+  // (measured 11x the assumed position noise), and reprojection errors far above those of clean
+  // data (0.5 px noise per coordinate gives an RMS of 0.5 sqrt(2) = 0.71 px,
+  // Calibrate.RollingShutterRoundTrip; measured here 12.1 px): more than 5x that, 3.5 px.
   const CalibrationTarget big = MakeAprilGrid(6, 6, 0.176, 0.3);
-  try {
-    const CalibrationResult r =
-        Calibrate(scenario_->imu, scenario_->observations, scenario_->start, &big, FastOptions());
-    EXPECT_GT(r.reprojection_rms_px, 2.0);
-  } catch (const Error& e) {
-    SUCCEED() << e.what();
-  }
+  CalibrationResult r;
+  ASSERT_NO_THROW(
+      r = Calibrate(
+          scenario_->imu, scenario_->observations, scenario_->start, &big, FastOptions()));
+  EXPECT_GT(r.reprojection_rms_px, 5.0 * 0.5 * std::sqrt(2.0));
+  EXPECT_THAT(r.warnings, Contains(HasSubstr("initial guess: pose position residuals are")));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // (../shared/data/euroc_v1_01_easy; skipped when absent).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -9,7 +10,10 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/poses.h"
+#include "splinecal/units.h"
+#include "testing/rotations.h"
 #include "testing/shared_data.h"
+#include "testing/static_phase.h"
 
 namespace splinecal {
 namespace {
@@ -42,7 +46,22 @@ TEST(FitEuroc, V101EasyBiasesMatchTheGroundTruth) {
   const FitResult result = Fit(imu, poses, options);
   EXPECT_LE((result.gyro_bias - gyro_bias).cwiseAbs().maxCoeff(), kGyroBiasTolerance);
   EXPECT_LE((result.accel_bias - accel_bias).cwiseAbs().maxCoeff(), kAccelBiasTolerance);
-  EXPECT_NEAR(result.gravity_w.norm(), 9.81, 1e-9);
+  // Gravity's direction (its norm is fixed by the GravityManifold) against an estimate that does
+  // not use the fit: -R_w_s (accel - b_a) averaged while the MAV sits still, with the ground
+  // truth's orientation and bias (testing/static_phase.h). That estimate rotates the readings
+  // with ground-truth orientations that wander by up to 0.18 deg while still; the accelerometer's
+  // white noise averaged over 4 s (2e-3 / sqrt(4) m/s^2, 0.006 deg) and the fit's own reported
+  // std (0.002 deg, 3 of them) are small beside it. Measured: 0.054 deg (the ground truth's -z
+  // axis is 0.21 deg from the still estimate, 0.16 deg from the fit).
+  const testing::StaticPhase still =
+      testing::MeasureStaticPhase(imu, truth, testing::kV101StaticDurationNs);
+  const double gravity_error_deg =
+      testing::AngleDeg(result.gravity_w, -still.mean_specific_force_w);
+  std::printf("gravity direction: %.4f deg from the still estimate (std %.4f deg)\n",
+              gravity_error_deg,
+              result.gravity_direction_std_deg);
+  EXPECT_LT(gravity_error_deg,
+            still.max_rotation_rad * kRadToDeg + 3.0 * result.gravity_direction_std_deg);
   // The MAV's vibration is real motion the spline cannot follow: residuals well above the white
   // noise, and a warning that says so.
   EXPECT_GT(result.residual_rms.accel_m_s2, 3.0 * result.noise_std.accel_m_s2);

@@ -11,10 +11,17 @@
 #include <vector>
 
 #include "calib/align_test_data.h"
+#include "splinecal/camera/camchain.h"
+#include "splinecal/camera/observations.h"
+#include "splinecal/camera/pnp.h"
+#include "splinecal/camera/target.h"
 #include "splinecal/error.h"
 #include "splinecal/estimation/gravity_tangent.h"
+#include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/io/observations_csv.h"
 #include "splinecal/io/poses.h"
+#include "splinecal/io/target_yaml.h"
 #include "splinecal/io/yaml_document.h"
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/string_printf.h"
@@ -271,7 +278,8 @@ TEST(Align, RealEurocGroundTruthAsCamera) {
   const std::vector<ImuSample> imu = ReadEurocImu(dir + "imu0.csv");
   const std::vector<GroundTruthState> truth = ReadEurocGroundTruth(dir + "groundtruth.csv");
   constexpr double kScale = 0.37;
-  for (double start_s : {15.0, 60.0, 100.0}) {
+  int refused = 0;
+  for (double start_s : {5.0, 15.0, 25.0, 35.0, 45.0, 60.0, 70.0, 80.0, 90.0, 100.0}) {
     const int64_t t0 = truth.front().t_ns + static_cast<int64_t>(start_s * 1e9);
     const int64_t t1 = t0 + 10000000000;
     std::vector<StampedPose> poses;
@@ -299,13 +307,89 @@ TEST(Align, RealEurocGroundTruthAsCamera) {
     options.camera_noise.rotation_std_rad = 0.001;
     const AlignResult result = Align(imu, poses, options);
     SCOPED_TRACE(start_s);
-    ASSERT_TRUE(result.success) << result.message;
-    // Measured: gravity 0.16..0.25 deg, scale within 4..10%, gyro bias within 1.1e-3 rad/s
-    // of the dataset's own estimate. Bounds with ~2x margin.
-    EXPECT_LT(AngleDeg(result.gravity_c0, gravity_c0), 0.8);
-    EXPECT_NEAR(result.scale / kScale, 1.0, 0.2);
+    std::cerr << "V1_01 " << start_s << " s: scale / true " << result.scale / kScale << " (free "
+              << result.free_scale / kScale << "): " << result.message << "\n";
+    // Windows where the known norm moves the scale by more than 5% are refused (measured: 15 s,
+    // 7.8% shift, refined scale 9.8% off; 90 s, 7.3%, 6.3% off). Accepted windows measured
+    // 0.4..4.6% off (the standard deviations, 0.5..1.4%, describe noise, not this bias): bound
+    // 6%. Gravity 0.16..0.6 deg, gyro bias within 1.1e-3 rad/s of the dataset's: ~2x margin.
+    if (!result.success) {
+      EXPECT_THAT(result.message, HasSubstr("the scale is biased: imposing the known gravity norm"));
+      ++refused;
+      continue;
+    }
+    EXPECT_LT(AngleDeg(result.gravity_c0, gravity_c0), 1.2);
+    EXPECT_NEAR(result.scale / kScale, 1.0, 0.06);
     EXPECT_LT((result.gyro_bias - gyro_bias).norm(), 3e-3);
   }
+  EXPECT_LE(refused, 3);
+}
+
+// A well-conditioned simulated case with the noise the weights assume (10 s figure eight, camera
+// 5 mm / 0.002 rad, EuRoC IMU noise): accepted, and the scale within 3 of its reported standard
+// deviations of the truth (equation (2) of align.h), for each of 20 noise draws.
+TEST(Align, NoisyWellConditionedScaleWithinReportedStd) {
+  testdata::ScenarioOptions options = DefaultOptions();
+  options.imu_noise = true;
+  options.camera_translation_std_m = 0.005;
+  options.camera_rotation_std_rad = 0.002;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    options.seed = seed;
+    const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+    const AlignResult result =
+        Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
+    SCOPED_TRACE(seed);
+    ASSERT_TRUE(result.success) << result.message;
+    EXPECT_LT(std::abs(result.scale - scenario.scale), 3.0 * result.scale_std);
+  }
+}
+
+// Real data: EuRoC imu_april (72 s), cam0's poses T_t_c from PnP on the AprilGrid with their
+// positions halved, so that the true scale is 2. The accelerometer bias (~0.15 m/s^2, REFERENCE.md)
+// is not given: the alignment used to report scale 6.42 as a success (condition number 332).
+// It must now refuse, or give a scale within 3 of its standard deviations of 2.
+TEST(Align, RealImuAprilWithoutAccelBiasIsNotASuccess) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+  const std::string dir = testing::SharedDataPath("euroc_imu_april/");
+  const std::vector<ImuSample> imu = ReadEurocImu(dir + "imu0.csv");
+  const Camchain camchain = ReadCamchainYaml(dir + "camchain_euroc.yaml");
+  const CalibrationTarget target = ReadTargetYaml(dir + "aprilgrid.yaml");
+  std::vector<StampedPose> poses;
+  for (const ObservationFrame& frame : GroupIntoFrames(ReadObservationsCsv(dir + "observations.csv"))) {
+    if (frame.cam_id != 0) continue;
+    std::vector<Eigen::Vector3d> p_t;
+    std::vector<Eigen::Vector2d> uv;
+    for (const Observation& o : frame.observations) {
+      p_t.push_back(*target.Find(o.point_id));
+      uv.push_back(o.uv);
+    }
+    const PnpResult pnp = SolvePnp(camchain[0].camera, p_t, uv);
+    if (!pnp.ok) continue;
+    const SE3d T_t_c = pnp.T_c_t.inverse();
+    StampedPose pose;
+    pose.t_ns = frame.t_ns;
+    pose.p = 0.5 * T_t_c.translation();
+    pose.q = T_t_c.so3().quaternion();
+    poses.push_back(pose);
+  }
+  ASSERT_GT(poses.size(), 1000u);
+  AlignOptions options;
+  options.T_cam_imu = camchain[0].T_cam_imu;
+  const AlignResult result = Align(imu, poses, options);
+  if (result.success) {
+    EXPECT_LT(std::abs(result.scale - 2.0), 3.0 * result.scale_std) << result.message;
+  } else {
+    EXPECT_THAT(result.message, HasSubstr("accelerometer bias"));
+  }
+  // Given the bias the alignment estimates, the scale comes out near 2.
+  options.accel_bias = result.accel_bias_estimate;
+  const AlignResult with_bias = Align(imu, poses, options);
+  // Measured: refused (residuals 6.2x the assumed noise; refined scale 6.87, free 4.33). With
+  // the bias it estimates (0.007, 0.137, 0.125 m/s^2) passed: scale 2.139 +- 0.012 with a
+  // warning (the known norm moves it 4.5 standard deviations from the free 2.068): 7% off, the
+  // bound 10%.
+  ASSERT_TRUE(with_bias.success) << with_bias.message;
+  EXPECT_NEAR(with_bias.scale, 2.0, 0.2);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -483,6 +567,9 @@ TEST(AlignCommand, WritesResultAndAlignedPoses) {
   EXPECT_LT((Eigen::Vector3d(bias[0], bias[1], bias[2]) - scenario.gyro_bias).norm(), 1e-8);
   EXPECT_EQ(yaml.Numbers("R_w_c0").size(), 4u);
   EXPECT_FALSE(yaml.Has("R_cam_imu"));
+  for (const char* key : {"scale_std", "residual_noise_ratio", "accel_bias_estimate", "warnings"}) {
+    EXPECT_TRUE(yaml.Has(key)) << key;
+  }
   EXPECT_GE(yaml.Integer("iterations"), 1);
   EXPECT_GT(yaml.Number("condition_number"), 1.0);
   const std::vector<GroundTruthState> states =

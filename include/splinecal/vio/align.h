@@ -35,8 +35,17 @@
 //      moved by w; stop when |w| < tolerance. (VINS-Mono keeps adding each iteration's rows to
 //      those linearised at older estimates: internal::RefineGravityAccumulating.)
 //   5. Acceptance checks that gate: the free system's condition number (excitation), s > 0,
-//      | |g_free| - G | small, the refinement converged with s > 0. A failed check gives
-//      success = false and a plain-words message.
+//      | |g_free| - G | small, the refinement converged with s > 0, and three checks of the
+//      refined scale's uncertainty (docs/align.md, "Uncertainty"): its standard deviation from
+//      the normal equations' covariance scaled by the residual-estimated noise,
+//          Cov(y) = chi2 / dof * S^-1,   sigma_s = s^2 sigma_u                           (2)
+//      (S the Schur complement of the camera-unit system; the u^2 between camera and metric
+//      units cancels in (2)), must be a small fraction of s; the residuals must be of the size
+//      of the assumed noise; and imposing the known norm must not move the scale away from the
+//      free solution's by more than the uncertainties allow (an unmodelled accelerometer bias
+//      along gravity does that). The accelerometer bias is also estimated, b'_a = u b_a as 3 more
+//      unknowns (linear: u dp(b_a) ~ u dp + J_dp_ba b'_a), for the messages: a value to pass.
+//      A failed check gives success = false and a plain-words message.
 //   6. R_w_c0: the yaw-free rotation taking g_c0 to (0, 0, -G); the IMU states in that world.
 //
 // Accelerometer bias: not estimated (over a short window it is nearly inseparable from gravity,
@@ -105,6 +114,20 @@ struct AlignOptions {
   // 0.1 deg) constant velocity gives 5e3..1e4, 0.1 m/s^2 of acceleration change ~700 (scale
   // within 3%), 1 m/s^2 ~70 (0.3%); 1e3 refuses motion whose scale would be off by ~10% or more.
   double max_condition_number = 1e3;
+  // The refined scale's standard deviation (2) relative to the scale must not exceed this: 5%
+  // is what an initial guess for `fit` / `calibrate` tolerates (docs/align.md, "Uncertainty").
+  double max_scale_relative_std = 0.05;
+  // sqrt(chi2 / dof) of the metric residuals, i.e. how many times the assumed noise (camera
+  // noise plus preintegrated IMU noise) the residuals are, must not exceed this. Larger means
+  // unmodelled errors (accelerometer bias, vibration, a wrong time offset or extrinsic) that
+  // the standard deviation cannot describe. Noise as assumed gives ~1.
+  double max_residual_noise_ratio = 3.0;
+  // The refined scale minus the free one (the known norm moves an unmodelled accelerometer
+  // bias along gravity into the scale, docs/align.md "Limits"): more than this many standard
+  // deviations of their difference (the two variances added, conservative as the estimates
+  // share data) is refused when the shift also exceeds max_scale_relative_std of the scale, and
+  // a warning otherwise. 3 sigma: 0.3% false alarms for Gaussian noise.
+  double max_accel_bias_scale_shift_sigmas = 3.0;
   // Hand-eye refusal thresholds (vio/hand_eye.h).
   double min_hand_eye_second_axis_ratio = 0.1;
   double min_hand_eye_second_axis_rotation_rad = 0.05;
@@ -127,6 +150,15 @@ struct AlignmentSolution {
   double condition_number = 0.0;
   int iterations = 0;
   bool converged = false;
+  // Uncertainty (align.h, step 5, equation (2)): the scale's standard deviation with the
+  // residual-estimated noise, and sqrt(chi2 / dof) of the metric residuals (1 when the noise is
+  // as assumed). 0 when the system is singular.
+  double scale_std = 0.0;
+  double residual_noise_ratio = 0.0;
+  // SolveFreeGravityWithAccelBias only: the estimated accelerometer bias [m/s^2] (the
+  // preintegration's plus the solved correction) and the standard deviation of each axis.
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias_std = Eigen::Vector3d::Zero();
 };
 
 // Steps 3-4 at a fixed gyro bias and extrinsic: the preintegrations and their weights.
@@ -143,6 +175,8 @@ class AlignmentProblem {
 
   // Step 3: velocities, free gravity (3 DoF) and scale.
   AlignmentSolution SolveFreeGravity() const;
+  // Step 5's bias check: step 3 with the accelerometer bias as 3 more unknowns.
+  AlignmentSolution SolveFreeGravityWithAccelBias() const;
   // Step 4: |g| = gravity_norm, starting from `initial` (its gravity direction and scale).
   AlignmentSolution RefineGravity(const AlignmentSolution& initial,
                                   double gravity_norm,
@@ -156,12 +190,13 @@ class AlignmentProblem {
 
   // The weighted normal equations of step 3 for the gravity model
   //   g' = gravity_per_u * u + gravity_basis * y_g
-  // (free: 0 and the identity; refinement: G d and G u0 B(d)), unknowns (v', y_g, u). Internal
-  // building block, public for internal::RefineGravityAccumulating and the tests.
+  // (free: 0 and the identity; refinement: G d and G u0 B(d)), unknowns (v', y_g, u), or
+  // (v', y_g, b'_a, u) with with_accel_bias (b'_a = u (b_a - the preintegration's b_a)).
+  // Internal building block, public for internal::RefineGravityAccumulating and the tests.
   struct NormalEquations;
-  NormalEquations Build(
-      const Eigen::Vector3d& gravity_per_u,
-      const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>& gravity_basis) const;
+  NormalEquations Build(const Eigen::Vector3d& gravity_per_u,
+                        const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>& gravity_basis,
+                        bool with_accel_bias = false) const;
 
  private:
   std::vector<AlignmentFrame> frames_;
@@ -170,11 +205,13 @@ class AlignmentProblem {
   std::vector<Eigen::Matrix<double, 6, 6>> information_;  // inverse covariance of (dp, dv)
 };
 
-// Block-tridiagonal normal equations H x = b in x = (v'_0..v'_n-1, y), y = (y_g, u), m = |y| <= 4.
+// Block-tridiagonal normal equations H x = b in x = (v'_0..v'_n-1, y), y = (y_g, [b'_a,] u),
+// m = |y| <= 7; u is always y's last entry.
 struct AlignmentProblem::NormalEquations {
-  using MatrixY = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
-  using Matrix3Y = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 4>;
-  using VectorY = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1>;
+  static constexpr int kMaxM = 7;
+  using MatrixY = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxM, kMaxM>;
+  using Matrix3Y = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxM>;
+  using VectorY = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxM, 1>;
 
   int m = 0;
   std::vector<Eigen::Matrix3d> D;  // H(v_k, v_k)
@@ -183,14 +220,22 @@ struct AlignmentProblem::NormalEquations {
   MatrixY H_yy;                    // m x m
   std::vector<Eigen::Vector3d> b_v;
   VectorY b_y;
+  double rhs_weighted_sq = 0.0;  // sum of b^T W b over the pairs (for chi2)
+  int num_rows = 0;              // 6 per pair
 
   // *this = factor * (*this + other) (same sizes): VINS-Mono's accumulation.
   void AccumulateScaled(const NormalEquations& other, double factor);
   // Solves for the velocities and y in O(n): block-tridiagonal elimination of the velocities,
   // then the m x m Schur complement S, scaled to a unit diagonal by H_yy's diagonal. Returns
   // the condition number sqrt(lambda_max / lambda_min) of the scaled S (infinity when singular;
-  // then v and y are not meaningful).
-  double Solve(std::vector<Eigen::Vector3d>* v, VectorY* y) const;
+  // then v and y are not meaningful). Optional outputs (nullptr: not wanted): S^-1, the
+  // covariance of y for the weights as given; chi2 = r^T W r at the solution
+  // (= b^T W b - x^T H x, as H x = b).
+  double Solve(std::vector<Eigen::Vector3d>* v,
+               VectorY* y,
+               MatrixY* inverse_schur = nullptr,
+               double* chi2 = nullptr) const;
+  int num_unknowns() const { return 3 * static_cast<int>(D.size()) + m; }
 };
 
 struct GyroBiasEstimate {
@@ -216,6 +261,7 @@ SO3d GravityAlignedRotation(const Eigen::Vector3d& gravity_c0);
 struct AlignResult {
   bool success = false;
   std::string message;  // plain words: why it failed, or a summary
+  std::vector<std::string> warnings;  // concerns that did not refuse the alignment
 
   double scale = 0.0;                                    // metric = scale * input positions
   Eigen::Vector3d gravity_c0 = Eigen::Vector3d::Zero();  // refined, |g| = options' g [m/s^2]
@@ -227,10 +273,20 @@ struct AlignResult {
   int gyro_bias_iterations = 0;
   // The excitation measure (AlignmentProblem::ExcitationConditionNumber), gated.
   double condition_number = 0.0;
+  // Uncertainty (step 5, gated): the refined scale's standard deviation and the residuals'
+  // size relative to the assumed noise.
+  double scale_std = 0.0;
+  double residual_noise_ratio = 0.0;
+  // The free solution with an estimated accelerometer bias (step 5's bias check).
+  double scale_with_accel_bias = 0.0;
+  double scale_with_accel_bias_std = 0.0;
+  Eigen::Vector3d accel_bias_estimate = Eigen::Vector3d::Zero();  // [m/s^2]
+  Eigen::Vector3d accel_bias_estimate_std = Eigen::Vector3d::Zero();
 
   // The free-gravity (linear) solution, for diagnostics and comparisons.
   Eigen::Vector3d free_gravity_c0 = Eigen::Vector3d::Zero();
   double free_scale = 0.0;
+  double free_scale_std = 0.0;
   double free_condition_number = 0.0;     // of the free system with the measured positions
   double refined_condition_number = 0.0;  // of the refined system with the measured positions
   double hand_eye_second_axis_ratio = 0.0;
