@@ -16,17 +16,22 @@ namespace {
 // Cameras take these in order (then repeat): distinct from the classes' colours below.
 const char* const kCameraColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b"};
 constexpr int kNumCameraColors = sizeof(kCameraColors) / sizeof(kCameraColors[0]);
-// Error-size classes, small to large (one more than kErrorClassBoundsPx): grey for the bulk,
-// then increasingly alarming colours, drawn in this order so that large errors stay on top.
-const char* const kClassColors[] = {"#c8c8c8", "#6baed6", "#fd8d3c", "#e31a1c", "#000000"};
+// Error-size classes, small to large (one more than kErrorClassBoundsPx): light colours for the
+// bulk, then increasingly alarming ones, drawn in this order so that large errors stay on top.
+const char* const kClassColors[] = {"#d9d9d9", "#9ecae1", "#fd8d3c", "#e31a1c", "#54278f"};
 constexpr int kNumClasses = sizeof(kClassColors) / sizeof(kClassColors[0]);
 static_assert(kNumClasses == sizeof(kErrorClassBoundsPx) / sizeof(kErrorClassBoundsPx[0]) + 1);
-constexpr char kVectorColor[] = "#7b3294";
+// Black and drawn last, over the light points: the vectors are what to look at.
+constexpr char kVectorColor[] = "#000000";
 // The magnification of the cell means stays within these (a mean of 1e-6 px is not worth a
 // million-fold arrow; one of 100 px is drawn shortened).
 constexpr double kMinGain = 1e-3;
 constexpr double kMaxGain = 1e3;
 constexpr double kLongestVectorCells = 0.8;
+// The gain is set by this quantile of the cells' mean errors, not by the longest one: a few cells
+// at the image border with large errors would otherwise shrink every other vector to a dot (they
+// are drawn longer than a cell instead, clipped at the plot's edge).
+constexpr double kGainQuantile = 0.9;
 
 int NumCameras(const CalibrationResult& r) {
   int n = static_cast<int>(r.cameras.size());
@@ -153,17 +158,22 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& r, 
   // One gain for all cameras, so that their vectors compare.
   std::vector<std::vector<CellMean>> cells(per_camera.size());
   std::vector<Eigen::Vector2d> sizes(per_camera.size());
-  double longest_cells = 0.0;  // the longest mean error, in cells of its camera
+  std::vector<double> lengths_cells;  // every cell's mean error, in cells of its camera
   for (size_t cam = 0; cam < per_camera.size(); ++cam) {
     sizes[cam] = ImageSize(r, static_cast<int>(cam), per_camera[cam]);
     cells[cam] = CellMeans(r, per_camera[cam], sizes[cam]);
     const double cell = sizes[cam].x() / kImageCellsAcross;
-    for (const CellMean& c : cells[cam])
-      longest_cells = std::max(longest_cells, c.error.norm() / cell);
+    for (const CellMean& c : cells[cam]) lengths_cells.push_back(c.error.norm() / cell);
   }
-  if (longest_cells > 0.0 && std::isfinite(longest_cells)) {
-    out.vector_gain =
-        std::clamp(FloorToStep(kLongestVectorCells / longest_cells), kMinGain, kMaxGain);
+  if (!lengths_cells.empty()) {
+    std::sort(lengths_cells.begin(), lengths_cells.end());
+    double reference =
+        lengths_cells[static_cast<size_t>(kGainQuantile * (lengths_cells.size() - 1))];
+    if (!(reference > 0.0)) reference = lengths_cells.back();  // most cells without a mean error
+    if (reference > 0.0 && std::isfinite(reference)) {
+      out.vector_gain =
+          std::clamp(FloorToStep(kLongestVectorCells / reference), kMinGain, kMaxGain);
+    }
   }
   for (size_t cam = 0; cam < per_camera.size(); ++cam) {
     plot::Panel& panel =
@@ -182,7 +192,7 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& r, 
       series.color = kClassColors[k];
       series.line = false;
       series.marker = plot::Marker::kCircle;
-      series.marker_size = k == 0 ? 1.0 : 1.6;
+      series.marker_size = k < 2 ? 0.9 : 1.5;
       classes.push_back(&series);
     }
     for (size_t i : plot::DecimatedIndices(per_camera[cam].size(), max_points, false)) {
@@ -194,12 +204,12 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& r, 
     // Each cell's vector from its mean pixel, the segments separated by NaN (a broken line).
     plot::Series& vectors = panel.series.emplace_back();
     vectors.color = kVectorColor;
-    vectors.line_width = 1.5;
+    vectors.line_width = 1.6;
     plot::Series& origins = panel.series.emplace_back();
     origins.color = kVectorColor;
     origins.line = false;
     origins.marker = plot::Marker::kCircle;
-    origins.marker_size = 1.5;
+    origins.marker_size = 1.3;
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     for (const CellMean& c : cells[cam]) {
       const Eigen::Vector2d tip = c.uv + out.vector_gain * c.error;
@@ -218,8 +228,8 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& r, 
   key += StringPrintf(
       " <span style=\"color:%s\">Vectors</span>: the mean error (predicted - observed) of each "
       "cell of 1/%d image width with at least %d corners, magnified x%g (from the dot at the "
-      "cell's mean corner). Noise averages out; long aligned vectors show a region the camera "
-      "model does not fit.</p>\n",
+      "cell's mean corner; the factor makes 90%% of them shorter than 0.8 cell). Noise averages "
+      "out; long aligned vectors show a region the camera model does not fit.</p>\n",
       kVectorColor,
       kImageCellsAcross,
       kMinCellObservations,

@@ -31,8 +31,8 @@ inline constexpr double kErrorClassBoundsPx[] = {0.5, 1.0, 2.0, 5.0};
 
 struct ReprojectionImageFigure {
   plot::Figure figure;
-  // The factor the cell mean errors are drawn magnified by: a 1-2-5 step chosen so that the
-  // longest one spans at most 0.8 cell (1 when every mean is 0).
+  // The factor the cell mean errors are drawn magnified by: a 1-2-5 step chosen so that 90% of
+  // them span at most 0.8 cell (the longest, when fewer than 10% are not 0; 1 when all are 0).
   double vector_gain = 1.0;
   // The key under the figure (HTML): the colours of the classes and the vectors' gain.
   std::string key_html;
