@@ -249,6 +249,7 @@ std::string CalibrateReportHtml(const CalibrationResult& r,
                               {"camchain", inputs.camchain_path},
                               {"target", inputs.target_path},
                               {"initial poses", inputs.initial_poses_path}}));
+  page.Append(ImuNoiseTableHtml(options.model.noise, inputs.imu_yaml_path));
   page.Append(EstimatesTable(r, options));
   page.ListSection("Warnings", r.warnings);
   page.FigureSection("Reprojection", ReprojectionErrorFigure(r, max_points));
@@ -262,7 +263,6 @@ std::string CalibrateReportHtml(const CalibrationResult& r,
   if (!course_recorded) {
     page.Append("<p>This result carries the biases' time averages only: drawn flat.</p>\n");
   }
-  page.Section("IMU noise model", ImuNoiseTableHtml(options.model.noise, inputs.imu_yaml_path));
   page.FigureSection("Trajectory", TrajectoryFigure(r));
   return page.str();
 }

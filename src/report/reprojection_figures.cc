@@ -223,7 +223,7 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& r, 
                     " per camera) by |error|:";
   for (int k = 0; k < kNumClasses; ++k) {
     key += std::string(" <span style=\"color:") + kClassColors[k] + "\">&#9679;</span> " +
-           ClassLabel(k) + (k + 1 < kNumClasses ? "," : ".");
+           plot::EscapeXml(ClassLabel(k)) + (k + 1 < kNumClasses ? "," : ".");
   }
   key += StringPrintf(
       " <span style=\"color:%s\">Vectors</span>: the mean error (predicted - observed) of each "
