@@ -132,5 +132,7 @@
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"
+#include "splinecal/report/report_inputs.h"
+#include "splinecal/report/reprojection_figures.h"
 
 #endif  // SPLINECAL_SPLINECAL_H_

@@ -68,7 +68,7 @@ AlignInputs ReadAlignInputs() {
     options.T_cam_imu = cam0.T_cam_imu;
     options.time_offset_s = cam0.time_offset_s;
   }
-  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
   in.poses = ReadPoses(poses_path);
   return in;
 }

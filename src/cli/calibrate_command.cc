@@ -105,7 +105,7 @@ CalibrateInputs ReadCalibrateInputs() {
       ParseCameraSelection(FLAGS_cameras, static_cast<int>(in.camchain.size()));
   SelectCameras(selection, &in.camchain, &in.observations);
   CheckEveryCameraObserved(in.observations, in.camchain, selection, observations_path);
-  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
   if (!FLAGS_initial_poses.empty()) in.initial_poses = ReadPoses(FLAGS_initial_poses);
   return in;
 }
@@ -151,7 +151,14 @@ int RunCalibrate() {
   std::ostringstream spline_csv;
   WriteSplineCsv(result.MakeSpline(), &spline_csv);
   output.WriteFile("spline.csv", spline_csv.str());
-  output.WriteFile("report.html", CalibrateReportHtml(result));
+  // In CalibrateReportInputs' order: IMU, observations, camchain, target, initial poses, imu.yaml.
+  const CalibrateReportInputs report_inputs = {FLAGS_imu,
+                                               FLAGS_observations,
+                                               FLAGS_camchain,
+                                               FLAGS_target,
+                                               FLAGS_initial_poses,
+                                               FLAGS_imu_yaml};
+  output.WriteFile("report.html", CalibrateReportHtml(result, options, report_inputs));
   output.Commit();
 
   std::fputs(CalibrateSummaryText(result).c_str(), stdout);

@@ -94,9 +94,14 @@ Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text) {
   return v;
 }
 
-ImuReadOptions ImuReadOptionsFromFlags() {
+ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml) {
   constexpr double kStandardGravity = 9.80665;  // the g of "units of g" [m/s^2]
   ImuReadOptions options;
+  if (takes_imu_yaml) {
+    options.yaml_hint =
+        "IMU noise densities (Kalibr's imu.yaml) go to --imu-yaml; --imu takes the IMU samples, "
+        "EuRoC imu0/data.csv";
+  }
   if (FLAGS_accel_unit == "g") {
     options.accel_scale = kStandardGravity;
     options.check_accel_units = false;

@@ -73,7 +73,7 @@ FitInputs ReadFitInputs() {
   options.solver.num_threads = ThreadsFlag();
   if (!Quiet()) options.solver.progress = [](const std::string& line) { Progress(line); };
 
-  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
   in.poses = ReadPoses(poses_path);
   if (!FLAGS_imu_yaml.empty()) options.model.noise = ReadImuYaml(FLAGS_imu_yaml);
   return in;
@@ -90,6 +90,7 @@ int RunFit() {
   inputs.imu_path = FLAGS_imu;
   inputs.poses_path = FLAGS_poses;
   inputs.imu_yaml_path = FLAGS_imu_yaml;
+  inputs.noise = in.options.model.noise;
   output.WriteFile("result.yaml", FitResultYaml(result, inputs));
   std::ostringstream spline_csv;
   WriteSplineCsv(result.MakeSpline(), &spline_csv);

@@ -206,6 +206,11 @@ std::string CamchainYamlText(const Camchain& camchain) {
     }
     yaml.Vector("resolution", Eigen::Vector2d(c.camera.width, c.camera.height));
     yaml.Matrix("T_cam_imu", c.T_cam_imu.matrix());
+    if (i > 0) {
+      // Kalibr's T_cn_cnm1 (camera n-1 into camera n), the one the T_cam_imu above imply, so that
+      // the file never holds a stereo extrinsic that contradicts them.
+      yaml.Matrix("T_cn_cnm1", (c.T_cam_imu * camchain[i - 1].T_cam_imu.inverse()).matrix());
+    }
     yaml.Scalar("timeshift_cam_imu", c.time_offset_s);  // Kalibr's key
     yaml.Scalar("line_delay", c.line_delay_s);
     if (!c.rostopic.empty()) yaml.Scalar("rostopic", c.rostopic);

@@ -15,6 +15,7 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
   static const char* const kNames[] = {"timestamp", "gyro x", "gyro y", "gyro z",
                                        "accel x",   "accel y", "accel z"};
   TextFileReader reader(path);
+  reader.set_yaml_hint(options.yaml_hint);
   std::vector<std::string_view> fields;
   std::vector<ImuSample> samples;
   internal::TimestampChecker timestamps(&reader);

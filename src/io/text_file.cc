@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -100,6 +101,12 @@ bool TextFileReader::NextLine() {
     if (!line_.empty() && line_.back() == '\r') line_.remove_suffix(1);
     if (!IsDataLine(line_)) continue;
     ++data_lines_;
+    // Only the first data line: a table whose first row is data or a header is never YAML, and
+    // the check then costs nothing on files of 10^7 rows.
+    if (data_lines_ == 1 && LooksLikeYamlLine(line_)) {
+      Fail("a YAML file (" + Quote(TrimLine(line_)) + "), not a table of numbers" +
+           (yaml_hint_.empty() ? "" : ": " + yaml_hint_));
+    }
     return true;
   }
   line_ = std::string_view();
@@ -138,6 +145,23 @@ void SplitFields(std::string_view line, std::vector<std::string_view>* fields) {
     while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
     if (i > start) fields->push_back(line.substr(start, i - start));
   }
+}
+
+bool LooksLikeYamlLine(std::string_view line) {
+  const std::string_view content = TrimLine(line);
+  if (content.rfind("%YAML", 0) == 0) return true;
+  if (content == "---" || content.rfind("--- ", 0) == 0) return true;
+  if (content.empty() ||
+      !(std::isalpha(static_cast<unsigned char>(content[0])) || content[0] == '_')) {
+    return false;
+  }
+  size_t i = 1;
+  while (i < content.size() && (std::isalnum(static_cast<unsigned char>(content[i])) ||
+                                content[i] == '_' || content[i] == '.' || content[i] == '-')) {
+    ++i;
+  }
+  return i < content.size() && content[i] == ':' &&
+         (i + 1 == content.size() || content[i + 1] == ' ' || content[i + 1] == '\t');
 }
 
 bool LooksNumeric(std::string_view field) {

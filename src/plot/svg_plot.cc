@@ -3,6 +3,7 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -73,6 +74,15 @@ std::string TickLabelMarkup(const std::string& label) {
   if (caret == std::string::npos) return EscapeXml(label);
   return EscapeXml(label.substr(0, caret)) + "<tspan dy=\"-5\" font-size=\"8\">" +
          EscapeXml(label.substr(caret + 1)) + "</tspan>";
+}
+
+// A letter, then letters, digits, '-' or '_': safe as an XML id and in url(#...) unescaped.
+bool IsXmlName(const std::string& text) {
+  if (text.empty() || !std::isalpha(static_cast<unsigned char>(text[0]))) return false;
+  for (char c : text) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') return false;
+  }
+  return true;
 }
 
 double Pow10(int exponent) { return std::pow(10.0, exponent); }
@@ -257,9 +267,12 @@ void EqualAspect(
 
 class PanelWriter {
  public:
-  PanelWriter(
-      const Panel& panel, int index, double panel_width, double panel_height, std::string* out)
-      : panel_(panel), index_(index), out_(out) {
+  PanelWriter(const Panel& panel,
+              const std::string& clip_id,
+              double panel_width,
+              double panel_height,
+              std::string* out)
+      : panel_(panel), clip_id_(clip_id), out_(out) {
     area_ = {kMarginLeft, kMarginTop, panel_width - kMarginRight, panel_height - kMarginBottom};
     CHECK_GT(area_.right, area_.left) << "panel_width too small";
     CHECK_GT(area_.bottom, area_.top) << "panel_height too small";
@@ -291,16 +304,23 @@ class PanelWriter {
       EqualAspect(
           area_.right - area_.left, area_.bottom - area_.top, &x_lo_, &x_hi_, &y_lo_, &y_hi_);
     }
-    const AxisMap x_map(panel_.x.scale, x_lo_, x_hi_, area_.left, area_.right);
-    const AxisMap y_map(panel_.y.scale, y_lo_, y_hi_, area_.bottom, area_.top);
+    const AxisMap x_map(panel_.x.scale,
+                        x_lo_,
+                        x_hi_,
+                        panel_.x.reversed ? area_.right : area_.left,
+                        panel_.x.reversed ? area_.left : area_.right);
+    const AxisMap y_map(panel_.y.scale,
+                        y_lo_,
+                        y_hi_,
+                        panel_.y.reversed ? area_.top : area_.bottom,
+                        panel_.y.reversed ? area_.bottom : area_.top);
 
     const double centre_x = 0.5 * (area_.left + area_.right);
     if (!panel_.title.empty()) {
       *out_ += "<text x=\"" + Px(centre_x) + "\" y=\"18\" text-anchor=\"middle\" " +
                "font-weight=\"bold\">" + EscapeXml(panel_.title) + "</text>\n";
     }
-    const std::string clip_id = "plot-area-" + std::to_string(index_);
-    *out_ += "<defs><clipPath id=\"" + clip_id + "\"><rect " + RectAttributes() +
+    *out_ += "<defs><clipPath id=\"" + clip_id_ + "\"><rect " + RectAttributes() +
              "/></clipPath></defs>\n";
     *out_ += "<rect " + RectAttributes() + " fill=\"white\" stroke=\"none\"/>\n";
 
@@ -320,7 +340,7 @@ class PanelWriter {
                ") rotate(-90)\" text-anchor=\"middle\">" + EscapeXml(panel_.y.label) + "</text>\n";
     }
 
-    *out_ += "<g clip-path=\"url(#" + clip_id + ")\">\n";
+    *out_ += "<g clip-path=\"url(#" + clip_id_ + ")\">\n";
     for (size_t s = 0; s < panel_.series.size(); ++s) {
       WriteSeries(panel_.series[s], ColorOf(s), x_map, y_map);
     }
@@ -408,10 +428,9 @@ class PanelWriter {
         if (!PointValid(panel_, series.x[i], series.y[i])) continue;
         const double x = x_map.Pixel(series.x[i]);
         if (x < area_.left - 1.0 || x > area_.right + 1.0) continue;
-        const double low =
-            y_map.Valid(series.y_low[i]) ? y_map.Pixel(series.y_low[i]) : area_.bottom;
-        const double high =
-            y_map.Valid(series.y_high[i]) ? y_map.Pixel(series.y_high[i]) : area_.top;
+        // A bound that cannot be placed goes to its end of the axis (the bottom unless reversed).
+        const double low = y_map.Pixel(y_map.Valid(series.y_low[i]) ? series.y_low[i] : y_lo_);
+        const double high = y_map.Pixel(y_map.Valid(series.y_high[i]) ? series.y_high[i] : y_hi_);
         const double y0 = std::clamp(std::max(low, high), area_.top, area_.bottom);
         const double y1 = std::clamp(std::min(low, high), area_.top, area_.bottom);
         path += "M" + Px(x) + " " + Px(y0) + "V" + Px(y1);
@@ -541,7 +560,7 @@ class PanelWriter {
   }
 
   const Panel& panel_;
-  int index_;
+  std::string clip_id_;
   std::string* out_;
   Rect area_;
   double x_lo_ = 0.0;
@@ -551,6 +570,17 @@ class PanelWriter {
 };
 
 }  // namespace
+
+Panel& AddPanel(Figure* figure,
+                const std::string& title,
+                const std::string& x_label,
+                const std::string& y_label) {
+  Panel& panel = figure->panels.emplace_back();
+  panel.title = title;
+  panel.x.label = x_label;
+  panel.y.label = y_label;
+  return panel;
+}
 
 std::string EscapeXml(const std::string& text) {
   std::string escaped;
@@ -653,6 +683,7 @@ std::vector<Tick> AxisTicks(double lo, double hi, Scale scale) {
 std::string RenderSvg(const Figure& figure) {
   CHECK_GE(figure.columns, 1) << "Figure::columns";
   CHECK(figure.panel_width > 0.0 && figure.panel_height > 0.0) << "Figure panel size";
+  CHECK(IsXmlName(figure.id_prefix)) << "Figure::id_prefix '" << figure.id_prefix << "'";
   const int num_panels = static_cast<int>(figure.panels.size());
   const int columns = std::min(figure.columns, std::max(num_panels, 1));
   const int rows = (num_panels + columns - 1) / columns;
@@ -675,7 +706,8 @@ std::string RenderSvg(const Figure& figure) {
     const double x = (p % columns) * figure.panel_width;
     const double y = title_height + (p / columns) * figure.panel_height;
     out += "<g transform=\"translate(" + Px(x) + "," + Px(y) + ")\">\n";
-    PanelWriter(figure.panels[p], p, figure.panel_width, figure.panel_height, &out).Write();
+    const std::string clip_id = figure.id_prefix + "-area-" + std::to_string(p);
+    PanelWriter(figure.panels[p], clip_id, figure.panel_width, figure.panel_height, &out).Write();
     out += "</g>\n";
   }
   out += "</svg>\n";

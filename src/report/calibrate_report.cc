@@ -6,9 +6,11 @@
 #include <vector>
 
 #include "splinecal/io/yaml_writer.h"
-#include "splinecal/report/html_page.h"
 #include "splinecal/plot/plot_decimation.h"
 #include "splinecal/plot/svg_plot.h"
+#include "splinecal/report/html_page.h"
+#include "splinecal/report/report_inputs.h"
+#include "splinecal/report/reprojection_figures.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 
@@ -39,53 +41,19 @@ std::string Components(const char* format, const Eigen::Vector3d& v) {
          StringPrintf(format, v.z());
 }
 
-// Reprojection errors: their scatter and their norm over time.
-plot::Figure ReprojectionFigure(const CalibrationResult& r, int max_points) {
+// Two panels, gyro and accelerometer, of x, y, z series over the IMU samples' time (at most
+// max_points of them): value(sample, sensor, axis), sensor 0 the gyro.
+template <typename Value>
+plot::Figure ImuAxesFigure(const CalibrationResult& r,
+                           int max_points,
+                           const std::string& gyro_label,
+                           const std::string& accel_label,
+                           Value value) {
   plot::Figure figure;
-  figure.title = "Reprojection errors (predicted - observed)";
-  figure.columns = 2;
-  plot::Panel& scatter = figure.panels.emplace_back();
-  scatter.title = "error scatter";
-  scatter.x = {"u error [px]", plot::Scale::kLinear};
-  scatter.y = {"v error [px]", plot::Scale::kLinear};
-  scatter.equal_aspect = true;
-  scatter.legend = plot::LegendPosition::kNone;
-  plot::Panel& over_time = figure.panels.emplace_back();
-  over_time.title = "error norm over time";
-  over_time.x = {"time [s] (IMU spline)", plot::Scale::kLinear};
-  over_time.y = {"|error| [px]", plot::Scale::kLinear};
-  over_time.legend = plot::LegendPosition::kNone;
-  plot::Series& points = scatter.series.emplace_back();
-  points.line = false;
-  points.marker = plot::Marker::kCircle;
-  points.marker_size = 1.2;
-  plot::Series& norms = over_time.series.emplace_back();
-  norms.line = false;
-  norms.marker = plot::Marker::kCircle;
-  norms.marker_size = 1.2;
-  for (size_t k : plot::DecimatedIndices(r.reprojection_samples.size(), max_points, false)) {
-    const ReprojectionSample& s = r.reprojection_samples[k];
-    points.x.push_back(s.error.x());
-    points.y.push_back(s.error.y());
-    norms.x.push_back(NanosecondsToSeconds(s.t_ns - r.layout.t0_ns));
-    norms.y.push_back(s.error.norm());
-  }
-  return figure;
-}
-
-// Gyro and accelerometer residuals over time.
-plot::Figure ImuFigure(const CalibrationResult& r, int max_points) {
-  plot::Figure figure;
-  figure.title = "IMU residuals (predicted - measured)";
-  figure.columns = 1;
-  figure.panel_width = 880.0;
-  figure.panel_height = 260.0;
-  const std::vector<size_t> keep = plot::DecimatedIndices(r.imu_samples.size(), max_points, false);
+  const std::vector<size_t> keep = plot::DecimatedIndices(r.imu_samples.size(), max_points, true);
   for (int sensor = 0; sensor < 2; ++sensor) {
-    plot::Panel& panel = figure.panels.emplace_back();
-    panel.x = {"time [s] (IMU spline)", plot::Scale::kLinear};
-    panel.y = {sensor == 0 ? "gyro residual [rad/s]" : "accel residual [m/s^2]",
-               plot::Scale::kLinear};
+    plot::Panel& panel = plot::AddPanel(
+        &figure, "", "time [s] (IMU spline)", sensor == 0 ? gyro_label : accel_label);
     for (int a = 0; a < 3; ++a) {
       plot::Series& series = panel.series.emplace_back();
       series.label = kAxisNames[a];
@@ -93,10 +61,50 @@ plot::Figure ImuFigure(const CalibrationResult& r, int max_points) {
       for (size_t k : keep) {
         const ImuResidualRecord& s = r.imu_samples[k];
         series.x.push_back(NanosecondsToSeconds(s.t_ns - r.layout.t0_ns));
-        series.y.push_back(sensor == 0 ? s.gyro_error[a] : s.accel_error[a]);
+        series.y.push_back(value(s, sensor, a));
       }
     }
   }
+  return figure;
+}
+
+// Gyro and accelerometer residuals over time.
+plot::Figure ImuFigure(const CalibrationResult& r, int max_points) {
+  plot::Figure figure = ImuAxesFigure(r,
+                                      max_points,
+                                      "gyro residual [rad/s]",
+                                      "accel residual [m/s^2]",
+                                      [](const ImuResidualRecord& s, int sensor, int a) {
+                                        return sensor == 0 ? s.gyro_error[a] : s.accel_error[a];
+                                      });
+  figure.title = "IMU residuals (predicted - measured)";
+  figure.columns = 1;
+  figure.panel_width = 880.0;
+  figure.panel_height = 260.0;
+  return figure;
+}
+
+// The biases over time (the bias spline's course), or their means as flat lines when the result
+// carries no course (ImuResidualRecord::gyro_bias NaN).
+plot::Figure BiasFigure(const CalibrationResult& r, int max_points, bool* course_recorded) {
+  *course_recorded =
+      std::any_of(r.imu_samples.begin(), r.imu_samples.end(), [](const ImuResidualRecord& s) {
+        return s.gyro_bias.allFinite();
+      });
+  const bool course = *course_recorded;
+  plot::Figure figure = ImuAxesFigure(r,
+                                      max_points,
+                                      "gyro bias [rad/s]",
+                                      "accel bias [m/s^2]",
+                                      [&r, course](const ImuResidualRecord& s, int sensor, int a) {
+                                        if (!course)
+                                          return sensor == 0 ? r.gyro_bias[a] : r.accel_bias[a];
+                                        return sensor == 0 ? s.gyro_bias[a] : s.accel_bias[a];
+                                      });
+  figure.title = course ? "IMU biases over time" : "IMU biases (means only)";
+  figure.columns = 2;
+  figure.panel_width = 440.0;
+  figure.panel_height = 260.0;
   return figure;
 }
 
@@ -105,16 +113,11 @@ plot::Figure TrajectoryFigure(const CalibrationResult& r) {
   plot::Figure figure;
   figure.title = "IMU trajectory in the target frame";
   figure.columns = 2;
-  plot::Panel& top = figure.panels.emplace_back();
-  top.title = "top view";
-  top.x = {"x [m]", plot::Scale::kLinear};
-  top.y = {"y [m]", plot::Scale::kLinear};
+  plot::Panel& top = plot::AddPanel(&figure, "top view", "x [m]", "y [m]");
   top.equal_aspect = true;
   top.legend = plot::LegendPosition::kNone;
-  plot::Panel& height = figure.panels.emplace_back();
-  height.title = "position over time";
-  height.x = {"time [s] (IMU spline)", plot::Scale::kLinear};
-  height.y = {"position [m]", plot::Scale::kLinear};
+  plot::Panel& height =
+      plot::AddPanel(&figure, "position over time", "time [s] (IMU spline)", "position [m]");
   const SE3Splined spline = r.MakeSpline();
   plot::Series& xy = top.series.emplace_back();
   std::vector<plot::Series> components(3);
@@ -133,8 +136,8 @@ plot::Figure TrajectoryFigure(const CalibrationResult& r) {
   return figure;
 }
 
-// The estimates: one block of rows per camera, then the IMU and the pixel noise.
-std::string EstimatesTable(const CalibrationResult& r) {
+// The estimates: one block of rows per camera, then the IMU, the pixel noise and the model.
+std::string EstimatesTable(const CalibrationResult& r, const CalibrateOptions& options) {
   std::ostringstream html;
   html << "<table>\n";
   for (size_t c = 0; c < r.cameras.size(); ++c) {
@@ -164,6 +167,14 @@ std::string EstimatesTable(const CalibrationResult& r) {
        << " rad/s, accel " << StringPrintf("%.3e", r.accel_rms) << " m/s^2</td></tr>\n";
   html << "<tr><th>pixel sigma [px]</th><td colspan=2>" << StringPrintf("%.3f", r.pixel_sigma_px)
        << (r.pixel_sigma_estimated ? " (estimated)" : " (given)") << "</td></tr>\n";
+  html << "<tr><th>model</th><td colspan=2>"
+       << (options.model.bias_model == BiasModel::kSpline ? "bias spline" : "constant biases")
+       << ", knots every "
+       << StringPrintf(
+              "%.4g",
+              r.knot_spacing_s > 0.0 ? r.knot_spacing_s : NanosecondsToSeconds(r.layout.dt_ns))
+       << " s, Huber " << StringPrintf("%g", options.huber_px) << " px"
+       << (options.rolling_shutter ? ", rolling shutter" : "") << "</td></tr>\n";
   html << "</table>\n";
   return html.str();
 }
@@ -183,7 +194,8 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Vector("accel_bias", r.accel_bias);
   yaml.Vector("accel_bias_std", r.accel_bias_std);
   yaml.Vector("gravity_w", r.gravity_w);
-  yaml.Scalar("reprojection_rms_px", r.reprojection_rms_px);
+  // cam0's reprojection_rms_px is above; this one pools every camera.
+  yaml.Scalar("reprojection_rms_px_all_cameras", r.reprojection_rms_px);
   yaml.Scalar("pixel_sigma_px", r.pixel_sigma_px);
   yaml.Scalar("pixel_sigma_estimated", r.pixel_sigma_estimated);
   yaml.Scalar("gyro_rms", r.gyro_rms);
@@ -226,16 +238,32 @@ std::string CalibrateReprojectionCsv(const CalibrationResult& r) {
 }
 
 std::string CalibrateReportHtml(const CalibrationResult& r,
-                                const std::string& title,
+                                const CalibrateOptions& options,
+                                const CalibrateReportInputs& inputs,
                                 int max_points) {
-  HtmlPage page(title,
+  HtmlPage page("splinecal calibrate",
                 "body{margin:2em;max-width:1000px}td,th{padding:3px 8px;text-align:right}"
-                "th{text-align:left}");
-  page.Append(EstimatesTable(r));
+                "th{text-align:left}caption{text-align:left;padding:4px 0}");
+  page.Append(InputFilesHtml({{"IMU", inputs.imu_path},
+                              {"observations", inputs.observations_path},
+                              {"camchain", inputs.camchain_path},
+                              {"target", inputs.target_path},
+                              {"initial poses", inputs.initial_poses_path}}));
+  page.Append(ImuNoiseTableHtml(options.model.noise, inputs.imu_yaml_path));
+  page.Append(EstimatesTable(r, options));
   page.ListSection("Warnings", r.warnings);
-  page.Section("Reprojection", plot::RenderSvg(ReprojectionFigure(r, max_points)));
-  page.Section("IMU", plot::RenderSvg(ImuFigure(r, max_points)));
-  page.Section("Trajectory", plot::RenderSvg(TrajectoryFigure(r)));
+  page.FigureSection("Reprojection", ReprojectionErrorFigure(r, max_points));
+  ReprojectionImageFigure by_position = MakeReprojectionImageFigure(r, max_points);
+  page.FigureSection("Reprojection by image position", std::move(by_position.figure));
+  page.Append(by_position.key_html);
+  page.FigureSection("IMU", ImuFigure(r, max_points));
+  bool course_recorded = false;
+  plot::Figure biases = BiasFigure(r, max_points, &course_recorded);
+  page.FigureSection("IMU biases", std::move(biases));
+  if (!course_recorded) {
+    page.Append("<p>This result carries the biases' time averages only: drawn flat.</p>\n");
+  }
+  page.FigureSection("Trajectory", TrajectoryFigure(r));
   return page.str();
 }
 

@@ -4,9 +4,10 @@
 #include <vector>
 
 #include "splinecal/io/yaml_writer.h"
-#include "splinecal/report/html_page.h"
 #include "splinecal/plot/plot_decimation.h"
 #include "splinecal/plot/svg_plot.h"
+#include "splinecal/report/html_page.h"
+#include "splinecal/report/report_inputs.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 
@@ -170,7 +171,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
         fitted.y.push_back(gyro ? s.gyro_fitted[a] : s.accel_fitted[a]);
       }
     }
-    return InlineSvg(figure);
+    return figure;
   };
 
   // Residuals over time.
@@ -241,12 +242,8 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
     }
   }
 
-  std::string html;
-  html +=
-      "<p>IMU: " + plot::EscapeXml(inputs.imu_path) +
-      "<br>poses: " + plot::EscapeXml(inputs.poses_path) + "<br>noise: " +
-      plot::EscapeXml(inputs.imu_yaml_path.empty() ? "ADIS16448 defaults" : inputs.imu_yaml_path) +
-      "</p>\n";
+  std::string html = InputFilesHtml({{"IMU", inputs.imu_path}, {"poses", inputs.poses_path}});
+  html += ImuNoiseTableHtml(inputs.noise, inputs.imu_yaml_path);
   html += "<table><tr><th>quantity</th><th>estimate</th><th>std</th></tr>\n";
   auto row = [&html](const std::string& name, const std::string& value, const std::string& std) {
     html += "<tr><td>" + plot::EscapeXml(name) + "</td><td>" + plot::EscapeXml(value) +
@@ -291,10 +288,10 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   page.Append(html);
   page.ListSection("Warnings", r.warnings, "warn");
   if (!imu.empty()) {
-    page.Section("Gyroscope", measured_vs_fitted(true));
-    page.Section("Accelerometer", measured_vs_fitted(false));
-    page.Section("Residuals", InlineSvg(residuals));
-    page.Section("Biases", InlineSvg(biases));
+    page.FigureSection("Gyroscope", measured_vs_fitted(true));
+    page.FigureSection("Accelerometer", measured_vs_fitted(false));
+    page.FigureSection("Residuals", residuals);
+    page.FigureSection("Biases", biases);
   }
   return page.str();
 }

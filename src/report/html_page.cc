@@ -1,5 +1,7 @@
 #include "splinecal/report/html_page.h"
 
+#include <string>
+
 namespace splinecal {
 
 namespace {
@@ -34,12 +36,14 @@ void HtmlPage::ListSection(const std::string& heading,
   html_ += "</ul>\n";
 }
 
-std::string HtmlPage::str() const { return html_ + "</body></html>\n"; }
-
-std::string InlineSvg(const plot::Figure& figure) {
+void HtmlPage::FigureSection(const std::string& heading, plot::Figure figure) {
+  figure.id_prefix = "fig" + std::to_string(++num_figures_);
   std::string svg = plot::RenderSvg(figure);
+  // An XML declaration is not allowed inside HTML: drop it.
   if (svg.rfind("<?xml", 0) == 0) svg.erase(0, svg.find('\n') + 1);
-  return svg;
+  Section(heading, svg);
 }
+
+std::string HtmlPage::str() const { return html_ + "</body></html>\n"; }
 
 }  // namespace splinecal

@@ -12,6 +12,7 @@
 
 #include "splinecal/units.h"
 #include "testing/run_tool.h"
+#include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -64,7 +65,8 @@ TEST(AllanCommand, WritesItsFourFiles) {
   for (const char* file : {"allan.csv", "imu.yaml", "result.yaml", "allan.svg"}) {
     EXPECT_TRUE(std::filesystem::exists(dir.File("out/") + file)) << file;
   }
-  const YAML::Node imu_yaml = YAML::LoadFile(dir.File("out/imu.yaml"));
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(dir.File("out")), 2);  // imu.yaml, result.yaml
+  const YAML::Node imu_yaml = testing::LoadStrictYamlFile(dir.File("out/imu.yaml"));
   EXPECT_NEAR(imu_yaml["gyroscope_noise_density"].as<double>() / 1.6968e-4, 1.0, 0.05);
   EXPECT_NEAR(imu_yaml["accelerometer_noise_density"].as<double>() / 2e-3, 1.0, 0.05);
   EXPECT_DOUBLE_EQ(imu_yaml["update_rate"].as<double>(), 200.0);
@@ -97,7 +99,7 @@ TEST(AllanCommand, PlainColumnsOfOneSensor) {
                                            "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
-  const YAML::Node result = YAML::LoadFile(dir.File("out/result.yaml"));
+  const YAML::Node result = testing::LoadStrictYamlFile(dir.File("out/result.yaml"));
   // White noise of 0.1 deg/s per sample at 100 Hz: N = 0.1 * pi / 180 / sqrt(100).
   EXPECT_NEAR(result["gyroscope"]["x"]["noise_density"].as<double>() / (0.1 * kPi / 180.0 / 10.0),
               1.0,

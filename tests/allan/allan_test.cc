@@ -11,6 +11,7 @@
 
 #include "allan/static_series.h"
 #include "splinecal/error.h"
+#include "testing/strict_yaml.h"
 
 namespace splinecal {
 namespace {
@@ -123,7 +124,7 @@ TEST(AllanOutputs, CsvAndYamlLayouts) {
   for (char c : csv) rows += c == '\n';
   EXPECT_EQ(rows, 1 + static_cast<int>(result.axes[0].curve.tau_s.size()));
 
-  const YAML::Node yaml = YAML::Load(AllanResultYamlText(result));
+  const YAML::Node yaml = testing::LoadStrictYaml(AllanResultYamlText(result));
   EXPECT_DOUBLE_EQ(yaml["update_rate"].as<double>(), 200.0);
   EXPECT_DOUBLE_EQ(yaml["gyroscope_noise_density"].as<double>(),
                    result.gyroscope_noise_density.value);
@@ -135,7 +136,7 @@ TEST(AllanOutputs, CsvAndYamlLayouts) {
   EXPECT_TRUE(yaml["accelerometer"]["z"]["model"]["noise_density"].IsScalar());
   EXPECT_TRUE(yaml["accelerometer"]["z"]["model"]["rms_log_error"].IsScalar());
 
-  const YAML::Node imu = YAML::Load(AllanImuYamlText(result));
+  const YAML::Node imu = testing::LoadStrictYaml(AllanImuYamlText(result));
   EXPECT_DOUBLE_EQ(imu["accelerometer_noise_density"].as<double>(),
                    result.accelerometer_noise_density.value);
   EXPECT_DOUBLE_EQ(imu["update_rate"].as<double>(), 200.0);
@@ -162,7 +163,7 @@ TEST(AllanOutputs, UnidentifiableKeyIsAnUpperBound) {
   EXPECT_THAT(imu, HasSubstr("gyroscope_random_walk: "));
   EXPECT_THAT(imu, HasSubstr("# gyroscope_random_walk is an upper bound"));
   EXPECT_THAT(imu, Not(HasSubstr("accelerometer_noise_density:")));
-  const YAML::Node yaml = YAML::Load(AllanResultYamlText(result));
+  const YAML::Node yaml = testing::LoadStrictYaml(AllanResultYamlText(result));
   EXPECT_TRUE(yaml["gyroscope_random_walk_is_upper_bound"].as<bool>());
   EXPECT_EQ(yaml["gyroscope"]["y"]["random_walk"].as<std::string>(), "not identifiable");
   EXPECT_THAT(yaml["gyroscope"]["y"]["random_walk_reason"].as<std::string>(),

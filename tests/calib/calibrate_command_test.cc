@@ -13,8 +13,10 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/yaml_document.h"
+#include "testing/html_ids.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
+#include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -95,9 +97,21 @@ TEST_F(CalibrateCommand, WritesKalibrCamchainResultAndReport) {
                           "warnings:"}) {
     EXPECT_THAT(result, HasSubstr(key));
   }
+  // Every key once (a strict YAML parser refuses repeats): camchain-imucam.yaml, result.yaml.
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(out), 2);
+  // One camera: no T_cn_cnm1 (Kalibr writes it from cam1 on).
+  EXPECT_FALSE(testing::LoadStrictYamlFile(out + "/camchain-imucam.yaml")["cam0"]["T_cn_cnm1"]);
   const std::string report = testing::ReadFileText(out + "/report.html");
   EXPECT_THAT(report, HasSubstr("<svg"));
   EXPECT_THAT(report, HasSubstr("Reprojection errors"));
+  EXPECT_THAT(report, HasSubstr("Reprojection errors by image position"));
+  EXPECT_THAT(report, HasSubstr("IMU biases"));
+  EXPECT_THAT(report, HasSubstr("<p>IMU: " + imu_));
+  EXPECT_THAT(report, HasSubstr("<caption>IMU noise model: ADIS16448 defaults"));
+  // Unique ids: the SVGs' clip paths once shared ids, which clipped later plots to earlier
+  // panels (the IMU residuals stopped at 35 s of a 72 s recording).
+  // A clip path per panel: reprojection 2, by image position 1, IMU 2, biases 2, trajectory 2.
+  EXPECT_EQ(testing::ExpectUniqueHtmlIds(report, "report.html"), 9);
   EXPECT_TRUE(std::filesystem::exists(out + "/spline.csv"));
   EXPECT_TRUE(std::filesystem::exists(out + "/reprojection_errors.csv"));
 }
@@ -112,30 +126,35 @@ TEST_F(CalibrateCommand, QuietSilencesProgress) {
 
 TEST_F(CalibrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
   const std::string out = dir_.File("bad");
+  // Args(out) with argument `index` replaced by `value` must fail with exit code 2 and one line
+  // holding `message`, and write nothing (--quiet: no progress lines before the error).
+  auto expect_refused = [&](size_t index, const std::string& value, const std::string& message) {
+    std::vector<std::string> args = Args(out);
+    args[index] = value;
+    args.push_back("--quiet");
+    const testing::ToolResult r = testing::RunTool(args);
+    EXPECT_EQ(r.exit_code, 2) << message;
+    EXPECT_EQ(testing::CountLines(r.err), 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(message));
+    EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml")) << message;
+  };
   // A corrupt observation row.
-  const std::string bad = dir_.Write("bad.csv", "#t_ns,cam_id,point_id,u,v\n1,0,2,3\n");
-  std::vector<std::string> args = Args(out);
-  args[4] = bad;
-  testing::ToolResult r = testing::RunTool(args);
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(testing::CountLines(r.err), 1) << r.err;
-  EXPECT_THAT(r.err, HasSubstr("bad.csv:2"));
-  EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml"));
+  expect_refused(4, dir_.Write("bad.csv", "#t_ns,cam_id,point_id,u,v\n1,0,2,3\n"), "bad.csv:2");
   // A missing camchain.
-  args = Args(out);
-  args[6] = dir_.File("missing.yaml");
-  r = testing::RunTool(args);
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("missing.yaml"));
+  expect_refused(6, dir_.File("missing.yaml"), "missing.yaml");
+  // Kalibr's imu.yaml given as --imu (Kalibr's own name for its noise file): named as YAML, with
+  // the flag it belongs to.
+  const std::string imu_yaml = dir_.Write("imu.yaml",
+                                          "#Accelerometers\naccelerometer_noise_density: 1.86e-03\n"
+                                          "accelerometer_random_walk: 4.33e-04\nrostopic: /imu0\n");
+  expect_refused(2, imu_yaml, "imu.yaml:2: a YAML file ('accelerometer_noise_density: 1.86e-03')");
+  expect_refused(2, imu_yaml, "go to --imu-yaml; --imu takes the IMU samples");
   // The target never seen.
-  args = Args(out);
-  args[8] = dir_.Write("points.yaml",
-                       "target_type: points\npoints:\n  - [9000, 0, 0, 0]\n"
-                       "  - [9001, 1, 0, 0]\n  - [9002, 0, 1, 0]\n  - [9003, 1, 1, 0]\n");
-  r = testing::RunTool(args);
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("never seen"));
-  EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml"));
+  expect_refused(8,
+                 dir_.Write("points.yaml",
+                            "target_type: points\npoints:\n  - [9000, 0, 0, 0]\n"
+                            "  - [9001, 1, 0, 0]\n  - [9002, 0, 1, 0]\n  - [9003, 1, 1, 0]\n"),
+                 "never seen");
 }
 
 // Real data: the first 10 s of EuRoC imu_april with cam1's observations removed, against the

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "splinecal/error.h"
+#include "testing/shared_data.h"
+#include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -89,6 +91,63 @@ TEST(CamchainYamlText, RoundTripsExactly) {
   EXPECT_EQ(back[0].rostopic, "/cam0/image_raw");
   EXPECT_THAT(text, HasSubstr("camera_model: \"pinhole\""));
   EXPECT_THAT(text, HasSubstr("distortion_model: \"radtan\""));
+}
+
+// T_cn_cnm1 as written for camera `cam` of `text`.
+Eigen::Matrix4d WrittenTcnCnm1(const std::string& text, const std::string& cam) {
+  const YAML::Node rows = testing::LoadStrictYaml(text)[cam]["T_cn_cnm1"];
+  Eigen::Matrix4d T = Eigen::Matrix4d::Zero();
+  EXPECT_EQ(rows.size(), 4u) << cam << "\n" << text;
+  for (size_t r = 0; r < rows.size() && r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) T(r, c) = rows[r][c].as<double>();
+  }
+  return T;
+}
+
+TEST(CamchainYamlText, SeveralCamerasGetTheTcnCnm1TheirTCamImuImply) {
+  testing::TempDir dir;
+  Camchain camchain = ReadCamchainYaml(dir.Write("in.yaml", kKalibrCamchain));
+  CameraCalibration cam1 = camchain[0];
+  cam1.T_cam_imu = SE3d::Exp((Vector6d() << -0.11, 0.002, 0.001, 0.01, -0.02, 0.005).finished()) *
+                   camchain[0].T_cam_imu;
+  cam1.rostopic = "/cam1/image_raw";
+  CameraCalibration cam2 = cam1;
+  cam2.T_cam_imu =
+      SE3d::Exp((Vector6d() << 0.0, -0.1, 0.0, 0.3, 0.0, 0.0).finished()) * cam1.T_cam_imu;
+  camchain.push_back(cam1);
+  camchain.push_back(cam2);
+  const std::string text = CamchainYamlText(camchain);
+  EXPECT_FALSE(testing::LoadStrictYaml(text)["cam0"]["T_cn_cnm1"]);  // Kalibr writes none for cam0
+  for (size_t n = 1; n < camchain.size(); ++n) {
+    const Eigen::Matrix4d expected =
+        (camchain[n].T_cam_imu * camchain[n - 1].T_cam_imu.inverse()).matrix();
+    const Eigen::Matrix4d written = WrittenTcnCnm1(text, "cam" + std::to_string(n));
+    // 17 significant digits: the text holds the double's value.
+    EXPECT_LT((written - expected).cwiseAbs().maxCoeff(), 1e-15) << n;
+  }
+  // It reads back (the key is known, not a typo). Reading re-orthonormalises the rotations,
+  // which moves entries by a few ulps (up to ~7e-16 here): the round trip holds to 1e-14.
+  const Camchain back = ReadCamchainYaml(dir.Write("out.yaml", text));
+  ASSERT_EQ(back.size(), 3u);
+  const std::string again = CamchainYamlText(back);
+  for (const std::string cam : {"cam1", "cam2"}) {
+    EXPECT_LT((WrittenTcnCnm1(again, cam) - WrittenTcnCnm1(text, cam)).cwiseAbs().maxCoeff(),
+              1e-14);
+  }
+}
+
+TEST(CamchainYamlText, EurocStereoKeepsItsPublishedTcnCnm1) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/camchain_euroc.yaml");
+  const std::string path = testing::SharedDataPath("euroc_imu_april/camchain_euroc.yaml");
+  const Camchain camchain = ReadCamchainYaml(path);
+  ASSERT_EQ(camchain.size(), 2u);
+  const std::string published = testing::ReadFileText(path);
+  const std::string written = CamchainYamlText(camchain);
+  // The file derived its T_cn_cnm1 from its two T_cam_imu and printed 12 digits: they agree to
+  // that rounding (the translations are ~0.1 m, so 1e-9 absolute is ~1e-8 relative).
+  EXPECT_LT(
+      (WrittenTcnCnm1(written, "cam1") - WrittenTcnCnm1(published, "cam1")).cwiseAbs().maxCoeff(),
+      1e-9);
 }
 
 struct BadCase {

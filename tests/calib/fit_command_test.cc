@@ -11,6 +11,7 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/poses.h"
 #include "testing/run_tool.h"
+#include "testing/strict_yaml.h"
 
 namespace splinecal {
 namespace {
@@ -57,7 +58,8 @@ TEST(FitCommand, WritesEveryOutputAndTheEstimates) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_THAT(result.err, HasSubstr("fit: iteration"));  // progress on stderr
   EXPECT_THAT(result.out, HasSubstr("gyro_bias"));
-  const YAML::Node yaml = YAML::LoadFile(dir.File("out/result.yaml"));
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(dir.File("out")), 1);
+  const YAML::Node yaml = testing::LoadStrictYamlFile(dir.File("out/result.yaml"));
   for (const char* key : {"gyro_bias",
                           "gyro_bias_std",
                           "accel_bias",
@@ -114,8 +116,14 @@ TEST(FitCommand, BadInputIsOneLineExitTwoAndNoOutput) {
   FitData data = MakeFitData(scenario);
   for (StampedPose& p : data.poses) p.t_ns += 3'600'000'000'000;  // an hour later
   const Files files = WriteScenario(dir, data);
+  // Kalibr's imu.yaml where the samples belong (Kalibr's own flag for it is --imu).
+  const std::string imu_yaml =
+      dir.Write("imu.yaml",
+                "%YAML:1.0\naccelerometer_noise_density: 2.0e-3\ngyroscope_noise_density: "
+                "1.7e-4\nupdate_rate: 200.0\n");
   const std::vector<std::vector<std::string>> cases = {
       {"fit", "--imu", files.imu, "--poses", files.poses, "--out", dir.File("out")},
+      {"fit", "--imu", imu_yaml, "--poses", files.poses, "--out", dir.File("out")},
       {"fit", "--imu", files.imu, "--out", dir.File("out")},
       {"fit",
        "--imu",
@@ -128,7 +136,11 @@ TEST(FitCommand, BadInputIsOneLineExitTwoAndNoOutput) {
        "wiggly"},
   };
   const std::vector<std::string> messages = {
-      "do not overlap", "--poses is required", "--bias-model"};
+      "do not overlap",
+      "imu.yaml:1: a YAML file ('%YAML:1.0'), not a table of numbers: IMU noise densities "
+      "(Kalibr's imu.yaml) go to --imu-yaml",
+      "--poses is required",
+      "--bias-model"};
   for (size_t c = 0; c < cases.size(); ++c) {
     const auto result = RunTool(cases[c]);
     EXPECT_EQ(result.exit_code, 2) << result.err;

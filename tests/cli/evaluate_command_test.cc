@@ -6,6 +6,7 @@
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/io/spline_csv.h"
 #include "testing/run_tool.h"
+#include "testing/strict_yaml.h"
 
 namespace splinecal {
 namespace {
@@ -35,6 +36,7 @@ TEST(EvaluateCommand, PrintsAndWritesThePredictedImu) {
                                "--samples", "3", "--every", "0.01", "--gyro-bias", "0.1,0,0"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_THAT(result.out, HasSubstr("8 control poses"));
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(dir.File("out")), 1);
   const std::string csv = ReadFileText(dir.File("out/evaluation.csv"));
   EXPECT_EQ(CountLines(csv), 1 + 51);  // header + 0.5 s of valid range at 100 Hz, ends included
   const std::string samples = ReadFileText(dir.File("out/samples.csv"));

@@ -8,6 +8,7 @@
 
 #include "splinecal/io/yaml_document.h"
 #include "testing/run_tool.h"
+#include "testing/strict_yaml.h"
 
 namespace splinecal {
 namespace {
@@ -42,6 +43,8 @@ TEST(SimulateCameraCommand, WritesObservationsAndTruthDeterministically) {
   EXPECT_DOUBLE_EQ(result.Number("cameras/cam0/timeshift_cam_imu"), 0.0042);
   EXPECT_GE(result.Integer("num_frames_with_target"), 150);
   EXPECT_TRUE(std::filesystem::exists(dir.File("a/camchain.yaml")));
+  // camchain.yaml, imu.yaml, result.yaml
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(dir.File("a")), 3);
 }
 
 TEST(SimulateCameraCommand, CameraFlagsWithoutCamchainAreRefused) {

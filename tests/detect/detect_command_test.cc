@@ -13,6 +13,7 @@
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/yaml_document.h"
 #include "testing/run_tool.h"
+#include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -46,6 +47,7 @@ TEST(DetectCommand, FindsEveryCornerOfTheBundledStereoFrame) {
   EXPECT_EQ(observations.front().cam_id, 0);
   EXPECT_EQ(observations.back().cam_id, 1);
 
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(out), 1);
   const YamlDocument result(out + "/result.yaml");
   for (const std::string cam : {"cam0", "cam1"}) {
     EXPECT_EQ(result.Numbers("cameras/" + cam + "/resolution"), (std::vector<double>{752, 480}));

@@ -17,6 +17,7 @@
 #include "splinecal/io/euroc.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
+#include "testing/strict_yaml.h"
 
 namespace splinecal {
 namespace {
@@ -57,7 +58,8 @@ TEST(IntegrateCommand, MidpointBeatsEulerTenfoldAndRk4BeatsMidpoint) {
       {"integrate", "--imu", files.imu, "--groundtruth", files.truth, "--out", out, "--quiet"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_THAT(result.out, HasSubstr("midpoint"));  // The drift table.
-  const YAML::Node yaml = YAML::LoadFile(out + "/result.yaml");
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(out), 1);
+  const YAML::Node yaml = testing::LoadStrictYamlFile(out + "/result.yaml");
   const double euler = yaml["euler"]["final_position_error_m"].as<double>();
   const double midpoint = yaml["midpoint"]["final_position_error_m"].as<double>();
   const double rk4 = yaml["rk4"]["final_position_error_m"].as<double>();
@@ -94,7 +96,7 @@ TEST(IntegrateCommand, StartDurationAndMethodSelectAWindow) {
                                out,
                                "--quiet"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  const YAML::Node yaml = YAML::LoadFile(out + "/result.yaml");
+  const YAML::Node yaml = testing::LoadStrictYamlFile(out + "/result.yaml");
   EXPECT_EQ(yaml["start_t_ns"].as<int64_t>(), 5'050'000'000);
   EXPECT_EQ(yaml["end_t_ns"].as<int64_t>(), 7'050'000'000);
   EXPECT_FALSE(yaml["euler"]);
@@ -180,7 +182,7 @@ TEST(IntegrateCommand, EurocV101EasyFirstTenSecondsReportsTheLibrarysDrift) {
                                "--quiet"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   std::printf("%s", result.out.c_str());
-  const YAML::Node yaml = YAML::LoadFile(dir.File("out") + "/result.yaml");
+  const YAML::Node yaml = testing::LoadStrictYamlFile(dir.File("out") + "/result.yaml");
   EXPECT_NEAR(yaml["duration_s"].as<double>(), 10.0, 1e-9);
 
   const std::vector<ImuSample> imu = ReadEurocImu(data + "/imu0.csv");

@@ -15,6 +15,7 @@
 #include "splinecal/io/poses.h"
 #include "splinecal/io/spline_csv.h"
 #include "testing/run_tool.h"
+#include "testing/strict_yaml.h"
 
 namespace splinecal {
 namespace {
@@ -62,7 +63,8 @@ TEST(SimulateCommand, WritesEveryOutput) {
   const ImuNoise noise = ReadImuYaml(files.imu_yaml);
   EXPECT_DOUBLE_EQ(noise.gyroscope_noise_density, 1.6968e-4);
   EXPECT_DOUBLE_EQ(noise.update_rate_hz, 200.0);
-  const YAML::Node yaml = YAML::LoadFile(files.result);
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(out), 2);  // imu.yaml, result.yaml
+  const YAML::Node yaml = testing::LoadStrictYamlFile(files.result);
   EXPECT_EQ(yaml["trajectory"].as<std::string>(), "vio_course");
   EXPECT_EQ(yaml["num_imu_samples"].as<int>(), 401);
   EXPECT_LT(yaml["spline"]["fit_position_rms_m"].as<double>(), 1e-5);
@@ -135,7 +137,7 @@ TEST(SimulateCommand, RecoversASmoothTrajectoryFileWellUnderAMillimetre) {
   const std::string out = dir.File("sim");
   const auto result = RunTool({"simulate", "--trajectory-file", file, "--out", out, "--quiet"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  const YAML::Node yaml = YAML::LoadFile(out + "/result.yaml");
+  const YAML::Node yaml = testing::LoadStrictYamlFile(out + "/result.yaml");
   EXPECT_LT(yaml["spline"]["fit_position_rms_m"].as<double>(), kTrajectoryFileTolerance);
   EXPECT_EQ(yaml["start_t_ns"].as<int64_t>(), poses.front().t_ns);  // The file's time base.
   const std::vector<GroundTruthState> truth =

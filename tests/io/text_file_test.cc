@@ -64,6 +64,49 @@ TEST(TextFileReader, MissingFileAndDirectoryAreClearErrors) {
   }
 }
 
+TEST(LooksLikeYamlLine, YamlStartsButNoTableRow) {
+  for (const char* yaml : {"%YAML:1.0",
+                           "---",
+                           "--- # a document",
+                           "accelerometer_noise_density: 2.0e-3  # [ m / s^2 / sqrt(Hz) ]",
+                           "cam0:",
+                           "  rostopic: /imu0",
+                           "update_rate:\t200.0"}) {
+    EXPECT_TRUE(LooksLikeYamlLine(yaml)) << yaml;
+  }
+  for (const char* row : {"1403715273262142976,0.1,0.2,0.3,1,2,9.8",
+                          "timestamp [ns],w_RS_S_x [rad s^-1]",
+                          "t_ns,cam_id,point_id,u,v",
+                          "1403715273.262 1 2 3 0 0 0 1",
+                          "time:,x",
+                          "http://example.org:80",
+                          "-1.5,2"}) {
+    EXPECT_FALSE(LooksLikeYamlLine(row)) << row;
+  }
+}
+
+TEST(TextFileReader, RefusesAYamlFileOnItsFirstDataLineWithTheHint) {
+  TempDir dir;
+  const std::string path = dir.Write(
+      "imu.yaml", "#Accelerometers\naccelerometer_noise_density: 2.0e-3\nupdate_rate: 200.0\n");
+  TextFileReader reader(path);
+  reader.set_yaml_hint("it goes to --imu-yaml");
+  try {
+    reader.NextLine();
+    FAIL() << "a YAML file was read as a table";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_THAT(e.what(), HasSubstr("imu.yaml:2"));
+    EXPECT_THAT(e.what(),
+                HasSubstr("a YAML file ('accelerometer_noise_density: 2.0e-3'), not a table of "
+                          "numbers: it goes to --imu-yaml"));
+  }
+  // OpenCV's first line is YAML too, and a later "key:" line in a table is just a bad row.
+  EXPECT_THROW(DataLines(dir.Write("cv.yaml", "%YAML:1.0\ncam0:\n")), Error);
+  EXPECT_THAT(DataLines(dir.Write("t.csv", "1,2\nkey: 3\n")),
+              ::testing::ElementsAre("1,2", "key: 3"));
+}
+
 TEST(SplitFields, CommasWithSpacesAndWhitespace) {
   std::vector<std::string_view> fields;
   SplitFields("1, 2 ,3,,", &fields);

@@ -310,6 +310,33 @@ TEST(RenderSvg, EqualAspectWidensTheShorterRange) {
   EXPECT_THAT(RenderSvg(figure), Not(HasSubstr(">-3</text>")));
 }
 
+TEST(RenderSvg, IdPrefixNamesEveryClipPath) {
+  Figure figure;
+  figure.id_prefix = "fig3";
+  figure.panels.emplace_back();
+  figure.panels.emplace_back();
+  const std::string svg = RenderSvg(figure);
+  EXPECT_EQ(XmlProblem(svg), "");
+  for (int p = 0; p < 2; ++p) {
+    const std::string id = "fig3-area-" + std::to_string(p);
+    EXPECT_EQ(Count(svg, "id=\"" + id + "\""), 1);
+    EXPECT_EQ(Count(svg, "url(#" + id + ")"), 1);
+  }
+  EXPECT_THAT(svg, Not(HasSubstr("plot-area")));
+}
+
+TEST(RenderSvg, ReversedAxisPutsLargeValuesAtTheBottom) {
+  Figure figure;
+  Panel& panel = figure.panels.emplace_back();
+  panel.y = {"v [px]", Scale::kLinear, 0.0, 10.0};
+  // The plot area spans y = 28 (top) to 284 (bottom) px; tick labels sit 4 px below their tick.
+  EXPECT_THAT(RenderSvg(figure), HasSubstr("y=\"32.00\" text-anchor=\"end\">10</text>"));
+  panel.y.reversed = true;
+  const std::string svg = RenderSvg(figure);
+  EXPECT_THAT(svg, HasSubstr("y=\"288.00\" text-anchor=\"end\">10</text>"));
+  EXPECT_THAT(svg, HasSubstr("y=\"32.00\" text-anchor=\"end\">0</text>"));
+}
+
 TEST(RenderSvg, EmptyFigureIsStillADocument) {
   EXPECT_EQ(XmlProblem(RenderSvg(Figure())), "");
   Figure figure;

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "testing/strict_yaml.h"
+
 namespace splinecal {
 namespace {
 
@@ -31,7 +33,7 @@ TEST(AlignResultYaml, KeysQuaternionsWithNonNegativeWAndTheOptions) {
   options.gravity_m_s2 = 9.81;
   const std::string text = AlignResultYaml(SmallResult(), options);
   EXPECT_THAT(text, StartsWith("# splinecal align: "));
-  const YAML::Node yaml = YAML::Load(text);
+  const YAML::Node yaml = testing::LoadStrictYaml(text);
   EXPECT_TRUE(yaml["success"].as<bool>());
   EXPECT_DOUBLE_EQ(yaml["scale"].as<double>(), 2.5);
   EXPECT_EQ(yaml["num_frames"].as<int>(), 3);
@@ -48,7 +50,7 @@ TEST(AlignResultYaml, KeysQuaternionsWithNonNegativeWAndTheOptions) {
 TEST(AlignResultYaml, EstimatedRotationExtrinsicIsWritten) {
   AlignResult r = SmallResult();
   r.rotation_extrinsic_estimated = true;
-  const YAML::Node yaml = YAML::Load(AlignResultYaml(r, AlignOptions()));
+  const YAML::Node yaml = testing::LoadStrictYaml(AlignResultYaml(r, AlignOptions()));
   EXPECT_EQ(yaml["R_cam_imu"].size(), 4u);
 }
 

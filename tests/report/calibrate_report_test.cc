@@ -12,6 +12,9 @@
 
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/so3.h"
+#include "splinecal/report/reprojection_figures.h"
+#include "testing/html_ids.h"
+#include "testing/strict_yaml.h"
 
 namespace splinecal {
 namespace {
@@ -23,6 +26,8 @@ using ::testing::StartsWith;
 
 CameraEstimate Camera(double shift_s) {
   CameraEstimate e;
+  e.calibration.camera.width = 752;
+  e.calibration.camera.height = 480;
   e.calibration.T_cam_imu =
       SE3d(SO3d::Exp(Eigen::Vector3d(0.1, -0.2, 0.3)), Eigen::Vector3d(0.01, 0.02, -0.03));
   e.calibration.time_offset_s = shift_s;
@@ -66,27 +71,35 @@ CalibrationResult SmallResult(int num_cameras) {
   return r;
 }
 
-// The keys at column 0 of a YAML document, each as often as it appears.
-std::vector<std::string> TopLevelKeys(const std::string& yaml) {
-  std::vector<std::string> keys;
+const CalibrateReportInputs kInputs = {
+    "imu0.csv", "observations.csv", "camchain.yaml", "aprilgrid.yaml", "", "imu <adis>.yaml"};
+
+std::string Report(const CalibrationResult& r) {
+  return CalibrateReportHtml(r, CalibrateOptions(), kInputs);
+}
+
+// The keys at column 0 of a YAML document.
+std::set<std::string> TopLevelKeys(const std::string& yaml) {
+  std::set<std::string> keys;
   const std::regex key("^([A-Za-z_0-9]+):", std::regex::multiline);
   for (auto it = std::sregex_iterator(yaml.begin(), yaml.end(), key); it != std::sregex_iterator();
        ++it) {
-    keys.push_back((*it)[1]);
+    keys.insert((*it)[1]);
   }
   return keys;
 }
 
 TEST(CalibrateResultYaml, EveryKeyOnceAndCam0AtTheTop) {
+  for (int num_cameras : {1, 2}) {
+    const CalibrationResult r = SmallResult(num_cameras);
+    const std::string text = CalibrateResultYaml(r, CalibrateOptions());
+    // A strict parser refuses a repeated key (cam0's reprojection_rms_px and the pooled one were
+    // once both written as reprojection_rms_px).
+    EXPECT_THAT(testing::DuplicateYamlKeys(text), ::testing::IsEmpty()) << text;
+  }
   const CalibrationResult r = SmallResult(1);
   const std::string text = CalibrateResultYaml(r, CalibrateOptions());
-  std::vector<std::string> keys = TopLevelKeys(text);
-  // Known: reprojection_rms_px is written twice at the top level, cam0's and then all cameras'
-  // (a YAML reader keeps one of them). Pinned here so that a fix is a deliberate format change.
-  EXPECT_EQ(std::count(keys.begin(), keys.end(), "reprojection_rms_px"), 2) << text;
-  keys.erase(std::find(keys.begin(), keys.end(), "reprojection_rms_px"));
-  const std::set<std::string> unique(keys.begin(), keys.end());
-  EXPECT_EQ(unique.size(), keys.size()) << text;
+  const std::set<std::string> unique = TopLevelKeys(text);
   for (const char* expected : {"T_cam_imu",
                                "rotation_std_deg",
                                "translation_std_m",
@@ -97,6 +110,7 @@ TEST(CalibrateResultYaml, EveryKeyOnceAndCam0AtTheTop) {
                                "line_delay_estimated",
                                "line_delay_std",
                                "reprojection_rms_px",
+                               "reprojection_rms_px_all_cameras",
                                "num_frames",
                                "num_observations",
                                "gyro_bias",
@@ -125,7 +139,7 @@ TEST(CalibrateResultYaml, EveryKeyOnceAndCam0AtTheTop) {
     EXPECT_EQ(unique.count(expected), 1u) << expected;
   }
   EXPECT_EQ(unique.count("cameras"), 0u);  // one camera: no per-camera map
-  const YAML::Node yaml = YAML::Load(text);
+  const YAML::Node yaml = testing::LoadStrictYaml(text);
   EXPECT_DOUBLE_EQ(yaml["timeshift_cam_imu"].as<double>(), 1e-3);
   EXPECT_DOUBLE_EQ(yaml["knot_spacing_s"].as<double>(), 0.1);
   EXPECT_EQ(yaml["bias_model"].as<std::string>(), "spline");
@@ -134,7 +148,8 @@ TEST(CalibrateResultYaml, EveryKeyOnceAndCam0AtTheTop) {
 }
 
 TEST(CalibrateResultYaml, SeveralCamerasUnderCameras) {
-  const YAML::Node yaml = YAML::Load(CalibrateResultYaml(SmallResult(2), CalibrateOptions()));
+  const YAML::Node yaml =
+      testing::LoadStrictYaml(CalibrateResultYaml(SmallResult(2), CalibrateOptions()));
   ASSERT_TRUE(yaml["cameras"]);
   EXPECT_DOUBLE_EQ(yaml["cameras"]["cam1"]["timeshift_cam_imu"].as<double>(), 2e-3);
   EXPECT_DOUBLE_EQ(yaml["timeshift_cam_imu"].as<double>(), 1e-3);  // cam0 at the top
@@ -149,7 +164,7 @@ TEST(CalibrateReprojectionCsv, HeaderAndOneRowPerSample) {
 }
 
 TEST(CalibrateReportHtml, EverySectionAndTheEstimates) {
-  const std::string html = CalibrateReportHtml(SmallResult(2));
+  const std::string html = Report(SmallResult(2));
   EXPECT_THAT(html, StartsWith("<!DOCTYPE html>"));
   EXPECT_THAT(html, HasSubstr("<title>splinecal calibrate</title>"));
   EXPECT_THAT(html, HasSubstr("<tr><th colspan=3>cam0</th></tr>"));
@@ -157,8 +172,12 @@ TEST(CalibrateReportHtml, EverySectionAndTheEstimates) {
   EXPECT_THAT(html, HasSubstr("<tr><th>timeshift_cam_imu [ms]</th><td>2.0000</td>"));
   EXPECT_THAT(html, HasSubstr("<tr><th>T_cam_imu translation [mm]</th><td>10.00, 20.00, -30.00"));
   EXPECT_THAT(html, HasSubstr("0.500 (estimated)"));
-  for (const char* section :
-       {"<h2>Warnings</h2>", "<h2>Reprojection</h2>", "<h2>IMU</h2>", "<h2>Trajectory</h2>"}) {
+  for (const char* section : {"<h2>Warnings</h2>",
+                              "<h2>Reprojection</h2>",
+                              "<h2>Reprojection by image position</h2>",
+                              "<h2>IMU</h2>",
+                              "<h2>IMU biases</h2>",
+                              "<h2>Trajectory</h2>"}) {
     EXPECT_THAT(html, HasSubstr(section));
   }
   EXPECT_THAT(html, HasSubstr("<li>a &lt;tagged&gt; warning</li>"));
@@ -169,7 +188,7 @@ TEST(CalibrateReportHtml, EverySectionAndTheEstimates) {
 TEST(CalibrateReportHtml, NoWarningsNoWarningSection) {
   CalibrationResult r = SmallResult(1);
   r.warnings.clear();
-  EXPECT_THAT(CalibrateReportHtml(r), Not(HasSubstr("Warnings")));
+  EXPECT_THAT(Report(r), Not(HasSubstr("Warnings")));
 }
 
 TEST(CalibrateSummaryText, CamerasResidualsAndWarnings) {
@@ -181,6 +200,110 @@ TEST(CalibrateSummaryText, CamerasResidualsAndWarnings) {
   EXPECT_THAT(text, HasSubstr("  reprojection RMS 0.400 px over 340 points in 12 frames\n"));
   EXPECT_THAT(text, HasSubstr("pixel sigma 0.500 px (estimated)\n"));
   EXPECT_THAT(text, EndsWith("warning: a <tagged> warning\n"));
+}
+
+TEST(CalibrateReportHtml, IdsAreUniqueAcrossItsInlinedSvgs) {
+  // Every figure defines a clip path per panel; with the same ids in each inlined SVG a browser
+  // clipped the IMU residuals (72 s of data) to the rectangle of an earlier, narrower panel.
+  const std::string html = Report(SmallResult(2));
+  EXPECT_GE(testing::ExpectUniqueHtmlIds(html, "report.html"), 10);
+  EXPECT_THAT(html, Not(HasSubstr("<?xml")));  // no XML declaration inside HTML
+}
+
+TEST(CalibrateReportHtml, ListsTheInputsAndTheNoiseModel) {
+  const std::string html = Report(SmallResult(1));
+  EXPECT_THAT(html,
+              HasSubstr("<p>IMU: imu0.csv<br>observations: observations.csv<br>camchain: "
+                        "camchain.yaml<br>target: aprilgrid.yaml</p>"));
+  EXPECT_THAT(html, Not(HasSubstr("initial poses:")));  // not given
+  EXPECT_THAT(html, HasSubstr("<caption>IMU noise model: imu &lt;adis&gt;.yaml</caption>"));
+  EXPECT_THAT(html, HasSubstr("<td>gyroscope_noise_density</td><td>0.00016968</td>"));
+  EXPECT_THAT(html, HasSubstr("<td>accelerometer_random_walk</td><td>0.003</td>"));
+  EXPECT_THAT(html, HasSubstr("bias spline, knots every 0.1 s, Huber 2 px"));
+}
+
+TEST(CalibrateReportHtml, BiasesOverTimeWhenTheResultCarriesThem) {
+  CalibrationResult r = SmallResult(1);
+  const std::string means_only = Report(r);
+  EXPECT_THAT(means_only, HasSubstr("IMU biases (means only)"));
+  EXPECT_THAT(means_only, HasSubstr("carries the biases' time averages only"));
+  for (size_t k = 0; k < r.imu_samples.size(); ++k) {
+    r.imu_samples[k].gyro_bias = r.gyro_bias + Eigen::Vector3d::Constant(1e-5 * k);
+    r.imu_samples[k].accel_bias = r.accel_bias - Eigen::Vector3d::Constant(1e-4 * k);
+  }
+  const std::string course = Report(r);
+  EXPECT_THAT(course, HasSubstr("IMU biases over time"));
+  EXPECT_THAT(course, Not(HasSubstr("means only")));
+}
+
+TEST(ReprojectionErrorFigure, OneColourPerCamera) {
+  const plot::Figure figure = ReprojectionErrorFigure(SmallResult(2), 6000);
+  ASSERT_EQ(figure.panels.size(), 2u);
+  for (const plot::Panel& panel : figure.panels) {
+    ASSERT_EQ(panel.series.size(), 2u);
+    for (int cam = 0; cam < 2; ++cam) {
+      EXPECT_EQ(panel.series[cam].label, "cam" + std::to_string(cam));
+      EXPECT_EQ(panel.series[cam].color, CameraColor(cam));
+      EXPECT_EQ(panel.series[cam].x.size(), 25u);  // SmallResult alternates the cameras
+    }
+  }
+  EXPECT_NE(CameraColor(0), CameraColor(1));
+}
+
+// Corners on a 20 px lattice over cam0's 752 x 480 image, each with a small alternating error,
+// plus `bias` [px] on every corner left of u = 100 and above v = 100 (a model mismatch there).
+CalibrationResult LatticeResult(const Eigen::Vector2d& bias) {
+  CalibrationResult r = SmallResult(1);
+  r.reprojection_samples.clear();
+  int k = 0;
+  for (int v = 5; v < 480; v += 20) {
+    for (int u = 5; u < 752; u += 20) {
+      for (int repeat = 0; repeat < 4; ++repeat, ++k) {
+        ReprojectionSample s;
+        s.uv = Eigen::Vector2d(u, v);
+        s.error = Eigen::Vector2d(k % 2 == 0 ? 0.2 : -0.2, 0.0);
+        if (u < 100 && v < 100) s.error += bias;
+        r.reprojection_samples.push_back(s);
+      }
+    }
+  }
+  return r;
+}
+
+TEST(MakeReprojectionImageFigure, ARegionWithAMismatchStandsOut) {
+  const ReprojectionImageFigure map =
+      MakeReprojectionImageFigure(LatticeResult(Eigen::Vector2d(3.0, 0.0)), 100000);
+  ASSERT_EQ(map.figure.panels.size(), 1u);
+  const plot::Panel& panel = map.figure.panels[0];
+  EXPECT_EQ(panel.x.max, 752.0);
+  EXPECT_EQ(panel.y.max, 480.0);
+  EXPECT_TRUE(panel.y.reversed);  // v down, as the image shows it
+  // Classes < 0.5, 0.5-1, 1-2, 2-5, >= 5 px, then the cell vectors and their dots.
+  ASSERT_EQ(panel.series.size(), 7u);
+  const size_t mismatched = 4 * 5 * 5;              // 5 x 5 lattice points in the corner, 4 each
+  EXPECT_EQ(panel.series[3].x.size(), mismatched);  // |error| = 2.8 or 3.2 px
+  EXPECT_EQ(panel.series[0].x.size() + panel.series[3].x.size(),
+            LatticeResult({0, 0}).reprojection_samples.size());
+  // A cell is 752 / 12 = 62.7 px: the corner's mean error of 3 px takes the gain 0.8 * 62.7 / 3
+  // = 16.7 down to 10; elsewhere the alternating errors average to 0.
+  EXPECT_EQ(map.vector_gain, 10.0);
+  const plot::Series& vectors = panel.series[5];
+  double longest = 0.0;
+  for (size_t i = 0; i + 1 < vectors.x.size(); i += 3) {
+    longest = std::max(
+        longest, std::hypot(vectors.x[i + 1] - vectors.x[i], vectors.y[i + 1] - vectors.y[i]));
+  }
+  EXPECT_NEAR(longest, 30.0, 1e-9);
+  EXPECT_THAT(map.key_html, HasSubstr("magnified x10"));
+  EXPECT_THAT(map.key_html, HasSubstr("&#9679;</span> &lt; 0.5 px,"));  // escaped for HTML
+}
+
+TEST(MakeReprojectionImageFigure, NoiseAloneGivesShortVectors) {
+  const ReprojectionImageFigure map =
+      MakeReprojectionImageFigure(LatticeResult(Eigen::Vector2d::Zero()), 100000);
+  const plot::Panel& panel = map.figure.panels[0];
+  EXPECT_EQ(panel.series[0].x.size(), LatticeResult({0, 0}).reprojection_samples.size());
+  for (int k = 1; k < 5; ++k) EXPECT_TRUE(panel.series[k].x.empty()) << k;
 }
 
 }  // namespace

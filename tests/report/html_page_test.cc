@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "testing/html_ids.h"
+
 namespace splinecal {
 namespace {
 
@@ -38,14 +40,21 @@ TEST(HtmlPage, SectionsAndListsInOrder) {
   EXPECT_THAT(html, Not(HasSubstr("Nothing")));
 }
 
-TEST(InlineSvg, DropsTheXmlDeclaration) {
+TEST(HtmlPage, FiguresInlineWithoutXmlDeclarationAndWithTheirOwnIds) {
   plot::Figure figure;
-  plot::Panel& panel = figure.panels.emplace_back();
-  plot::Series& series = panel.series.emplace_back();
-  series.x = {0.0, 1.0};
-  series.y = {0.0, 1.0};
+  figure.panels.emplace_back();
+  figure.panels.emplace_back();
   ASSERT_THAT(plot::RenderSvg(figure), StartsWith("<?xml"));
-  EXPECT_THAT(InlineSvg(figure), StartsWith("<svg"));
+  HtmlPage page("t", "");
+  // The same figure twice: the second must not reuse the first one's clip path ids (HTML ids are
+  // global to the page; a panel would be clipped by the other figure's rectangle).
+  page.FigureSection("A", figure);
+  page.FigureSection("B", figure);
+  const std::string html = page.str();
+  EXPECT_THAT(html, HasSubstr("<h2>A</h2>\n<svg"));
+  EXPECT_THAT(html, Not(HasSubstr("<?xml")));
+  EXPECT_EQ(testing::ExpectUniqueHtmlIds(html), 4);
+  EXPECT_THAT(html, HasSubstr("id=\"fig2-area-1\""));
 }
 
 }  // namespace

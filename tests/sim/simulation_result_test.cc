@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "testing/strict_yaml.h"
+
 namespace splinecal {
 namespace {
 
@@ -62,7 +64,7 @@ TEST(SimulationResultYaml, EveryKeyOnceWithTheRunsFigures) {
                                    "final_accel_bias",
                                    "spline"}));
 
-  const YAML::Node yaml = YAML::Load(text);
+  const YAML::Node yaml = testing::LoadStrictYaml(text);
   EXPECT_EQ(yaml["trajectory"].as<std::string>(), "vio_course");
   EXPECT_EQ(yaml["start_t_ns"].as<int64_t>(), run.start_ns);
   EXPECT_DOUBLE_EQ(yaml["duration_s"].as<double>(), 1.0);

@@ -29,6 +29,7 @@
 #include "testing/rotations.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
+#include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -554,6 +555,7 @@ TEST(AlignCommand, WritesResultAndAlignedPoses) {
                                                     "--out",
                                                     dir.File("out")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(dir.File("out")), 1);
   const YamlDocument yaml(dir.File("out/result.yaml"));
   EXPECT_EQ(yaml.String("success"), "true");
   // TUM stores seconds and positions with 17 digits: the tolerances of the library tests hold

@@ -138,10 +138,15 @@ struct ReprojectionSample {
   Eigen::Vector2d error = Eigen::Vector2d::Zero();  // predicted - observed [px]
 };
 
+// One IMU sample after the calibration (for report.html).
 struct ImuResidualRecord {
   int64_t t_ns = 0;
   Eigen::Vector3d gyro_error = Eigen::Vector3d::Zero();   // predicted - measured [rad/s]
   Eigen::Vector3d accel_error = Eigen::Vector3d::Zero();  // [m/s^2]
+  // The biases at t_ns (the bias spline's value, or the constant) [rad/s], [m/s^2]. NaN when not
+  // recorded: the report then draws the means gyro_bias / accel_bias instead of their course.
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 struct CalibrationResult {

@@ -48,8 +48,10 @@ const std::string& RequiredFlag(const std::string& name, const std::string& valu
 // "x,y,z" -> a finite 3-vector; throws Error("--name: ...") otherwise.
 Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text);
 
-// IMU reading options from --accel-unit (m/s^2 | g) and --gyro-unit (rad/s | deg/s).
-ImuReadOptions ImuReadOptionsFromFlags();
+// IMU reading options from --accel-unit (m/s^2 | g) and --gyro-unit (rad/s | deg/s). With
+// takes_imu_yaml (the command has --imu-yaml), a YAML file given to --imu is refused with a
+// pointer to --imu-yaml (Kalibr calls its noise file `--imu`).
+ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml = false);
 
 }  // namespace cli
 }  // namespace splinecal

@@ -12,7 +12,11 @@
 //   timeshift_cam_imu  [s] (optional: 0), CameraCalibration::time_offset_s
 //   line_delay         [s] per image row (optional: 0, a global shutter)
 //   rostopic           (optional, kept)
-// Other keys (T_cn_cnm1, cam_overlaps) are ignored.
+//   T_cn_cnm1          cam1 onwards: camera n-1 into camera n, 4x4. Read: ignored (T_cam_imu is
+//                      what splinecal uses). Written: the one the T_cam_imu imply,
+//                      T_cn_imu * T_cnm1_imu^-1, so that a stereo extrinsic read from the output
+//                      agrees with the estimated T_cam_imu.
+// cam_overlaps is ignored.
 #ifndef SPLINECAL_IO_CAMCHAIN_YAML_H_
 #define SPLINECAL_IO_CAMCHAIN_YAML_H_
 
@@ -33,8 +37,8 @@ Camchain ReadCamchainYaml(const std::string& path);
 // intrinsics (align).
 CameraCalibration ReadCam0Extrinsics(const std::string& path);
 
-// The YAML text of `camchain` with every key above (Kalibr's camchain-imucam.yaml layout; numbers
-// with 17 significant digits so that it reads back exactly).
+// The YAML text of `camchain` with every key above but cam_overlaps (Kalibr's
+// camchain-imucam.yaml layout; numbers with 17 significant digits so that it reads back exactly).
 std::string CamchainYamlText(const Camchain& camchain);
 
 }  // namespace splinecal

@@ -27,6 +27,9 @@ struct ImuReadOptions {
   bool check_accel_units = true;
   // Refuse a gap between samples longer than this many median sample periods.
   double max_gap_periods = 10.0;
+  // Added to the error when the file is YAML (TextFileReader::set_yaml_hint): where a YAML file
+  // belongs instead, e.g. Kalibr's imu.yaml to --imu-yaml.
+  std::string yaml_hint;
 };
 
 // Reads EuRoC imu0/data.csv: t_ns, gyro xyz [rad/s], accel xyz [m/s^2]. Throws on: missing file,

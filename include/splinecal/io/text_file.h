@@ -3,7 +3,10 @@
 //
 // Every reader of splinecal (EuRoC, TUM, spline.csv, plain columns, observations) is built on
 // this file, so every file format accepts the same things (docs/conventions.md, "File formats"):
-// CRLF line ends, blank lines, '#' comment lines, spaces after commas.
+// CRLF line ends, blank lines, '#' comment lines, spaces after commas. And every one refuses a
+// YAML file the same way: a configuration file given where a table is expected (Kalibr's
+// imu.yaml as --imu) is named as such on its first data line, not reported as a wrong column
+// count further down.
 #ifndef SPLINECAL_IO_TEXT_FILE_H_
 #define SPLINECAL_IO_TEXT_FILE_H_
 
@@ -28,8 +31,13 @@ class TextFileReader {
   TextFileReader& operator=(const TextFileReader&) = delete;
 
   // Advances to the next data line: blank lines and lines whose first non-blank character is '#'
-  // are skipped, a trailing CR is removed. Returns false at the end of the file.
+  // are skipped, a trailing CR is removed. Returns false at the end of the file. Throws when the
+  // first data line is YAML (LooksLikeYamlLine): "a YAML file (...), not a table".
   bool NextLine();
+
+  // Appended to the error for a YAML file, to say where that YAML belongs (the CLI names the
+  // flag that takes it, e.g. --imu-yaml).
+  void set_yaml_hint(const std::string& hint) { yaml_hint_ = hint; }
 
   std::string_view line() const { return line_; }
   int64_t line_number() const { return line_number_; }
@@ -54,6 +62,7 @@ class TextFileReader {
   std::string_view line_;
   int64_t line_number_ = 0;
   int64_t data_lines_ = 0;
+  std::string yaml_hint_;
 };
 
 // The line and number primitives of every reader, shared with code that scans a file itself (the
@@ -104,6 +113,11 @@ inline bool TryParseFiniteDouble(std::string_view field, double* value) {
 // Splits a data line into fields: at commas (surrounding spaces trimmed) when the line has a
 // comma, else at runs of spaces and tabs. `fields` views into `line`.
 void SplitFields(std::string_view line, std::vector<std::string_view>* fields);
+
+// True for a line that starts a YAML document and never a table row: OpenCV's "%YAML:1.0", a
+// "---" document marker, or a mapping key ("name:" then a blank or the end; letters, digits, '_',
+// '.' or '-', starting with a letter or '_').
+bool LooksLikeYamlLine(std::string_view line);
 
 // True when the field reads as a number (used to tell a header row without '#' from data).
 bool LooksNumeric(std::string_view field);

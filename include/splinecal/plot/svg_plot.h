@@ -66,6 +66,9 @@ struct Axis {
   // The range; NaN takes it from the data (log axes: whole decades; linear: round ticks).
   double min = std::numeric_limits<double>::quiet_NaN();
   double max = std::numeric_limits<double>::quiet_NaN();
+  // Values grow towards the bottom (y) or the left (x) instead: image rows (v down) drawn the way
+  // the image shows them.
+  bool reversed = false;
 };
 
 struct Panel {
@@ -89,15 +92,28 @@ struct Figure {
   int columns = 1;
   double panel_width = 440.0;   // [px], including room for tick labels and axis labels
   double panel_height = 330.0;  // [px]
-  std::deque<Panel> panels;  // a deque for the same reason as Panel::series
+  std::deque<Panel> panels;     // a deque for the same reason as Panel::series
+  // Prefix of the ids the document defines (one clip path per panel: "<id_prefix>-area-<panel>").
+  // Ids are global to an HTML page, so SVGs inlined in one page need distinct prefixes, or a
+  // panel is clipped by another figure's rectangle (HtmlPage::FigureSection gives each its own).
+  // A letter, then letters, digits, '-' or '_' (RenderSvg CHECKs it).
+  std::string id_prefix = "plot";
 };
+
+// Appends a panel titled `title` (may be empty) with linear axes labelled x_label and y_label and
+// returns it (the reference stays valid while more panels are added).
+Panel& AddPanel(Figure* figure,
+                const std::string& title,
+                const std::string& x_label,
+                const std::string& y_label);
 
 // `text` made safe for XML and HTML text and attribute values: & < > " ' become entities and
 // control characters (which XML 1.0 forbids) become spaces.
 std::string EscapeXml(const std::string& text);
 
 // The SVG document of `figure`. CHECK-fails on programmer errors only (mismatched series sizes,
-// columns < 1, non-positive panel size, a log axis with a given range <= 0).
+// columns < 1, non-positive panel size, a log axis with a given range <= 0, an id_prefix that is
+// not an XML name).
 std::string RenderSvg(const Figure& figure);
 
 // A tick of an axis. Log-axis labels read "10^k" (drawn with a superscript exponent).

@@ -11,14 +11,16 @@
 //                       fitted xyz, gyro bias xyz, accel bias xyz
 //   pose_residuals.csv  one row per pose (pose clock): #t_ns, position error xyz [m] (world),
 //                       rotation error xyz [rad] (Log(R_measured^T R_fitted))
-//   report.html         the summary and SVG plots (plot/svg_plot.h): measured against fitted gyro
-//                       and accelerometer, residuals over time, biases over time.
+//   report.html         the input files, the IMU noise model, the summary and SVG plots
+//                       (plot/svg_plot.h): measured against fitted gyro and accelerometer,
+//                       residuals over time, biases over time.
 #ifndef SPLINECAL_REPORT_FIT_REPORT_H_
 #define SPLINECAL_REPORT_FIT_REPORT_H_
 
 #include <string>
 
 #include "splinecal/calib/fit.h"
+#include "splinecal/imu/noise.h"
 
 namespace splinecal {
 
@@ -27,6 +29,7 @@ struct FitReportInputs {
   std::string imu_path;
   std::string poses_path;
   std::string imu_yaml_path;  // empty: the ADIS16448 defaults
+  ImuNoise noise;  // the densities that weighted the IMU residuals (the report lists them)
 };
 
 std::string FitResultYaml(const FitResult& result, const FitReportInputs& inputs);

@@ -5,8 +5,12 @@
 //
 //   HtmlPage page("splinecal fit", "body{max-width:960px;margin:auto}");
 //   page.Append("<table>...</table>\n");
-//   page.Section("Residuals", InlineSvg(figure));
+//   page.FigureSection("Residuals", figure);
 //   output.WriteFile("report.html", page.str());
+//
+// Figures go in through FigureSection only: ids (the SVGs' clip paths) are global to an HTML
+// document, and the page gives every figure its own id prefix. Two inlined SVGs with the same
+// ids clip each other's panels (a later plot drawn through an earlier panel's rectangle).
 #ifndef SPLINECAL_REPORT_HTML_PAGE_H_
 #define SPLINECAL_REPORT_HTML_PAGE_H_
 
@@ -28,6 +32,9 @@ class HtmlPage {
   void Append(const std::string& html);
   // <h2>heading</h2> (escaped), then `html` on the next line.
   void Section(const std::string& heading, const std::string& html);
+  // Section(heading, the SVG of `figure` inline), its ids prefixed "figN" (N counts the page's
+  // figures from 1; the figure's own id_prefix is replaced).
+  void FigureSection(const std::string& heading, plot::Figure figure);
   // <h2>heading</h2> and a bullet list of `items` (escaped); `list_class` is the <ul>'s CSS class
   // (empty for none). Writes nothing when `items` is empty.
   void ListSection(const std::string& heading,
@@ -39,10 +46,8 @@ class HtmlPage {
 
  private:
   std::string html_;
+  int num_figures_ = 0;
 };
-
-// The SVG document of `figure` without its XML declaration, for inline use in HTML.
-std::string InlineSvg(const plot::Figure& figure);
 
 }  // namespace splinecal
 

@@ -1,0 +1,51 @@
+// The reprojection-error figures of `splinecal calibrate`'s report.html
+// (report/calibrate_report.h), one colour per camera:
+//
+//   ReprojectionErrorFigure  the errors (predicted - observed) as a u/v scatter, and their norm
+//                            over time.
+//   ReprojectionImageFigure  per camera, where in the image the errors are: every observed corner
+//                            (decimated) coloured by its error's size, plus the mean error of each
+//                            cell of a grid over the image drawn as a magnified vector. Noise
+//                            averages out in a cell's mean; a model that does not fit a region of
+//                            the image (distortion, intrinsics, rolling shutter) leaves long,
+//                            aligned vectors there.
+#ifndef SPLINECAL_REPORT_REPROJECTION_FIGURES_H_
+#define SPLINECAL_REPORT_REPROJECTION_FIGURES_H_
+
+#include <string>
+
+#include "splinecal/calib/calibrate.h"
+#include "splinecal/plot/svg_plot.h"
+
+namespace splinecal {
+
+// The colour of camera `cam_id` in every reprojection figure ("#rrggbb").
+std::string CameraColor(int cam_id);
+
+// At most max_points points per camera and series (evenly decimated).
+plot::Figure ReprojectionErrorFigure(const CalibrationResult& result, int max_points);
+
+// Bounds [px] of the error-size classes of ReprojectionImageFigure: |error| below the first, from
+// the first to the second, ..., and at least the last.
+inline constexpr double kErrorClassBoundsPx[] = {0.5, 1.0, 2.0, 5.0};
+
+struct ReprojectionImageFigure {
+  plot::Figure figure;
+  // The factor the cell mean errors are drawn magnified by: a 1-2-5 step chosen so that 90% of
+  // them span at most 0.8 cell (the longest, when fewer than 10% are not 0; 1 when all are 0).
+  double vector_gain = 1.0;
+  // The key under the figure (HTML): the colours of the classes and the vectors' gain.
+  std::string key_html;
+};
+
+// Cells of about 1/12 of the image width, square; a cell needs kMinCellObservations
+// observations for its mean to be drawn. Image size from each camera's resolution (the data's
+// extent when it has none).
+inline constexpr int kImageCellsAcross = 12;
+inline constexpr int kMinCellObservations = 10;
+ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& result,
+                                                    int max_points);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_REPORT_REPROJECTION_FIGURES_H_
