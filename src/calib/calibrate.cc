@@ -60,6 +60,8 @@ constexpr double kWindowRebuildMargin_s = 0.002;
 constexpr double kSigmaChangeForNewRound = 0.1;
 // 1.4826 x median absolute deviation = std of a Gaussian.
 constexpr double kMadToStd = 1.4826;
+// A reported std this many times the noise model's is named in a warning.
+constexpr double kWarnStdInflation = 2.0;
 // Stops a solve whose time offset or line delay is about to leave the time windows its
 // residuals were built with (Ceres then only sees failed evaluations beyond them); the caller
 // rebuilds the windows and solves again. Needs Solver::Options::update_state_every_iteration.
@@ -488,26 +490,35 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   // nuisance. Always the Schur backend: it needs only the nuisance block H_aa to be positive
   // definite and tests the calibration parameters' own complement for singularity, so a weakly
   // determined landmark depth does not withhold the calibration's standard deviations.
-  const bool constant_bias = spline_->bias_spline().is_constant();
+  // Wanted: the cameras' blocks, then every bias control point; reported: the cameras' tangent
+  // coordinates as they are and the biases' time averages (MeanBiasWeights), q = A x.
   std::vector<const double*> wanted;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     wanted.push_back(cameras_[c].extrinsic.data());
     if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].time_offset_s);
     if (options_.rolling_shutter) wanted.push_back(&cameras_[c].line_delay);
   }
-  if (constant_bias) {
-    wanted.push_back(spline_->gyro_bias(0));
-    wanted.push_back(spline_->accel_bias(0));
-  }
-  std::map<const double*, int> offset;  // first row of each wanted block in the covariance
-  int num_wanted = 0;
+  std::map<const double*, int> offset;  // first row of each camera block in the covariance
+  int num_camera = 0;
   for (const double* block : wanted) {
-    offset[block] = num_wanted;
-    num_wanted += problem().ParameterBlockTangentSize(block);
+    offset[block] = num_camera;
+    num_camera += problem().ParameterBlockTangentSize(block);
+  }
+  const int num_bias_points = spline_->bias_spline().num_points();
+  for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->gyro_bias(m));
+  for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->accel_bias(m));
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(num_camera + 6, num_camera + 6 * num_bias_points);
+  A.topLeftCorner(num_camera, num_camera).setIdentity();
+  const std::vector<double> mean_weights = spline_->MeanBiasWeights(imu_);
+  for (int m = 0; m < num_bias_points; ++m) {
+    A.block<3, 3>(num_camera, num_camera + 3 * m) = mean_weights[m] * Eigen::Matrix3d::Identity();
+    A.block<3, 3>(num_camera + 3, num_camera + 3 * (num_bias_points + m)) =
+        mean_weights[m] * Eigen::Matrix3d::Identity();
   }
   MarginalCovarianceOptions covariance_options;
   covariance_options.backend = CovarianceBackend::kSchur;
   covariance_options.num_threads = options_.solver.num_threads;
+  covariance_options.reported_map = A;
   const double window_s = options_.covariance.robust_window_s;
   if (window_s > 0.0) {
     covariance_options.cluster_of = [this, window_s](ceres::ResidualBlockId id) {
@@ -528,23 +539,23 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
         "not determined by the data); standard deviations are not reported");
     return;
   }
-  // Each variance: the largest of the weights' (the assumed noise), the measured noise's and
-  // the cluster-robust one.
-  Eigen::MatrixXd cov = marginal.covariance;
-  for (const Eigen::MatrixXd* other : {&marginal.noise_covariance, &marginal.robust_covariance}) {
-    if (other->size() != cov.size()) continue;
-    for (int k = 0; k < cov.rows(); ++k) {
-      const double ratio = (*other)(k, k) / cov(k, k);
-      if (ratio > 1.0) {
-        // Scale row and column k so that the correlations are kept.
-        cov.row(k) *= std::sqrt(ratio);
-        cov.col(k) *= std::sqrt(ratio);
-      }
-    }
-  }
-  result->std_inflation =
-      std::sqrt((cov.diagonal().array() / marginal.covariance.diagonal().array()).maxCoeff());
+  const ReportedCovariance reported = ReportedCovarianceOf(marginal);
+  const Eigen::MatrixXd& cov = reported.covariance;
+  result->std_inflation = reported.inflation.maxCoeff();
   result->robust_clusters = marginal.num_clusters;
+  if (result->std_inflation > kWarnStdInflation) {
+    const std::array<double, kNumImuResidualKinds> ratio = imu_noise_->estimate().MeasuredOverGiven();
+    result->warnings.push_back(
+        "the data scatter more than the noise model explains: standard deviations are up to " +
+        StringPrintf("%.2g", result->std_inflation) +
+        "x the noise model's (IMU white noise measured at " + StringPrintf("%.2g", ratio[0]) +
+        "x (gyro) and " + StringPrintf("%.2g", ratio[1]) +
+        "x (accelerometer) the given densities; the cluster-robust scatter over " +
+        std::to_string(marginal.num_clusters) +
+        " time windows): likely vibration above the spline's bandwidth, a knot spacing too "
+        "coarse for the motion, or sensor errors the model lacks (docs/calibrate.md, \"How much "
+        "to trust the numbers\")");
+  }
   auto block = [&](const double* a, int rows) {
     return Eigen::MatrixXd(cov.block(offset[a], offset[a], rows, rows));
   };
@@ -597,10 +608,9 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
                                  StringPrintf("%.3g", options_.max_time_offset_s) + " s");
     }
   }
-  if (constant_bias) {
-    result->gyro_bias_std = block(spline_->gyro_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
-    result->accel_bias_std = block(spline_->accel_bias(0), 3).diagonal().cwiseMax(0.0).cwiseSqrt();
-  }
+  const Eigen::VectorXd bias_std = cov.diagonal().tail(6).cwiseMax(0.0).cwiseSqrt();
+  result->gyro_bias_std = bias_std.head<3>();
+  result->accel_bias_std = bias_std.tail<3>();
 }
 
 void CalibrationProblem::Collect(CalibrationResult* result) {
@@ -623,7 +633,8 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   const ImuResidualStatistics imu_stats =
       spline_->EvaluateImu(imu_, [&](const ImuSample& s, const ImuPrediction& p) {
         if (options_.keep_residuals) {
-          result->imu_samples.push_back({s.t_ns, p.gyro - s.gyro, p.accel - s.accel});
+          result->imu_samples.push_back(
+              {s.t_ns, p.gyro - s.gyro, p.accel - s.accel, p.gyro_bias, p.accel_bias});
         }
       });
   result->num_imu_samples = static_cast<int>(imu_.size());

@@ -60,6 +60,9 @@ CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
   fit_options.model.knot_spacing_s = options.model.knot_spacing_s;
   fit_options.model.gravity_m_s2 = options.model.gravity_m_s2;
   fit_options.model.noise = options.model.noise;
+  // A starting point: the given noise weights it, and the calibration measures the noise.
+  fit_options.model.imu_noise = ImuNoiseMode::kGiven;
+  fit_options.warn_residual_noise = false;
   fit_options.covariance.compute = false;
   fit_options.keep_samples = false;
   fit_options.max_residual_noise_ratio = 1e9;

@@ -25,6 +25,7 @@
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/vio/hand_eye.h"
 #include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/pose_cost.h"
 #include "splinecal/estimation/solver_progress.h"
 #include "splinecal/estimation/marginal_covariance.h"
@@ -59,6 +60,8 @@ constexpr double kWarnResidualNoiseRatio = 3.0;
 
 // A time offset within this fraction of the search range's edge is "at the edge".
 constexpr double kEdgeFraction = 0.01;
+// A re-estimated IMU noise weight that moved by more than this fraction triggers another round.
+constexpr double kNoiseChangeForNewRound = 0.1;
 
 
 SE3d PoseOf(const StampedPose& pose) { return SE3d(SO3d::FromQuaternion(pose.q), pose.p); }
@@ -137,8 +140,9 @@ struct FitProblem::Impl {
   std::vector<int> used_poses;     // indices into poses with residuals
   std::vector<int> pose_segments;  // attached segment of each used pose
   double imu_rate_hz = 0.0;
-  double sigma_g = 0.0;
+  double sigma_g = 0.0;  // the given densities' per-sample stds (the residual checks use them)
   double sigma_a = 0.0;
+  std::unique_ptr<ImuNoiseEstimator> imu_noise;  // the weights, measured from the residuals
   KnotLayout layout;
   double dt_s = 0.0;
   std::string knot_rule;
@@ -177,6 +181,8 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   imu_rate_hz = ImuRateHz(all_imu);
   sigma_g = options.model.noise.GyroWhiteStd(imu_rate_hz);
   sigma_a = options.model.noise.AccelWhiteStd(imu_rate_hz);
+  imu_noise =
+      std::make_unique<ImuNoiseEstimator>(options.model.noise, imu_rate_hz, options.model.imu_noise);
   if (options.model.noise.update_rate_hz > 0.0 &&
       std::abs(options.model.noise.update_rate_hz - imu_rate_hz) > 0.1 * imu_rate_hz) {
     warnings.push_back("the IMU file's sample rate is " + StringPrintf("%.1f", imu_rate_hz) +
@@ -416,9 +422,9 @@ void FitProblem::Impl::BuildProblem() {
     problem.SetParameterBlockConstant(&time_offset);
   }
   if (!options.estimate_extrinsic) problem.SetParameterBlockConstant(extrinsic.data());
-  spline_problem->AddImuResiduals(imu, sigma_g, sigma_a);
+  spline_problem->AddImuResiduals(imu, imu_noise->gyro_sigma(), imu_noise->accel_sigma());
   AddPoseResiduals();
-  spline_problem->AddBiasRandomWalkResiduals(options.model.noise);
+  spline_problem->AddBiasRandomWalkResiduals(imu_noise->densities());
 }
 
 void FitProblem::Impl::AddPoseResiduals() {
@@ -498,17 +504,21 @@ FitResult FitProblem::Impl::Solve() {
       throw Error("the solver failed (" + rounds.last().message +
                   "); likely causes: " + LikelyCauses(0.0, 0.0));
     }
-    if (!options.estimate_time_offset) break;
     bool moved = false;
-    for (size_t p = 0; p < used_poses.size(); ++p) {
+    for (size_t p = 0; options.estimate_time_offset && p < used_poses.size(); ++p) {
       if (layout.ClampedSegmentAt(PoseTimeSinceT0(used_poses[p]) + time_offset) !=
           pose_segments[p]) {
         moved = true;
       }
     }
-    if (!moved) break;
-    if (options.solver.progress)
-      options.solver.progress("fit: time offset moved poses across knots; solving again");
+    // The IMU noise from the residuals (variance components, estimation/imu_noise_estimate.h).
+    if (spline_problem->evaluation_callback()) spline_problem->evaluation_callback()->Update();
+    const bool reweighted = imu_noise->Update(spline_problem.get()) > kNoiseChangeForNewRound;
+    if (!moved && !reweighted) break;
+    if (options.solver.progress) {
+      options.solver.progress(moved ? "fit: time offset moved poses across knots; solving again"
+                                    : "fit: IMU noise re-estimated; solving again");
+    }
     BuildProblem();
   }
   result.solve = rounds.Summary();
@@ -531,8 +541,9 @@ FitResult FitProblem::Impl::Solve() {
   result.imu_rate_hz = imu_rate_hz;
   result.num_imu_samples = static_cast<int>(imu.size());
   result.num_poses = static_cast<int>(used_poses.size());
-  result.noise_std.gyro_rad_s = sigma_g;
-  result.noise_std.accel_m_s2 = sigma_a;
+  result.noise_std.gyro_rad_s = imu_noise->gyro_sigma();
+  result.noise_std.accel_m_s2 = imu_noise->accel_sigma();
+  result.imu_noise = imu_noise->estimate();
   result.noise_std.position_m = options.pose_sigma_m;
   result.noise_std.rotation_rad = options.pose_sigma_rad;
   if (options.model.bias_model == BiasModel::kSpline) {
@@ -617,10 +628,23 @@ FitResult FitProblem::Impl::Solve() {
                                 "or extrinsic that was not estimated)");
     }
   };
-  warn_ratio(gyro_ratio, "gyro");
-  warn_ratio(accel_ratio, "accelerometer");
-  warn_ratio(result.residual_rms.position_m / options.pose_sigma_m, "pose position");
-  warn_ratio(result.residual_rms.rotation_rad / options.pose_sigma_rad, "pose rotation");
+  if (!options.warn_residual_noise) {
+    // The caller measures and reports the noise itself.
+  } else if (options.model.imu_noise == ImuNoiseMode::kGiven) {
+    warn_ratio(gyro_ratio, "gyro");
+    warn_ratio(accel_ratio, "accelerometer");
+  } else if (std::max(gyro_ratio, accel_ratio) > kWarnResidualNoiseRatio) {
+    result.warnings.push_back(
+        "the IMU residuals are " + StringPrintf("%.2g", gyro_ratio) + "x (gyro) and " +
+        StringPrintf("%.2g", accel_ratio) +
+        "x (accelerometer) the noise of the given densities: the standard deviations use the "
+        "noise measured from the residuals (unmodelled vibration, a knot spacing too coarse for "
+        "the motion, or densities that are too low)");
+  }
+  if (options.warn_residual_noise) {
+    warn_ratio(result.residual_rms.position_m / options.pose_sigma_m, "pose position");
+    warn_ratio(result.residual_rms.rotation_rad / options.pose_sigma_rad, "pose rotation");
+  }
 
 #ifdef __GLIBC__
   // The solver's Jacobian is gone: give its pages back before the covariance allocates (the
@@ -696,18 +720,40 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   covariance_options.num_threads = options.solver.num_threads;
   covariance_options.max_ceres_covariance_entries = options.covariance.max_ceres_covariance_entries;
   covariance_options.backend = options.covariance.backend;
+  // The noise the residuals show and the cluster-robust scatter over time windows
+  // (estimation/marginal_covariance.h, ReportedCovarianceOf); both need the Schur backend.
+  const double window_s = options.covariance.robust_window_s;
+  if (window_s > 0.0) {
+    covariance_options.cluster_of = [this, window_s](ceres::ResidualBlockId id) {
+      return spline_problem->TimeWindowOf(id, window_s);
+    };
+  }
+  covariance_options.noise_factors = imu_noise->NoiseFactors();
+  if (!covariance_options.noise_factors.empty()) {
+    covariance_options.group_of = [this](ceres::ResidualBlockId id) {
+      return ImuNoiseEstimator::GroupOf(*spline_problem, id);
+    };
+  }
+  const bool extras = window_s > 0.0 || !covariance_options.noise_factors.empty();
+  if (extras) {
+    covariance_options.backend = CovarianceBackend::kSchur;
+    covariance_options.reported_map = A;
+  }
   const MarginalCovariance marginal =
       ComputeMarginalCovariance(problem(), blocks, covariance_options);
   result->covariance_method = marginal.method;
   const bool ok = marginal.ok;
-  const Eigen::MatrixXd& full = marginal.covariance;
   if (!ok) {
     ReportSingularFitInformation(options, result);
     result->covariance_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
-  ReportFitUncertainty(options, A * full * A.transpose(), result);
+  const ReportedCovariance honest = ReportedCovarianceOf(
+      extras ? marginal : MarginalCovariance{true, A * marginal.covariance * A.transpose()});
+  result->std_inflation = honest.inflation.maxCoeff();
+  result->robust_clusters = marginal.num_clusters;
+  ReportFitUncertainty(options, honest.covariance, result);
   result->covariance_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

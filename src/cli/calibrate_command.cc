@@ -94,6 +94,7 @@ CalibrateInputs ReadCalibrateInputs() {
   options.solver.num_threads = ThreadsFlag();
   options.solver.progress = [](const std::string& line) { Progress(line); };
   if (!FLAGS_imu_yaml.empty()) options.model.noise = ReadImuYaml(FLAGS_imu_yaml);
+  options.model.imu_noise = ImuNoiseModeFlag();
 
   in.camchain = ReadCamchainYaml(camchain_path);
   if (!FLAGS_target.empty()) {
@@ -200,6 +201,7 @@ Command CalibrateCommand() {
            {"imu_yaml",
             "IMU noise densities, Kalibr imu.yaml [path]; weights the IMU residuals "
             "(default: ADIS16448)"},
+           {"imu_noise", ""},
            {"rolling_shutter", ""},
            {"no_time_offset", ""},
            {"knot_spacing", "Spline knot spacing dt [s]; 0 chooses it from the IMU data", "0.05"},

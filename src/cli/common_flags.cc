@@ -13,6 +13,11 @@ DEFINE_string(out,
 DEFINE_bool(quiet, false, "Silence progress output on stderr");
 DEFINE_string(imu, "", "IMU data, EuRoC imu0/data.csv [path]");
 DEFINE_string(imu_yaml, "", "IMU noise, Kalibr imu.yaml [path]");
+DEFINE_string(imu_noise,
+              "estimated",
+              "IMU noise: estimated (random walks re-estimated from the residuals, the white "
+              "noise measured and used in the standard deviations), reweighted (the measured "
+              "white noise also weights the solve) or given (--imu-yaml trusted as it is)");
 DEFINE_string(poses, "", "Pose source, EuRoC ground truth or TUM trajectory [path]");
 DEFINE_double(gravity, 9.81, "Gravity magnitude g [m/s^2]; g_w = (0, 0, -g)");
 DEFINE_int32(seed, 1, "Random seed; the same seed gives byte-identical output");
@@ -92,6 +97,15 @@ Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text) {
   }
   if (i != 3) throw Error("--" + name + ": expected three numbers x,y,z, got '" + text + "'");
   return v;
+}
+
+ImuNoiseMode ImuNoiseModeFlag() {
+  for (ImuNoiseMode mode :
+       {ImuNoiseMode::kEstimated, ImuNoiseMode::kReweighted, ImuNoiseMode::kGiven}) {
+    if (FLAGS_imu_noise == ImuNoiseModeName(mode)) return mode;
+  }
+  throw Error("--imu-noise: expected estimated, reweighted or given, got '" + FLAGS_imu_noise +
+              "'");
 }
 
 ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml) {

@@ -76,6 +76,7 @@ FitInputs ReadFitInputs() {
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
   in.poses = ReadPoses(poses_path);
   if (!FLAGS_imu_yaml.empty()) options.model.noise = ReadImuYaml(FLAGS_imu_yaml);
+  options.model.imu_noise = ImuNoiseModeFlag();
   return in;
 }
 
@@ -90,7 +91,6 @@ int RunFit() {
   inputs.imu_path = FLAGS_imu;
   inputs.poses_path = FLAGS_poses;
   inputs.imu_yaml_path = FLAGS_imu_yaml;
-  inputs.noise = in.options.model.noise;
   output.WriteFile("result.yaml", FitResultYaml(result, inputs));
   std::ostringstream spline_csv;
   WriteSplineCsv(result.MakeSpline(), &spline_csv);
@@ -172,6 +172,7 @@ Command FitCommand() {
            {"poses", ""},
            {"out", ""},
            {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; default ADIS16448"},
+           {"imu_noise", ""},
            {"knot_spacing", "Spline knot spacing dt [s]; 0 chooses it from the IMU data", "0"},
            {"pose_sigma_m", ""},
            {"pose_sigma_rad", ""},

@@ -207,9 +207,7 @@ Eigen::SparseMatrix<double> CompressedInformation::Assemble(
 
 bool CompressedInformation::SchurCovariance(const std::vector<const double*>& requested,
                                             Eigen::MatrixXd* covariance,
-                                            Eigen::MatrixXd* robust,
-                                            const std::map<int, double>& label_factors,
-                                            Eigen::MatrixXd* noise_scaled) {
+                                            SchurExtras* extras) {
   std::map<const double*, int> wanted_offsets;
   int num_wanted = 0;
   for (const double* block : requested) {
@@ -254,45 +252,45 @@ bool CompressedInformation::SchurCovariance(const std::vector<const double*>& re
                 (eigen.eigenvectors() * lambda.cwiseInverse().asDiagonal() *
                  eigen.eigenvectors().transpose()) *
                 scale.asDiagonal();
-  if (robust != nullptr && cluster_gradients_.size() >= 2) {
-    // (H^-1 g)_c = Cov(c) (g_c - X^T g_a) for each cluster's gradient g (block elimination).
-    const double clusters = static_cast<double>(cluster_gradients_.size());
-    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(num_wanted, num_wanted);
-    for (const auto& [cluster, gradient] : cluster_gradients_) {
-      Eigen::VectorXd g = Eigen::VectorXd::Zero(size);
-      for (const auto& [block, g_block] : gradient) {
-        const auto offset = offsets.find(block);
-        if (offset != offsets.end()) g.segment(offset->second, g_block.size()) += g_block;
+  if (extras != nullptr) {
+    const Eigen::MatrixXd A = extras->A.size() == 0
+                                  ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(num_wanted, num_wanted))
+                                  : extras->A;
+    const Eigen::MatrixXd W = *covariance * A.transpose();  // Cov(c) A^T
+    extras->mapped = A * W;
+    if (cluster_gradients_.size() >= 2) {
+      const double clusters = static_cast<double>(cluster_gradients_.size());
+      Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(A.rows(), A.rows());
+      for (const auto& [cluster, gradient] : cluster_gradients_) {
+        Eigen::VectorXd g = Eigen::VectorXd::Zero(size);
+        for (const auto& [block, g_block] : gradient) {
+          const auto offset = offsets.find(block);
+          if (offset != offsets.end()) g.segment(offset->second, g_block.size()) += g_block;
+        }
+        Eigen::VectorXd v = g.tail(num_wanted);
+        if (na > 0) v -= X.transpose() * g.head(na);
+        const Eigen::VectorXd x = W.transpose() * v;
+        meat += x * x.transpose();
       }
-      Eigen::VectorXd v = g.tail(num_wanted);
-      if (na > 0) v -= X.transpose() * g.head(na);
-      const Eigen::VectorXd x = *covariance * v;
-      meat += x * x.transpose();
+      extras->robust = clusters / (clusters - 1.0) * meat;  // small-sample factor G / (G - 1)
     }
-    *robust = clusters / (clusters - 1.0) * meat;  // small-sample correction G / (G - 1)
-  }
-  if (noise_scaled != nullptr && !label_factors.empty()) {
-    // T's rows of a block: -X's rows for a nuisance block, the identity's for a wanted one.
-    auto T_rows = [&](const double* block, int rows) {
-      const int offset = offsets.at(block);
-      if (offset >= na) {
-        Eigen::MatrixXd identity_rows = Eigen::MatrixXd::Zero(rows, num_wanted);
-        identity_rows.middleCols(offset - na, rows).setIdentity();
-        return identity_rows;
+    if (!extras->label_factors.empty()) {
+      const Eigen::MatrixXd XW = na > 0 ? Eigen::MatrixXd(X * W) : Eigen::MatrixXd();
+      Eigen::MatrixXd noise = extras->mapped;
+      for (const auto& [key, group] : groups_) {
+        const auto factor = extras->label_factors.find(key.first);
+        if (factor == extras->label_factors.end() || factor->second == 1.0) continue;
+        Eigen::MatrixXd TW_g(group.H.rows(), A.rows());
+        for (size_t k = 0; k < group.blocks.size(); ++k) {
+          const int offset = offsets.at(group.blocks[k]);
+          TW_g.middleRows(group.offsets[k], group.sizes[k]) =
+              offset >= na ? Eigen::MatrixXd(W.middleRows(offset - na, group.sizes[k]))
+                           : Eigen::MatrixXd(-XW.middleRows(offset, group.sizes[k]));
+        }
+        noise += (factor->second - 1.0) * TW_g.transpose() * group.H * TW_g;
       }
-      return Eigen::MatrixXd(-X.middleRows(offset, rows));
-    };
-    Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(num_wanted, num_wanted);
-    for (const auto& [key, group] : groups_) {
-      const auto factor = label_factors.find(key.first);
-      const double f = factor == label_factors.end() ? 1.0 : factor->second;
-      Eigen::MatrixXd T_g(group.H.rows(), num_wanted);
-      for (size_t k = 0; k < group.blocks.size(); ++k) {
-        T_g.middleRows(group.offsets[k], group.sizes[k]) = T_rows(group.blocks[k], group.sizes[k]);
-      }
-      Q += f * T_g.transpose() * group.H * T_g;
+      extras->noise = noise;
     }
-    *noise_scaled = *covariance * Q * *covariance;
   }
   groups_.clear();
   return covariance->allFinite();

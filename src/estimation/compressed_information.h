@@ -58,18 +58,26 @@ class CompressedInformation {
   // Cov(c) = (H_cc - H_ca H_aa^-1 H_ac)^-1 of the requested blocks c (every other block is
   // nuisance). False when H_aa is not positive definite or the complement is numerically
   // singular. Consumes the groups.
-  // With clusters, `robust` (may be nullptr) receives the cluster-robust covariance of the same
-  // blocks, (H^-1 M H^-1)_cc with M = G / (G - 1) sum_k g_k g_k^T over the G clusters, formed as
-  // (H^-1 g)_c = Cov(c) (g_c - H_ca H_aa^-1 g_a) per cluster.
-  // With label_factors (label -> f_l), `noise_scaled` (may be nullptr) receives the covariance when
-  // label l's residuals have variance f_l times the variance their weights assume:
-  // (H^-1 (sum_l f_l H_l) H^-1)_cc, formed as Cov(c) T^T (sum_g f_g H_g) T Cov(c) with
-  // T = [-H_aa^-1 H_ac; I] (the c rows of H^-1 are Cov(c) T^T).
+  // Extras in reported coordinates q = A x of the requested blocks' tangent coordinates x
+  // (A empty: q = x):
+  //   * mapped: A Cov(c) A^T;
+  //   * with clusters, robust: the cluster-robust covariance A (H^-1 M H^-1)_cc A^T with
+  //     M = G / (G - 1) sum_k g_k g_k^T over the G clusters, formed from
+  //     A (H^-1 g)_c = W^T (g_c - H_ca H_aa^-1 g_a), W = Cov(c) A^T (block elimination);
+  //   * with label_factors (label -> f_l), noise: the covariance when label l's residuals have
+  //     f_l times the variance their weights assume, A (H^-1 (sum_l f_l H_l) H^-1)_cc A^T
+  //     = A Cov(c) A^T + sum_{groups of labels with f != 1} (f - 1) (T W)_g^T H_g (T W)_g with
+  //     T = [-H_aa^-1 H_ac; I] (the c rows of H^-1 are Cov(c) T^T, and T^T H T = Cov(c)^-1).
+  struct SchurExtras {
+    Eigen::MatrixXd A;
+    std::map<int, double> label_factors;
+    Eigen::MatrixXd mapped;
+    Eigen::MatrixXd robust;  // empty without clusters (or fewer than 2)
+    Eigen::MatrixXd noise;   // empty without label_factors
+  };
   bool SchurCovariance(const std::vector<const double*>& requested,
                        Eigen::MatrixXd* covariance,
-                       Eigen::MatrixXd* robust = nullptr,
-                       const std::map<int, double>& label_factors = {},
-                       Eigen::MatrixXd* noise_scaled = nullptr);
+                       SchurExtras* extras = nullptr);
   int num_clusters() const { return static_cast<int>(cluster_gradients_.size()); }
 
   // t_l = tr(H^-1 H_l) for every label l (H_l = the information of label l's residuals): the

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <utility>
@@ -37,7 +38,8 @@ MarginalCovariance ComputeMarginalCovariance(ceres::Problem* problem,
     ok = covariance.Compute(blocks, problem);
     if (ok) ok = covariance.GetCovarianceMatrixInTangentSpace(blocks, full.data());
   } else {
-    const bool extras = options.cluster_of || !options.noise_factors.empty();
+    const bool extras = options.cluster_of || !options.noise_factors.empty() ||
+                        options.reported_map.size() > 0;
     CompressedInformation compressed(problem, options.group_of, options.cluster_of);
     if (compressed.evaluation_failed()) {
       result.method = "none: a residual could not be evaluated at the solution";
@@ -60,24 +62,58 @@ MarginalCovariance ComputeMarginalCovariance(ceres::Problem* problem,
     } else {
       result.method = "Schur complement by sparse Cholesky of the compressed information";
       Eigen::MatrixXd marginal;
-      Eigen::MatrixXd robust;
-      Eigen::MatrixXd scaled;
-      ok = compressed.SchurCovariance(blocks,
-                                      &marginal,
-                                      options.cluster_of ? &robust : nullptr,
-                                      options.noise_factors,
-                                      &scaled);
-      if (ok) full = marginal;
-      if (ok && scaled.size() > 0 && scaled.allFinite()) result.noise_covariance = scaled;
-      if (ok && robust.size() > 0 && robust.allFinite()) {
-        result.robust_covariance = robust;
-        result.num_clusters = compressed.num_clusters();
+      CompressedInformation::SchurExtras schur_extras;
+      schur_extras.A = options.reported_map;
+      schur_extras.label_factors = options.noise_factors;
+      ok = compressed.SchurCovariance(blocks, &marginal, extras ? &schur_extras : nullptr);
+      if (ok) {
+        if (extras) {
+          full.resize(schur_extras.mapped.rows(), schur_extras.mapped.cols());
+          full = schur_extras.mapped;
+          if (schur_extras.robust.allFinite() && schur_extras.robust.size() > 0) {
+            result.robust_covariance = schur_extras.robust;
+            result.num_clusters = compressed.num_clusters();
+          }
+          if (schur_extras.noise.allFinite() && schur_extras.noise.size() > 0) {
+            result.noise_covariance = schur_extras.noise;
+          }
+        } else {
+          full = marginal;
+        }
       }
     }
   }
   result.ok = ok && full.allFinite();
   if (result.ok) result.covariance = full;
   return result;
+}
+
+ReportedCovariance ReportedCovarianceOf(const MarginalCovariance& marginal) {
+  ReportedCovariance reported;
+  const Eigen::MatrixXd& model = marginal.covariance;
+  const int n = static_cast<int>(model.rows());
+  Eigen::VectorXd variance = model.diagonal();
+  const Eigen::VectorXd model_variance = variance;
+  if (marginal.noise_covariance.rows() == n) {
+    variance = variance.cwiseMax(marginal.noise_covariance.diagonal());
+  }
+  reported.robust_ratio = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
+  if (marginal.robust_covariance.rows() == n && marginal.num_clusters >= 2) {
+    // Wilson-Hilferty: chi^2_k quantile ~ k (1 - 2/(9k) + z sqrt(2/(9k)))^3, z = 1.645 (95%).
+    const double k = marginal.num_clusters - 1.0;
+    const double c = 2.0 / (9.0 * k);
+    const double quantile = std::pow(1.0 - c + 1.6448536 * std::sqrt(c), 3);
+    reported.robust_threshold = std::sqrt(quantile);
+    for (int i = 0; i < n; ++i) {
+      const double ratio = marginal.robust_covariance(i, i) / variance[i];
+      reported.robust_ratio[i] = std::sqrt(std::max(0.0, ratio));
+      if (ratio > quantile) variance[i] = marginal.robust_covariance(i, i);
+    }
+  }
+  reported.inflation = (variance.array() / model_variance.array()).sqrt().matrix();
+  reported.covariance =
+      reported.inflation.asDiagonal() * model * reported.inflation.asDiagonal();
+  return reported;
 }
 
 }  // namespace splinecal

@@ -26,10 +26,19 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
   yaml->Vector("translation_std_m", c.translation_std_m);
   yaml->Scalar("timeshift_cam_imu", c.calibration.time_offset_s);
   yaml->Scalar("timeshift_estimated", c.time_offset_estimated);
-  yaml->Scalar("timeshift_std_s", c.time_offset_std_s);
+  // A quantity that was held fixed has no standard deviation: "fixed", not NaN.
+  if (c.time_offset_estimated) {
+    yaml->Scalar("timeshift_std_s", c.time_offset_std_s);
+  } else {
+    yaml->Scalar("timeshift_std_s", "fixed");
+  }
   yaml->Scalar("line_delay", c.calibration.line_delay_s);
   yaml->Scalar("line_delay_estimated", c.line_delay_estimated);
-  yaml->Scalar("line_delay_std", c.line_delay_std_s);
+  if (c.line_delay_estimated) {
+    yaml->Scalar("line_delay_std", c.line_delay_std_s);
+  } else {
+    yaml->Scalar("line_delay_std", "fixed");
+  }
   yaml->Scalar("reprojection_rms_px", c.reprojection_rms_px);
   yaml->Scalar("num_frames", c.num_frames);
   yaml->Scalar("num_observations", c.num_observations);
@@ -198,6 +207,11 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("reprojection_rms_px_all_cameras", r.reprojection_rms_px);
   yaml.Scalar("pixel_sigma_px", r.pixel_sigma_px);
   yaml.Scalar("pixel_sigma_estimated", r.pixel_sigma_estimated);
+  WriteImuNoiseYaml(r.imu_noise, &yaml);
+  // The largest factor by which a reported std exceeds the noise model's (docs/calibrate.md,
+  // "How much to trust the numbers").
+  yaml.Scalar("std_inflation", r.std_inflation);
+  yaml.Scalar("robust_clusters", r.robust_clusters);
   yaml.Scalar("gyro_rms", r.gyro_rms);
   yaml.Scalar("accel_rms", r.accel_rms);
   yaml.Scalar("num_imu_samples", r.num_imu_samples);
@@ -249,7 +263,7 @@ std::string CalibrateReportHtml(const CalibrationResult& r,
                               {"camchain", inputs.camchain_path},
                               {"target", inputs.target_path},
                               {"initial poses", inputs.initial_poses_path}}));
-  page.Append(ImuNoiseTableHtml(options.model.noise, inputs.imu_yaml_path));
+  page.Append(ImuNoiseTableHtml(r.imu_noise, inputs.imu_yaml_path));
   page.Append(EstimatesTable(r, options));
   page.ListSection("Warnings", r.warnings);
   page.FigureSection("Reprojection", ReprojectionErrorFigure(r, max_points));

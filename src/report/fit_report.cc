@@ -68,6 +68,9 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
     yaml.EndMap();
   }
   yaml.Scalar("covariance_ok", r.covariance_ok);
+  // The largest factor by which a reported std exceeds the noise model's (docs/fit.md).
+  yaml.Scalar("std_inflation", r.std_inflation);
+  yaml.Scalar("robust_clusters", r.robust_clusters);
   yaml.StringList("not_determined", r.not_determined);
   yaml.Comment("per-axis RMS of the residuals, and the per-axis noise std the weights assumed");
   yaml.BeginMap("residual_rms");
@@ -76,6 +79,7 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   yaml.Scalar("position_m", r.residual_rms.position_m);
   yaml.Scalar("rotation_rad", r.residual_rms.rotation_rad);
   yaml.EndMap();
+  WriteImuNoiseYaml(r.imu_noise, &yaml);
   yaml.BeginMap("noise_std");
   yaml.Scalar("gyro_rad_s", r.noise_std.gyro_rad_s);
   yaml.Scalar("accel_m_s2", r.noise_std.accel_m_s2);
@@ -243,7 +247,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   }
 
   std::string html = InputFilesHtml({{"IMU", inputs.imu_path}, {"poses", inputs.poses_path}});
-  html += ImuNoiseTableHtml(inputs.noise, inputs.imu_yaml_path);
+  html += ImuNoiseTableHtml(r.imu_noise, inputs.imu_yaml_path);
   html += "<table><tr><th>quantity</th><th>estimate</th><th>std</th></tr>\n";
   auto row = [&html](const std::string& name, const std::string& value, const std::string& std) {
     html += "<tr><td>" + plot::EscapeXml(name) + "</td><td>" + plot::EscapeXml(value) +

@@ -56,13 +56,23 @@ TEST(FitReportHtml, IdsAreUniqueAcrossItsInlinedSvgs) {
 
 TEST(FitReportHtml, ListsTheInputsAndTheNoiseModel) {
   FitReportInputs inputs = Inputs("my_imu.yaml");
-  inputs.noise.gyroscope_noise_density = 1.5e-4;
-  const std::string html = FitReportHtml(SmallFit(), inputs);
+  FitResult fit = SmallFit();
+  fit.imu_noise.given.gyroscope_noise_density = 1.5e-4;
+  fit.imu_noise.measured.gyroscope_noise_density = 6e-4;
+  fit.imu_noise.used.gyroscope_noise_density = 1.5e-4;
+  fit.imu_noise.num_residuals[0] = 300;
+  fit.imu_noise.determined[0] = true;
+  const std::string html = FitReportHtml(fit, inputs);
   EXPECT_THAT(html, HasSubstr("<p>IMU: imu0.csv<br>poses: poses.csv</p>"));
-  EXPECT_THAT(html, HasSubstr("<caption>IMU noise model: my_imu.yaml</caption>"));
-  EXPECT_THAT(html, HasSubstr("<td>gyroscope_noise_density</td><td>0.00015</td>"));
+  EXPECT_THAT(html,
+              HasSubstr("<caption>IMU noise model (--imu-noise estimated), given: my_imu.yaml"));
+  // Given, measured, used as the weight.
+  EXPECT_THAT(html,
+              HasSubstr("<td>gyroscope_noise_density</td><td>0.00015</td><td>0.0006</td>"
+                        "<td>0.00015</td>"));
+  EXPECT_THAT(html, HasSubstr("measured: enters the standard deviations"));
   inputs.imu_yaml_path.clear();
-  EXPECT_THAT(FitReportHtml(SmallFit(), inputs), HasSubstr("IMU noise model: ADIS16448 defaults"));
+  EXPECT_THAT(FitReportHtml(fit, inputs), HasSubstr("given: ADIS16448 defaults"));
 }
 
 TEST(FitResultYaml, EveryKeyOnce) {

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "splinecal/estimation/bias_costs.h"
+#include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/knot_spacing.h"
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/pose_fit.h"
@@ -105,6 +106,9 @@ struct FitOptions {
   // EuRoC's MAV vibrations leave the accelerometer at ~30x its white noise: 100 keeps real data
   // and catches wrong units, wrong trajectories and missed time offsets (typically 1000x).
   double max_residual_noise_ratio = 100.0;
+  // Warn when the residuals exceed the given noise (calibrate's initial guess does not: the
+  // calibration measures and reports the noise itself).
+  bool warn_residual_noise = true;
   // Keep per-sample predictions and residuals in FitResult (for residuals.csv / report.html).
   bool keep_samples = true;
   // Implementation choices with the same objective (tests and benchmarks compare them).
@@ -184,6 +188,12 @@ struct FitResult {
 
   ResidualStats residual_rms;
   ResidualStats noise_std;  // what the weights assume (sigma per axis)
+  // The IMU noise: given, measured from the residuals, and what weighted the solve.
+  ImuNoiseEstimate imu_noise;
+  // The largest factor by which a reported std exceeds the weights' (the measured noise or the
+  // cluster-robust scatter over robust_clusters time windows; 1: the weights explain it).
+  double std_inflation = 1.0;
+  int robust_clusters = 0;
   double imu_rate_hz = 0.0;
   int num_imu_samples = 0;
   int num_poses = 0;

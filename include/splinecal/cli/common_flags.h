@@ -8,12 +8,14 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "splinecal/estimation/imu_noise_mode.h"
 #include "splinecal/io/euroc.h"
 
 DECLARE_string(out);
 DECLARE_bool(quiet);
 DECLARE_string(imu);
 DECLARE_string(imu_yaml);
+DECLARE_string(imu_noise);
 DECLARE_string(poses);
 DECLARE_double(gravity);
 DECLARE_int32(seed);
@@ -52,6 +54,9 @@ Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text);
 // takes_imu_yaml (the command has --imu-yaml), a YAML file given to --imu is refused with a
 // pointer to --imu-yaml (Kalibr calls its noise file `--imu`).
 ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml = false);
+
+// --imu-noise: estimated, reweighted or given (estimation/imu_noise_mode.h).
+ImuNoiseMode ImuNoiseModeFlag();
 
 }  // namespace cli
 }  // namespace splinecal

@@ -53,6 +53,10 @@ struct MarginalCovarianceOptions {
   // 1). Empty: not computed. Uses the Schur backend.
   std::function<int(ceres::ResidualBlockId)> group_of;
   std::map<int, double> noise_factors;
+  // Reported quantities q = reported_map x of the blocks' tangent coordinates x (e.g. a bias
+  // spline's time average); empty: q = x. With a map, every covariance of the result is of q.
+  // Uses the Schur backend.
+  Eigen::MatrixXd reported_map;
 };
 
 struct MarginalCovariance {
@@ -73,6 +77,24 @@ struct MarginalCovariance {
   // weighted by assumed noise, whose covariance uses the measured noise). Empty otherwise.
   Eigen::MatrixXd noise_covariance;
 };
+
+// The covariance an estimate reports (docs/calibrate.md, "How much to trust the numbers"):
+// each variance is the largest of
+//   * the weights' (covariance: the noise the weights assume),
+//   * the measured noise's (noise_covariance), and
+//   * the cluster-robust one (robust_covariance), where it is significantly larger: beyond the
+//     95% quantile of its own scatter under the noise model, chi^2_{G-1} / (G - 1) for G
+//     clusters (Wilson-Hilferty). Below it the difference is the robust estimate's own noise
+//     (it rests on G clusters only), and taking it would only add that noise.
+// Row and column k are scaled by the same factor, so the correlations stay those of the noise
+// model.
+struct ReportedCovariance {
+  Eigen::MatrixXd covariance;
+  Eigen::VectorXd inflation;      // reported std / the weights' std, per coordinate
+  Eigen::VectorXd robust_ratio;   // cluster-robust std / the noise model's std (NaN: none)
+  double robust_threshold = 0.0;  // the std ratio above which the robust one is taken
+};
+ReportedCovariance ReportedCovarianceOf(const MarginalCovariance& marginal);
 
 // The marginal covariance of `blocks` (free parameter blocks of `problem`, each at most once)
 // at the problem's current values. Evaluates every residual block once.

@@ -28,8 +28,7 @@ namespace splinecal {
 struct FitReportInputs {
   std::string imu_path;
   std::string poses_path;
-  std::string imu_yaml_path;  // empty: the ADIS16448 defaults
-  ImuNoise noise;  // the densities that weighted the IMU residuals (the report lists them)
+  std::string imu_yaml_path;  // empty: the ADIS16448 defaults (the noise is FitResult::imu_noise)
 };
 
 std::string FitResultYaml(const FitResult& result, const FitReportInputs& inputs);

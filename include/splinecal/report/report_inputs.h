@@ -8,7 +8,9 @@
 #include <utility>
 #include <vector>
 
+#include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/imu/noise.h"
+#include "splinecal/io/yaml_writer.h"
 
 namespace splinecal {
 
@@ -21,9 +23,14 @@ std::string InputFilesHtml(const std::vector<ReportInput>& inputs);
 // Where the noise densities came from: the imu.yaml path, or the defaults when it is empty.
 std::string NoiseSourceText(const std::string& imu_yaml_path);
 
-// A table of Kalibr's four densities (with units) and the update rate as given, captioned with
-// NoiseSourceText(imu_yaml_path).
-std::string ImuNoiseTableHtml(const ImuNoise& noise, const std::string& imu_yaml_path);
+// A table of Kalibr's four densities (with units): as given (captioned with
+// NoiseSourceText(imu_yaml_path)), as the residuals show them and as they weighted the solve
+// (estimation/imu_noise_estimate.h), and the update rate as given.
+std::string ImuNoiseTableHtml(const ImuNoiseEstimate& noise, const std::string& imu_yaml_path);
+
+// The same in result.yaml: `imu_noise: {mode, <density key>: {given, measured, used,
+// determined, redundancy}, ...}`.
+void WriteImuNoiseYaml(const ImuNoiseEstimate& noise, YamlWriter* yaml);
 
 }  // namespace splinecal
 
