@@ -33,6 +33,7 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
+#include "splinecal/vio/align.h"
 
 namespace splinecal {
 
@@ -62,23 +63,35 @@ constexpr double kSigmaChangeForNewRound = 0.1;
 constexpr double kMadToStd = 1.4826;
 // A reported std this many times the noise model's is named in a warning.
 constexpr double kWarnStdInflation = 2.0;
-// Stops a solve whose time offset or line delay is about to leave the time windows its
-// residuals were built with (Ceres then only sees failed evaluations beyond them); the caller
-// rebuilds the windows and solves again. Needs Solver::Options::update_state_every_iteration.
-class WindowGuard : public ceres::IterationCallback {
+// Stops a solve (SOLVER_TERMINATE_SUCCESSFULLY) at the first iteration for which stop(summary)
+// holds, and remembers that it did; the caller rebuilds the problem and solves again. Needs
+// Solver::Options::update_state_every_iteration (stop reads the parameters). Two uses in Run:
+// - the time windows: the time offset or line delay is about to leave the windows the residuals
+//   were built with (Ceres then only sees failed evaluations beyond them);
+// - a free line delay that an accepted step has put on a bound: Ceres projects a step that
+//   crosses a bound onto it, its quadratic model then over-predicts the decrease, the trust
+//   region shrinks and the solve creeps along the bound in tiny steps (EuRoC's global-shutter
+//   cameras: 163 iterations instead of 27). That line delay is then held at the bound (the active
+//   set, calibrate.h).
+class StopWhen : public ceres::IterationCallback {
  public:
-  explicit WindowGuard(std::function<bool()> windows_ok) : windows_ok_(std::move(windows_ok)) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    if (windows_ok_()) return ceres::SOLVER_CONTINUE;
+  explicit StopWhen(std::function<bool(const ceres::IterationSummary&)> stop)
+      : stop_(std::move(stop)) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    if (!stop_(summary)) return ceres::SOLVER_CONTINUE;
     triggered_ = true;
     return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
   }
   bool triggered() const { return triggered_; }
 
  private:
-  std::function<bool()> windows_ok_;
+  std::function<bool(const ceres::IterationSummary&)> stop_;
   bool triggered_ = false;
 };
+
+// A line delay freed from its bound at most this often per camera (calibrate.h: the active set);
+// then it stays where the data put it, so that the rounds cannot alternate for ever.
+constexpr int kMaxLineDelayReleases = 2;
 
 class CalibrationProblem {
  public:
@@ -150,6 +163,9 @@ class CalibrationProblem {
     double window_readout_s = 0.0;     // the readout the windows were built for
     double window_before_s = 0.0;      // how far before the stamp + time offset they reach
     double built_time_offset_s = 0.0;  // the time offset they were built around
+    double max_line_delay = 0.0;       // the line delay's upper bound (lower: 0)
+    bool line_delay_held = false;      // held constant at a bound (the active set)
+    int line_delay_releases = 0;       // times freed from a bound
   };
 
   const std::vector<double*>& control_blocks() const { return spline_->control_blocks(); }
@@ -190,8 +206,8 @@ class CalibrationProblem {
   bool PixelErrors(const Residual& r, std::vector<double>* errors);
   double EstimatePixelSigma();
   bool WindowsStillValid();
-  // Cheap check for WindowGuard: every camera's time offset and readout are still inside what
-  // the windows were built for, less kWindowRebuildMargin_s.
+  // Cheap check for the windows' StopWhen in Run: every camera's time offset and readout are
+  // still inside what the windows were built for, less kWindowRebuildMargin_s.
   bool TimesInsideWindows() const {
     for (size_t c = 0; c < cameras_.size(); ++c) {
       const CameraState& cam = cameras_[c];
@@ -203,6 +219,14 @@ class CalibrationProblem {
       }
     }
     return true;
+  }
+  // Holds every free line delay that sits on a bound (true: one did).
+  bool HoldLineDelaysAtBounds();
+  // Frees every held line delay whose cost gradient points into its interval (true: one was),
+  // and leaves the others' blocks variable for the covariance.
+  bool ReleaseLineDelays();
+  bool LineDelayAtBound(const CameraState& cam) const {
+    return cam.line_delay <= 0.0 || cam.line_delay >= cam.max_line_delay;
   }
   void ComputeCovariance(CalibrationResult* result);
   void Collect(CalibrationResult* result);
@@ -251,10 +275,11 @@ void CalibrationProblem::BuildProblem() {
     }
     if (options_.rolling_shutter) {
       // The readout cannot exceed the frame period.
-      const double max_line_delay = frame_periods_[c] / std::max(1, height - 1);
-      cam.line_delay = std::clamp(cam.line_delay, 0.0, max_line_delay);
+      cam.max_line_delay = frame_periods_[c] / std::max(1, height - 1);
+      cam.line_delay = std::clamp(cam.line_delay, 0.0, cam.max_line_delay);
       problem().SetParameterLowerBound(&cam.line_delay, 0, 0.0);
-      problem().SetParameterUpperBound(&cam.line_delay, 0, max_line_delay);
+      problem().SetParameterUpperBound(&cam.line_delay, 0, cam.max_line_delay);
+      if (cam.line_delay_held) problem().SetParameterBlockConstant(&cam.line_delay);
     } else {
       problem().SetParameterBlockConstant(&cam.line_delay);
     }
@@ -419,15 +444,22 @@ CalibrationResult CalibrationProblem::Run() {
   }
   const SolverOptions& solver = options_.solver;
   ceres::Solver::Options solver_options = ToCeresOptions(solver, 0.0, nullptr);
-  solver_options.update_state_every_iteration = true;  // for WindowGuard
+  solver_options.update_state_every_iteration = true;  // for the StopWhen callbacks
   SolveRounds rounds(solver_options, options_.solver.progress);
   for (int round = 1; round <= solver.max_rounds; ++round) {
     BuildProblem();
     if (frame_residuals_.empty() && landmark_residuals_.empty()) {
       throw Error("calibrate: no frame lies inside the spline's time range");
     }
-    WindowGuard guard([this]() { return TimesInsideWindows(); });
-    rounds.Solve(&problem(), StringPrintf("calibrate: round %d ", round), {&guard});
+    StopWhen guard([this](const ceres::IterationSummary&) { return !TimesInsideWindows(); });
+    StopWhen bound_guard([this](const ceres::IterationSummary& summary) {
+      if (summary.iteration == 0 || !summary.step_is_successful) return false;
+      for (const CameraState& cam : cameras_) {
+        if (options_.rolling_shutter && !cam.line_delay_held && LineDelayAtBound(cam)) return true;
+      }
+      return false;
+    });
+    rounds.Solve(&problem(), StringPrintf("calibrate: round %d ", round), {&guard, &bound_guard});
     if (rounds.failed()) {
       throw Error("calibrate: the solver failed (" + rounds.last().message +
                   "); likely causes: a wrong camchain (intrinsics, T_cam_imu far off), "
@@ -458,15 +490,27 @@ CalibrationResult CalibrationProblem::Run() {
       }
       cameras_[c].window_before_s = kWindowMargin_s;
     }
+    // The active set: a line delay that landed on a bound is held there; at a solution, one whose
+    // gradient points inside is freed (its windows then sized for any readout).
+    const bool held = bound_guard.triggered() && HoldLineDelaysAtBounds();
+    const bool released = !bound_guard.triggered() && !guard.triggered() && ReleaseLineDelays();
+    if (held || released) again = true;
     if (!again) break;
     if (round < options_.solver.max_rounds && options_.solver.progress) {
       const ImuNoise& noise = imu_noise_->densities();
       options_.solver.progress(
           "calibrate: pixel sigma " + StringPrintf("%.4g", sigma_px_) + " px, gyro noise " +
           StringPrintf("%.3g", noise.gyroscope_noise_density) + " rad/s/sqrt(Hz), accel noise " +
-          StringPrintf("%.3g", noise.accelerometer_noise_density) + " m/s^2/sqrt(Hz); time windows " +
-          (windows_valid ? "valid" : "moved") + ": solving again");
+          StringPrintf("%.3g", noise.accelerometer_noise_density) +
+          " m/s^2/sqrt(Hz); time windows " + (windows_valid ? "valid" : "moved") +
+          (held ? "; line delay held at its bound" : "") +
+          (released ? "; line delay freed from its bound" : "") + ": solving again");
     }
+  }
+  // A line delay still held: free for the covariance (its std is that of the unconstrained
+  // model at the bound; a line delay at 0 within it is consistent with a global shutter).
+  for (CameraState& cam : cameras_) {
+    if (cam.line_delay_held) problem().SetParameterBlockVariable(&cam.line_delay);
   }
   result.solve = rounds.Summary();
   if (!rounds.NoConvergenceWarning().empty()) {
@@ -482,6 +526,39 @@ CalibrationResult CalibrationProblem::Run() {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return result;
+}
+
+bool CalibrationProblem::HoldLineDelaysAtBounds() {
+  bool any = false;
+  for (CameraState& cam : cameras_) {
+    if (!cam.line_delay_held && LineDelayAtBound(cam)) cam.line_delay_held = any = true;
+  }
+  return any;
+}
+
+bool CalibrationProblem::ReleaseLineDelays() {
+  bool any = false;
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    CameraState& cam = cameras_[c];
+    if (!cam.line_delay_held) continue;
+    // d cost / d line_delay at the solution of the rest: by the envelope theorem the slope of the
+    // cost minimised over everything else, so its sign says which way the line delay would go.
+    problem().SetParameterBlockVariable(&cam.line_delay);
+    ceres::Problem::EvaluateOptions evaluate;
+    evaluate.parameter_blocks = {&cam.line_delay};
+    evaluate.num_threads = options_.solver.num_threads;
+    double cost = 0.0;
+    std::vector<double> gradient;
+    if (!problem().Evaluate(evaluate, &cost, nullptr, &gradient, nullptr)) continue;
+    const bool inward = cam.line_delay <= 0.0 ? gradient[0] < 0.0 : gradient[0] > 0.0;
+    if (inward && cam.line_delay_releases < kMaxLineDelayReleases) {
+      cam.line_delay_held = false;
+      ++cam.line_delay_releases;
+      cameras_[c].window_readout_s = frame_periods_[c];
+      any = true;
+    }
+  }
+  return any;
 }
 
 void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
@@ -615,9 +692,16 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
 
 void CalibrationProblem::Collect(CalibrationResult* result) {
   result->layout = layout_;
-  const SE3Splined spline = Spline();
-  result->control_poses = spline.control_poses();
-  result->gravity_w = spline_->gravity_w();
+  // Solved in the target's frame; written in the gravity-aligned world (calibrate.h).
+  result->gravity_target = spline_->gravity_w();
+  result->T_w_target =
+      SE3d(GravityAlignedRotation(result->gravity_target), Eigen::Vector3d::Zero());
+  result->gravity_w = result->T_w_target.so3() * result->gravity_target;
+  result->control_poses.clear();
+  const SE3Splined spline_t = Spline();  // T_t_s
+  for (const SE3d& T_t_s : spline_t.control_poses()) {
+    result->control_poses.push_back(result->T_w_target * T_t_s);
+  }
   result->camchain = camchain_;
   result->cameras.resize(cameras_.size());
   for (size_t c = 0; c < cameras_.size(); ++c) {

@@ -120,7 +120,7 @@ plot::Figure BiasFigure(const CalibrationResult& r, int max_points, bool* course
 // The spline's position: top view and over time (about 3000 evaluations).
 plot::Figure TrajectoryFigure(const CalibrationResult& r) {
   plot::Figure figure;
-  figure.title = "IMU trajectory in the target frame";
+  figure.title = "IMU trajectory in the gravity-aligned world (spline.csv)";
   figure.columns = 2;
   plot::Panel& top = plot::AddPanel(&figure, "top view", "x [m]", "y [m]");
   top.equal_aspect = true;
@@ -202,7 +202,12 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Vector("gyro_bias_std", r.gyro_bias_std);
   yaml.Vector("accel_bias", r.accel_bias);
   yaml.Vector("accel_bias_std", r.accel_bias_std);
+  // spline.csv is T_w_s in the gravity-aligned world w; T_w_target maps the target's frame (the
+  // one solved in) into it, and gravity_target is the estimated gravity there.
+  yaml.Scalar("spline_frame", "gravity-aligned world w: z up, yaw from the target (T_w_target)");
   yaml.Vector("gravity_w", r.gravity_w);
+  yaml.Vector("gravity_target", r.gravity_target);
+  yaml.Matrix("T_w_target", r.T_w_target.matrix());
   // cam0's reprojection_rms_px is above; this one pools every camera.
   yaml.Scalar("reprojection_rms_px_all_cameras", r.reprojection_rms_px);
   yaml.Scalar("pixel_sigma_px", r.pixel_sigma_px);

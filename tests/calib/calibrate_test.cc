@@ -44,8 +44,11 @@ TEST(Calibrate, RollingShutterRoundTrip) {
   // tolerance is that over g, 0.068 deg. Measured: 0.0048 deg.
   const double bias_wander_m_s2 =
       ImuNoise::Adis16448().accelerometer_random_walk * std::sqrt(o.duration_s);
-  EXPECT_LT(AngleDeg(r.gravity_w, Eigen::Vector3d(0.0, 0.0, -kDefaultGravity)),
+  EXPECT_LT(AngleDeg(r.gravity_target, Eigen::Vector3d(0.0, 0.0, -kDefaultGravity)),
             bias_wander_m_s2 / kDefaultGravity * kRadToDeg);
+  // The result's world is gravity-aligned: T_w_target takes the estimate to (0, 0, -g).
+  EXPECT_LT((r.gravity_w - Eigen::Vector3d(0.0, 0.0, -kDefaultGravity)).norm(), 1e-9);
+  EXPECT_LT((r.T_w_target.so3() * r.gravity_target - r.gravity_w).norm(), 1e-9);
   EXPECT_FALSE(r.reprojection_samples.empty());
   EXPECT_FALSE(r.imu_samples.empty());
 }

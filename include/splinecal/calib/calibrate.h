@@ -16,10 +16,13 @@
 // fixed at the camchain's value, normally 0), plus the inverse depths of natural landmarks. The
 // world is the target's frame (T_w_t = identity, fixed: it removes the 6 gauge freedoms of world
 // position and orientation; gravity is estimated in it). Without a target the first control pose is
-// held fixed instead. IMU residuals are weighted by Kalibr's densities (sigma = density
-// sqrt(rate)), pixels by pixel_sigma_px: given, or estimated from the residuals (1.4826 x the
-// median absolute pixel error, robust to outliers) and the problem solved again with it, so that
-// the reported standard deviations reflect the data's own pixel noise.
+// held fixed instead. The result is then rotated into a gravity-aligned world (CalibrationResult::
+// T_w_target). A line delay that reaches a bound is held there while the rest is solved, and
+// freed again when the cost's gradient points inside (an active set: Ceres' projection of steps
+// onto bounds otherwise creeps along the bound). IMU residuals are weighted by Kalibr's densities
+// (sigma = density sqrt(rate)), pixels by pixel_sigma_px: given, or estimated from the residuals
+// (1.4826 x the median absolute pixel error, robust to outliers) and the problem solved again with
+// it, so that the reported standard deviations reflect the data's own pixel noise.
 //
 // Initialisation (target present): the target's pose in every frame by PnP (camera/pnp.h); those
 // camera poses as the pose source of `splinecal fit` (calib/fit.h) with the time offset (gyro vs
@@ -155,10 +158,17 @@ struct CalibrationResult {
 
   KnotLayout layout;
   double knot_spacing_s = 0.0;
-  std::string knot_spacing_rule;    // how it was chosen, in words
-  std::vector<SE3d> control_poses;  // T_w_s, w = the target's frame
+  std::string knot_spacing_rule;  // how it was chosen, in words
+  // The world w is gravity-aligned (conventions.md): z up, gravity_w = (0, 0, -g), its yaw taken
+  // from the target: T_w_target is a pure rotation, the smallest taking gravity_target to -z
+  // followed by the rotation about z that zeroes its ZYX yaw (vio/align.h,
+  // GravityAlignedRotation), so the target's x axis, seen from above, is the world's x axis.
+  // Without a target, "target" is the frame the problem was solved in (the initial guess's).
+  std::vector<SE3d> control_poses;  // T_w_s (spline.csv)
   SE3Splined MakeSpline() const { return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns); }
-  Eigen::Vector3d gravity_w = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gravity_w = Eigen::Vector3d::Zero();       // (0, 0, -g)
+  Eigen::Vector3d gravity_target = Eigen::Vector3d::Zero();  // the estimate, target frame
+  SE3d T_w_target;                                           // target points into the world
   // Biases: constant, or the time average of the bias spline; std per axis (NaN if unknown).
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
