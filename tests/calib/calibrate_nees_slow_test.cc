@@ -32,21 +32,14 @@
 namespace splinecal {
 namespace {
 
-using testing::ChiSquareInterval95;
-
 TEST(CalibrateMonteCarlo, DiagonalNeesOnAClosedFormTrajectoryIsInsideItsInterval) {
   constexpr int kSeeds = 20;
-  struct Group {
-    const char* name;
-    int first;  // index in the 8-vector of normalised errors
-    int dof;
-    double sum = 0.0;
-  };
-  std::vector<Group> groups = {{"rotation", 0, 3},
-                               {"translation", 3, 3},
-                               {"time offset", 6, 1},
-                               {"line delay", 7, 1},
-                               {"all", 0, 8}};
+  // NeesGroup::first: index in the 8-vector of normalised errors.
+  std::vector<testing::NeesGroup> groups = {{"rotation", 0, 3},
+                                            {"translation", 3, 3},
+                                            {"time offset", 6, 1},
+                                            {"line delay", 7, 1},
+                                            {"all", 0, 8}};
   for (int seed = 1; seed <= kSeeds; ++seed) {
     testing::ScenarioOptions o;
     o.closed_form = true;
@@ -70,7 +63,7 @@ TEST(CalibrateMonteCarlo, DiagonalNeesOnAClosedFormTrajectoryIsInsideItsInterval
                 s.camera_result.num_frames_with_target,
                 s.camera_result.num_target_observations,
                 r.solve.solve_time_s);
-    for (Group& group : groups) {
+    for (testing::NeesGroup& group : groups) {
       const double nees = z.segment(group.first, group.dof).squaredNorm();
       group.sum += nees;
       std::printf(" %s %.2f", group.name, nees);
@@ -79,21 +72,7 @@ TEST(CalibrateMonteCarlo, DiagonalNeesOnAClosedFormTrajectoryIsInsideItsInterval
     testing::Print("  ", r, e);
     std::fflush(stdout);
   }
-  for (const Group& group : groups) {
-    const testing::ChiSquareInterval band = ChiSquareInterval95(kSeeds * group.dof);
-    std::printf(
-        "%s: NEES sum %.2f over %d seeds (mean %.3f per seed, dof %d), 95%% interval "
-        "[%.2f, %.2f]\n",
-        group.name,
-        group.sum,
-        kSeeds,
-        group.sum / kSeeds,
-        group.dof,
-        band.low,
-        band.high);
-    EXPECT_GE(group.sum, band.low) << group.name << ": standard deviations too pessimistic";
-    EXPECT_LE(group.sum, band.high) << group.name << ": standard deviations overconfident";
-  }
+  testing::ExpectNeesSumsInsideInterval95(groups, kSeeds);
 }
 
 }  // namespace

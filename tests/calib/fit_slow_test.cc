@@ -20,7 +20,6 @@
 namespace splinecal {
 namespace {
 
-using testing::ChiSquareInterval95;
 using testing::FitData;
 using testing::FitScenario;
 using testing::MakeFitData;
@@ -60,8 +59,8 @@ TEST(FitMonteCarlo, BiasNeesIsInsideItsNinetyFivePercentInterval) {
     RecordProperty("nees_run_" + std::to_string(run), std::to_string(nees));
   }
   const double k = kRuns * kDof;
-  const double low = ChiSquareInterval95(k).low;
-  const double high = ChiSquareInterval95(k).high;
+  const double low = testing::ChiSquareInterval95(k).low;
+  const double high = testing::ChiSquareInterval95(k).high;
   RecordProperty("nees_mean", std::to_string(nees_sum / kRuns));
   EXPECT_GE(nees_sum, low) << "mean NEES " << nees_sum / kRuns << ": covariance too pessimistic";
   EXPECT_LE(nees_sum, high) << "mean NEES " << nees_sum / kRuns << ": covariance overconfident";
@@ -86,13 +85,8 @@ TEST(FitMonteCarlo, BiasNeesIsInsideItsNinetyFivePercentInterval) {
 // (Wilson-Hilferty, testing/chi_square.h).
 TEST(FitMonteCarlo, GravityTimeOffsetAndExtrinsicNeesOnAClosedFormTrajectory) {
   constexpr int kSeeds = 20;
-  struct Group {
-    const char* name;
-    int first;  // row in FitResult::covariance
-    int dof;
-    double sum = 0.0;
-  };
-  std::vector<Group> groups = {
+  // NeesGroup::first: row in FitResult::covariance.
+  std::vector<testing::NeesGroup> groups = {
       {"gravity direction", 6, 2}, {"time offset", 8, 1}, {"T_m_s", 9, 6}, {"joint", 6, 9}};
   for (int run = 0; run < kSeeds; ++run) {
     FitScenario scenario;
@@ -132,7 +126,7 @@ TEST(FitMonteCarlo, GravityTimeOffsetAndExtrinsicNeesOnAClosedFormTrajectory) {
     error[8] = result.time_offset_s - scenario.time_offset_s;
     error.segment<6>(9) = (scenario.T_m_s.inverse() * result.T_m_s).Log();
     std::printf("run %2d:", run);
-    for (Group& group : groups) {
+    for (testing::NeesGroup& group : groups) {
       const Eigen::VectorXd e = error.segment(group.first, group.dof);
       const Eigen::MatrixXd C =
           result.covariance.block(group.first, group.first, group.dof, group.dof);
@@ -145,21 +139,7 @@ TEST(FitMonteCarlo, GravityTimeOffsetAndExtrinsicNeesOnAClosedFormTrajectory) {
                 1e3 * result.time_offset_std_s);
     std::fflush(stdout);
   }
-  for (const Group& group : groups) {
-    const testing::ChiSquareInterval band = ChiSquareInterval95(kSeeds * group.dof);
-    std::printf(
-        "%s: NEES sum %.2f over %d runs (mean %.3f per run, dof %d), 95%% interval "
-        "[%.2f, %.2f]\n",
-        group.name,
-        group.sum,
-        kSeeds,
-        group.sum / kSeeds,
-        group.dof,
-        band.low,
-        band.high);
-    EXPECT_GE(group.sum, band.low) << group.name << ": covariance too pessimistic";
-    EXPECT_LE(group.sum, band.high) << group.name << ": covariance overconfident";
-  }
+  testing::ExpectNeesSumsInsideInterval95(groups, kSeeds);
 }
 
 }  // namespace

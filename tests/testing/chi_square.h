@@ -1,4 +1,5 @@
-// Chi-square quantiles for the Monte-Carlo consistency (NEES) tests.
+// Chi-square quantiles for the Monte-Carlo consistency (NEES) tests, and the check of per-group
+// NEES sums against their 95% interval that those tests share.
 //
 // The sum of the normalised estimation errors squared over N independent runs of a d-dimensional
 // estimate with an honest covariance is chi-square with N d degrees of freedom. Its quantiles
@@ -15,7 +16,11 @@
 #ifndef SPLINECAL_TESTS_TESTING_CHI_SQUARE_H_
 #define SPLINECAL_TESTS_TESTING_CHI_SQUARE_H_
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <cstdio>
+#include <vector>
 
 namespace splinecal {
 namespace testing {
@@ -36,6 +41,33 @@ struct ChiSquareInterval {
 
 inline ChiSquareInterval ChiSquareInterval95(double k) {
   return {ChiSquareQuantile(k, -kNormalQuantile975), ChiSquareQuantile(k, kNormalQuantile975)};
+}
+
+// A group of components of an estimate whose NEES is summed over the Monte-Carlo runs.
+struct NeesGroup {
+  const char* name;
+  int first;  // index of its first component in the run's error vector
+  int dof;
+  double sum = 0.0;
+};
+
+// Prints each group's sum with its interval (ChiSquareInterval95 of runs x dof) and expects the
+// sum inside it: below, the reported uncertainty is too pessimistic; above, overconfident.
+inline void ExpectNeesSumsInsideInterval95(const std::vector<NeesGroup>& groups, int runs) {
+  for (const NeesGroup& group : groups) {
+    const ChiSquareInterval band = ChiSquareInterval95(runs * group.dof);
+    std::printf(
+        "%s: NEES sum %.2f over %d runs (mean %.3f per run, dof %d), 95%% interval [%.2f, %.2f]\n",
+        group.name,
+        group.sum,
+        runs,
+        group.sum / runs,
+        group.dof,
+        band.low,
+        band.high);
+    EXPECT_GE(group.sum, band.low) << group.name << ": uncertainty too pessimistic";
+    EXPECT_LE(group.sum, band.high) << group.name << ": uncertainty overconfident";
+  }
 }
 
 }  // namespace testing
