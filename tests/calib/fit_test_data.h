@@ -1,6 +1,8 @@
 // Simulated data for the `splinecal fit` tests (fit_test.cc, fit_slow_test.cc): a true spline
 // from an analytic trajectory, IMU readings predicted from it (sim/simulate_imu.h), and poses of
 // the pose source sampled from it with an optional time offset, extrinsic, world tilt and noise.
+// With FitScenario::closed_form the IMU and the poses come from the analytic trajectory itself
+// (calib/closed_form_simulation.h): no spline on the fit's knots is then exactly right.
 #ifndef SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
 #define SPLINECAL_TESTS_CALIB_FIT_TEST_DATA_H_
 
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "calib/closed_form_simulation.h"
 #include "splinecal/estimation/pose_fit.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
@@ -28,6 +31,10 @@ namespace testing {
 struct FitScenario {
   std::string trajectory = "random";
   uint64_t trajectory_seed = 3;
+  RandomTrajectoryOptions random_trajectory;  // the shape of "random"
+  // IMU and poses from the analytic trajectory, not from a spline fitted to it (FitData::truth
+  // is then a placeholder).
+  bool closed_form = false;
   double duration_s = 20.0;
   int64_t knot_spacing_ns = 100'000'000;
   double pose_rate_hz = 10.0;
@@ -63,6 +70,9 @@ struct FitData {
 // The named trajectories of sim/trajectories.h, plus "translation_only": sinusoidal motion with a
 // constant attitude (no rotation at all).
 inline AnalyticTrajectory ScenarioTrajectory(const FitScenario& scenario) {
+  if (scenario.trajectory == "random") {
+    return RandomTrajectory(scenario.trajectory_seed, scenario.random_trajectory);
+  }
   if (scenario.trajectory != "translation_only") {
     return MakeTrajectory(scenario.trajectory, scenario.trajectory_seed);
   }
@@ -79,20 +89,43 @@ inline AnalyticTrajectory ScenarioTrajectory(const FitScenario& scenario) {
   return AnalyticTrajectory("translation_only", position, attitude);
 }
 
-inline FitData MakeFitData(const FitScenario& scenario) {
-  constexpr int64_t kStartNs = 1'403'715'273'262'142'976;  // an EuRoC-like epoch
-  const int64_t end_ns = kStartNs + std::llround(scenario.duration_s * 1e9);
-  const SE3Splined spline =
-      FitAnalyticTrajectory(
-          ScenarioTrajectory(scenario), kStartNs, end_ns, scenario.knot_spacing_ns)
-          .MakeSpline();
-  FitData data;
+// The IMU's noise, biases and seed.
+inline SimulationOptions ImuSimulationOptions(const FitScenario& scenario) {
   SimulationOptions simulation;
   simulation.noise = scenario.noise;
   simulation.noise_free = !scenario.imu_noise;
   simulation.gyro_bias = scenario.gyro_bias;
   simulation.accel_bias = scenario.accel_bias;
   simulation.seed = scenario.noise_seed;
+  return simulation;
+}
+
+inline FitData MakeFitData(const FitScenario& scenario) {
+  constexpr int64_t kStartNs = 1'403'715'273'262'142'976;  // an EuRoC-like epoch
+  const int64_t end_ns = kStartNs + std::llround(scenario.duration_s * 1e9);
+  if (scenario.closed_form) {
+    FitData data;
+    const SimulationOptions simulation = ImuSimulationOptions(scenario);
+    const AnalyticTrajectory trajectory = ScenarioTrajectory(scenario);
+    data.imu = SimulateImuFromTrajectory(trajectory, kStartNs, end_ns, simulation);
+    data.gravity_w = scenario.R_world * Eigen::Vector3d(0.0, 0.0, -kDefaultGravity);
+    PoseSourceOptions source;
+    source.step_ns = std::llround(1e9 / scenario.pose_rate_hz);
+    source.time_offset_s = scenario.time_offset_s;
+    source.T_m_s = scenario.T_m_s;
+    source.R_world = scenario.R_world;
+    source.sigma_m = scenario.pose_noise ? scenario.pose_sigma_m : 0.0;
+    source.sigma_rad = scenario.pose_noise ? scenario.pose_sigma_rad : 0.0;
+    source.seed = scenario.noise_seed + 1000;
+    data.poses = SamplePoseSource(trajectory, kStartNs, end_ns, source);
+    return data;
+  }
+  const SE3Splined spline =
+      FitAnalyticTrajectory(
+          ScenarioTrajectory(scenario), kStartNs, end_ns, scenario.knot_spacing_ns)
+          .MakeSpline();
+  FitData data;
+  const SimulationOptions simulation = ImuSimulationOptions(scenario);
   SimulateImu(spline, spline.start_time_ns(), spline.end_time_ns(), simulation, &data.imu, nullptr);
 
   // The truth in the pose source's world.
