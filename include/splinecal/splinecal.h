@@ -92,6 +92,8 @@
 #include "splinecal/estimation/gravity_tangent.h"
 #include "splinecal/estimation/imu_autodiff_costs.h"
 #include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/imu_noise_estimate.h"
+#include "splinecal/estimation/imu_noise_mode.h"
 #include "splinecal/estimation/knot_spacing.h"
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/options.h"
@@ -103,6 +105,7 @@
 #include "splinecal/estimation/solver_progress.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/estimation/spline_problem.h"
+#include "splinecal/estimation/variance_components.h"
 
 // vio/
 #include "splinecal/vio/align.h"

@@ -62,7 +62,7 @@ CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
   fit_options.model.noise = options.model.noise;
   // A starting point: the given noise weights it, and the calibration measures the noise.
   fit_options.model.imu_noise = ImuNoiseMode::kGiven;
-  fit_options.warn_residual_noise = false;
+  fit_options.warn_imu_residual_noise = false;
   fit_options.covariance.compute = false;
   fit_options.keep_samples = false;
   fit_options.max_residual_noise_ratio = 1e9;

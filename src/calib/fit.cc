@@ -628,8 +628,8 @@ FitResult FitProblem::Impl::Solve() {
                                 "or extrinsic that was not estimated)");
     }
   };
-  if (!options.warn_residual_noise) {
-    // The caller measures and reports the noise itself.
+  if (!options.warn_imu_residual_noise) {
+    // The caller measures and reports the IMU noise itself.
   } else if (options.model.imu_noise == ImuNoiseMode::kGiven) {
     warn_ratio(gyro_ratio, "gyro");
     warn_ratio(accel_ratio, "accelerometer");
@@ -641,10 +641,8 @@ FitResult FitProblem::Impl::Solve() {
         "noise measured from the residuals (unmodelled vibration, a knot spacing too coarse for "
         "the motion, or densities that are too low)");
   }
-  if (options.warn_residual_noise) {
-    warn_ratio(result.residual_rms.position_m / options.pose_sigma_m, "pose position");
-    warn_ratio(result.residual_rms.rotation_rad / options.pose_sigma_rad, "pose rotation");
-  }
+  warn_ratio(result.residual_rms.position_m / options.pose_sigma_m, "pose position");
+  warn_ratio(result.residual_rms.rotation_rad / options.pose_sigma_rad, "pose rotation");
 
 #ifdef __GLIBC__
   // The solver's Jacobian is gone: give its pages back before the covariance allocates (the

@@ -174,7 +174,7 @@ Command CalibrateCommand() {
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
           "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE]\n"
-          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--rolling-shutter] [--no-time-offset]\n"
+          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
           "    [--knot-spacing S] [--pixel-sigma PX] [--huber PX] [--min-corners N]\n"
           "    [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s] [--threads N]\n"
           "    --out DIR",

@@ -156,7 +156,7 @@ int RunFit() {
 Command FitCommand() {
   return {"fit",
           "fit IMU biases, gravity, time offset and extrinsic to IMU data and poses",
-          "splinecal fit --imu FILE --poses FILE --out DIR [--imu-yaml FILE] [--knot-spacing S]\n"
+          "splinecal fit --imu FILE --poses FILE --out DIR [--imu-yaml FILE] [--imu-noise MODE] [--knot-spacing S]\n"
           "    [--pose-sigma-m M] [--pose-sigma-rad R] [--estimate-time-offset]\n"
           "    [--max-time-offset S] [--estimate-extrinsic] [--bias-model constant|spline]\n"
           "    [--bias-knot-spacing S] [--gravity M_S2] [--accel-unit m/s^2|g]\n"

@@ -111,7 +111,9 @@ TEST_F(CalibrateCommand, WritesKalibrCamchainResultAndReport) {
   EXPECT_THAT(report, HasSubstr("Reprojection errors by image position"));
   EXPECT_THAT(report, HasSubstr("IMU biases"));
   EXPECT_THAT(report, HasSubstr("<p>IMU: " + imu_));
-  EXPECT_THAT(report, HasSubstr("<caption>IMU noise model: ADIS16448 defaults"));
+  EXPECT_THAT(report,
+              HasSubstr("<caption>IMU noise model (--imu-noise estimated), given: ADIS16448 "
+                        "defaults"));
   // Unique ids: the SVGs' clip paths once shared ids, which clipped later plots to earlier
   // panels (the IMU residuals stopped at 35 s of a 72 s recording).
   // A clip path per panel: reprojection 2, by image position 1, IMU 2, biases 2, trajectory 2.

@@ -63,11 +63,17 @@ TEST(FitEuroc, V101EasyBiasesMatchTheGroundTruth) {
   EXPECT_LT(gravity_error_deg,
             still.max_rotation_rad * kRadToDeg + 3.0 * result.gravity_direction_std_deg);
   // The MAV's vibration is real motion the spline cannot follow: residuals well above the white
-  // noise, and a warning that says so.
+  // noise, measured as such (the standard deviations use it), and a warning that says so.
   EXPECT_GT(result.residual_rms.accel_m_s2, 3.0 * result.noise_std.accel_m_s2);
+  EXPECT_GT(result.imu_noise.measured.accelerometer_noise_density,
+            3.0 * result.imu_noise.given.accelerometer_noise_density);
+  EXPECT_GT(result.std_inflation, 1.0);
   bool warned = false;
   for (const std::string& w : result.warnings) {
-    if (w.find("accelerometer residuals") != std::string::npos) warned = true;
+    if (w.find("IMU residuals are") != std::string::npos &&
+        w.find("x (accelerometer) the noise of the given densities") != std::string::npos) {
+      warned = true;
+    }
   }
   EXPECT_TRUE(warned);
   RecordProperty("gyro_bias_error", std::to_string((result.gyro_bias - gyro_bias).norm()));

@@ -216,7 +216,7 @@ TEST(CalibrateReportHtml, ListsTheInputsAndTheNoiseModel) {
               HasSubstr("<p>IMU: imu0.csv<br>observations: observations.csv<br>camchain: "
                         "camchain.yaml<br>target: aprilgrid.yaml</p>"));
   EXPECT_THAT(html, Not(HasSubstr("initial poses:")));  // not given
-  EXPECT_THAT(html, HasSubstr("<caption>IMU noise model: imu &lt;adis&gt;.yaml</caption>"));
+  EXPECT_THAT(html, HasSubstr("given: imu &lt;adis&gt;.yaml</caption>"));
   EXPECT_THAT(html, HasSubstr("<td>gyroscope_noise_density</td><td>0.00016968</td>"));
   EXPECT_THAT(html, HasSubstr("<td>accelerometer_random_walk</td><td>0.003</td>"));
   EXPECT_THAT(html, HasSubstr("bias spline, knots every 0.1 s, Huber 2 px"));

@@ -106,9 +106,9 @@ struct FitOptions {
   // EuRoC's MAV vibrations leave the accelerometer at ~30x its white noise: 100 keeps real data
   // and catches wrong units, wrong trajectories and missed time offsets (typically 1000x).
   double max_residual_noise_ratio = 100.0;
-  // Warn when the residuals exceed the given noise (calibrate's initial guess does not: the
-  // calibration measures and reports the noise itself).
-  bool warn_residual_noise = true;
+  // Warn when the IMU residuals exceed the given noise (calibrate's initial guess does not: the
+  // calibration measures and reports the IMU noise itself).
+  bool warn_imu_residual_noise = true;
   // Keep per-sample predictions and residuals in FitResult (for residuals.csv / report.html).
   bool keep_samples = true;
   // Implementation choices with the same objective (tests and benchmarks compare them).

@@ -1,0 +1,221 @@
+// Variance components, the measured-noise covariance and the cluster-robust covariance
+// (estimation/variance_components.h, estimation/marginal_covariance.h) against dense linear
+// algebra on small linear least-squares problems where every quantity has a closed form.
+#include <ceres/ceres.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/estimation/variance_components.h"
+
+namespace splinecal {
+namespace {
+
+// r = (a_x . x + a_y . y - b) / sigma: one row over a 3-block x and a 2-block y.
+class LinearRow : public ceres::SizedCostFunction<1, 3, 2> {
+ public:
+  LinearRow(const Eigen::Vector3d& a_x, const Eigen::Vector2d& a_y, double b, double sigma)
+      : a_x_(a_x / sigma), a_y_(a_y / sigma), b_(b / sigma) {}
+  bool Evaluate(double const* const* p, double* r, double** J) const override {
+    r[0] = a_x_.dot(Eigen::Map<const Eigen::Vector3d>(p[0])) +
+           a_y_.dot(Eigen::Map<const Eigen::Vector2d>(p[1])) - b_;
+    if (J != nullptr && J[0] != nullptr) std::copy(a_x_.data(), a_x_.data() + 3, J[0]);
+    if (J != nullptr && J[1] != nullptr) std::copy(a_y_.data(), a_y_.data() + 2, J[1]);
+    return true;
+  }
+  Eigen::Matrix<double, 1, 5> row() const {
+    Eigen::Matrix<double, 1, 5> j;
+    j << a_x_.transpose(), a_y_.transpose();
+    return j;
+  }
+
+ private:
+  Eigen::Vector3d a_x_;
+  Eigen::Vector2d a_y_;
+  double b_;
+};
+
+// Two groups of rows (group 0 and 1) with true noise true_sigma[g], weighted by
+// assumed_sigma[g]; solved, with the dense Jacobian J (weighted), residuals e, group and cluster
+// of every row kept for the checks.
+struct LinearProblem {
+  std::unique_ptr<ceres::Problem> problem = std::make_unique<ceres::Problem>();
+  double x[3] = {0, 0, 0};
+  double y[2] = {0, 0};
+  std::map<ceres::ResidualBlockId, int> group;
+  std::map<ceres::ResidualBlockId, int> cluster;
+  std::vector<const LinearRow*> rows;
+  std::vector<int> row_group;
+  std::vector<int> row_cluster;
+
+  LinearProblem(int rows_per_group,
+                const double true_sigma[2],
+                const double assumed_sigma[2],
+                int clusters,
+                double cluster_offset_std,
+                uint32_t seed) {
+    std::mt19937 random(seed);
+    std::normal_distribution<double> normal;
+    const Eigen::Matrix<double, 5, 1> truth = (Eigen::Matrix<double, 5, 1>() << 1, -2, 0.5, 3, 1)
+                                                  .finished();
+    std::vector<double> offsets(clusters);
+    for (double& o : offsets) o = cluster_offset_std * normal(random);
+    for (int g = 0; g < 2; ++g) {
+      for (int k = 0; k < rows_per_group; ++k) {
+        const Eigen::Vector3d a_x(normal(random), normal(random), normal(random));
+        // Group 1 sees y only weakly: the groups determine different shares of the parameters.
+        const Eigen::Vector2d a_y = (g == 0 ? 1.0 : 0.2) * Eigen::Vector2d(normal(random), normal(random));
+        const int c = k % clusters;
+        const double b = a_x.dot(truth.head<3>()) + a_y.dot(truth.tail<2>()) +
+                         true_sigma[g] * normal(random) + offsets[c];
+        auto* cost = new LinearRow(a_x, a_y, b, assumed_sigma[g]);
+        const ceres::ResidualBlockId id = problem->AddResidualBlock(cost, nullptr, x, y);
+        group[id] = g;
+        cluster[id] = c;
+        rows.push_back(cost);
+        row_group.push_back(g);
+        row_cluster.push_back(c);
+      }
+    }
+    ceres::Solver::Options options;
+    options.linear_solver_type = ceres::DENSE_QR;
+    options.function_tolerance = 1e-15;
+    options.gradient_tolerance = 1e-15;
+    options.parameter_tolerance = 1e-15;
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, problem.get(), &summary);
+  }
+
+  Eigen::MatrixXd J() const {
+    Eigen::MatrixXd j(rows.size(), 5);
+    for (size_t i = 0; i < rows.size(); ++i) j.row(i) = rows[i]->row();
+    return j;
+  }
+  Eigen::VectorXd Residuals() const {
+    Eigen::VectorXd e(rows.size());
+    double const* params[2] = {x, y};
+    for (size_t i = 0; i < rows.size(); ++i) rows[i]->Evaluate(params, &e[i], nullptr);
+    return e;
+  }
+  // H_g = sum over group g's rows of j^T j.
+  Eigen::MatrixXd GroupInformation(int g) const {
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(5, 5);
+    const Eigen::MatrixXd j = J();
+    for (size_t i = 0; i < rows.size(); ++i) {
+      if (row_group[i] == g) H += j.row(i).transpose() * j.row(i);
+    }
+    return H;
+  }
+};
+
+TEST(VarianceComponents, RedundancyAndFactorMatchTheDenseFormulas) {
+  const double true_sigma[2] = {0.5, 2.0};
+  const double assumed_sigma[2] = {1.0, 1.0};
+  LinearProblem p(400, true_sigma, assumed_sigma, 1, 0.0, 7);
+  const VarianceComponents vc = EstimateVarianceComponents(
+      p.problem.get(), [&p](ceres::ResidualBlockId id) { return p.group.at(id); });
+  ASSERT_TRUE(vc.ok);
+  const Eigen::MatrixXd H = p.GroupInformation(0) + p.GroupInformation(1);
+  const Eigen::VectorXd e = p.Residuals();
+  for (int g = 0; g < 2; ++g) {
+    const double trace = (H.inverse() * p.GroupInformation(g)).trace();
+    double squares = 0.0;
+    for (int i = 0; i < e.size(); ++i) squares += p.row_group[i] == g ? e[i] * e[i] : 0.0;
+    const VarianceComponent& c = vc.groups.at(g);
+    EXPECT_EQ(c.num_residuals, 400);
+    EXPECT_NEAR(c.squared_sum, squares, 1e-9 * squares);
+    // Hutchinson with 32 probes: the trace (here 0.5 to 4.5 of the 5 parameters) to a few
+    // tenths; the redundancy (about 397) to 0.1%.
+    EXPECT_NEAR(c.redundancy, 400.0 - trace, 1.0) << g;
+    EXPECT_TRUE(c.identifiable);
+    // The factor estimates (true / assumed)^2: 0.25 and 4, to 3 of its relative std sqrt(2/r).
+    const double expected = std::pow(true_sigma[g] / assumed_sigma[g], 2);
+    EXPECT_NEAR(c.factor, expected, 3.0 * std::sqrt(2.0 / c.redundancy) * expected) << g;
+  }
+  // The traces share out the 5 parameters.
+  EXPECT_NEAR(vc.groups.at(0).redundancy + vc.groups.at(1).redundancy, 800.0 - 5.0, 1.0);
+}
+
+TEST(VarianceComponents, AGroupBelowTheMinimumRedundancyIsNotIdentifiable) {
+  const double sigma[2] = {1.0, 1.0};
+  LinearProblem p(400, sigma, sigma, 1, 0.0, 3);
+  // Group 1 counted as 6 independent rows (a given rank): redundancy below 30.
+  const VarianceComponents vc = EstimateVarianceComponents(
+      p.problem.get(), [&p](ceres::ResidualBlockId id) { return p.group.at(id); }, {}, {{1, 6.0}});
+  ASSERT_TRUE(vc.ok);
+  EXPECT_LT(vc.groups.at(1).redundancy, 6.0);
+  EXPECT_FALSE(vc.groups.at(1).identifiable);
+  EXPECT_EQ(vc.groups.at(1).factor, 1.0);
+  EXPECT_TRUE(vc.groups.at(0).identifiable);
+}
+
+TEST(MarginalCovarianceExtras, NoiseRobustAndMappedCovariancesMatchTheDenseFormulas) {
+  const double true_sigma[2] = {0.5, 2.0};
+  const double assumed_sigma[2] = {1.0, 1.0};
+  const int clusters = 20;
+  LinearProblem p(200, true_sigma, assumed_sigma, clusters, 0.3, 11);
+  const std::map<int, double> factors = {{0, 0.3}, {1, 5.0}};
+  Eigen::MatrixXd A(2, 5);  // reported: x_0 + y_1 and 2 y_0
+  A << 1, 0, 0, 0, 1, 0, 0, 0, 2, 0;
+  MarginalCovarianceOptions options;
+  options.cluster_of = [&p](ceres::ResidualBlockId id) { return p.cluster.at(id); };
+  options.group_of = [&p](ceres::ResidualBlockId id) { return p.group.at(id); };
+  options.noise_factors = factors;
+  options.reported_map = A;
+  const MarginalCovariance m = ComputeMarginalCovariance(p.problem.get(), {p.x, p.y}, options);
+  ASSERT_TRUE(m.ok);
+  // Dense references.
+  const Eigen::MatrixXd H0 = p.GroupInformation(0);
+  const Eigen::MatrixXd H1 = p.GroupInformation(1);
+  const Eigen::MatrixXd H_inv = (H0 + H1).inverse();
+  const Eigen::MatrixXd model = A * H_inv * A.transpose();
+  const Eigen::MatrixXd noise = A * H_inv * (0.3 * H0 + 5.0 * H1) * H_inv * A.transpose();
+  const Eigen::MatrixXd j = p.J();
+  const Eigen::VectorXd e = p.Residuals();
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(5, 5);
+  for (int c = 0; c < clusters; ++c) {
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(5);
+    for (int i = 0; i < e.size(); ++i) {
+      if (p.row_cluster[i] == c) g += j.row(i).transpose() * e[i];
+    }
+    meat += g * g.transpose();
+  }
+  const Eigen::MatrixXd robust =
+      A * H_inv * (clusters / (clusters - 1.0) * meat) * H_inv * A.transpose();
+  EXPECT_TRUE(m.covariance.isApprox(model, 1e-9)) << m.covariance << "\n" << model;
+  EXPECT_TRUE(m.noise_covariance.isApprox(noise, 1e-9)) << m.noise_covariance << "\n" << noise;
+  EXPECT_TRUE(m.robust_covariance.isApprox(robust, 1e-9)) << m.robust_covariance << "\n" << robust;
+  EXPECT_EQ(m.num_clusters, clusters);
+}
+
+TEST(ReportedCovariance, TakesTheLargestAndTheRobustOnlyWhenSignificant) {
+  MarginalCovariance m;
+  m.ok = true;
+  m.covariance = Eigen::Matrix2d::Identity();
+  m.covariance(0, 1) = m.covariance(1, 0) = 0.5;
+  m.noise_covariance = m.covariance;
+  m.noise_covariance(0, 0) = 4.0;  // measured noise: std x2 on the first coordinate
+  m.robust_covariance = Eigen::Matrix2d::Identity();
+  m.robust_covariance(0, 0) = 5.0;  // 1.25x the noise variance: within its scatter for G = 36
+  m.robust_covariance(1, 1) = 9.0;  // 9x: significant
+  m.num_clusters = 36;
+  const ReportedCovariance r = ReportedCovarianceOf(m);
+  // chi^2_35 95% quantile / 35 = 1.4208 (tables: 49.802 / 35 = 1.4229); threshold its sqrt.
+  EXPECT_NEAR(r.robust_threshold * r.robust_threshold, 49.802 / 35.0, 0.005);
+  EXPECT_NEAR(r.covariance(0, 0), 4.0, 1e-12);  // the measured noise, not the robust 5
+  EXPECT_NEAR(r.covariance(1, 1), 9.0, 1e-12);  // the robust one
+  EXPECT_NEAR(r.inflation[0], 2.0, 1e-12);
+  EXPECT_NEAR(r.inflation[1], 3.0, 1e-12);
+  // The correlation is kept: 0.5 / (1 * 1) -> 0.5 * 2 * 3 / (2 * 3).
+  EXPECT_NEAR(r.covariance(0, 1), 0.5 * 2.0 * 3.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace splinecal
