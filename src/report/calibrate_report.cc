@@ -44,6 +44,13 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
   yaml->Scalar("num_observations", c.num_observations);
 }
 
+// "(std 0.0123 ms)" for an estimated quantity, "(fixed)" for one held at its given value (it has
+// no standard deviation). An empty unit gives "std 0.0123" / "fixed" (table cells).
+std::string StdText(bool estimated, double std_value, const std::string& unit) {
+  if (unit.empty()) return estimated ? StringPrintf("std %.4f", std_value) : "fixed";
+  return estimated ? StringPrintf("(std %.4f %s)", std_value, unit.c_str()) : "(fixed)";
+}
+
 // "a, b, c" with one printf format per component.
 std::string Components(const char* format, const Eigen::Vector3d& v) {
   return StringPrintf(format, v.x()) + ", " + StringPrintf(format, v.y()) + ", " +
@@ -159,11 +166,11 @@ std::string EstimatesTable(const CalibrationResult& r, const CalibrateOptions& o
     html << "<tr><th>T_cam_imu translation [mm]</th><td>" << Components("%.2f", 1e3 * t)
          << "</td><td>std " << Components("%.2f", 1e3 * e.translation_std_m) << "</td></tr>\n";
     html << "<tr><th>timeshift_cam_imu [ms]</th><td>"
-         << StringPrintf("%.4f", 1e3 * e.calibration.time_offset_s) << "</td><td>std "
-         << StringPrintf("%.4f", 1e3 * e.time_offset_std_s) << "</td></tr>\n";
+         << StringPrintf("%.4f", 1e3 * e.calibration.time_offset_s) << "</td><td>"
+         << StdText(e.time_offset_estimated, 1e3 * e.time_offset_std_s, "") << "</td></tr>\n";
     html << "<tr><th>line_delay [us/row]</th><td>"
-         << StringPrintf("%.4f", 1e6 * e.calibration.line_delay_s) << "</td><td>std "
-         << StringPrintf("%.4f", 1e6 * e.line_delay_std_s) << "</td></tr>\n";
+         << StringPrintf("%.4f", 1e6 * e.calibration.line_delay_s) << "</td><td>"
+         << StdText(e.line_delay_estimated, 1e6 * e.line_delay_std_s, "") << "</td></tr>\n";
     html << "<tr><th>reprojection RMS [px]</th><td>" << StringPrintf("%.3f", e.reprojection_rms_px)
          << "</td><td>" << e.num_observations << " points in " << e.num_frames
          << " frames</td></tr>\n";
@@ -222,6 +229,7 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("num_imu_samples", r.num_imu_samples);
   yaml.Scalar("num_landmarks", r.num_landmarks);
   yaml.Scalar("knot_spacing_s", NanosecondsToSeconds(r.layout.dt_ns));
+  yaml.Scalar("knot_spacing_rule", r.knot_spacing_rule);
   yaml.Scalar("bias_model", options.model.bias_model == BiasModel::kSpline ? "spline" : "constant");
   yaml.Scalar("rolling_shutter", options.rolling_shutter);
   yaml.Scalar("huber_px", options.huber_px);
@@ -304,14 +312,10 @@ std::string CalibrateSummaryText(const CalibrationResult& result) {
                      1e3 * e.translation_std_m.x(),
                      1e3 * e.translation_std_m.y(),
                      1e3 * e.translation_std_m.z());
-    text += StringPrintf("  timeshift_cam_imu %.6f ms (std %.4f ms)%s\n",
-                         1e3 * e.calibration.time_offset_s,
-                         1e3 * e.time_offset_std_s,
-                         e.time_offset_estimated ? "" : " (fixed)");
-    text += StringPrintf("  line_delay %.4f us/row (std %.4f us)%s\n",
-                         1e6 * e.calibration.line_delay_s,
-                         1e6 * e.line_delay_std_s,
-                         e.line_delay_estimated ? "" : " (fixed)");
+    text += StringPrintf("  timeshift_cam_imu %.6f ms ", 1e3 * e.calibration.time_offset_s) +
+            StdText(e.time_offset_estimated, 1e3 * e.time_offset_std_s, "ms") + "\n";
+    text += StringPrintf("  line_delay %.4f us/row ", 1e6 * e.calibration.line_delay_s) +
+            StdText(e.line_delay_estimated, 1e6 * e.line_delay_std_s, "us") + "\n";
     text += StringPrintf("  reprojection RMS %.3f px over %d points in %d frames\n",
                          e.reprojection_rms_px,
                          e.num_observations,
