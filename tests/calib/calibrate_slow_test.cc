@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "calib/calibrate_test_checks.h"
 #include "calib/calibrate_test_scenario.h"
@@ -85,12 +86,26 @@ TEST(CalibrateSlow, RollingShutterDataWithoutTheModelIsBiased) {
   CalibrationResult r;
   const Errors e =
       CalibrateAndCompare(s, false, "rolling-shutter data without --rolling-shutter, 30 s", &r);
-  // Measured (seed 1): time offset 7.4 ms off (the half readout is 7.2 ms), rotation 0.15 deg
-  // (~20 std), translation 1.7 mm (~10 std), RMS 0.91 px against 0.71 px with the model.
+  // Measured (seed 1): time offset 7.4 ms off (the half readout is 7.2 ms), rotation 0.16 deg,
+  // translation 1.9 mm, RMS 0.91 px against 0.71 px with the model. The noise model's stds put
+  // the rotation ~20 std off; the cluster-robust covariance sees the model error in how the 1 s
+  // windows pull on the solution (stds up to 18x the noise model's, named in a warning), and the
+  // extrinsic's errors are then within 3 of the reported stds. The time offset's bias is the same
+  // in every window (half the readout), so the scatter cannot see it: it stays many stds off, and
+  // only the rolling-shutter model removes it.
   const CameraEstimate& c = r.cameras[0];
   EXPECT_GT(std::abs(e.time_offset_s), 3e-3);
   EXPECT_GT(std::abs(e.time_offset_s), 10.0 * c.time_offset_std_s);
-  EXPECT_GT(e.rotation_deg.norm(), 5.0 * c.rotation_std_deg.maxCoeff());
+  EXPECT_GT(r.std_inflation, 5.0);
+  bool warned = false;
+  for (const std::string& w : r.warnings) {
+    warned = warned || w.find("the data scatter more than the noise model explains") == 0;
+  }
+  EXPECT_TRUE(warned);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(std::abs(e.rotation_deg[a]), 3.0 * c.rotation_std_deg[a]) << a;
+    EXPECT_LT(std::abs(e.translation_m[a]), 3.0 * c.translation_std_m[a]) << a;
+  }
   EXPECT_GT(r.reprojection_rms_px, 1.2 * 0.5 * std::sqrt(2.0));
 }
 
