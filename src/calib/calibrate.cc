@@ -2,9 +2,6 @@
 
 #include <ceres/ceres.h>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -19,6 +16,7 @@
 #include <vector>
 
 #include "calibration_data.h"
+#include "calibration_warnings.h"
 #include "splinecal/calib/fit.h"
 #include "splinecal/camera/pnp.h"
 #include "splinecal/error.h"
@@ -37,6 +35,7 @@
 
 namespace splinecal {
 
+using calibrate_internal::AddStandardDeviationWarnings;
 using calibrate_internal::CheckInputs;
 using calibrate_internal::CheckRotationExcitation;
 using calibrate_internal::FramePeriod;
@@ -61,8 +60,6 @@ constexpr double kWindowRebuildMargin_s = 0.002;
 constexpr double kSigmaChangeForNewRound = 0.1;
 // 1.4826 x median absolute deviation = std of a Gaussian.
 constexpr double kMadToStd = 1.4826;
-// A reported std this many times the noise model's is named in a warning.
-constexpr double kWarnStdInflation = 2.0;
 // Stops a solve (SOLVER_TERMINATE_SUCCESSFULLY) at the first iteration for which stop(summary)
 // holds, and remembers that it did; the caller rebuilds the problem and solves again. Needs
 // Solver::Options::update_state_every_iteration (stop reads the parameters). Two uses in Run:
@@ -568,7 +565,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   // definite and tests the calibration parameters' own complement for singularity, so a weakly
   // determined landmark depth does not withhold the calibration's standard deviations.
   // Wanted: the cameras' blocks, then every bias control point; reported: the cameras' tangent
-  // coordinates as they are and the biases' time averages (MeanBiasWeights), q = A x.
+  // coordinates as they are and the biases' time averages (MeanBiasMap), q = A x.
   std::vector<const double*> wanted;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     wanted.push_back(cameras_[c].extrinsic.data());
@@ -586,28 +583,13 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->accel_bias(m));
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(num_camera + 6, num_camera + 6 * num_bias_points);
   A.topLeftCorner(num_camera, num_camera).setIdentity();
-  const std::vector<double> mean_weights = spline_->MeanBiasWeights(imu_);
-  for (int m = 0; m < num_bias_points; ++m) {
-    A.block<3, 3>(num_camera, num_camera + 3 * m) = mean_weights[m] * Eigen::Matrix3d::Identity();
-    A.block<3, 3>(num_camera + 3, num_camera + 3 * (num_bias_points + m)) =
-        mean_weights[m] * Eigen::Matrix3d::Identity();
-  }
+  A.bottomRightCorner(6, 6 * num_bias_points) = spline_->MeanBiasMap(imu_);
   MarginalCovarianceOptions covariance_options;
   covariance_options.backend = CovarianceBackend::kSchur;
   covariance_options.num_threads = options_.solver.num_threads;
   covariance_options.reported_map = A;
-  const double window_s = options_.covariance.robust_window_s;
-  if (window_s > 0.0) {
-    covariance_options.cluster_of = [this, window_s](ceres::ResidualBlockId id) {
-      return spline_->TimeWindowOf(id, window_s);
-    };
-  }
-  covariance_options.noise_factors = imu_noise_->NoiseFactors();
-  if (!covariance_options.noise_factors.empty()) {
-    covariance_options.group_of = [this](ceres::ResidualBlockId id) {
-      return ImuNoiseEstimator::GroupOf(*spline_, id);
-    };
-  }
+  imu_noise_->AddToCovarianceOptions(
+      spline_.get(), options_.covariance.robust_window_s, &covariance_options);
   const MarginalCovariance marginal =
       ComputeMarginalCovariance(&problem(), wanted, covariance_options);
   if (!marginal.ok) {
@@ -620,19 +602,6 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   const Eigen::MatrixXd& cov = reported.covariance;
   result->std_inflation = reported.inflation.maxCoeff();
   result->robust_clusters = marginal.num_clusters;
-  if (result->std_inflation > kWarnStdInflation) {
-    const std::array<double, kNumImuResidualKinds> ratio = imu_noise_->estimate().MeasuredOverGiven();
-    result->warnings.push_back(
-        "the data scatter more than the noise model explains: standard deviations are up to " +
-        StringPrintf("%.2g", result->std_inflation) +
-        "x the noise model's (IMU white noise measured at " + StringPrintf("%.2g", ratio[0]) +
-        "x (gyro) and " + StringPrintf("%.2g", ratio[1]) +
-        "x (accelerometer) the given densities; the cluster-robust scatter over " +
-        std::to_string(marginal.num_clusters) +
-        " time windows): likely vibration above the spline's bandwidth, a knot spacing too "
-        "coarse for the motion, or sensor errors the model lacks (docs/calibrate.md, \"How much "
-        "to trust the numbers\")");
-  }
   auto block = [&](const double* a, int rows) {
     return Eigen::MatrixXd(cov.block(offset[a], offset[a], rows, rows));
   };
@@ -652,42 +621,11 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     if (options_.rolling_shutter) {
       estimate.line_delay_std_s = std::sqrt(std::max(0.0, block(&cam.line_delay, 1)(0, 0)));
     }
-    const std::string name = "cam" + std::to_string(c);
-    if (estimate.rotation_std_deg.maxCoeff() > options_.warn_rotation_std_deg) {
-      result->warnings.push_back(name +
-                                 ": the rotation of T_cam_imu is poorly determined (std up to " +
-                                 StringPrintf("%.3g", estimate.rotation_std_deg.maxCoeff()) +
-                                 " deg): rotate the rig more, about all three axes");
-    }
-    if (estimate.translation_std_m.maxCoeff() > options_.warn_translation_std_m) {
-      result->warnings.push_back(
-          name + ": the translation of T_cam_imu is poorly determined (std up to " +
-          StringPrintf("%.3g", 1e3 * estimate.translation_std_m.maxCoeff()) +
-          " mm): it shows only through rotational accelerations; rotate faster and longer");
-    }
-    if (options_.estimate_time_offset &&
-        estimate.time_offset_std_s > options_.warn_time_offset_std_s) {
-      result->warnings.push_back(name + ": the time offset is poorly determined (std " +
-                                 StringPrintf("%.3g", 1e3 * estimate.time_offset_std_s) +
-                                 " ms): the motion is too slow or too smooth");
-    }
-    if (options_.rolling_shutter && cam.line_delay > 0.0 &&
-        estimate.line_delay_std_s > options_.warn_line_delay_relative_std * cam.line_delay &&
-        cam.line_delay > 3.0 * estimate.line_delay_std_s) {
-      result->warnings.push_back(
-          name + ": the line delay is poorly determined (std " +
-          StringPrintf("%.3g", 100.0 * estimate.line_delay_std_s / cam.line_delay) +
-          "% of its value)");
-    }
-    if (std::abs(cam.time_offset_s) > 0.99 * options_.max_time_offset_s &&
-        options_.estimate_time_offset) {
-      result->warnings.push_back(name + ": the time offset ended at its bound +-" +
-                                 StringPrintf("%.3g", options_.max_time_offset_s) + " s");
-    }
   }
   const Eigen::VectorXd bias_std = cov.diagonal().tail(6).cwiseMax(0.0).cwiseSqrt();
   result->gyro_bias_std = bias_std.head<3>();
   result->accel_bias_std = bias_std.tail<3>();
+  AddStandardDeviationWarnings(options_, imu_noise_->estimate(), result);
 }
 
 void CalibrationProblem::Collect(CalibrationResult* result) {

@@ -684,11 +684,7 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
       8 + (options.estimate_time_offset ? 1 : 0) + (options.estimate_extrinsic ? 6 : 0);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(reported, tangent_total);
   // Bias averages: mean over the samples of sum_j w_j c_{m-1+j}.
-  const std::vector<double> a = spline_problem->MeanBiasWeights(imu);
-  for (int m = 0; m < num_bias_points; ++m) {
-    A.block<3, 3>(0, 3 * m) = a[m] * Eigen::Matrix3d::Identity();
-    A.block<3, 3>(3, 3 * (num_bias_points + m)) = a[m] * Eigen::Matrix3d::Identity();
-  }
+  A.topLeftCorner(6, 6 * num_bias_points) = spline_problem->MeanBiasMap(imu);
   int column = 6 * num_bias_points;
   int row = 6;
   const int extra = tangent_total - column;
@@ -720,19 +716,8 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
   covariance_options.backend = options.covariance.backend;
   // The noise the residuals show and the cluster-robust scatter over time windows
   // (estimation/marginal_covariance.h, ReportedCovarianceOf); both need the Schur backend.
-  const double window_s = options.covariance.robust_window_s;
-  if (window_s > 0.0) {
-    covariance_options.cluster_of = [this, window_s](ceres::ResidualBlockId id) {
-      return spline_problem->TimeWindowOf(id, window_s);
-    };
-  }
-  covariance_options.noise_factors = imu_noise->NoiseFactors();
-  if (!covariance_options.noise_factors.empty()) {
-    covariance_options.group_of = [this](ceres::ResidualBlockId id) {
-      return ImuNoiseEstimator::GroupOf(*spline_problem, id);
-    };
-  }
-  const bool extras = window_s > 0.0 || !covariance_options.noise_factors.empty();
+  const bool extras = imu_noise->AddToCovarianceOptions(
+      spline_problem.get(), options.covariance.robust_window_s, &covariance_options);
   if (extras) {
     covariance_options.backend = CovarianceBackend::kSchur;
     covariance_options.reported_map = A;

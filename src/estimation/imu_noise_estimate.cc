@@ -84,6 +84,23 @@ std::map<int, double> ImuNoiseEstimator::NoiseFactors() const {
   return factors;
 }
 
+bool ImuNoiseEstimator::AddToCovarianceOptions(const SplineProblem* spline_problem,
+                                               double robust_window_s,
+                                               MarginalCovarianceOptions* options) const {
+  if (robust_window_s > 0.0) {
+    options->cluster_of = [spline_problem, robust_window_s](ceres::ResidualBlockId id) {
+      return spline_problem->TimeWindowOf(id, robust_window_s);
+    };
+  }
+  options->noise_factors = NoiseFactors();
+  if (!options->noise_factors.empty()) {
+    options->group_of = [spline_problem](ceres::ResidualBlockId id) {
+      return GroupOf(*spline_problem, id);
+    };
+  }
+  return robust_window_s > 0.0 || !options->noise_factors.empty();
+}
+
 double ImuNoiseEstimator::Update(SplineProblem* spline_problem) {
   if (estimate_.mode == ImuNoiseMode::kGiven) return 0.0;
   // The random-walk prior's quadratic form has rank 3 (num_points - 1): a constant bias costs

@@ -269,6 +269,17 @@ ImuResidualStatistics SplineProblem::EvaluateImu(
   return stats;
 }
 
+Eigen::MatrixXd SplineProblem::MeanBiasMap(const std::vector<ImuSample>& imu) const {
+  const int points = bias_.num_points();
+  const std::vector<double> weights = MeanBiasWeights(imu);
+  Eigen::MatrixXd map = Eigen::MatrixXd::Zero(6, 6 * points);
+  for (int m = 0; m < points; ++m) {
+    map.block<3, 3>(0, 3 * m) = weights[m] * Eigen::Matrix3d::Identity();
+    map.block<3, 3>(3, 3 * (points + m)) = weights[m] * Eigen::Matrix3d::Identity();
+  }
+  return map;
+}
+
 std::vector<double> SplineProblem::MeanBiasWeights(const std::vector<ImuSample>& imu) const {
   std::vector<double> a(bias_.num_points(), 0.0);
   if (bias_.is_constant()) {

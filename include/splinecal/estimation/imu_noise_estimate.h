@@ -22,6 +22,7 @@
 #include <string>
 
 #include "splinecal/estimation/imu_noise_mode.h"
+#include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/spline_problem.h"
 #include "splinecal/estimation/variance_components.h"
 #include "splinecal/imu/noise.h"
@@ -69,6 +70,14 @@ class ImuNoiseEstimator {
   // variance factors (measured / used)^2 of the white-noise groups (empty for kGiven).
   static int GroupOf(const SplineProblem& spline_problem, ceres::ResidualBlockId id);
   std::map<int, double> NoiseFactors() const;
+
+  // Sets in `options` what the reported standard deviations need beyond the weights: the
+  // measured white noise (noise_factors, group_of) and the cluster-robust covariance over time
+  // windows of robust_window_s (cluster_of; 0: none) of `spline_problem`, which must outlive the
+  // computation. Returns whether it set anything (both need the Schur backend).
+  bool AddToCovarianceOptions(const SplineProblem* spline_problem,
+                              double robust_window_s,
+                              MarginalCovarianceOptions* options) const;
 
  private:
   double rate_hz_;

@@ -161,6 +161,10 @@ class SplineProblem {
   // d(mean bias over the samples) / d(control point m): the weights a reported average bias
   // gives each bias control point (all 1 for a constant bias).
   std::vector<double> MeanBiasWeights(const std::vector<ImuSample>& imu) const;
+  // The same as a linear map (6 x 6 num_points): [mean gyro bias; mean accel bias] from the
+  // tangent coordinates of every gyro bias point, then every accel bias point (the order a
+  // covariance request lists them in; MarginalCovarianceOptions::reported_map).
+  Eigen::MatrixXd MeanBiasMap(const std::vector<ImuSample>& imu) const;
 
  private:
   KnotLayout layout_;
