@@ -27,10 +27,6 @@
 #include "splinecal/report/calibrate_report.h"
 #include "camera_selection.h"
 
-DEFINE_string(observations,
-              "",
-              "Detected points, observations.csv: #t_ns,cam_id,point_id,u,v (frame stamp in the "
-              "camera clock [ns], pixel [px]) [path]");
 DEFINE_string(cameras,
               "",
               "Calibrate only these cameras of the camchain, comma-separated indices in "
@@ -47,8 +43,6 @@ DEFINE_double(pixel_sigma,
               0.0,
               "Pixel noise std [px] weighting the reprojection residuals; 0 estimates it from the "
               "residuals (robustly) and solves again");
-DEFINE_double(huber, 2.0, "Huber threshold of the reprojection residuals [px]; 0 disables it");
-DEFINE_int32(min_corners, 8, "Frames with fewer target corners are not used");
 DEFINE_string(initial_poses,
               "",
               "Initial IMU trajectory T_w_s in the IMU clock, EuRoC ground-truth or TUM format "

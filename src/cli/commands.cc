@@ -14,6 +14,7 @@ const std::vector<Command>& AllCommands() {
       AlignCommand(),
       FitCommand(),
       DetectCommand(),
+      IntrinsicsCommand(),
       CalibrateCommand(),
   };
   return commands;

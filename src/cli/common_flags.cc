@@ -31,6 +31,12 @@ DEFINE_string(camchain, "", "Kalibr camchain.yaml [path]");
 DEFINE_string(target, "", "Calibration target: Kalibr aprilgrid YAML or a points YAML [path]");
 DEFINE_string(gyro_bias, "0,0,0", "Gyro bias b_g, x,y,z [rad/s]");
 DEFINE_string(accel_bias, "0,0,0", "Accelerometer bias b_a, x,y,z [m/s^2]");
+DEFINE_string(observations,
+              "",
+              "Detected points, observations.csv: #t_ns,cam_id,point_id,u,v (frame stamp in the "
+              "camera clock [ns], pixel [px]) [path]");
+DEFINE_double(huber, 2.0, "Huber threshold of the reprojection residuals [px]; 0 disables it");
+DEFINE_int32(min_corners, 8, "Frames with fewer target corners are not used");
 DEFINE_string(gyro_unit, "rad/s", "Unit of the gyroscope columns: rad/s or deg/s");
 
 namespace splinecal {

@@ -34,8 +34,37 @@ std::string YamlString(const std::string& value) {
 }
 
 void YamlWriter::Key(const std::string& key) {
-  text_.append(2 * depth_, ' ');
+  if (item_pending_) {
+    text_.append(2 * depth_ - 2, ' ');
+    text_ += "- ";
+    item_pending_ = false;
+  } else {
+    text_.append(2 * depth_, ' ');
+  }
   text_ += key + ":";
+}
+
+void YamlWriter::BeginList(const std::string& key) {
+  Key(key);
+  text_ += "\n";
+  ++depth_;
+}
+
+void YamlWriter::BeginListItem() {
+  CHECK(!item_pending_) << "an empty list item";
+  ++depth_;
+  item_pending_ = true;
+}
+
+void YamlWriter::EndListItem() {
+  CHECK(!item_pending_) << "an empty list item";
+  CHECK_GT(depth_, 1);
+  --depth_;
+}
+
+void YamlWriter::EndList() {
+  CHECK_GT(depth_, 0);
+  --depth_;
 }
 
 void YamlWriter::Comment(const std::string& text) {

@@ -279,8 +279,8 @@ std::string CalibrateReportHtml(const CalibrationResult& r,
   page.Append(ImuNoiseTableHtml(r.imu_noise, inputs.imu_yaml_path));
   page.Append(EstimatesTable(r, options));
   page.ListSection("Warnings", r.warnings);
-  page.FigureSection("Reprojection", ReprojectionErrorFigure(r, max_points));
-  ReprojectionImageFigure by_position = MakeReprojectionImageFigure(r, max_points);
+  page.FigureSection("Reprojection", ReprojectionErrorFigure(ReprojectionDataOf(r), max_points));
+  ReprojectionImageFigure by_position = MakeReprojectionImageFigure(ReprojectionDataOf(r), max_points);
   page.FigureSection("Reprojection by image position", std::move(by_position.figure));
   page.Append(by_position.key_html);
   page.FigureSection("IMU", ImuFigure(r, max_points));

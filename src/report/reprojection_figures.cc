@@ -33,17 +33,17 @@ constexpr double kLongestVectorCells = 0.8;
 // are drawn longer than a cell instead, clipped at the plot's edge).
 constexpr double kGainQuantile = 0.9;
 
-int NumCameras(const CalibrationResult& r) {
-  int n = static_cast<int>(r.cameras.size());
-  for (const ReprojectionSample& s : r.reprojection_samples) n = std::max(n, s.cam_id + 1);
+int NumCameras(const ReprojectionData& r) {
+  int n = static_cast<int>(r.image_sizes.size());
+  for (const ReprojectionSample& s : (*r.samples)) n = std::max(n, s.cam_id + 1);
   return n;
 }
 
 // The samples of each camera, by index.
-std::vector<std::vector<size_t>> SamplesPerCamera(const CalibrationResult& r) {
+std::vector<std::vector<size_t>> SamplesPerCamera(const ReprojectionData& r) {
   std::vector<std::vector<size_t>> per_camera(NumCameras(r));
-  for (size_t k = 0; k < r.reprojection_samples.size(); ++k) {
-    const int cam = r.reprojection_samples[k].cam_id;
+  for (size_t k = 0; k < (*r.samples).size(); ++k) {
+    const int cam = (*r.samples)[k].cam_id;
     if (cam >= 0) per_camera[cam].push_back(k);
   }
   return per_camera;
@@ -69,13 +69,12 @@ int ClassOf(double error_px) {
 }
 
 // The image size of camera `cam` [px]: its resolution, or the extent of its observations.
-Eigen::Vector2d ImageSize(const CalibrationResult& r, int cam, const std::vector<size_t>& samples) {
-  if (cam < static_cast<int>(r.cameras.size())) {
-    const PinholeCamera& camera = r.cameras[cam].calibration.camera;
-    if (camera.width > 0 && camera.height > 0) return Eigen::Vector2d(camera.width, camera.height);
+Eigen::Vector2d ImageSize(const ReprojectionData& r, int cam, const std::vector<size_t>& samples) {
+  if (cam < static_cast<int>(r.image_sizes.size()) && r.image_sizes[cam].minCoeff() > 0) {
+    return r.image_sizes[cam].cast<double>();
   }
   Eigen::Vector2d size(1.0, 1.0);
-  for (size_t k : samples) size = size.cwiseMax(r.reprojection_samples[k].uv);
+  for (size_t k : samples) size = size.cwiseMax((*r.samples)[k].uv);
   return size;
 }
 
@@ -86,14 +85,14 @@ struct CellMean {
   int count = 0;
 };
 
-std::vector<CellMean> CellMeans(const CalibrationResult& r,
+std::vector<CellMean> CellMeans(const ReprojectionData& r,
                                 const std::vector<size_t>& samples,
                                 const Eigen::Vector2d& image_size) {
   const double cell = image_size.x() / kImageCellsAcross;
   const int rows = std::max(1, static_cast<int>(std::ceil(image_size.y() / cell)));
   std::vector<CellMean> cells(static_cast<size_t>(kImageCellsAcross) * rows);
   for (size_t k : samples) {
-    const ReprojectionSample& s = r.reprojection_samples[k];
+    const ReprojectionSample& s = (*r.samples)[k];
     const int col = std::clamp(static_cast<int>(s.uv.x() / cell), 0, kImageCellsAcross - 1);
     const int row = std::clamp(static_cast<int>(s.uv.y() / cell), 0, rows - 1);
     CellMean& c = cells[static_cast<size_t>(row) * kImageCellsAcross + col];
@@ -113,11 +112,22 @@ std::vector<CellMean> CellMeans(const CalibrationResult& r,
 
 }  // namespace
 
+ReprojectionData ReprojectionDataOf(const CalibrationResult& result) {
+  ReprojectionData data;
+  for (const CameraEstimate& camera : result.cameras) {
+    data.image_sizes.emplace_back(camera.calibration.camera.width,
+                                  camera.calibration.camera.height);
+  }
+  data.samples = &result.reprojection_samples;
+  data.t0_ns = result.layout.t0_ns;
+  return data;
+}
+
 std::string CameraColor(int cam_id) {
   return kCameraColors[((cam_id % kNumCameraColors) + kNumCameraColors) % kNumCameraColors];
 }
 
-plot::Figure ReprojectionErrorFigure(const CalibrationResult& r, int max_points) {
+plot::Figure ReprojectionErrorFigure(const ReprojectionData& r, int max_points) {
   plot::Figure figure;
   figure.title = "Reprojection errors (predicted - observed)";
   figure.columns = 2;
@@ -137,17 +147,17 @@ plot::Figure ReprojectionErrorFigure(const CalibrationResult& r, int max_points)
       series->marker_size = 1.2;
     }
     for (size_t i : plot::DecimatedIndices(per_camera[cam].size(), max_points, false)) {
-      const ReprojectionSample& s = r.reprojection_samples[per_camera[cam][i]];
+      const ReprojectionSample& s = (*r.samples)[per_camera[cam][i]];
       points.x.push_back(s.error.x());
       points.y.push_back(s.error.y());
-      norms.x.push_back(NanosecondsToSeconds(s.t_ns - r.layout.t0_ns));
+      norms.x.push_back(NanosecondsToSeconds(s.t_ns - r.t0_ns));
       norms.y.push_back(s.error.norm());
     }
   }
   return figure;
 }
 
-ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& r, int max_points) {
+ReprojectionImageFigure MakeReprojectionImageFigure(const ReprojectionData& r, int max_points) {
   ReprojectionImageFigure out;
   plot::Figure& figure = out.figure;
   figure.title = "Reprojection errors by image position";
@@ -196,7 +206,7 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& r, 
       classes.push_back(&series);
     }
     for (size_t i : plot::DecimatedIndices(per_camera[cam].size(), max_points, false)) {
-      const ReprojectionSample& s = r.reprojection_samples[per_camera[cam][i]];
+      const ReprojectionSample& s = (*r.samples)[per_camera[cam][i]];
       plot::Series* series = classes[ClassOf(s.error.norm())];
       series->x.push_back(s.uv.x());
       series->y.push_back(s.uv.y());

@@ -58,6 +58,7 @@
 
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/observations.h"
+#include "splinecal/camera/reprojection_sample.h"
 #include "splinecal/camera/target.h"
 #include "splinecal/estimation/bias_costs.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
@@ -130,15 +131,6 @@ struct CameraEstimate {
   double reprojection_rms_px = 0.0;  // RMS of the 2-D pixel errors
   int num_frames = 0;
   int num_observations = 0;
-};
-
-// One reprojection residual after the calibration (for report.html).
-struct ReprojectionSample {
-  int64_t t_ns = 0;  // frame stamp, camera clock
-  int cam_id = 0;
-  int64_t point_id = 0;
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();     // observed
-  Eigen::Vector2d error = Eigen::Vector2d::Zero();  // predicted - observed [px]
 };
 
 // One IMU sample after the calibration (for report.html).

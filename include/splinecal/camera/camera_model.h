@@ -46,7 +46,7 @@
 namespace splinecal {
 
 enum class DistortionModel { kNone, kRadTan, kEquidistant };
-enum class ProjectionModel { kPinhole };  // TEMPORARY SHIM
+enum class ProjectionModel { kPinhole, kOmni, kEucm, kDoubleSphere };  // TEMPORARY SHIM
 
 // "none", "radtan", "equidistant" (Kalibr's spelling).
 std::string DistortionModelName(DistortionModel model);

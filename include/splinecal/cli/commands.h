@@ -15,6 +15,7 @@ Command AlignCommand();
 Command FitCommand();
 Command CalibrateCommand();
 Command DetectCommand();
+Command IntrinsicsCommand();
 
 }  // namespace cli
 }  // namespace splinecal

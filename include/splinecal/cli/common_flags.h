@@ -28,6 +28,9 @@ DECLARE_string(camchain);
 DECLARE_string(target);
 DECLARE_string(gyro_bias);
 DECLARE_string(accel_bias);
+DECLARE_string(observations);
+DECLARE_double(huber);
+DECLARE_int32(min_corners);
 
 namespace splinecal {
 namespace cli {

@@ -25,6 +25,12 @@ class YamlWriter {
   void StringList(const std::string& key, const std::vector<std::string>& values);
   void BeginMap(const std::string& key);
   void EndMap();
+  // A block list of mappings:  key:\n  - a: 1\n    b: 2\n  - a: 3 ...
+  // BeginList(key), then per item BeginListItem(), its keys, EndListItem(); then EndList().
+  void BeginList(const std::string& key);
+  void BeginListItem();
+  void EndListItem();
+  void EndList();
 
   // The document; every BeginMap must have been closed.
   std::string str() const;
@@ -34,6 +40,7 @@ class YamlWriter {
 
   std::string text_;
   int depth_ = 0;
+  bool item_pending_ = false;  // the next key opens a list item ("- ")
 };
 
 // A YAML double: 17 significant digits, .nan / .inf / -.inf.

@@ -12,18 +12,30 @@
 #ifndef SPLINECAL_REPORT_REPROJECTION_FIGURES_H_
 #define SPLINECAL_REPORT_REPROJECTION_FIGURES_H_
 
+#include <Eigen/Core>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/plot/svg_plot.h"
 
 namespace splinecal {
 
+// What the figures draw: each camera's image size (0 x 0: the extent of its observations) and
+// the errors (not owned).
+struct ReprojectionData {
+  std::vector<Eigen::Vector2i> image_sizes;
+  const std::vector<ReprojectionSample>* samples = nullptr;
+  int64_t t0_ns = 0;  // time zero of the plots over time
+};
+ReprojectionData ReprojectionDataOf(const CalibrationResult& result);
+
 // The colour of camera `cam_id` in every reprojection figure ("#rrggbb").
 std::string CameraColor(int cam_id);
 
 // At most max_points points per camera and series (evenly decimated).
-plot::Figure ReprojectionErrorFigure(const CalibrationResult& result, int max_points);
+plot::Figure ReprojectionErrorFigure(const ReprojectionData& data, int max_points);
 
 // Bounds [px] of the error-size classes of ReprojectionImageFigure: |error| below the first, from
 // the first to the second, ..., and at least the last.
@@ -43,7 +55,7 @@ struct ReprojectionImageFigure {
 // extent when it has none).
 inline constexpr int kImageCellsAcross = 12;
 inline constexpr int kMinCellObservations = 10;
-ReprojectionImageFigure MakeReprojectionImageFigure(const CalibrationResult& result,
+ReprojectionImageFigure MakeReprojectionImageFigure(const ReprojectionData& data,
                                                     int max_points);
 
 }  // namespace splinecal

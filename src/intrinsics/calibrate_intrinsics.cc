@@ -1,0 +1,599 @@
+#include "splinecal/intrinsics/calibrate_intrinsics.h"
+
+#include <ceres/manifold.h>
+#include <ceres/problem.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "splinecal/camera/pnp.h"
+#include "splinecal/error.h"
+#include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/intrinsics/initial_intrinsics.h"
+#include "splinecal/intrinsics/intrinsics_observability.h"
+#include "splinecal/intrinsics/rig_reprojection_cost.h"
+#include "splinecal/intrinsics/robust_mean_pose.h"
+#include "splinecal/intrinsics/target_view.h"
+#include "splinecal/lie/se3_manifold.h"
+#include "splinecal/string_printf.h"
+#include "splinecal/units.h"
+
+namespace splinecal {
+
+const char* ViewStatusName(ViewStatus status) {
+  switch (status) {
+    case ViewStatus::kUsed:
+      return "used";
+    case ViewStatus::kTooFewCorners:
+      return "too few corners";
+    case ViewStatus::kPnpFailed:
+      return "no target pose (PnP failed)";
+    case ViewStatus::kRepeat:
+      return "repeats an earlier view";
+    case ViewStatus::kThinned:
+      return "thinned (max views)";
+    case ViewStatus::kOutlier:
+      return "too few corners after outlier removal";
+  }
+  return "?";
+}
+
+namespace {
+
+using PoseBlock = std::array<double, kPoseBlockSize>;
+
+PoseBlock ToBlock(const SE3d& pose) {
+  PoseBlock block;
+  PoseToBlock(pose, block.data());
+  return block;
+}
+
+double MedianOf(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  return values[mid];
+}
+
+// Everything the solve changes, kept between rounds.
+struct RigState {
+  std::vector<Camera> cameras;
+  std::vector<IntrinsicsVector> intrinsics;  // parameter blocks
+  std::vector<std::vector<int>> active;
+  std::vector<PoseBlock> T_cn_c0;  // parameter blocks (camera 0: identity, unused)
+  std::vector<double> sigma_px;
+  std::map<int64_t, PoseBlock> T_c0_t;  // per timestamp with a used view
+};
+
+class IntrinsicsSolver {
+ public:
+  IntrinsicsSolver(std::vector<TargetView>* views,
+                   std::vector<ViewRecord>* records,
+                   RigState* state,
+                   const IntrinsicsOptions& options)
+      : views_(*views), records_(*records), state_(*state), options_(options) {}
+
+  // Builds the problem over the used views with Huber at huber_px (0: none).
+  void Build(double huber_px) {
+    problem_ = std::make_unique<ceres::Problem>();
+    cluster_.clear();
+    const int num_cameras = static_cast<int>(state_.cameras.size());
+    for (int n = 0; n < num_cameras; ++n) {
+      problem_->AddParameterBlock(state_.intrinsics[n].data(), kNumIntrinsics);
+      std::vector<int> fixed;
+      for (int j = 0; j < kNumIntrinsics; ++j) {
+        if (std::find(state_.active[n].begin(), state_.active[n].end(), j) ==
+            state_.active[n].end()) {
+          fixed.push_back(j);
+        }
+      }
+      if (!fixed.empty()) {
+        problem_->SetManifold(state_.intrinsics[n].data(),
+                              new ceres::SubsetManifold(kNumIntrinsics, fixed));
+      }
+      if (n > 0) {
+        problem_->AddParameterBlock(state_.T_cn_c0[n].data(), kPoseBlockSize, new SE3Manifold);
+        if (!options_.estimate_extrinsics) problem_->SetParameterBlockConstant(state_.T_cn_c0[n].data());
+      }
+    }
+    std::map<int64_t, int> cluster_of_time;
+    for (size_t v = 0; v < views_.size(); ++v) {
+      if (records_[v].status != ViewStatus::kUsed) continue;
+      const TargetView& view = views_[v];
+      const int n = view.cam_id;
+      double* pose = state_.T_c0_t.at(view.t_ns).data();
+      if (!problem_->HasParameterBlock(pose)) {
+        problem_->AddParameterBlock(pose, kPoseBlockSize, new SE3Manifold);
+      }
+      RigViewSettings settings;
+      settings.model = state_.cameras[n];
+      settings.has_extrinsic = n > 0;
+      settings.sigma_px = state_.sigma_px[n];
+      settings.huber_px = huber_px;
+      auto* cost = new RigViewCostFunction(settings, view.corners);
+      std::vector<double*> blocks = {pose, state_.intrinsics[n].data()};
+      if (n > 0) blocks.push_back(state_.T_cn_c0[n].data());
+      const ceres::ResidualBlockId id = problem_->AddResidualBlock(cost, nullptr, blocks);
+      const auto inserted =
+          cluster_of_time.emplace(view.t_ns, static_cast<int>(cluster_of_time.size()));
+      cluster_[id] = inserted.first->second;
+    }
+  }
+
+  ceres::Problem* problem() { return problem_.get(); }
+  int ClusterOf(ceres::ResidualBlockId id) const { return cluster_.at(id); }
+
+ private:
+  std::vector<TargetView>& views_;
+  std::vector<ViewRecord>& records_;
+  RigState& state_;
+  const IntrinsicsOptions& options_;
+  std::unique_ptr<ceres::Problem> problem_;
+  std::map<ceres::ResidualBlockId, int> cluster_;
+};
+
+SE3d PoseOf(const PoseBlock& block) { return PoseFromBlock(block.data()); }
+
+Camera CameraAt(const RigState& state, int n) {
+  Camera camera = state.cameras[n];
+  camera.set_intrinsics(state.intrinsics[n]);
+  return camera;
+}
+
+SE3d TargetInCamera(const RigState& state, const TargetView& view) {
+  const SE3d T_c0_t = PoseOf(state.T_c0_t.at(view.t_ns));
+  return view.cam_id == 0 ? T_c0_t : PoseOf(state.T_cn_c0[view.cam_id]) * T_c0_t;
+}
+
+// Distance between two target poses for the repeat test: rotation angle [deg] and the position
+// difference relative to the distance.
+bool IsRepeat(const SE3d& a, const SE3d& b, const IntrinsicsOptions& options) {
+  const double angle_deg = (a.so3().inverse() * b.so3()).Log().norm() * 180.0 / kPi;
+  if (angle_deg > options.duplicate_rotation_deg) return false;
+  const double distance = std::max(a.translation().norm(), 1e-9);
+  return (a.translation() - b.translation()).norm() <= options.duplicate_distance_ratio * distance;
+}
+
+// Steps 2-3 for camera n: initial intrinsics, PnP per view, repeats and thinning.
+void InitialiseCamera(int n,
+                      const IntrinsicsCameraSpec& spec,
+                      std::vector<TargetView>* views,
+                      std::vector<ViewRecord>* records,
+                      const IntrinsicsOptions& options,
+                      RigState* state,
+                      std::string* description) {
+  std::vector<const TargetView*> candidates;
+  for (size_t v = 0; v < views->size(); ++v) {
+    if ((*views)[v].cam_id == n && (*records)[v].status == ViewStatus::kUsed) {
+      candidates.push_back(&(*views)[v]);
+    }
+  }
+  if (candidates.empty()) {
+    throw Error(StringPrintf("cam%d: no view with at least %d target corners: nothing to "
+                             "calibrate it from",
+                             n, options.min_corners));
+  }
+  Camera camera = spec.camera;
+  if (spec.initial_values) {
+    *description = "from the given camchain";
+  } else {
+    const InitialIntrinsics initial = InitialiseIntrinsics(spec.camera, candidates);
+    if (!initial.ok) {
+      throw Error(StringPrintf("cam%d (%s): no starting point found: %s", n,
+                               CameraModelName(camera.projection, camera.distortion).c_str(),
+                               initial.description.c_str()));
+    }
+    camera = initial.camera;
+    *description = initial.description;
+  }
+  state->cameras[n] = camera;
+  state->intrinsics[n] = camera.intrinsics();
+  state->active[n] = camera.ActiveIntrinsics();
+
+  std::vector<double> rms;
+  std::vector<double> view_rms(views->size(), 0.0);
+  for (size_t v = 0; v < views->size(); ++v) {
+    TargetView& view = (*views)[v];
+    if (view.cam_id != n || (*records)[v].status != ViewStatus::kUsed) continue;
+    std::vector<Eigen::Vector3d> p_t;
+    std::vector<Eigen::Vector2d> uv;
+    for (const TargetCornerObservation& c : view.corners) {
+      p_t.push_back(c.p_t);
+      uv.push_back(c.uv);
+    }
+    const PnpResult pnp = SolvePnp(camera, p_t, uv);
+    view.pnp_ok = pnp.ok;
+    view.T_c_t = pnp.T_c_t;
+    if (pnp.ok) {
+      rms.push_back(pnp.rms_px);
+      view_rms[v] = pnp.rms_px;
+    } else {
+      (*records)[v].status = ViewStatus::kPnpFailed;
+    }
+  }
+  // A PnP pose far worse than the typical view (a flipped planar pose, a mislabelled corner)
+  // would start the solve in the wrong basin.
+  const double rms_limit = std::max(10.0, 10.0 * MedianOf(rms));
+  std::vector<size_t> kept;
+  for (size_t v = 0; v < views->size(); ++v) {
+    const TargetView& view = (*views)[v];
+    if (view.cam_id != n || (*records)[v].status != ViewStatus::kUsed) continue;
+    if (view_rms[v] > rms_limit) {
+      (*records)[v].status = ViewStatus::kPnpFailed;
+      continue;
+    }
+    bool repeat = false;
+    for (size_t k : kept) {
+      if (IsRepeat(view.T_c_t, (*views)[k].T_c_t, options)) {
+        repeat = true;
+        break;
+      }
+    }
+    if (repeat) {
+      (*records)[v].status = ViewStatus::kRepeat;
+    } else {
+      kept.push_back(v);
+    }
+  }
+  const size_t max_views = static_cast<size_t>(options.max_views_per_camera);
+  if (max_views > 0 && kept.size() > max_views) {
+    std::set<size_t> keep;
+    for (size_t i = 0; i < max_views; ++i) keep.insert(kept[i * kept.size() / max_views]);
+    for (size_t v : kept) {
+      if (keep.count(v) == 0) (*records)[v].status = ViewStatus::kThinned;
+    }
+  }
+}
+
+// Step 4: T_cn_c0 of every camera from shared timestamps (or as given), then T_c0_t per time.
+void PlaceRig(const std::vector<TargetView>& views,
+              std::vector<ViewRecord>* records,
+              const IntrinsicsOptions& options,
+              RigState* state,
+              std::vector<bool>* extrinsic_estimated) {
+  const int num_cameras = static_cast<int>(state->cameras.size());
+  std::vector<bool> placed(num_cameras, false);
+  placed[0] = true;
+  state->T_cn_c0.assign(num_cameras, ToBlock(SE3d()));
+  extrinsic_estimated->assign(num_cameras, false);
+  if (!options.estimate_extrinsics) {
+    for (int n = 0; n < num_cameras; ++n) state->T_cn_c0[n] = ToBlock(options.T_cn_c0_given[n]);
+    placed.assign(num_cameras, true);
+  }
+  // Used views by timestamp.
+  std::map<int64_t, std::vector<size_t>> by_time;
+  for (size_t v = 0; v < views.size(); ++v) {
+    if ((*records)[v].status == ViewStatus::kUsed) by_time[views[v].t_ns].push_back(v);
+  }
+  bool progress = true;
+  while (progress) {
+    progress = false;
+    for (int n = 1; n < num_cameras; ++n) {
+      if (placed[n]) continue;
+      std::vector<SE3d> candidates;
+      for (const auto& [t, list] : by_time) {
+        const TargetView* own = nullptr;
+        const TargetView* other = nullptr;
+        for (size_t v : list) {
+          if (views[v].cam_id == n) own = &views[v];
+          if (placed[views[v].cam_id] && (other == nullptr || views[v].cam_id == 0)) {
+            other = &views[v];
+          }
+        }
+        if (own == nullptr || other == nullptr) continue;
+        // T_cn_c0 = T_cn_t T_cm_t^-1 T_cm_c0.
+        candidates.push_back(own->T_c_t * other->T_c_t.inverse() *
+                             PoseOf(state->T_cn_c0[other->cam_id]));
+      }
+      if (candidates.empty()) continue;
+      state->T_cn_c0[n] = ToBlock(RobustMeanPose(candidates));
+      placed[n] = true;
+      (*extrinsic_estimated)[n] = true;
+      progress = true;
+    }
+  }
+  for (int n = 1; n < num_cameras; ++n) {
+    if (!placed[n]) {
+      throw Error(StringPrintf(
+          "cam%d never sees the target at the same timestamp as another camera: its pose in "
+          "the rig cannot be found (are the cameras' timestamps synchronised?)",
+          n));
+    }
+  }
+  // T_c0_t per timestamp: camera 0's own view, else the first camera's through the rig.
+  state->T_c0_t.clear();
+  for (const auto& [t, list] : by_time) {
+    const TargetView* best = &views[list.front()];
+    for (size_t v : list) {
+      if (views[v].cam_id == 0) best = &views[v];
+    }
+    state->T_c0_t[t] = ToBlock(PoseOf(state->T_cn_c0[best->cam_id]).inverse() * best->T_c_t);
+  }
+}
+
+// Step 5's outlier pass: per camera sigma = 1.4826 x the median absolute error component; corners
+// beyond outlier_sigmas sigma go, and views left with too few corners.
+void RejectOutliers(const IntrinsicsOptions& options,
+                    std::vector<TargetView>* views,
+                    std::vector<ViewRecord>* records,
+                    RigState* state) {
+  const int num_cameras = static_cast<int>(state->cameras.size());
+  std::vector<std::vector<double>> components(num_cameras);
+  std::vector<std::vector<Eigen::Vector2d>> errors(views->size());
+  for (size_t v = 0; v < views->size(); ++v) {
+    if ((*records)[v].status != ViewStatus::kUsed) continue;
+    const TargetView& view = (*views)[v];
+    errors[v] = RigViewErrors(CameraAt(*state, view.cam_id), TargetInCamera(*state, view),
+                              view.corners);
+    for (const Eigen::Vector2d& e : errors[v]) {
+      if (!e.allFinite()) continue;
+      components[view.cam_id].push_back(std::abs(e.x()));
+      components[view.cam_id].push_back(std::abs(e.y()));
+    }
+  }
+  for (int n = 0; n < num_cameras; ++n) {
+    // A floor keeps noise-free simulations (sigma ~ 0) from rejecting round-off.
+    state->sigma_px[n] = std::max(1.4826 * MedianOf(components[n]), 1e-6);
+  }
+  for (size_t v = 0; v < views->size(); ++v) {
+    if ((*records)[v].status != ViewStatus::kUsed) continue;
+    TargetView& view = (*views)[v];
+    const double limit = options.outlier_sigmas * state->sigma_px[view.cam_id];
+    TargetView kept = view;
+    kept.corners.clear();
+    kept.point_ids.clear();
+    for (size_t i = 0; i < view.corners.size(); ++i) {
+      if (errors[v][i].allFinite() && errors[v][i].norm() <= limit) {
+        kept.corners.push_back(view.corners[i]);
+        kept.point_ids.push_back(view.point_ids[i]);
+      } else {
+        ++(*records)[v].corners_rejected;
+      }
+    }
+    view = std::move(kept);
+    if (static_cast<int>(view.corners.size()) < options.min_corners) {
+      (*records)[v].status = ViewStatus::kOutlier;
+    }
+  }
+}
+
+// The noise level the final residuals show, per camera: sqrt(sum e^2 / (m - p)) with m error
+// components and p the parameters they determine (the camera's active intrinsics, 6 per view
+// pose, shared poses split between the cameras seeing them, the extrinsic).
+void MeasureSigma(const std::vector<TargetView>& views,
+                  const std::vector<ViewRecord>& records,
+                  RigState* state) {
+  const int num_cameras = static_cast<int>(state->cameras.size());
+  std::map<int64_t, int> cameras_at;
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (records[v].status == ViewStatus::kUsed) ++cameras_at[views[v].t_ns];
+  }
+  std::vector<double> sum(num_cameras, 0.0), m(num_cameras, 0.0), p(num_cameras, 0.0);
+  for (int n = 0; n < num_cameras; ++n) {
+    p[n] = static_cast<double>(state->active[n].size()) + (n > 0 ? 6.0 : 0.0);
+  }
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (records[v].status != ViewStatus::kUsed) continue;
+    const TargetView& view = views[v];
+    for (const Eigen::Vector2d& e : RigViewErrors(CameraAt(*state, view.cam_id),
+                                                  TargetInCamera(*state, view), view.corners)) {
+      if (!e.allFinite()) continue;
+      sum[view.cam_id] += e.squaredNorm();
+      m[view.cam_id] += 2.0;
+    }
+    p[view.cam_id] += 6.0 / cameras_at[view.t_ns];
+  }
+  for (int n = 0; n < num_cameras; ++n) {
+    if (m[n] > p[n]) state->sigma_px[n] = std::max(std::sqrt(sum[n] / (m[n] - p[n])), 1e-6);
+  }
+}
+
+SolveRounds MakeSolveRounds(const IntrinsicsOptions& options, double jacobian_entries) {
+  SolverOptions solver = options.solver;
+  // The target poses form an independent set: the Schur complement leaves the few intrinsics
+  // and extrinsics (a small dense system) whatever the number of views.
+  if (solver.linear_solver == LinearSolver::kAuto) solver.linear_solver = LinearSolver::kSparseSchur;
+  return SolveRounds(solver, jacobian_entries);
+}
+
+void CheckSolve(const SolveRounds& rounds) {
+  if (rounds.failed()) {
+    throw Error("intrinsics: the solver failed: " + rounds.last().message);
+  }
+}
+
+// Steps 6 (covariance) and the per-camera results.
+void FillCameraResults(IntrinsicsSolver* solver,
+                       const IntrinsicsOptions& options,
+                       const std::vector<bool>& extrinsic_estimated,
+                       RigState* state,
+                       IntrinsicsResult* result) {
+  const int num_cameras = static_cast<int>(state->cameras.size());
+  std::vector<const double*> blocks;
+  std::vector<int> offset_intrinsics(num_cameras, -1), offset_extrinsic(num_cameras, -1);
+  int size = 0;
+  for (int n = 0; n < num_cameras; ++n) {
+    offset_intrinsics[n] = size;
+    blocks.push_back(state->intrinsics[n].data());
+    size += static_cast<int>(state->active[n].size());
+    if (n > 0 && options.estimate_extrinsics) {
+      offset_extrinsic[n] = size;
+      blocks.push_back(state->T_cn_c0[n].data());
+      size += 6;
+    }
+  }
+  Eigen::MatrixXd covariance;
+  if (options.covariance.compute) {
+    MarginalCovarianceOptions cov_options;
+    cov_options.backend = options.covariance.backend;
+    cov_options.max_ceres_covariance_entries = options.covariance.max_ceres_covariance_entries;
+    cov_options.num_threads = options.solver.num_threads;
+    if (options.covariance.robust_window_s > 0.0) {
+      cov_options.cluster_of = [solver](ceres::ResidualBlockId id) { return solver->ClusterOf(id); };
+    }
+    const MarginalCovariance marginal =
+        ComputeMarginalCovariance(solver->problem(), blocks, cov_options);
+    if (marginal.ok) {
+      covariance = ReportedCovarianceOf(marginal).covariance;
+    } else {
+      result->warnings.push_back(
+          "the intrinsics are not all determined (singular information): no standard deviations");
+    }
+  }
+  for (int n = 0; n < num_cameras; ++n) {
+    IntrinsicsCameraResult& camera = result->cameras[n];
+    camera.camera = CameraAt(*state, n);
+    camera.active = state->active[n];
+    camera.pixel_sigma_px = state->sigma_px[n];
+    camera.extrinsic_estimated = n > 0 && options.estimate_extrinsics && extrinsic_estimated[n];
+    camera.T_cn_c0 = PoseOf(state->T_cn_c0[n]);
+    if (n > 0) camera.T_cn_cnm1 = camera.T_cn_c0 * PoseOf(state->T_cn_c0[n - 1]).inverse();
+    if (covariance.size() == 0) continue;
+    const int k = static_cast<int>(camera.active.size());
+    camera.intrinsics_covariance = covariance.block(offset_intrinsics[n], offset_intrinsics[n], k, k);
+    for (int j = 0; j < k; ++j) {
+      camera.intrinsics_std(camera.active[j]) = std::sqrt(camera.intrinsics_covariance(j, j));
+    }
+    if (n > 0 && offset_extrinsic[n] >= 0) {
+      // T_cn_c0 Exp(a), T_cnm1_c0 Exp(b): T_cn_cnm1 Exp(Ad(T_cnm1_c0) (a - b)) to first order.
+      Eigen::MatrixXd D = Eigen::MatrixXd::Zero(6, size);
+      D.block<6, 6>(0, offset_extrinsic[n]).setIdentity();
+      if (n > 1) D.block<6, 6>(0, offset_extrinsic[n - 1]) = -Eigen::Matrix<double, 6, 6>::Identity();
+      const Eigen::MatrixXd A = PoseOf(state->T_cn_c0[n - 1]).Adj() * D;
+      camera.T_cn_cnm1_std = (A * covariance * A.transpose()).diagonal().cwiseSqrt();
+    }
+  }
+}
+
+}  // namespace
+
+IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observations,
+                                     const CalibrationTarget& target,
+                                     const std::vector<IntrinsicsCameraSpec>& cameras,
+                                     const IntrinsicsOptions& options) {
+  const int num_cameras = static_cast<int>(cameras.size());
+  if (num_cameras == 0) throw Error("intrinsics: no camera to calibrate");
+  if (!options.estimate_extrinsics &&
+      static_cast<int>(options.T_cn_c0_given.size()) != num_cameras) {
+    throw Error("intrinsics: held extrinsics need one T_cn_c0 per camera");
+  }
+  CheckSolverOptions(options.solver);
+  int64_t unknown_ids = 0;
+  std::vector<TargetView> views = MakeTargetViews(observations, target, &unknown_ids);
+  IntrinsicsResult result;
+  if (unknown_ids > 0) {
+    result.warnings.push_back(StringPrintf(
+        "%lld observation(s) name a point id the target does not have; they are not used",
+        static_cast<long long>(unknown_ids)));
+  }
+  std::vector<ViewRecord> records(views.size());
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (views[v].cam_id < 0 || views[v].cam_id >= num_cameras) {
+      throw Error(StringPrintf("observations of cam_id %d but %d camera model(s) given: one "
+                               "model per camera, cam0 first",
+                               views[v].cam_id, num_cameras));
+    }
+    records[v].t_ns = views[v].t_ns;
+    records[v].cam_id = views[v].cam_id;
+    records[v].corners = static_cast<int>(views[v].corners.size());
+    if (records[v].corners < options.min_corners) records[v].status = ViewStatus::kTooFewCorners;
+  }
+
+  RigState state;
+  state.cameras.resize(num_cameras);
+  state.intrinsics.resize(num_cameras);
+  state.active.resize(num_cameras);
+  state.sigma_px.assign(num_cameras, 1.0);
+  result.cameras.resize(num_cameras);
+  for (int n = 0; n < num_cameras; ++n) {
+    InitialiseCamera(n, cameras[n], &views, &records, options, &state,
+                     &result.cameras[n].initialisation);
+  }
+  std::vector<bool> extrinsic_estimated;
+  PlaceRig(views, &records, options, &state, &extrinsic_estimated);
+
+  IntrinsicsSolver solver(&views, &records, &state, options);
+  double jacobian_entries = 0.0;
+  for (const TargetView& view : views) jacobian_entries += 2.0 * view.corners.size() * 13;
+  SolveRounds rounds = MakeSolveRounds(options, jacobian_entries);
+  solver.Build(options.huber_px);
+  rounds.Solve(solver.problem(), "intrinsics, robust: ");
+  CheckSolve(rounds);
+  RejectOutliers(options, &views, &records, &state);
+  solver.Build(0.0);
+  rounds.Solve(solver.problem(), "intrinsics: ");
+  CheckSolve(rounds);
+  const std::vector<double> sigma_before = state.sigma_px;
+  MeasureSigma(views, records, &state);
+  solver.Build(0.0);
+  bool changed = false;
+  for (int n = 0; n < num_cameras; ++n) {
+    changed = changed || std::abs(state.sigma_px[n] / sigma_before[n] - 1.0) > 0.05;
+  }
+  // One camera: the weights' scale does not move the solution. Several: their ratio does.
+  if (changed && num_cameras > 1) {
+    rounds.Solve(solver.problem(), "intrinsics, measured noise: ");
+    CheckSolve(rounds);
+  }
+  result.solve = rounds.Summary();
+  if (!rounds.NoConvergenceWarning().empty()) {
+    result.warnings.push_back("intrinsics: " + rounds.NoConvergenceWarning());
+  }
+  FillCameraResults(&solver, options, extrinsic_estimated, &state, &result);
+
+  // Residuals, per-view RMS, counts, observability.
+  std::vector<std::vector<const TargetView*>> used(num_cameras);
+  std::vector<double> sum_sq(num_cameras, 0.0);
+  for (size_t v = 0; v < views.size(); ++v) {
+    ViewRecord& record = records[v];
+    IntrinsicsCameraResult& camera = result.cameras[record.cam_id];
+    ++camera.views_offered;
+    camera.corners_rejected += record.corners_rejected;
+    if (record.status != ViewStatus::kUsed) continue;
+    const TargetView& view = views[v];
+    ++camera.views_used;
+    const std::vector<Eigen::Vector2d> errors =
+        RigViewErrors(camera.camera, TargetInCamera(state, view), view.corners);
+    double view_sq = 0.0;
+    int count = 0;
+    for (size_t i = 0; i < errors.size(); ++i) {
+      if (!errors[i].allFinite()) continue;
+      result.residuals.push_back(
+          {view.t_ns, view.cam_id, view.point_ids[i], view.corners[i].uv, errors[i]});
+      view_sq += errors[i].squaredNorm();
+      ++count;
+    }
+    camera.corners_used += count;
+    sum_sq[view.cam_id] += view_sq;
+    record.rms_px = count > 0 ? std::sqrt(view_sq / count) : 0.0;
+    TargetView& final_view = views[v];
+    final_view.T_c_t = TargetInCamera(state, view);
+    used[view.cam_id].push_back(&final_view);
+  }
+  for (int n = 0; n < num_cameras; ++n) {
+    IntrinsicsCameraResult& camera = result.cameras[n];
+    camera.reprojection_rms_px =
+        camera.corners_used > 0 ? std::sqrt(sum_sq[n] / camera.corners_used) : 0.0;
+    const IntrinsicsObservability observability = AnalyseObservability(
+        StringPrintf("cam%d (%s)", n,
+                     CameraModelName(camera.camera.projection, camera.camera.distortion).c_str()),
+        camera.camera, camera.active, used[n], state.sigma_px[n]);
+    if (!observability.warning.empty()) result.warnings.push_back(observability.warning);
+  }
+  // Timestamps whose views all went in the outlier pass keep their pose out of the result.
+  std::set<int64_t> used_times;
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (records[v].status == ViewStatus::kUsed) used_times.insert(views[v].t_ns);
+  }
+  for (const auto& [t, block] : state.T_c0_t) {
+    if (used_times.count(t) > 0) result.target_poses.emplace_back(t, PoseOf(block));
+  }
+  result.views = std::move(records);
+  return result;
+}
+
+}  // namespace splinecal
