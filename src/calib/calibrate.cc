@@ -38,7 +38,8 @@ namespace splinecal {
 using calibrate_internal::AddStandardDeviationWarnings;
 using calibrate_internal::CheckInputs;
 using calibrate_internal::CheckRotationExcitation;
-using calibrate_internal::FramePeriod;
+using calibrate_internal::CheckTargetSeen;
+using calibrate_internal::FramePeriods;
 using calibrate_internal::ImuBetween;
 using calibrate_internal::Landmark;
 using calibrate_internal::MakeLandmarks;
@@ -175,7 +176,15 @@ class CalibrationProblem {
     s.sigma_px = sigma;
     s.huber_px = huber;
     s.shared = spline_->evaluation_callback();
+    if (HeldToReference(cam)) s.T_cam_cref = options_.camera_chain_T_cn_c0[cam];
     return s;
+  }
+  // With a held camera chain every camera after the first rides on camera 0's T_cam_imu block.
+  bool HeldToReference(size_t c) const { return c > 0 && !options_.camera_chain_T_cn_c0.empty(); }
+  double* ExtrinsicBlock(size_t c) { return cameras_[HeldToReference(c) ? 0 : c].extrinsic.data(); }
+  SE3d CameraFromImu(size_t c) const {
+    const SE3d block = PoseFromBlock(cameras_[HeldToReference(c) ? 0 : c].extrinsic.data());
+    return HeldToReference(c) ? options_.camera_chain_T_cn_c0[c] * block : block;
   }
   // The window of a frame's exposures for the camera's current state (false near the ends).
   bool FrameWindow(int cam, int64_t t_ns, double margin, ControlPoseWindow* window) const {
@@ -259,7 +268,9 @@ void CalibrationProblem::BuildProblem() {
     CameraState& cam = cameras_[c];
     const int height = camchain_[c].camera.height;
     cam.built_time_offset_s = cam.time_offset_s;
-    problem().AddParameterBlock(cam.extrinsic.data(), 7, spline_->se3_manifold());
+    if (!HeldToReference(c)) {
+      problem().AddParameterBlock(cam.extrinsic.data(), 7, spline_->se3_manifold());
+    }
     problem().AddParameterBlock(&cam.time_offset_s, 1);
     problem().AddParameterBlock(&cam.line_delay, 1);
     if (options_.estimate_time_offset) {
@@ -344,11 +355,12 @@ std::unique_ptr<LandmarkCostFunction> CalibrationProblem::LandmarkCost(const Lan
 }
 
 std::vector<double*> CalibrationProblem::Blocks(const FrameResidual& r) {
-  CameraState& cam = cameras_[target_frames_[r.frame].cam];
+  const int c = target_frames_[r.frame].cam;
+  CameraState& cam = cameras_[c];
   std::vector<double*> blocks(control_blocks().begin() + r.window.first_index,
                               control_blocks().begin() + r.window.last_index() + 1);
   blocks.insert(blocks.end(),
-                {cam.extrinsic.data(), &cam.time_offset_s, &cam.line_delay, T_w_t_.data()});
+                {ExtrinsicBlock(c), &cam.time_offset_s, &cam.line_delay, T_w_t_.data()});
   return blocks;
 }
 
@@ -360,7 +372,7 @@ std::vector<double*> CalibrationProblem::Blocks(const LandmarkResidual& r) {
     blocks.push_back(control_blocks()[i]);
   }
   blocks.insert(blocks.end(),
-                {cam.extrinsic.data(), &cam.time_offset_s, &cam.line_delay, &landmark.rho});
+                {ExtrinsicBlock(landmark.cam), &cam.time_offset_s, &cam.line_delay, &landmark.rho});
   return blocks;
 }
 
@@ -568,7 +580,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   // coordinates as they are and the biases' time averages (MeanBiasMap), q = A x.
   std::vector<const double*> wanted;
   for (size_t c = 0; c < cameras_.size(); ++c) {
-    wanted.push_back(cameras_[c].extrinsic.data());
+    if (!HeldToReference(c)) wanted.push_back(cameras_[c].extrinsic.data());
     if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].time_offset_s);
     if (options_.rolling_shutter) wanted.push_back(&cameras_[c].line_delay);
   }
@@ -609,8 +621,9 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   for (size_t c = 0; c < cameras_.size(); ++c) {
     CameraState& cam = cameras_[c];
     CameraEstimate& estimate = result->cameras[c];
-    const Eigen::MatrixXd cov6 = block(cam.extrinsic.data(), 6);
-    const Eigen::Matrix3d R = PoseFromBlock(cam.extrinsic.data()).rotationMatrix();
+    // A held camera shares camera 0's right tangent (reprojection_cost.h, T_cam_cref).
+    const Eigen::MatrixXd cov6 = block(ExtrinsicBlock(c), 6);
+    const Eigen::Matrix3d R = CameraFromImu(c).rotationMatrix();
     const Eigen::Matrix3d cov_t = R * cov6.topLeftCorner<3, 3>() * R.transpose();
     estimate.translation_std_m = cov_t.diagonal().cwiseMax(0.0).cwiseSqrt();
     estimate.rotation_std_deg =
@@ -644,7 +657,7 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   result->cameras.resize(cameras_.size());
   for (size_t c = 0; c < cameras_.size(); ++c) {
     CameraCalibration& out = result->camchain[c];
-    out.T_cam_imu = PoseFromBlock(cameras_[c].extrinsic.data());
+    out.T_cam_imu = CameraFromImu(c);
     out.time_offset_s = cameras_[c].time_offset_s;
     out.line_delay_s = cameras_[c].line_delay;
     result->cameras[c].calibration = out;
@@ -741,26 +754,15 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
     if (span_imu.size() < 2) throw Error("calibrate: fewer than 2 IMU samples during the frames");
     options.model.knot_spacing_s = ChooseKnotSpacing(span_imu, options.model.noise, &knot_rule);
   }
-  if (target != nullptr) {
-    bool seen = false;
-    for (const Observation& o : observations) seen = seen || target->Find(o.point_id) != nullptr;
-    if (!seen) {
-      throw Error(
-          "calibrate: the target is never seen: no point id in the observations is a "
-          "corner of the " +
-          target->type + " target (" + std::to_string(target->points.size()) +
-          " corners); wrong target file, or the detector numbers corners differently");
-    }
-  }
+  if (target != nullptr) CheckTargetSeen(observations, *target);
   CheckRotationExcitation(imu, options.min_rotation_rate_rad_s);
   const auto init_start = std::chrono::steady_clock::now();
   CalibrationInitialGuess initial;
   if (guess != nullptr) {
     initial = *guess;
     if (initial.camchain.size() != camchain.size() ||
-        static_cast<int>(initial.control_poses.size()) != initial.layout.num_control_poses) {
+        static_cast<int>(initial.control_poses.size()) != initial.layout.num_control_poses)
       throw Error("calibrate: the initial guess does not match the camchain or its layout");
-    }
   } else if (target != nullptr) {
     if (options.solver.progress)
       options.solver.progress("calibrate: initial guess (PnP per frame, then fit)");
@@ -771,10 +773,7 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
         "(CalibrationInitialGuess; e.g. from `splinecal align` on SLAM poses)");
   }
   CalibrationProblem problem(imu, camchain, options, initial, target != nullptr);
-  std::vector<ObservationFrame> frames = GroupIntoFrames(observations);
-  std::vector<double> periods;
-  for (size_t c = 0; c < camchain.size(); ++c) periods.push_back(FramePeriod(frames, c));
-  problem.SetFramePeriods(periods);
+  problem.SetFramePeriods(FramePeriods(GroupIntoFrames(observations), camchain.size()));
   if (target != nullptr) {
     *problem.target_frames() =
         MakeTargetFrames(observations, *target, options.min_corners_per_frame);

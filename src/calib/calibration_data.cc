@@ -16,6 +16,13 @@ namespace splinecal {
 namespace calibrate_internal {
 
 // The median frame period of one camera [s] (0.05 when it has fewer than 2 frames).
+std::vector<double> FramePeriods(const std::vector<ObservationFrame>& frames, size_t num_cameras) {
+  std::vector<double> periods;
+  for (size_t c = 0; c < num_cameras; ++c)
+    periods.push_back(FramePeriod(frames, static_cast<int>(c)));
+  return periods;
+}
+
 double FramePeriod(const std::vector<ObservationFrame>& frames, int cam) {
   std::vector<int64_t> periods;
   int64_t last = 0;
@@ -31,6 +38,18 @@ double FramePeriod(const std::vector<ObservationFrame>& frames, int cam) {
   return 1e-9 * static_cast<double>(periods[periods.size() / 2]);
 }
 
+void CheckTargetSeen(const std::vector<Observation>& observations,
+                     const CalibrationTarget& target) {
+  for (const Observation& o : observations) {
+    if (target.Find(o.point_id) != nullptr) return;
+  }
+  throw Error(
+      "calibrate: the target is never seen: no point id in the observations is a corner "
+      "of the " +
+      target.type + " target (" + std::to_string(target.points.size()) +
+      " corners); wrong target file, or the detector numbers corners differently");
+}
+
 void CheckInputs(const std::vector<ImuSample>& imu,
                  const std::vector<Observation>& observations,
                  const Camchain& camchain,
@@ -38,6 +57,10 @@ void CheckInputs(const std::vector<ImuSample>& imu,
   if (camchain.empty()) throw Error("calibrate: the camchain has no camera");
   if (imu.size() < 2) throw Error("calibrate: fewer than 2 IMU samples");
   if (observations.empty()) throw Error("calibrate: no observations");
+  if (!options.camera_chain_T_cn_c0.empty() &&
+      options.camera_chain_T_cn_c0.size() != camchain.size()) {
+    throw Error("calibrate: a held camera chain needs one T_cn_c0 per camera of the camchain");
+  }
   if (const Observation* o = FindObservationWithoutCamera(observations, camchain)) {
     throw Error("calibrate: an observation of camera " + std::to_string(o->cam_id) + " (frame " +
                 std::to_string(o->t_ns) + ") but the camchain describes " +

@@ -42,6 +42,11 @@ struct Landmark {
 
 // The median frame period of one camera [s] (0.05 when it has fewer than 2 frames).
 double FramePeriod(const std::vector<ObservationFrame>& frames, int cam);
+// FramePeriod of cameras 0 .. num_cameras - 1.
+std::vector<double> FramePeriods(const std::vector<ObservationFrame>& frames, size_t num_cameras);
+
+// Throws splinecal::Error when no observation has a point id of `target`.
+void CheckTargetSeen(const std::vector<Observation>& observations, const CalibrationTarget& target);
 
 void CheckInputs(const std::vector<ImuSample>& imu,
                  const std::vector<Observation>& observations,

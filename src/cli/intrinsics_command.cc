@@ -96,9 +96,11 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
   if (!FLAGS_resolution.empty()) {
     const std::vector<std::string> sizes = SplitList("resolution", FLAGS_resolution);
     if (sizes.size() != 1 && sizes.size() != models.size()) {
-      throw Error(StringPrintf("--resolution: %zu sizes for %zu models (give one, or one per "
-                               "model)",
-                               sizes.size(), models.size()));
+      throw Error(
+          StringPrintf("--resolution: %zu sizes for %zu models (give one, or one per "
+                       "model)",
+                       sizes.size(),
+                       models.size()));
     }
     for (size_t n = 0; n < models.size(); ++n) {
       const Eigen::Vector2i size = ParseResolution(sizes.size() == 1 ? sizes[0] : sizes[n]);
@@ -108,9 +110,11 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
   } else {
     const Camchain camchain = ReadCamchainYaml(FLAGS_camchain);
     if (camchain.size() != models.size()) {
-      throw Error(FLAGS_camchain, 0,
-                  StringPrintf("describes %zu camera(s) but --models names %zu", camchain.size(),
-                               models.size()));
+      throw Error(
+          FLAGS_camchain,
+          0,
+          StringPrintf(
+              "describes %zu camera(s) but --models names %zu", camchain.size(), models.size()));
     }
     for (size_t n = 0; n < models.size(); ++n) {
       const Camera& given = camchain[n].camera;
@@ -129,10 +133,13 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
   in.observations = ReadObservationsCsv(observations_path);
   for (const Observation& o : in.observations) {
     if (o.cam_id < 0 || o.cam_id >= static_cast<int>(models.size())) {
-      throw Error(observations_path, 0,
+      throw Error(observations_path,
+                  0,
                   StringPrintf("cam_id %d (frame t_ns %lld) but --models names %zu camera(s): "
                                "one model per camera, cam0 first",
-                               o.cam_id, static_cast<long long>(o.t_ns), models.size()));
+                               o.cam_id,
+                               static_cast<long long>(o.t_ns),
+                               models.size()));
     }
   }
   return in;
@@ -141,8 +148,8 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
 int RunIntrinsics() {
   IntrinsicsInputs in = ReadIntrinsicsInputs();
   OutputDir output(FLAGS_out);
-  Progress(StringPrintf("intrinsics: %zu observations, %zu camera(s)", in.observations.size(),
-                        in.cameras.size()));
+  Progress(StringPrintf(
+      "intrinsics: %zu observations, %zu camera(s)", in.observations.size(), in.cameras.size()));
   in.options.solver.progress = [](const std::string& line) { Progress(line); };
   const IntrinsicsResult result =
       CalibrateIntrinsics(in.observations, in.target, in.cameras, in.options);
@@ -183,16 +190,19 @@ Command IntrinsicsCommand() {
       "report.html. With --camchain a camera of the same model starts from its values. See "
       "docs/intrinsics.md.";
   command.flags = {{"observations", ""},
-                   {"target", "Calibration target: Kalibr aprilgrid, checkerboard or points YAML "
-                              "[path]"},
+                   {"target",
+                    "Calibration target: Kalibr aprilgrid, checkerboard or points YAML "
+                    "[path]"},
                    {"models", ""},
                    {"resolution", ""},
-                   {"camchain", "Kalibr camchain.yaml giving each camera's image size (and a "
-                                "starting point for a camera of the same model) [path]"},
+                   {"camchain",
+                    "Kalibr camchain.yaml giving each camera's image size (and a "
+                    "starting point for a camera of the same model) [path]"},
                    {"max_views", ""},
                    {"min_corners", "Views with fewer target corners are not used", "12"},
-                   {"huber", "Huber threshold [px] of the first solve, before outliers are "
-                             "removed; 0 disables it"},
+                   {"huber",
+                    "Huber threshold [px] of the first solve, before outliers are "
+                    "removed; 0 disables it"},
                    {"threads", "", "2"},
                    {"out", ""},
                    {"quiet", ""}};

@@ -238,7 +238,7 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
                                        double* residuals,
                                        double** jacobians) const {
   const int n = window_.num_poses;
-  const SE3d T_c_s = PoseFromBlock(parameters[n]);
+  const SE3d T_c_s = settings_.T_cam_cref * PoseFromBlock(parameters[n]);
   const double shift = parameters[n + 1][0];
   const double line_delay = parameters[n + 2][0];
   const SE3d T_w_t = PoseFromBlock(parameters[n + 3]);
@@ -342,7 +342,7 @@ bool LandmarkCostFunction::Evaluate(double const* const* parameters,
                                     double* residuals,
                                     double** jacobians) const {
   const int n = static_cast<int>(pose_indices_.size());
-  const SE3d T_c_s = PoseFromBlock(parameters[n]);
+  const SE3d T_c_s = settings_.T_cam_cref * PoseFromBlock(parameters[n]);
   const double shift = parameters[n + 1][0];
   const double line_delay = parameters[n + 2][0];
   const double rho = parameters[n + 3][0];

@@ -97,7 +97,8 @@ class IntrinsicsSolver {
       }
       if (n > 0) {
         problem_->AddParameterBlock(state_.T_cn_c0[n].data(), kPoseBlockSize, new SE3Manifold);
-        if (!options_.estimate_extrinsics) problem_->SetParameterBlockConstant(state_.T_cn_c0[n].data());
+        if (!options_.estimate_extrinsics)
+          problem_->SetParameterBlockConstant(state_.T_cn_c0[n].data());
       }
     }
     std::map<int64_t, int> cluster_of_time;
@@ -173,9 +174,11 @@ void InitialiseCamera(int n,
     }
   }
   if (candidates.empty()) {
-    throw Error(StringPrintf("cam%d: no view with at least %d target corners: nothing to "
-                             "calibrate it from",
-                             n, options.min_corners));
+    throw Error(
+        StringPrintf("cam%d: no view with at least %d target corners: nothing to "
+                     "calibrate it from",
+                     n,
+                     options.min_corners));
   }
   Camera camera = spec.camera;
   if (spec.initial_values) {
@@ -183,7 +186,8 @@ void InitialiseCamera(int n,
   } else {
     const InitialIntrinsics initial = InitialiseIntrinsics(spec.camera, candidates);
     if (!initial.ok) {
-      throw Error(StringPrintf("cam%d (%s): no starting point found: %s", n,
+      throw Error(StringPrintf("cam%d (%s): no starting point found: %s",
+                               n,
                                CameraModelName(camera.projection, camera.distortion).c_str(),
                                initial.description.c_str()));
     }
@@ -327,8 +331,8 @@ void RejectOutliers(const IntrinsicsOptions& options,
   for (size_t v = 0; v < views->size(); ++v) {
     if ((*records)[v].status != ViewStatus::kUsed) continue;
     const TargetView& view = (*views)[v];
-    errors[v] = RigViewErrors(CameraAt(*state, view.cam_id), TargetInCamera(*state, view),
-                              view.corners);
+    errors[v] =
+        RigViewErrors(CameraAt(*state, view.cam_id), TargetInCamera(*state, view), view.corners);
     for (const Eigen::Vector2d& e : errors[v]) {
       if (!e.allFinite()) continue;
       components[view.cam_id].push_back(std::abs(e.x()));
@@ -379,8 +383,8 @@ void MeasureSigma(const std::vector<TargetView>& views,
   for (size_t v = 0; v < views.size(); ++v) {
     if (records[v].status != ViewStatus::kUsed) continue;
     const TargetView& view = views[v];
-    for (const Eigen::Vector2d& e : RigViewErrors(CameraAt(*state, view.cam_id),
-                                                  TargetInCamera(*state, view), view.corners)) {
+    for (const Eigen::Vector2d& e :
+         RigViewErrors(CameraAt(*state, view.cam_id), TargetInCamera(*state, view), view.corners)) {
       if (!e.allFinite()) continue;
       sum[view.cam_id] += e.squaredNorm();
       m[view.cam_id] += 2.0;
@@ -396,7 +400,8 @@ SolveRounds MakeSolveRounds(const IntrinsicsOptions& options, double jacobian_en
   SolverOptions solver = options.solver;
   // The target poses form an independent set: the Schur complement leaves the few intrinsics
   // and extrinsics (a small dense system) whatever the number of views.
-  if (solver.linear_solver == LinearSolver::kAuto) solver.linear_solver = LinearSolver::kSparseSchur;
+  if (solver.linear_solver == LinearSolver::kAuto)
+    solver.linear_solver = LinearSolver::kSparseSchur;
   return SolveRounds(solver, jacobian_entries);
 }
 
@@ -433,7 +438,9 @@ void FillCameraResults(IntrinsicsSolver* solver,
     cov_options.max_ceres_covariance_entries = options.covariance.max_ceres_covariance_entries;
     cov_options.num_threads = options.solver.num_threads;
     if (options.covariance.robust_window_s > 0.0) {
-      cov_options.cluster_of = [solver](ceres::ResidualBlockId id) { return solver->ClusterOf(id); };
+      cov_options.cluster_of = [solver](ceres::ResidualBlockId id) {
+        return solver->ClusterOf(id);
+      };
     }
     const MarginalCovariance marginal =
         ComputeMarginalCovariance(solver->problem(), blocks, cov_options);
@@ -454,7 +461,8 @@ void FillCameraResults(IntrinsicsSolver* solver,
     if (n > 0) camera.T_cn_cnm1 = camera.T_cn_c0 * PoseOf(state->T_cn_c0[n - 1]).inverse();
     if (covariance.size() == 0) continue;
     const int k = static_cast<int>(camera.active.size());
-    camera.intrinsics_covariance = covariance.block(offset_intrinsics[n], offset_intrinsics[n], k, k);
+    camera.intrinsics_covariance =
+        covariance.block(offset_intrinsics[n], offset_intrinsics[n], k, k);
     for (int j = 0; j < k; ++j) {
       camera.intrinsics_std(camera.active[j]) = std::sqrt(camera.intrinsics_covariance(j, j));
     }
@@ -462,7 +470,8 @@ void FillCameraResults(IntrinsicsSolver* solver,
       // T_cn_c0 Exp(a), T_cnm1_c0 Exp(b): T_cn_cnm1 Exp(Ad(T_cnm1_c0) (a - b)) to first order.
       Eigen::MatrixXd D = Eigen::MatrixXd::Zero(6, size);
       D.block<6, 6>(0, offset_extrinsic[n]).setIdentity();
-      if (n > 1) D.block<6, 6>(0, offset_extrinsic[n - 1]) = -Eigen::Matrix<double, 6, 6>::Identity();
+      if (n > 1)
+        D.block<6, 6>(0, offset_extrinsic[n - 1]) = -Eigen::Matrix<double, 6, 6>::Identity();
       const Eigen::MatrixXd A = PoseOf(state->T_cn_c0[n - 1]).Adj() * D;
       camera.T_cn_cnm1_std = (A * covariance * A.transpose()).diagonal().cwiseSqrt();
     }
@@ -493,9 +502,11 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
   std::vector<ViewRecord> records(views.size());
   for (size_t v = 0; v < views.size(); ++v) {
     if (views[v].cam_id < 0 || views[v].cam_id >= num_cameras) {
-      throw Error(StringPrintf("observations of cam_id %d but %d camera model(s) given: one "
-                               "model per camera, cam0 first",
-                               views[v].cam_id, num_cameras));
+      throw Error(
+          StringPrintf("observations of cam_id %d but %d camera model(s) given: one "
+                       "model per camera, cam0 first",
+                       views[v].cam_id,
+                       num_cameras));
     }
     records[v].t_ns = views[v].t_ns;
     records[v].cam_id = views[v].cam_id;
@@ -510,8 +521,8 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
   state.sigma_px.assign(num_cameras, 1.0);
   result.cameras.resize(num_cameras);
   for (int n = 0; n < num_cameras; ++n) {
-    InitialiseCamera(n, cameras[n], &views, &records, options, &state,
-                     &result.cameras[n].initialisation);
+    InitialiseCamera(
+        n, cameras[n], &views, &records, options, &state, &result.cameras[n].initialisation);
   }
   std::vector<bool> extrinsic_estimated;
   PlaceRig(views, &records, options, &state, &extrinsic_estimated);
@@ -579,9 +590,13 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
     camera.reprojection_rms_px =
         camera.corners_used > 0 ? std::sqrt(sum_sq[n] / camera.corners_used) : 0.0;
     const IntrinsicsObservability observability = AnalyseObservability(
-        StringPrintf("cam%d (%s)", n,
+        StringPrintf("cam%d (%s)",
+                     n,
                      CameraModelName(camera.camera.projection, camera.camera.distortion).c_str()),
-        camera.camera, camera.active, used[n], state.sigma_px[n]);
+        camera.camera,
+        camera.active,
+        used[n],
+        state.sigma_px[n]);
     if (!observability.warning.empty()) result.warnings.push_back(observability.warning);
   }
   // Timestamps whose views all went in the outlier pass keep their pose out of the result.

@@ -90,11 +90,18 @@ InitialIntrinsics InitialiseIntrinsics(const Camera& model,
     result.description = StringPrintf(
         "sweep of %d candidates (focal %.3g to %.3g px, %zu shape value(s)) on %zu views: f = "
         "%.1f px, shape (%.3g, %.3g), median PnP RMS %.2f px",
-        tried, kMinFocalWidths * width, kMaxFocalWidths * width, ShapeCandidates(model).size(),
-        spread.size(), result.camera.fu, shape.x(), shape.y(), best);
+        tried,
+        kMinFocalWidths * width,
+        kMaxFocalWidths * width,
+        ShapeCandidates(model).size(),
+        spread.size(),
+        result.camera.fu,
+        shape.x(),
+        shape.y(),
+        best);
   } else {
-    result.description = StringPrintf("no candidate of %d placed the target in any of %zu views",
-                                      tried, spread.size());
+    result.description = StringPrintf(
+        "no candidate of %d placed the target in any of %zu views", tried, spread.size());
   }
   return result;
 }

@@ -117,16 +117,15 @@ IntrinsicsObservability AnalyseObservability(const std::string& camera_name,
     H += Ji.transpose() * Ji - Hpi.transpose() * Hpp.ldlt().solve(Hpi);
     result.max_tilt_deg = std::max(result.max_tilt_deg, TiltDeg(view->T_c_t));
     for (const TargetCornerObservation& c : view->corners) {
-      const int cu = std::clamp(static_cast<int>(c.uv.x() / camera.width * kCoverageCells), 0,
-                                kCoverageCells - 1);
-      const int cv = std::clamp(static_cast<int>(c.uv.y() / camera.height * kCoverageCells), 0,
-                                kCoverageCells - 1);
+      const int cu = std::clamp(
+          static_cast<int>(c.uv.x() / camera.width * kCoverageCells), 0, kCoverageCells - 1);
+      const int cv = std::clamp(
+          static_cast<int>(c.uv.y() / camera.height * kCoverageCells), 0, kCoverageCells - 1);
       cells[cv * kCoverageCells + cu] = 1;
     }
     ++result.views;
   }
-  result.coverage =
-      static_cast<double>(std::count(cells.begin(), cells.end(), 1)) / cells.size();
+  result.coverage = static_cast<double>(std::count(cells.begin(), cells.end(), 1)) / cells.size();
   result.std = StdFromInformation(H);
   std::string named;
   for (int j = 0; j < n; ++j) {
@@ -134,29 +133,32 @@ IntrinsicsObservability AnalyseObservability(const std::string& camera_name,
     const double threshold = pixel ? kUndeterminedPixelRatio * camera.width : kUndeterminedShapeStd;
     if (!(result.std(j) <= threshold)) {
       result.undetermined.push_back(active[j]);
-      named += StringPrintf("%s%s (std %s%s)", named.empty() ? "" : ", ",
-                            IntrinsicName(camera, active[j]).c_str(),
-                            std::isinf(result.std(j)) ? "unbounded"
-                                                      : StringPrintf("%.3g", result.std(j)).c_str(),
-                            pixel && !std::isinf(result.std(j)) ? " px" : "");
+      named += StringPrintf(
+          "%s%s (std %s%s)",
+          named.empty() ? "" : ", ",
+          IntrinsicName(camera, active[j]).c_str(),
+          std::isinf(result.std(j)) ? "unbounded" : StringPrintf("%.3g", result.std(j)).c_str(),
+          pixel && !std::isinf(result.std(j)) ? " px" : "");
     }
   }
   if (named.empty()) return result;
   std::string lacks;
   if (result.max_tilt_deg < 15.0) {
-    lacks += StringPrintf("; the target is within %.1f deg of fronto-parallel in every view (tilt "
-                          "it 20-50 deg in some views)",
-                          result.max_tilt_deg);
+    lacks += StringPrintf(
+        "; the target is within %.1f deg of fronto-parallel in every view (tilt "
+        "it 20-50 deg in some views)",
+        result.max_tilt_deg);
   }
   if (result.coverage < 0.5) {
-    lacks += StringPrintf("; the corners cover %.0f%% of the image (move the target into the "
-                          "corners and edges)",
-                          100.0 * result.coverage);
+    lacks += StringPrintf(
+        "; the corners cover %.0f%% of the image (move the target into the "
+        "corners and edges)",
+        100.0 * result.coverage);
   }
   if (result.views < 10) lacks += StringPrintf("; only %d view(s)", result.views);
-  result.warning = StringPrintf("%s: these views do not determine %s", camera_name.c_str(),
-                                named.c_str()) +
-                   lacks;
+  result.warning =
+      StringPrintf("%s: these views do not determine %s", camera_name.c_str(), named.c_str()) +
+      lacks;
   return result;
 }
 

@@ -32,10 +32,9 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
 
   double* J_target = jacobians != nullptr ? jacobians[0] : nullptr;
   double* J_intrinsics = jacobians != nullptr ? jacobians[1] : nullptr;
-  double* J_extrinsic =
-      jacobians != nullptr && settings_.has_extrinsic ? jacobians[2] : nullptr;
-  const bool any_jacobian = J_intrinsics != nullptr || J_target != nullptr ||
-                            J_extrinsic != nullptr;
+  double* J_extrinsic = jacobians != nullptr && settings_.has_extrinsic ? jacobians[2] : nullptr;
+  const bool any_jacobian =
+      J_intrinsics != nullptr || J_target != nullptr || J_extrinsic != nullptr;
   internal::PoseBlockLift target_lift, extrinsic_lift;
   if (J_target != nullptr) target_lift = internal::MakePoseBlockLift(parameters[0]);
   if (J_extrinsic != nullptr) extrinsic_lift = internal::MakePoseBlockLift(parameters[2]);
@@ -49,14 +48,16 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
     Eigen::Vector2d uv;
     Eigen::Matrix<double, 2, 3> J_pi;
     Eigen::Matrix<double, 2, kNumIntrinsics> J_uv_intrinsics;
-    const bool projected = camera.Project(x_c, &uv, any_jacobian ? &J_pi : nullptr,
+    const bool projected = camera.Project(x_c,
+                                          &uv,
+                                          any_jacobian ? &J_pi : nullptr,
                                           J_intrinsics != nullptr ? &J_uv_intrinsics : nullptr);
     if (!projected) {
       // Outside the model's valid region: no information from this corner at these values.
       residuals[row] = residuals[row + 1] = 0.0;
       if (J_intrinsics != nullptr) {
-        std::fill(J_intrinsics + row * kNumIntrinsics, J_intrinsics + (row + 2) * kNumIntrinsics,
-                  0.0);
+        std::fill(
+            J_intrinsics + row * kNumIntrinsics, J_intrinsics + (row + 2) * kNumIntrinsics, 0.0);
       }
       if (J_target != nullptr) std::fill(J_target + 7 * row, J_target + 7 * (row + 2), 0.0);
       if (J_extrinsic != nullptr) {

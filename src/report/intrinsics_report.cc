@@ -30,24 +30,33 @@ std::string ModelName(const Camera& camera) {
 }
 
 int CountStatus(const IntrinsicsResult& result, int cam_id, ViewStatus status) {
-  return static_cast<int>(std::count_if(result.views.begin(), result.views.end(),
-                                        [&](const ViewRecord& v) {
-                                          return v.cam_id == cam_id && v.status == status;
-                                        }));
+  return static_cast<int>(
+      std::count_if(result.views.begin(), result.views.end(), [&](const ViewRecord& v) {
+        return v.cam_id == cam_id && v.status == status;
+      }));
 }
 
-constexpr ViewStatus kStatuses[] = {ViewStatus::kUsed,    ViewStatus::kTooFewCorners,
-                                    ViewStatus::kPnpFailed, ViewStatus::kRepeat,
-                                    ViewStatus::kThinned, ViewStatus::kOutlier};
+constexpr ViewStatus kStatuses[] = {ViewStatus::kUsed,
+                                    ViewStatus::kTooFewCorners,
+                                    ViewStatus::kPnpFailed,
+                                    ViewStatus::kRepeat,
+                                    ViewStatus::kThinned,
+                                    ViewStatus::kOutlier};
 
 std::string StatusKey(ViewStatus status) {
   switch (status) {
-    case ViewStatus::kUsed: return "used";
-    case ViewStatus::kTooFewCorners: return "too_few_corners";
-    case ViewStatus::kPnpFailed: return "pnp_failed";
-    case ViewStatus::kRepeat: return "repeats";
-    case ViewStatus::kThinned: return "thinned";
-    case ViewStatus::kOutlier: return "outlier";
+    case ViewStatus::kUsed:
+      return "used";
+    case ViewStatus::kTooFewCorners:
+      return "too_few_corners";
+    case ViewStatus::kPnpFailed:
+      return "pnp_failed";
+    case ViewStatus::kRepeat:
+      return "repeats";
+    case ViewStatus::kThinned:
+      return "thinned";
+    case ViewStatus::kOutlier:
+      return "outlier";
   }
   return "unknown";
 }
@@ -66,8 +75,10 @@ plot::Figure ViewRmsFigure(const IntrinsicsResult& result) {
   int64_t t0 = result.views.empty() ? 0 : result.views.front().t_ns;
   for (const ViewRecord& v : result.views) t0 = std::min(t0, v.t_ns);
   for (size_t n = 0; n < result.cameras.size(); ++n) {
-    plot::Panel& panel = plot::AddPanel(&figure, StringPrintf("cam%zu: RMS of each used view", n),
-                                        "time since the first view [s]", "view RMS [px]");
+    plot::Panel& panel = plot::AddPanel(&figure,
+                                        StringPrintf("cam%zu: RMS of each used view", n),
+                                        "time since the first view [s]",
+                                        "view RMS [px]");
     plot::Series& used = panel.series.emplace_back();
     used.label = "used views";
     used.line = false;
@@ -96,15 +107,21 @@ std::string CameraTableHtml(const IntrinsicsResult& result) {
                     ValueWithStd(values(i), c.intrinsics_std(i), i < 4 ? "%.3f" : "%.5f");
     }
     for (int i : KalibrDistortionOrder(c.camera)) {
-      distortion += (distortion.empty() ? "" : "<br>") +
-                    ValueWithStd(values(i), c.intrinsics_std(i), "%.6f");
+      distortion +=
+          (distortion.empty() ? "" : "<br>") + ValueWithStd(values(i), c.intrinsics_std(i), "%.6f");
     }
     html += StringPrintf(
         "<tr><th>cam%zu</th><td>%s</td><td>%s</td><td>%s</td><td>%.3f</td><td>%d / %d</td>"
         "<td>%d / %d</td></tr>\n",
-        n, ModelName(c.camera).c_str(), intrinsics.c_str(),
-        distortion.empty() ? "none" : distortion.c_str(), c.reprojection_rms_px, c.views_used,
-        c.views_offered, c.corners_used, c.corners_rejected);
+        n,
+        ModelName(c.camera).c_str(),
+        intrinsics.c_str(),
+        distortion.empty() ? "none" : distortion.c_str(),
+        c.reprojection_rms_px,
+        c.views_used,
+        c.views_offered,
+        c.corners_used,
+        c.corners_rejected);
   }
   return html + "</table>\n";
 }
@@ -122,15 +139,25 @@ std::string RigTableHtml(const IntrinsicsResult& result) {
     html += StringPrintf(
         "<tr><th>cam%zu</th><td>%.3f, %.3f, %.3f</td><td>%.3f</td><td>%.4f, %.4f, %.4f</td>"
         "<td>%.3f, %.3f, %.3f</td></tr>\n",
-        n, t.x(), t.y(), t.z(), t.norm(), kRadToDeg * s(3), kRadToDeg * s(4), kRadToDeg * s(5),
-        1e3 * s(0), 1e3 * s(1), 1e3 * s(2));
+        n,
+        t.x(),
+        t.y(),
+        t.z(),
+        t.norm(),
+        kRadToDeg * s(3),
+        kRadToDeg * s(4),
+        kRadToDeg * s(5),
+        1e3 * s(0),
+        1e3 * s(1),
+        1e3 * s(2));
   }
   return html + "</table>\n";
 }
 
 std::string ViewsTableHtml(const IntrinsicsResult& result) {
   std::string html = "<table><caption>Views</caption><tr><th>camera</th>";
-  for (ViewStatus status : kStatuses) html += std::string("<th>") + ViewStatusName(status) + "</th>";
+  for (ViewStatus status : kStatuses)
+    html += std::string("<th>") + ViewStatusName(status) + "</th>";
   html += "</tr>\n";
   for (size_t n = 0; n < result.cameras.size(); ++n) {
     html += StringPrintf("<tr><th>cam%zu</th>", n);
@@ -165,7 +192,8 @@ std::vector<int> KalibrDistortionOrder(const Camera& camera) {
       break;
     case DistortionModel::kRadTan: {
       const std::vector<int> active = camera.ActiveIntrinsics();
-      const bool k3 = std::find(active.begin(), active.end(), kDistortionOffset + 4) != active.end();
+      const bool k3 =
+          std::find(active.begin(), active.end(), kDistortionOffset + 4) != active.end();
       count = k3 ? 5 : 4;
       break;
     }
@@ -182,8 +210,9 @@ std::vector<int> KalibrDistortionOrder(const Camera& camera) {
 
 std::string IntrinsicsResultYaml(const IntrinsicsResult& result) {
   YamlWriter yaml;
-  yaml.Comment("splinecal intrinsics: per camera its model in Kalibr's names and order, stds "
-               "beside the values (NaN: held)");
+  yaml.Comment(
+      "splinecal intrinsics: per camera its model in Kalibr's names and order, stds "
+      "beside the values (NaN: held)");
   yaml.BeginList("cameras");
   for (size_t n = 0; n < result.cameras.size(); ++n) {
     const IntrinsicsCameraResult& c = result.cameras[n];
@@ -275,12 +304,18 @@ std::string IntrinsicsSummaryText(const IntrinsicsResult& result) {
       text += StringPrintf(" %.6f (%.2g)", values(i), c.intrinsics_std(i));
     }
     text += StringPrintf("\n  reprojection RMS %.3f px, %d of %d views, %d corners (%d rejected)\n",
-                         c.reprojection_rms_px, c.views_used, c.views_offered, c.corners_used,
+                         c.reprojection_rms_px,
+                         c.views_used,
+                         c.views_offered,
+                         c.corners_used,
                          c.corners_rejected);
     if (n > 0) {
       const Eigen::Vector3d t = 1e3 * c.T_cn_cnm1.translation();
       text += StringPrintf("  T_cn_cnm1 translation [%.3f %.3f %.3f] mm, baseline %.3f mm\n",
-                           t.x(), t.y(), t.z(), t.norm());
+                           t.x(),
+                           t.y(),
+                           t.z(),
+                           t.norm());
     }
   }
   for (const std::string& w : result.warnings) text += "warning: " + w + "\n";

@@ -53,6 +53,37 @@ TEST(Calibrate, RollingShutterRoundTrip) {
   EXPECT_FALSE(r.imu_samples.empty());
 }
 
+TEST(Calibrate, AHeldCameraChainRidesOnCameraZerosExtrinsic) {
+  // The simulated camera twice (cam1 sees exactly what cam0 sees), the chain held at the truth
+  // T_c1_c0 = identity: cam1's T_cam_imu is cam0's to round-off, with the same stds, and the
+  // estimate matches the single-camera one within its std (the same data counted twice).
+  testing::ScenarioOptions o;
+  o.duration_s = 10.0;
+  o.line_delay_s = 0.0;
+  const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
+  std::vector<Observation> observations = s.observations;
+  for (const Observation& obs : s.observations) {
+    Observation copy = obs;
+    copy.cam_id = 1;
+    observations.push_back(copy);
+  }
+  SortObservations(&observations);
+  Camchain camchain = s.start;
+  camchain.push_back(s.start[0]);
+  CalibrateOptions options = FastOptions();
+  options.camera_chain_T_cn_c0 = {SE3d(), SE3d()};
+  const CalibrationResult r = Calibrate(s.imu, observations, camchain, &s.target, options);
+  ASSERT_EQ(r.cameras.size(), 2u);
+  const SE3d& T0 = r.cameras[0].calibration.T_cam_imu;
+  const SE3d& T1 = r.cameras[1].calibration.T_cam_imu;
+  EXPECT_LT((T0.inverse() * T1).Log().norm(), 1e-12);
+  EXPECT_LT((r.cameras[0].rotation_std_deg - r.cameras[1].rotation_std_deg).norm(), 1e-12);
+  const Errors e = ErrorsOf(r.cameras[0].calibration, s.truth[0]);
+  ExpectWithinTargetsAndStds(r, e, false);
+  options.camera_chain_T_cn_c0 = {SE3d()};
+  EXPECT_THROW(Calibrate(s.imu, observations, camchain, &s.target, options), Error);
+}
+
 TEST(Calibrate, NaturalLandmarksOnlyFromInitialPosesShortRecording) {
   // Half the data of CalibrateSlow.NaturalLandmarksOnlyFromInitialPoses (3 s, 150 landmarks), so
   // that the sanitizer build runs the landmark path too: its standard deviations are ~1.8x

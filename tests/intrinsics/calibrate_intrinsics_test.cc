@@ -50,18 +50,22 @@ TEST(CalibrateIntrinsics, StereoRadTanRigFromTheSweepWithinThreeStd) {
   cam1.pu = 380.0;
   cam1.pv = 255.2;
   scene.cameras = {testutil::EurocCam0(), cam1};
-  scene.T_cn_c0 = {SE3d(), SE3d(SO3d::Exp(Eigen::Vector3d(0.002, -0.004, 0.001)),
-                                Eigen::Vector3d(-0.110, 0.0004, -0.0009))};
+  scene.T_cn_c0 = {SE3d(),
+                   SE3d(SO3d::Exp(Eigen::Vector3d(0.002, -0.004, 0.001)),
+                        Eigen::Vector3d(-0.110, 0.0004, -0.0009))};
   const std::vector<Observation> observations = testutil::SimulateIntrinsicsViews(scene, 7);
   const IntrinsicsResult result =
-      CalibrateIntrinsics(observations, scene.target,
-                          {SpecOf(scene.cameras[0]), SpecOf(scene.cameras[1])}, QuietOptions());
+      CalibrateIntrinsics(observations,
+                          scene.target,
+                          {SpecOf(scene.cameras[0]), SpecOf(scene.cameras[1])},
+                          QuietOptions());
   ASSERT_EQ(result.cameras.size(), 2u);
   for (int n = 0; n < 2; ++n) {
     SCOPED_TRACE(n);
     ExpectWithinStd(result.cameras[n], scene.cameras[n], 3.0);
     // sqrt(2) sigma for a 2-D error, fewer degrees of freedom than corners: within 10%.
-    EXPECT_NEAR(result.cameras[n].reprojection_rms_px, std::sqrt(2.0) * scene.sigma_px,
+    EXPECT_NEAR(result.cameras[n].reprojection_rms_px,
+                std::sqrt(2.0) * scene.sigma_px,
                 0.1 * std::sqrt(2.0) * scene.sigma_px);
     EXPECT_NEAR(result.cameras[n].pixel_sigma_px, scene.sigma_px, 0.1 * scene.sigma_px);
   }
@@ -102,9 +106,10 @@ TEST(CalibrateIntrinsics, TargetOnlyInTheCentreNamesTheDistortion) {
   scene.min_distance_m = 2.5;
   scene.max_distance_m = 3.0;
   scene.views = 30;
-  const IntrinsicsResult result = CalibrateIntrinsics(
-      testutil::SimulateIntrinsicsViews(scene, 5), scene.target, {SpecOf(scene.cameras[0])},
-      QuietOptions());
+  const IntrinsicsResult result = CalibrateIntrinsics(testutil::SimulateIntrinsicsViews(scene, 5),
+                                                      scene.target,
+                                                      {SpecOf(scene.cameras[0])},
+                                                      QuietOptions());
   const std::string all = ::testing::PrintToString(result.warnings);
   EXPECT_THAT(all, HasSubstr("k2"));
   EXPECT_THAT(all, HasSubstr("of the image"));
@@ -148,8 +153,8 @@ TEST(CalibrateIntrinsics, RepeatedViewsAreSetAsideAndCounted) {
     }
   }
   observations.insert(observations.end(), copies.begin(), copies.end());
-  const IntrinsicsResult result = CalibrateIntrinsics(observations, scene.target,
-                                                      {SpecOf(scene.cameras[0])}, QuietOptions());
+  const IntrinsicsResult result =
+      CalibrateIntrinsics(observations, scene.target, {SpecOf(scene.cameras[0])}, QuietOptions());
   int repeats = 0;
   for (const ViewRecord& v : result.views) repeats += v.status == ViewStatus::kRepeat;
   EXPECT_EQ(repeats, 10);
@@ -163,8 +168,8 @@ TEST(CalibrateIntrinsics, AnOutlierCornerIsRejected) {
   scene.views = 20;
   std::vector<Observation> observations = testutil::SimulateIntrinsicsViews(scene, 17);
   observations[40].uv += Eigen::Vector2d(12.0, -9.0);  // a mislabelled corner
-  const IntrinsicsResult result = CalibrateIntrinsics(observations, scene.target,
-                                                      {SpecOf(scene.cameras[0])}, QuietOptions());
+  const IntrinsicsResult result =
+      CalibrateIntrinsics(observations, scene.target, {SpecOf(scene.cameras[0])}, QuietOptions());
   EXPECT_GE(result.cameras[0].corners_rejected, 1);
   ExpectWithinStd(result.cameras[0], scene.cameras[0], 3.0);
 }
@@ -175,8 +180,10 @@ TEST(CalibrateIntrinsics, ACameraWithoutAModelIsAnError) {
   scene.T_cn_c0 = {SE3d(), SE3d(SO3d(), Eigen::Vector3d(-0.11, 0, 0))};
   scene.views = 5;
   try {
-    CalibrateIntrinsics(testutil::SimulateIntrinsicsViews(scene, 1), scene.target,
-                        {SpecOf(scene.cameras[0])}, QuietOptions());
+    CalibrateIntrinsics(testutil::SimulateIntrinsicsViews(scene, 1),
+                        scene.target,
+                        {SpecOf(scene.cameras[0])},
+                        QuietOptions());
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("cam_id 1"));

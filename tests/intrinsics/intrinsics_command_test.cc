@@ -24,9 +24,14 @@ const std::string kData = std::string(SPLINECAL_SOURCE_DIR) + "/data/opencv_ches
 const std::string& Observations() {
   static testing::TempDir* dir = new testing::TempDir;
   static const std::string path = [] {
-    const testing::ToolResult detect =
-        testing::RunTool({"detect", "--images", kData + "/cam0," + kData + "/cam1", "--target",
-                          kData + "/checkerboard.yaml", "--quiet", "--out", dir->File("detect")});
+    const testing::ToolResult detect = testing::RunTool({"detect",
+                                                         "--images",
+                                                         kData + "/cam0," + kData + "/cam1",
+                                                         "--target",
+                                                         kData + "/checkerboard.yaml",
+                                                         "--quiet",
+                                                         "--out",
+                                                         dir->File("detect")});
     EXPECT_EQ(detect.exit_code, 0) << detect.err;
     return dir->File("detect") + "/observations.csv";
   }();
@@ -34,9 +39,17 @@ const std::string& Observations() {
 }
 
 std::vector<std::string> Args(const std::string& models, const std::string& out) {
-  return {"intrinsics", "--observations", Observations(), "--target",
-          kData + "/checkerboard.yaml", "--models", models, "--resolution", "640x480",
-          "--out", out};
+  return {"intrinsics",
+          "--observations",
+          Observations(),
+          "--target",
+          kData + "/checkerboard.yaml",
+          "--models",
+          models,
+          "--resolution",
+          "640x480",
+          "--out",
+          out};
 }
 
 TEST(IntrinsicsCommand, StereoChessboardsGiveEveryOutput) {

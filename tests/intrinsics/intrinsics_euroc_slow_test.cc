@@ -61,8 +61,14 @@ TEST(IntrinsicsEuroc, RadTanAgreesWithOpenCvCalibrateCameraOnTheSameCorners) {
     ASSERT_EQ(static_cast<int>(object_points.size()), run.result.cameras[n].views_used);
     cv::Mat K, distortion;
     std::vector<cv::Mat> rvecs, tvecs;
-    const double rms = cv::calibrateCamera(object_points, image_points, cv::Size(752, 480), K,
-                                           distortion, rvecs, tvecs, cv::CALIB_FIX_K3);
+    const double rms = cv::calibrateCamera(object_points,
+                                           image_points,
+                                           cv::Size(752, 480),
+                                           K,
+                                           distortion,
+                                           rvecs,
+                                           tvecs,
+                                           cv::CALIB_FIX_K3);
     const Camera& ours = run.result.cameras[n].camera;
     RecordProperty("cam" + std::to_string(n) + "_opencv_fx_fy_cx_cy_rms",
                    std::to_string(K.at<double>(0, 0)) + " " + std::to_string(K.at<double>(1, 1)) +

@@ -34,7 +34,8 @@ struct IntrinsicsScene {
 // The observations of `scene` drawn with `seed`, in (t_ns, cam_id, point_id) order. Views are
 // 50 ms apart from t = 1 s; a corner is kept when it projects inside the image with a margin
 // of 2 px in every camera that sees it.
-inline std::vector<Observation> SimulateIntrinsicsViews(const IntrinsicsScene& scene, int seed,
+inline std::vector<Observation> SimulateIntrinsicsViews(const IntrinsicsScene& scene,
+                                                        int seed,
                                                         std::vector<SE3d>* T_c0_t = nullptr) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
@@ -45,16 +46,17 @@ inline std::vector<Observation> SimulateIntrinsicsViews(const IntrinsicsScene& s
   centre /= static_cast<double>(scene.target.points.size());
   std::vector<Observation> observations;
   for (int v = 0; v < scene.views; ++v) {
-    const double distance = scene.min_distance_m + 0.5 * (uniform(rng) + 1.0) *
-                                                       (scene.max_distance_m - scene.min_distance_m);
+    const double distance =
+        scene.min_distance_m +
+        0.5 * (uniform(rng) + 1.0) * (scene.max_distance_m - scene.min_distance_m);
     const Eigen::Vector3d axis(uniform(rng), uniform(rng), 0.0);
     const double tilt = scene.max_tilt_deg * M_PI / 180.0 * std::abs(uniform(rng));
     const Eigen::Vector3d twist(0.0, 0.0, 0.3 * uniform(rng));
     // The target faces the camera (its z axis towards -z of the camera: a flip about x).
     const SO3d R = SO3d::Exp(axis.normalized() * tilt) * SO3d::Exp(Eigen::Vector3d(M_PI, 0, 0)) *
                    SO3d::Exp(twist);
-    const Eigen::Vector3d position(scene.spread * distance * uniform(rng),
-                                   scene.spread * distance * uniform(rng), distance);
+    const Eigen::Vector3d position(
+        scene.spread * distance * uniform(rng), scene.spread * distance * uniform(rng), distance);
     const SE3d T = SE3d(R, position - (R * centre));
     if (T_c0_t != nullptr) T_c0_t->push_back(T);
     const int64_t t_ns = 1'000'000'000 + 50'000'000LL * v;

@@ -9,13 +9,14 @@
 #include <vector>
 
 #include "intrinsics/intrinsics_simulation.h"
-#include "splinecal/lie/se3_manifold.h"
 #include "splinecal/intrinsics/robust_mean_pose.h"
+#include "splinecal/lie/se3_manifold.h"
 
 namespace splinecal {
 namespace {
 
-std::vector<TargetCornerObservation> Corners(const Camera& camera, const SE3d& T_cn_t,
+std::vector<TargetCornerObservation> Corners(const Camera& camera,
+                                             const SE3d& T_cn_t,
                                              double offset_px) {
   std::vector<TargetCornerObservation> corners;
   const CalibrationTarget target = MakeAprilGrid(3, 3, 0.088, 0.3);
@@ -33,10 +34,9 @@ std::vector<TargetCornerObservation> Corners(const Camera& camera, const SE3d& T
 void CheckGradients(bool has_extrinsic) {
   const Camera camera = testutil::EurocCam0();
   const SE3d T_c0_t(SO3d::Exp(Eigen::Vector3d(2.9, 0.2, -0.1)), Eigen::Vector3d(-0.2, -0.1, 0.9));
-  const SE3d T_cn_c0 = has_extrinsic
-                           ? SE3d(SO3d::Exp(Eigen::Vector3d(0.01, -0.02, 0.005)),
-                                  Eigen::Vector3d(-0.11, 0.001, 0.002))
-                           : SE3d();
+  const SE3d T_cn_c0 = has_extrinsic ? SE3d(SO3d::Exp(Eigen::Vector3d(0.01, -0.02, 0.005)),
+                                            Eigen::Vector3d(-0.11, 0.001, 0.002))
+                                     : SE3d();
   RigViewSettings settings;
   settings.model = camera;
   settings.has_extrinsic = has_extrinsic;
@@ -100,7 +100,8 @@ void CheckGradients(bool has_extrinsic) {
       // Central differences: O(h^2) truncation plus rounding 1e-16 |r| / h; with |r| ~ 10 and
       // second derivatives of order 1e3 per unit, 1e-5 relative to the column's size.
       const double scale = std::max(1.0, analytic.col(k).norm());
-      EXPECT_LT((analytic.col(k) - numeric).norm(), 1e-5 * scale) << "block " << b << " column " << k;
+      EXPECT_LT((analytic.col(k) - numeric).norm(), 1e-5 * scale)
+          << "block " << b << " column " << k;
     }
   }
 }
@@ -135,9 +136,11 @@ TEST(RobustMeanPose, IgnoresAFifthOfWildCandidates) {
       candidates.push_back(SE3d(SO3d::Exp(Eigen::Vector3d(wild(rng), wild(rng), wild(rng))),
                                 Eigen::Vector3d(wild(rng), wild(rng), wild(rng))));
     } else {
-      candidates.push_back(truth * SE3d::Exp((Vector6d() << small(rng), small(rng), small(rng),
-                                              small(rng), small(rng), small(rng))
-                                                 .finished()));
+      candidates.push_back(
+          truth *
+          SE3d::Exp(
+              (Vector6d() << small(rng), small(rng), small(rng), small(rng), small(rng), small(rng))
+                  .finished()));
     }
   }
   int inliers = 0;

@@ -271,8 +271,8 @@ CalibrationResult LatticeResult(const Eigen::Vector2d& bias) {
 }
 
 TEST(MakeReprojectionImageFigure, ARegionWithAMismatchStandsOut) {
-  const ReprojectionImageFigure map =
-      MakeReprojectionImageFigure(ReprojectionDataOf(LatticeResult(Eigen::Vector2d(3.0, 0.0))), 100000);
+  const ReprojectionImageFigure map = MakeReprojectionImageFigure(
+      ReprojectionDataOf(LatticeResult(Eigen::Vector2d(3.0, 0.0))), 100000);
   ASSERT_EQ(map.figure.panels.size(), 1u);
   const plot::Panel& panel = map.figure.panels[0];
   EXPECT_EQ(panel.x.max, 752.0);
@@ -299,8 +299,8 @@ TEST(MakeReprojectionImageFigure, ARegionWithAMismatchStandsOut) {
 }
 
 TEST(MakeReprojectionImageFigure, NoiseAloneGivesShortVectors) {
-  const ReprojectionImageFigure map =
-      MakeReprojectionImageFigure(ReprojectionDataOf(LatticeResult(Eigen::Vector2d::Zero())), 100000);
+  const ReprojectionImageFigure map = MakeReprojectionImageFigure(
+      ReprojectionDataOf(LatticeResult(Eigen::Vector2d::Zero())), 100000);
   const plot::Panel& panel = map.figure.panels[0];
   EXPECT_EQ(panel.series[0].x.size(), LatticeResult({0, 0}).reprojection_samples.size());
   for (int k = 1; k < 5; ++k) EXPECT_TRUE(panel.series[k].x.empty()) << k;

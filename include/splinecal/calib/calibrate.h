@@ -88,6 +88,11 @@ struct CalibrateOptions {
   double huber_px = 2.0;                  // Huber threshold [px]; 0 = plain least squares
   int min_corners_per_frame = 8;          // frames with fewer target corners are not used
   double min_rotation_rate_rad_s = 0.05;  // refuse data rotating less about its weakest axis
+  // A rig whose cameras' relative poses are known (`splinecal intrinsics`' T_cn_cnm1): one
+  // T_cam_imu is estimated, cam0's, and camera n's is T_cn_c0 * T_c0_imu with
+  // camera_chain_T_cn_c0[n] held (camera 0's entry is the identity). Empty: every camera's
+  // T_cam_imu is estimated on its own.
+  std::vector<SE3d> camera_chain_T_cn_c0;
   // Levenberg-Marquardt with SPARSE_NORMAL_CHOLESKY, up to 6 rounds (time windows rebuilt and
   // the pixel noise re-estimated between them).
   SolverOptions solver = [] {

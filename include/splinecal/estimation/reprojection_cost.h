@@ -82,6 +82,12 @@ struct ReprojectionSettings {
   ExposureSolveOptions exposure;
   // Optional knot caches for this evaluation point (not owned; may be nullptr).
   const SplineEvaluationCallback* shared = nullptr;
+  // A camera held rigidly to a reference camera of the rig: the residual's T_cam_imu block is
+  // the REFERENCE camera's, and this camera's is T_c_s = T_cam_cref * block. The right
+  // perturbation of the block is the right perturbation of T_c_s (T_cam_cref B Exp(d) =
+  // T_c_s Exp(d)), so every Jacobian below holds as written. Identity: the block is this
+  // camera's own.
+  SE3d T_cam_cref;
 };
 
 // One observed target corner.

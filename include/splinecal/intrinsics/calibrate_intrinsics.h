@@ -69,10 +69,10 @@ struct IntrinsicsCameraSpec {
 };
 
 struct IntrinsicsOptions {
-  int min_corners = 12;                 // a view needs at least this many corners
-  double huber_px = 2.0;                // first solve's Huber threshold [px] (0: none)
-  double outlier_sigmas = 5.0;          // corners beyond this many sigma are removed
-  double duplicate_rotation_deg = 0.5;  // a view this close to an earlier one is a repeat...
+  int min_corners = 12;                     // a view needs at least this many corners
+  double huber_px = 2.0;                    // first solve's Huber threshold [px] (0: none)
+  double outlier_sigmas = 5.0;              // corners beyond this many sigma are removed
+  double duplicate_rotation_deg = 0.5;      // a view this close to an earlier one is a repeat...
   double duplicate_distance_ratio = 0.005;  // ...when its position is this close too
   int max_views_per_camera = 0;  // 0: every distinct view; else evenly thinned to this many
   // Camera-to-camera extrinsics: estimated (true) or held at the given T_cn_c0 (false).
@@ -123,7 +123,7 @@ struct IntrinsicsCameraResult {
 
 struct IntrinsicsResult {
   std::vector<IntrinsicsCameraResult> cameras;
-  std::vector<ViewRecord> views;  // every view offered, by (t_ns, cam_id)
+  std::vector<ViewRecord> views;              // every view offered, by (t_ns, cam_id)
   std::vector<ReprojectionSample> residuals;  // the used corners
   // T_c0_t per used timestamp, for the report and tests.
   std::vector<std::pair<int64_t, SE3d>> target_poses;

@@ -35,12 +35,12 @@ inline constexpr double kUndeterminedShapeStd = 0.05;
 inline constexpr int kCoverageCells = 8;
 
 struct IntrinsicsObservability {
-  Eigen::VectorXd std;           // per active intrinsic (in `active` order); inf: undetermined
+  Eigen::VectorXd std;            // per active intrinsic (in `active` order); inf: undetermined
   std::vector<int> undetermined;  // indices (layout of camera/camera_model.h) above threshold
-  double max_tilt_deg = 0.0;     // largest angle between the target normal and the optical axis
-  double coverage = 0.0;         // share of the coverage cells holding a corner
+  double max_tilt_deg = 0.0;      // largest angle between the target normal and the optical axis
+  double coverage = 0.0;          // share of the coverage cells holding a corner
   int views = 0;
-  std::string warning;           // empty when every parameter is determined
+  std::string warning;  // empty when every parameter is determined
 };
 
 // `views` of one camera with their final T_c_t; residuals weighted by 1 / sigma_px.

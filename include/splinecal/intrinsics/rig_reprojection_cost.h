@@ -35,10 +35,10 @@
 namespace splinecal {
 
 struct RigViewSettings {
-  Camera model;           // the camera model (projection, distortion, size); its values unused
+  Camera model;                // the camera model (projection, distortion, size); its values unused
   bool has_extrinsic = false;  // camera n > 0: a T_cn_c0 block follows the target pose
-  double sigma_px = 1.0;  // pixel noise std [px]
-  double huber_px = 0.0;  // Huber threshold [px]; 0 = plain least squares
+  double sigma_px = 1.0;       // pixel noise std [px]
+  double huber_px = 0.0;       // Huber threshold [px]; 0 = plain least squares
 };
 
 // Parameter blocks: T_c0_t (7), intrinsics (kNumIntrinsics, camera/camera_model.h layout), and
