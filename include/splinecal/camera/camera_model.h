@@ -41,12 +41,10 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <string>
-#include <vector>
 
 namespace splinecal {
 
 enum class DistortionModel { kNone, kRadTan, kEquidistant };
-enum class ProjectionModel { kPinhole, kOmni, kEucm, kDoubleSphere };  // TEMPORARY SHIM
 
 // "none", "radtan", "equidistant" (Kalibr's spelling).
 std::string DistortionModelName(DistortionModel model);
@@ -126,17 +124,6 @@ struct PinholeCamera {
     return uv.x() >= 0.0 && uv.y() >= 0.0 && uv.x() <= width - 1.0 && uv.y() <= height - 1.0;
   }
 
-  // TEMPORARY SHIM (replaced by the camera-models branch).
-  ProjectionModel projection = ProjectionModel::kPinhole;
-  Eigen::Vector2d projection_params = Eigen::Vector2d::Zero();
-  std::vector<int> ActiveIntrinsics() const {
-    std::vector<int> active = {0, 1, 2, 3};
-    if (distortion != DistortionModel::kNone) {
-      for (int i = 4; i < 8; ++i) active.push_back(i);
-    }
-    return active;
-  }
-
   // det dD/d(x, y) > 0 at the normalised point (x, y): the distortion has not folded back.
   bool IsDistortionMonotonic(double x, double y) const;
 
@@ -169,19 +156,6 @@ void DistortWithJacobians(DistortionModel model,
                           Eigen::Matrix<double, 2, 4>* J_d_k);
 
 }  // namespace internal
-
-using Camera = PinholeCamera;  // TEMPORARY SHIM
-inline std::string CameraModelName(ProjectionModel, DistortionModel d) {
-  return d == DistortionModel::kNone ? "pinhole-none"
-         : d == DistortionModel::kRadTan ? "pinhole-radtan" : "pinhole-equi";
-}
-inline bool ParseCameraModelName(const std::string& name, ProjectionModel* p, DistortionModel* d) {
-  *p = ProjectionModel::kPinhole;
-  if (name == "pinhole-none") { *d = DistortionModel::kNone; return true; }
-  if (name == "pinhole-radtan") { *d = DistortionModel::kRadTan; return true; }
-  if (name == "pinhole-equi") { *d = DistortionModel::kEquidistant; return true; }
-  return false;
-}
 
 }  // namespace splinecal
 
