@@ -51,8 +51,10 @@
 // camera/
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/camera_model.h"
+#include "splinecal/camera/distortion.h"
 #include "splinecal/camera/observations.h"
 #include "splinecal/camera/pnp.h"
+#include "splinecal/camera/projection.h"
 #include "splinecal/camera/rolling_shutter.h"
 #include "splinecal/camera/target.h"
 

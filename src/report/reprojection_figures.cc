@@ -71,7 +71,7 @@ int ClassOf(double error_px) {
 // The image size of camera `cam` [px]: its resolution, or the extent of its observations.
 Eigen::Vector2d ImageSize(const CalibrationResult& r, int cam, const std::vector<size_t>& samples) {
   if (cam < static_cast<int>(r.cameras.size())) {
-    const PinholeCamera& camera = r.cameras[cam].calibration.camera;
+    const Camera& camera = r.cameras[cam].calibration.camera;
     if (camera.width > 0 && camera.height > 0) return Eigen::Vector2d(camera.width, camera.height);
   }
   Eigen::Vector2d size(1.0, 1.0);

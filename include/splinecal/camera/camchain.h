@@ -24,7 +24,7 @@
 namespace splinecal {
 
 struct CameraCalibration {
-  PinholeCamera camera;
+  Camera camera;
   SE3d T_cam_imu;  // identity when the file has none
   double time_offset_s = 0.0;
   double line_delay_s = 0.0;
