@@ -128,7 +128,7 @@ double HomographyRms(const GrayImage& image, std::map<int64_t, Eigen::Vector2d> 
   SaddleOptions saddle;
   const std::vector<bool> ok = RefineSaddlePoints(image.view(), saddle, &points);
   const CalibrationTarget grid = EurocGrid();
-  const PinholeCamera camera = ReadCamchainYaml(kBundled + "/camchain_euroc.yaml")[0].camera;
+  const Camera camera = ReadCamchainYaml(kBundled + "/camchain_euroc.yaml")[0].camera;
   std::vector<cv::Point2d> plane, ideal;
   size_t i = 0;
   for (const auto& [id, uv] : corners) {

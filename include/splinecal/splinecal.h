@@ -16,6 +16,7 @@
 //   sim/         IMU and camera simulation, trajectories, noise
 //   allan/       Allan deviation and noise identification
 //   calib/       fit (IMU + poses) and calibrate (camera-IMU)
+//   intrinsics/  camera intrinsics and the rig's camera-to-camera poses (`splinecal intrinsics`)
 //   report/      result files and HTML reports of fit, calibrate and align
 // (cli/, the command-line front end, sits on top and is not part of the library.)
 // docs/library.md shows a complete program. Each header's comment is its contract.
@@ -51,8 +52,11 @@
 // camera/
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/camera_model.h"
+#include "splinecal/camera/distortion.h"
 #include "splinecal/camera/observations.h"
 #include "splinecal/camera/pnp.h"
+#include "splinecal/camera/projection.h"
+#include "splinecal/camera/reprojection_sample.h"
 #include "splinecal/camera/rolling_shutter.h"
 #include "splinecal/camera/target.h"
 
@@ -130,11 +134,20 @@
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/calib/fit.h"
 
+// intrinsics/
+#include "splinecal/intrinsics/calibrate_intrinsics.h"
+#include "splinecal/intrinsics/initial_intrinsics.h"
+#include "splinecal/intrinsics/intrinsics_observability.h"
+#include "splinecal/intrinsics/rig_reprojection_cost.h"
+#include "splinecal/intrinsics/robust_mean_pose.h"
+#include "splinecal/intrinsics/target_view.h"
+
 // report/
 #include "splinecal/report/align_report.h"
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"
+#include "splinecal/report/intrinsics_report.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
 

@@ -219,9 +219,9 @@ std::vector<TargetFrame> MakeTargetFrames(const std::vector<Observation>& observ
 }
 
 // Landmarks: the observations whose ids are not target corners, grouped by id. The reference is
-// the first observation; rho is triangulated from the initial spline (the midpoint of the rays
-// in the least-squares sense). Landmarks seen once, or with rays that do not intersect in front
-// of the reference camera, are dropped.
+// the first observation in front of its camera's image plane; rho is triangulated from the initial
+// spline (the midpoint of the rays in the least-squares sense). Landmarks seen once, or with rays
+// that do not intersect in front of the reference camera, are dropped.
 std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations,
                                     const CalibrationTarget* target,
                                     const Camchain& camchain,
@@ -241,13 +241,19 @@ std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations
     }
     Landmark landmark;
     landmark.id = id;
-    landmark.reference = obs.front();
-    landmark.cam = obs.front().cam_id;
-    const CameraCalibration& cam = camchain[landmark.cam];
-    if (!cam.camera.Unproject(landmark.reference.uv, &landmark.ray)) {
+    // The reference: the first observation with a ray (x, y, 1), i.e. in front of its camera's
+    // image plane (inverse depth is along z; a wide-angle camera also sees points beyond 90
+    // degrees). It moves to the front; the others keep their order.
+    const auto reference = std::find_if(obs.begin(), obs.end(), [&](const Observation& o) {
+      return camchain[o.cam_id].camera.Unproject(o.uv, &landmark.ray);
+    });
+    if (reference == obs.end()) {
       ++dropped;
       continue;
     }
+    std::rotate(obs.begin(), reference, reference + 1);
+    landmark.reference = obs.front();
+    landmark.cam = obs.front().cam_id;
     // Triangulate: minimise sum |(I - d d^T)(X - c)|^2 over the rays of every observation.
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
@@ -257,15 +263,15 @@ std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations
       const CameraCalibration& c = camchain[obs[k].cam_id];
       const double t =
           spline.TimeSinceT0(obs[k].t_ns) + c.time_offset_s + c.line_delay_s * obs[k].uv.y();
-      Eigen::Vector3d ray;
+      Eigen::Vector3d bearing;
       if (!(t >= spline.start_time() && t <= spline.end_time()) ||
-          !c.camera.Unproject(obs[k].uv, &ray)) {
+          !c.camera.UnprojectToBearing(obs[k].uv, &bearing)) {
         ok = k > 0;
         break;
       }
       const SE3d T_w_c = spline.Pose(t) * c.T_cam_imu.inverse();
       if (k == 0) T_w_c_ref = T_w_c;
-      const Eigen::Vector3d d = (T_w_c.so3() * ray).normalized();
+      const Eigen::Vector3d d = T_w_c.so3() * bearing;
       const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
       A += P;
       b += P * T_w_c.translation();

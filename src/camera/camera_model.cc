@@ -1,6 +1,7 @@
 #include "splinecal/camera/camera_model.h"
 
 #include <Eigen/LU>
+#include <array>
 #include <cmath>
 
 #include "splinecal/units.h"
@@ -9,16 +10,52 @@ namespace splinecal {
 
 namespace {
 
-// Newton's method for the unprojection stops when the residual of D(x) = x_d is below this
-// (normalised image units; 1e-14 is ~1e-11 px at a focal length of 1000 px, far under any
-// detector's precision, and a few ulps above the rounding floor of D near |x| ~ 1).
-constexpr double kUnprojectTolerance = 1e-14;
-// An unprojection whose residual stays above this after the iterations did not converge
-// (normalised units; ~1e-6 px at fu = 1000 px).
-constexpr double kUnprojectAcceptance = 1e-9;
-constexpr int kMaxUnprojectIterations = 30;
+struct SupportedModel {
+  ProjectionModel projection;
+  DistortionModel distortion;
+};
+
+// The 8 supported pairs, in the order of the header's table.
+constexpr std::array<SupportedModel, 8> kSupportedModels = {{
+    {ProjectionModel::kPinhole, DistortionModel::kNone},
+    {ProjectionModel::kPinhole, DistortionModel::kRadTan},
+    {ProjectionModel::kPinhole, DistortionModel::kEquidistant},
+    {ProjectionModel::kPinhole, DistortionModel::kFov},
+    {ProjectionModel::kOmni, DistortionModel::kNone},
+    {ProjectionModel::kOmni, DistortionModel::kRadTan},
+    {ProjectionModel::kEucm, DistortionModel::kNone},
+    {ProjectionModel::kDoubleSphere, DistortionModel::kNone},
+}};
+
+// The distortion's part of a command-line name (Kalibr shortens equidistant to equi there).
+std::string ShortDistortionName(DistortionModel model) {
+  return model == DistortionModel::kEquidistant ? "equi" : DistortionModelName(model);
+}
+
+// det [J ; b^T / |b|]: the Jacobian on the plane orthogonal to b, with the orientation of the
+// header comment (J b = 0 for every model: points on a ray share their pixel).
+double TangentDeterminant(const Eigen::Matrix<double, 2, 3>& J, const Eigen::Vector3d& b) {
+  Eigen::Matrix3d M;
+  M.topRows<2>() = J;
+  M.row(2) = b.normalized().transpose();
+  return M.determinant();
+}
 
 }  // namespace
+
+std::string ProjectionModelName(ProjectionModel model) {
+  switch (model) {
+    case ProjectionModel::kPinhole:
+      return "pinhole";
+    case ProjectionModel::kOmni:
+      return "omni";
+    case ProjectionModel::kEucm:
+      return "eucm";
+    case ProjectionModel::kDoubleSphere:
+      return "ds";
+  }
+  return "pinhole";
+}
 
 std::string DistortionModelName(DistortionModel model) {
   switch (model) {
@@ -28,214 +65,219 @@ std::string DistortionModelName(DistortionModel model) {
       return "radtan";
     case DistortionModel::kEquidistant:
       return "equidistant";
+    case DistortionModel::kFov:
+      return "fov";
   }
   return "none";
 }
 
-IntrinsicsVector PinholeCamera::intrinsics() const {
+std::string CameraModelName(ProjectionModel projection, DistortionModel distortion) {
+  return ProjectionModelName(projection) + "-" + ShortDistortionName(distortion);
+}
+
+bool IsSupportedCameraModel(ProjectionModel projection, DistortionModel distortion) {
+  for (const SupportedModel& m : kSupportedModels) {
+    if (m.projection == projection && m.distortion == distortion) return true;
+  }
+  return false;
+}
+
+bool ParseCameraModelName(const std::string& name,
+                          ProjectionModel* projection,
+                          DistortionModel* distortion) {
+  for (const SupportedModel& m : kSupportedModels) {
+    if (name == CameraModelName(m.projection, m.distortion)) {
+      *projection = m.projection;
+      *distortion = m.distortion;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string SupportedCameraModelNames() {
+  std::string names;
+  for (const SupportedModel& m : kSupportedModels) {
+    if (!names.empty()) names += ", ";
+    names += CameraModelName(m.projection, m.distortion);
+  }
+  return names;
+}
+
+IntrinsicsVector Camera::intrinsics() const {
   IntrinsicsVector v;
-  v << fu, fv, pu, pv, distortion_coeffs;
+  v << fu, fv, pu, pv, projection_params, distortion_coeffs;
   return v;
 }
 
-void PinholeCamera::set_intrinsics(const IntrinsicsVector& intrinsics) {
+void Camera::set_intrinsics(const IntrinsicsVector& intrinsics) {
   fu = intrinsics(0);
   fv = intrinsics(1);
   pu = intrinsics(2);
   pv = intrinsics(3);
-  distortion_coeffs = intrinsics.tail<4>();
+  projection_params = intrinsics.segment<kNumProjectionParams>(kProjectionParamsIndex);
+  distortion_coeffs = intrinsics.segment<kNumDistortionCoeffs>(kDistortionCoeffsIndex);
 }
 
-namespace internal {
-
-void DistortWithJacobians(DistortionModel model,
-                          const Eigen::Vector4d& k,
-                          double x,
-                          double y,
-                          Eigen::Vector2d* d,
-                          Eigen::Matrix2d* J_d_xy,
-                          Eigen::Matrix<double, 2, 4>* J_d_k) {
-  const double r2 = x * x + y * y;
-  switch (model) {
+std::vector<int> Camera::ActiveIntrinsics() const {
+  std::vector<int> active = {0, 1, 2, 3};
+  const int m = kProjectionParamsIndex;
+  const int d = kDistortionCoeffsIndex;
+  switch (projection) {
+    case ProjectionModel::kPinhole:
+      break;
+    case ProjectionModel::kOmni:
+      active.push_back(m);
+      break;
+    case ProjectionModel::kEucm:
+    case ProjectionModel::kDoubleSphere:
+      active.insert(active.end(), {m, m + 1});
+      break;
+  }
+  switch (distortion) {
     case DistortionModel::kNone:
-      if (d != nullptr) *d = Eigen::Vector2d(x, y);
-      if (J_d_xy != nullptr) J_d_xy->setIdentity();
-      if (J_d_k != nullptr) J_d_k->setZero();
-      return;
-    case DistortionModel::kRadTan: {
-      const double k1 = k(0), k2 = k(1), p1 = k(2), p2 = k(3);
-      const double radial = 1.0 + k1 * r2 + k2 * r2 * r2;
-      if (d != nullptr) {
-        *d = Eigen::Vector2d(x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x),
-                             y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y);
-      }
-      if (J_d_xy != nullptr) {
-        // d radial / dx = (2 k1 + 4 k2 r^2) x, the same with y.
-        const double g = 2.0 * k1 + 4.0 * k2 * r2;
-        (*J_d_xy)(0, 0) = radial + g * x * x + 2.0 * p1 * y + 6.0 * p2 * x;
-        (*J_d_xy)(0, 1) = g * x * y + 2.0 * p1 * x + 2.0 * p2 * y;
-        (*J_d_xy)(1, 0) = g * x * y + 2.0 * p1 * x + 2.0 * p2 * y;
-        (*J_d_xy)(1, 1) = radial + g * y * y + 6.0 * p1 * y + 2.0 * p2 * x;
-      }
-      if (J_d_k != nullptr) {
-        (*J_d_k) << x * r2, x * r2 * r2, 2.0 * x * y, r2 + 2.0 * x * x,  //
-            y * r2, y * r2 * r2, r2 + 2.0 * y * y, 2.0 * x * y;
-      }
-      return;
-    }
-    case DistortionModel::kEquidistant: {
-      double s;                             // theta_d / r
-      double ds_dr_over_r;                  // (ds/dr) / r
-      Eigen::Vector4d theta_powers_over_r;  // theta^(2i+1) / r, i = 1..4
-      if (r2 < kEquidistantSeriesRSq) {
-        // Series (header comment); theta ~ r to first order in the coefficient Jacobian.
-        s = 1.0 + (k(0) - 1.0 / 3.0) * r2;
-        ds_dr_over_r = 2.0 * (k(0) - 1.0 / 3.0);
-        theta_powers_over_r << r2, r2 * r2, r2 * r2 * r2, r2 * r2 * r2 * r2;
-      } else {
-        const double r = std::sqrt(r2);
-        const double theta = std::atan(r);
-        const double t2 = theta * theta;
-        const double poly = 1.0 + t2 * (k(0) + t2 * (k(1) + t2 * (k(2) + t2 * k(3))));
-        const double theta_d = theta * poly;
-        // d theta_d / d theta = 1 + 3 k1 t^2 + 5 k2 t^4 + 7 k3 t^6 + 9 k4 t^8; dtheta/dr =
-        // 1/(1+r^2).
-        const double dpoly =
-            1.0 + t2 * (3.0 * k(0) + t2 * (5.0 * k(1) + t2 * (7.0 * k(2) + t2 * 9.0 * k(3))));
-        const double dtheta_d_dr = dpoly / (1.0 + r2);
-        s = theta_d / r;
-        // (theta_d' r - theta_d) / r^3: cancels for small r, but it is multiplied by x x^T
-        // (|.| <= r^2) below, so the absolute error of the Jacobian stays ~eps.
-        ds_dr_over_r = (dtheta_d_dr * r - theta_d) / (r2 * r);
-        const double theta_over_r = theta / r;
-        theta_powers_over_r << theta_over_r * t2, theta_over_r * t2 * t2,
-            theta_over_r * t2 * t2 * t2, theta_over_r * t2 * t2 * t2 * t2;
-      }
-      if (d != nullptr) *d = Eigen::Vector2d(s * x, s * y);
-      if (J_d_xy != nullptr) {
-        const Eigen::Vector2d p(x, y);
-        *J_d_xy = s * Eigen::Matrix2d::Identity() + ds_dr_over_r * p * p.transpose();
-      }
-      if (J_d_k != nullptr) {
-        J_d_k->row(0) = x * theta_powers_over_r.transpose();
-        J_d_k->row(1) = y * theta_powers_over_r.transpose();
-      }
-      return;
-    }
+      break;
+    case DistortionModel::kRadTan:
+      active.insert(active.end(), {d, d + 1, d + 2, d + 3});
+      if (radtan_k3) active.push_back(d + 4);
+      break;
+    case DistortionModel::kEquidistant:
+      active.insert(active.end(), {d, d + 1, d + 2, d + 3});
+      break;
+    case DistortionModel::kFov:
+      active.push_back(d);
+      break;
   }
+  return active;
 }
 
-}  // namespace internal
-
-bool PinholeCamera::Project(const Eigen::Vector3d& p_c,
-                            Eigen::Vector2d* uv,
-                            Eigen::Matrix<double, 2, 3>* J_uv_p,
-                            Eigen::Matrix<double, 2, kNumIntrinsics>* J_uv_intrinsics) const {
-  if (!(p_c.z() > kMinDepth)) return false;
-  const double inv_z = 1.0 / p_c.z();
-  const double x = p_c.x() * inv_z;
-  const double y = p_c.y() * inv_z;
-  Eigen::Vector2d d;
-  Eigen::Matrix2d J_d_xy;
-  Eigen::Matrix<double, 2, 4> J_d_k;
-  internal::DistortWithJacobians(distortion,
-                                 distortion_coeffs,
-                                 x,
-                                 y,
-                                 &d,
-                                 J_uv_p != nullptr ? &J_d_xy : nullptr,
-                                 J_uv_intrinsics != nullptr ? &J_d_k : nullptr);
-  if (uv != nullptr) *uv = Eigen::Vector2d(fu * d.x() + pu, fv * d.y() + pv);
-  if (J_uv_p != nullptr) {
-    // d(x, y)/d p_c = [[1/Z, 0, -x/Z], [0, 1/Z, -y/Z]].
-    Eigen::Matrix<double, 2, 3> J_xy_p;
-    J_xy_p << inv_z, 0.0, -x * inv_z, 0.0, inv_z, -y * inv_z;
-    Eigen::Matrix2d F = J_d_xy;
-    F.row(0) *= fu;
-    F.row(1) *= fv;
-    *J_uv_p = F * J_xy_p;
+bool Camera::IsValid(std::string* error) const {
+  auto fail = [error](const std::string& problem) {
+    if (error != nullptr) *error = problem;
+    return false;
+  };
+  if (!IsSupportedCameraModel(projection, distortion)) {
+    return fail("unsupported camera model " + model_name() +
+                " (supported: " + SupportedCameraModelNames() + ")");
   }
-  if (J_uv_intrinsics != nullptr) {
-    J_uv_intrinsics->setZero();
-    (*J_uv_intrinsics)(0, 0) = d.x();
-    (*J_uv_intrinsics)(1, 1) = d.y();
-    (*J_uv_intrinsics)(0, 2) = 1.0;
-    (*J_uv_intrinsics)(1, 3) = 1.0;
-    J_uv_intrinsics->block<1, 4>(0, 4) = fu * J_d_k.row(0);
-    J_uv_intrinsics->block<1, 4>(1, 4) = fv * J_d_k.row(1);
+  if (!intrinsics().allFinite()) return fail("intrinsics must be finite numbers");
+  if (!(fu > 0.0) || !(fv > 0.0)) return fail("focal lengths fu, fv must be positive");
+  const double m0 = projection_params(0), m1 = projection_params(1);
+  switch (projection) {
+    case ProjectionModel::kPinhole:
+      break;
+    case ProjectionModel::kOmni:
+      if (!(m0 >= 0.0)) return fail("omni xi must be >= 0");
+      break;
+    case ProjectionModel::kEucm:
+      if (!(m0 >= 0.0 && m0 <= 1.0)) return fail("eucm alpha must be in [0, 1]");
+      if (!(m1 > 0.0)) return fail("eucm beta must be positive");
+      break;
+    case ProjectionModel::kDoubleSphere:
+      if (!(m1 >= 0.0 && m1 <= 1.0)) return fail("ds alpha must be in [0, 1]");
+      if (!(m0 > -1.0 && m0 <= 1.0)) return fail("ds xi must be in (-1, 1]");
+      break;
+  }
+  if (distortion == DistortionModel::kFov &&
+      !(distortion_coeffs(0) >= 0.0 && distortion_coeffs(0) < kPi)) {
+    return fail("fov w must be in [0, pi) [rad]");
   }
   return true;
 }
 
-bool PinholeCamera::IsDistortionMonotonic(double x, double y) const {
-  Eigen::Matrix2d J;
-  internal::DistortWithJacobians(distortion, distortion_coeffs, x, y, nullptr, &J, nullptr);
-  return J.determinant() > 0.0;
+bool Camera::Project(const Eigen::Vector3d& p_c,
+                     Eigen::Vector2d* uv,
+                     Eigen::Matrix<double, 2, 3>* J_uv_p,
+                     Eigen::Matrix<double, 2, kNumIntrinsics>* J_uv_intrinsics) const {
+  const bool with_jacobians = J_uv_p != nullptr || J_uv_intrinsics != nullptr;
+  Eigen::Vector2d m;
+  Eigen::Matrix<double, 2, 3> J_m_p;
+  Eigen::Matrix2d J_m_params;
+  if (!internal::ProjectToPlane(projection,
+                                projection_params,
+                                p_c,
+                                &m,
+                                J_uv_p != nullptr ? &J_m_p : nullptr,
+                                J_uv_intrinsics != nullptr ? &J_m_params : nullptr)) {
+    return false;
+  }
+  Eigen::Vector2d md;
+  Eigen::Matrix2d J_md_m;
+  Eigen::Matrix<double, 2, kNumDistortionCoeffs> J_md_d;
+  internal::DistortWithJacobians(distortion,
+                                 distortion_coeffs,
+                                 m.x(),
+                                 m.y(),
+                                 &md,
+                                 with_jacobians ? &J_md_m : nullptr,
+                                 J_uv_intrinsics != nullptr ? &J_md_d : nullptr);
+  if (uv != nullptr) *uv = Eigen::Vector2d(fu * md.x() + pu, fv * md.y() + pv);
+  if (!with_jacobians) return true;
+  const Eigen::Vector2d f(fu, fv);
+  const Eigen::Matrix2d F = f.asDiagonal() * J_md_m;  // d uv / d m
+  if (J_uv_p != nullptr) *J_uv_p = F * J_m_p;
+  if (J_uv_intrinsics != nullptr) {
+    J_uv_intrinsics->setZero();
+    (*J_uv_intrinsics)(0, 0) = md.x();
+    (*J_uv_intrinsics)(1, 1) = md.y();
+    (*J_uv_intrinsics)(0, 2) = 1.0;
+    (*J_uv_intrinsics)(1, 3) = 1.0;
+    J_uv_intrinsics->middleCols<kNumProjectionParams>(kProjectionParamsIndex) = F * J_m_params;
+    J_uv_intrinsics->middleCols<kNumDistortionCoeffs>(kDistortionCoeffsIndex) =
+        f.asDiagonal() * J_md_d;
+  }
+  return true;
 }
 
-bool PinholeCamera::Unproject(const Eigen::Vector2d& uv,
-                              Eigen::Vector3d* ray,
-                              Eigen::Matrix<double, 3, 2>* J_ray_uv,
-                              Eigen::Matrix<double, 3, kNumIntrinsics>* J_ray_intrinsics) const {
+bool Camera::IsDistortionMonotonic(const Eigen::Vector3d& p_c) const {
+  Eigen::Matrix<double, 2, 3> J;
+  if (!Project(p_c, nullptr, &J)) return false;
+  return TangentDeterminant(J, p_c) > 0.0;
+}
+
+bool Camera::UnprojectToBearing(const Eigen::Vector2d& uv, Eigen::Vector3d* unit_bearing) const {
   if (!(fu != 0.0 && fv != 0.0) || !uv.allFinite()) return false;
-  const Eigen::Vector2d target((uv.x() - pu) / fu, (uv.y() - pv) / fv);
-  Eigen::Vector2d p = target;  // (x, y); D is close to the identity near the axis
-  if (distortion == DistortionModel::kEquidistant) {
-    // 1-D Newton in theta: theta (1 + k1 t^2 + ...) = theta_d = |x_d|.
-    const double theta_d = target.norm();
-    if (theta_d * theta_d >= internal::kEquidistantSeriesRSq) {
-      const Eigen::Vector4d& k = distortion_coeffs;
-      double theta = theta_d;
-      for (int i = 0; i < kMaxUnprojectIterations; ++i) {
-        const double t2 = theta * theta;
-        const double f =
-            theta * (1.0 + t2 * (k(0) + t2 * (k(1) + t2 * (k(2) + t2 * k(3))))) - theta_d;
-        const double df =
-            1.0 + t2 * (3.0 * k(0) + t2 * (5.0 * k(1) + t2 * (7.0 * k(2) + t2 * 9.0 * k(3))));
-        if (!(df > 0.0)) return false;
-        theta -= f / df;
-        if (std::abs(f) < kUnprojectTolerance) break;
-      }
-      if (!(theta > 0.0 && theta < 0.5 * kPi)) return false;
-      p = target * (std::tan(theta) / theta_d);
-    } else {
-      p = target / (1.0 + (distortion_coeffs(0) - 1.0 / 3.0) * target.squaredNorm());
-    }
-  } else if (distortion == DistortionModel::kRadTan) {
-    for (int i = 0; i < kMaxUnprojectIterations; ++i) {
-      Eigen::Vector2d d;
-      Eigen::Matrix2d J;
-      internal::DistortWithJacobians(distortion, distortion_coeffs, p.x(), p.y(), &d, &J, nullptr);
-      const Eigen::Vector2d f = d - target;
-      if (f.lpNorm<Eigen::Infinity>() < kUnprojectTolerance) break;
-      if (!(J.determinant() > 0.0)) return false;
-      p -= J.inverse() * f;
-      if (!p.allFinite()) return false;
-    }
-  }
-  Eigen::Vector2d d;
-  Eigen::Matrix2d J_d_xy;
-  Eigen::Matrix<double, 2, 4> J_d_k;
-  internal::DistortWithJacobians(distortion, distortion_coeffs, p.x(), p.y(), &d, &J_d_xy, &J_d_k);
-  if (!((d - target).lpNorm<Eigen::Infinity>() < kUnprojectAcceptance)) return false;
-  if (!(J_d_xy.determinant() > 0.0)) return false;
-  if (ray != nullptr) *ray = Eigen::Vector3d(p.x(), p.y(), 1.0);
+  const Eigen::Vector2d md((uv.x() - pu) / fu, (uv.y() - pv) / fv);
+  Eigen::Vector2d m;
+  if (!internal::Undistort(distortion, distortion_coeffs, md, &m)) return false;
+  Eigen::Vector3d b;
+  if (!internal::LiftToBearing(projection, projection_params, m, &b)) return false;
+  // The check of the header comment: back onto uv, on a locally invertible branch.
+  Eigen::Vector2d uv_back;
+  Eigen::Matrix<double, 2, 3> J;
+  if (!Project(b, &uv_back, &J)) return false;
+  const Eigen::Vector2d error((uv_back.x() - uv.x()) / fu, (uv_back.y() - uv.y()) / fv);
+  if (!(error.lpNorm<Eigen::Infinity>() < kUnprojectAcceptance)) return false;
+  if (!(TangentDeterminant(J, b) > 0.0)) return false;
+  *unit_bearing = b;
+  return true;
+}
+
+bool Camera::Unproject(const Eigen::Vector2d& uv,
+                       Eigen::Vector3d* ray,
+                       Eigen::Matrix<double, 3, 2>* J_ray_uv,
+                       Eigen::Matrix<double, 3, kNumIntrinsics>* J_ray_intrinsics) const {
+  Eigen::Vector3d b;
+  if (!UnprojectToBearing(uv, &b) || !(b.z() > 0.0)) return false;
+  const Eigen::Vector3d r(b.x() / b.z(), b.y() / b.z(), 1.0);
+  if (ray != nullptr) *ray = r;
   if (J_ray_uv == nullptr && J_ray_intrinsics == nullptr) return true;
-  const Eigen::Matrix2d J_inv = J_d_xy.inverse();
+  // Implicit function Project(r) = uv (header comment).
+  Eigen::Matrix<double, 2, 3> J_uv_p;
+  Eigen::Matrix<double, 2, kNumIntrinsics> J_uv_intrinsics;
+  if (!Project(r, nullptr, &J_uv_p, J_ray_intrinsics != nullptr ? &J_uv_intrinsics : nullptr)) {
+    return false;
+  }
+  const Eigen::Matrix2d A = J_uv_p.leftCols<2>();
+  if (!(A.determinant() > 0.0)) return false;
+  const Eigen::Matrix2d A_inv = A.inverse();
   if (J_ray_uv != nullptr) {
     J_ray_uv->setZero();
-    J_ray_uv->topRows<2>() = J_inv * Eigen::Vector2d(1.0 / fu, 1.0 / fv).asDiagonal();
+    J_ray_uv->topRows<2>() = A_inv;
   }
   if (J_ray_intrinsics != nullptr) {
-    // d x_d / d intrinsics: x_d = (u - pu) / fu, y_d = (v - pv) / fv.
-    Eigen::Matrix<double, 2, kNumIntrinsics> J_target = Eigen::Matrix<double, 2, 8>::Zero();
-    J_target(0, 0) = -target.x() / fu;
-    J_target(1, 1) = -target.y() / fv;
-    J_target(0, 2) = -1.0 / fu;
-    J_target(1, 3) = -1.0 / fv;
-    J_target.rightCols<4>() = -J_d_k;
     J_ray_intrinsics->setZero();
-    J_ray_intrinsics->topRows<2>() = J_inv * J_target;
+    J_ray_intrinsics->topRows<2>() = -A_inv * J_uv_intrinsics;
   }
   return true;
 }

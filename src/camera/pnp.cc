@@ -35,22 +35,35 @@ Eigen::Matrix3d Normalisation(const std::vector<Eigen::Vector2d>& points) {
   return T;
 }
 
+// The sign of a homogeneous map M (H or P) that puts the points along their bearings rather than
+// opposite them: sum_i b_i . (M a_i) > 0 (a majority in words; exact data gives every term > 0).
+template <typename Matrix, typename Point>
+double AlongBearings(const Matrix& M,
+                     const std::vector<Point>& a,
+                     const std::vector<Eigen::Vector3d>& b) {
+  double sum = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) sum += b[i].dot(M * a[i]);
+  return sum;
+}
+
 bool PlanarPose(const std::vector<Eigen::Vector3d>& p_t,
-                const std::vector<Eigen::Vector2d>& m,
+                const std::vector<Eigen::Vector3d>& b,
                 SE3d* T_c_t,
                 std::string* message) {
   const int n = static_cast<int>(p_t.size());
   std::vector<Eigen::Vector2d> xy(n);
-  for (int i = 0; i < n; ++i) xy[i] = p_t[i].head<2>();
+  std::vector<Eigen::Vector3d> xy1(n);
+  for (int i = 0; i < n; ++i) {
+    xy[i] = p_t[i].head<2>();
+    xy1[i] = Eigen::Vector3d(xy[i].x(), xy[i].y(), 1.0);
+  }
   const Eigen::Matrix3d Ta = Normalisation(xy);
-  const Eigen::Matrix3d Tb = Normalisation(m);
   Eigen::MatrixXd A(2 * n, 9);
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d a = Ta * Eigen::Vector3d(xy[i].x(), xy[i].y(), 1.0);
-    const Eigen::Vector3d b = Tb * Eigen::Vector3d(m[i].x(), m[i].y(), 1.0);
-    // b x (H a) = 0: two independent rows.
-    A.row(2 * i) << 0.0, 0.0, 0.0, -b.z() * a.transpose(), b.y() * a.transpose();
-    A.row(2 * i + 1) << b.z() * a.transpose(), 0.0, 0.0, 0.0, -b.x() * a.transpose();
+    const Eigen::Vector3d a = Ta * xy1[i];
+    // b x (H a) = 0: two independent rows (unit bearings need no normalisation).
+    A.row(2 * i) << 0.0, 0.0, 0.0, -b[i].z() * a.transpose(), b[i].y() * a.transpose();
+    A.row(2 * i + 1) << b[i].z() * a.transpose(), 0.0, 0.0, 0.0, -b[i].x() * a.transpose();
   }
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
   const Eigen::VectorXd& sv = svd.singularValues();
@@ -61,14 +74,14 @@ bool PlanarPose(const std::vector<Eigen::Vector3d>& p_t,
   const Eigen::VectorXd h = svd.matrixV().col(8);
   Eigen::Matrix3d Hn;
   Hn << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
-  Eigen::Matrix3d H = Tb.inverse() * Hn * Ta;
+  Eigen::Matrix3d H = Hn * Ta;
   const double scale = 0.5 * (H.col(0).norm() + H.col(1).norm());
   if (!(scale > 0.0)) {
     *message = "degenerate homography";
     return false;
   }
   H /= scale;
-  if (H(2, 2) < 0.0) H = -H;  // the target origin in front: t_z > 0
+  if (AlongBearings(H, xy1, b) < 0.0) H = -H;  // the points along their bearings
   Eigen::Matrix3d M;
   M.col(0) = H.col(0);
   M.col(1) = H.col(1);
@@ -78,7 +91,7 @@ bool PlanarPose(const std::vector<Eigen::Vector3d>& p_t,
 }
 
 bool GeneralPose(const std::vector<Eigen::Vector3d>& p_t,
-                 const std::vector<Eigen::Vector2d>& m,
+                 const std::vector<Eigen::Vector3d>& b,
                  SE3d* T_c_t,
                  std::string* message) {
   const int n = static_cast<int>(p_t.size());
@@ -93,13 +106,14 @@ bool GeneralPose(const std::vector<Eigen::Vector3d>& p_t,
   Eigen::Matrix4d Ta = Eigen::Matrix4d::Identity();
   Ta.topLeftCorner<3, 3>() *= s3;
   Ta.topRightCorner<3, 1>() = -s3 * mean;
-  const Eigen::Matrix3d Tb = Normalisation(m);
+  std::vector<Eigen::Vector4d> homogeneous(n);
   Eigen::MatrixXd A(2 * n, 12);
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector4d a = Ta * p_t[i].homogeneous();
-    const Eigen::Vector3d b = Tb * Eigen::Vector3d(m[i].x(), m[i].y(), 1.0);
-    A.row(2 * i) << Eigen::RowVector4d::Zero(), -b.z() * a.transpose(), b.y() * a.transpose();
-    A.row(2 * i + 1) << b.z() * a.transpose(), Eigen::RowVector4d::Zero(), -b.x() * a.transpose();
+    homogeneous[i] = p_t[i].homogeneous();
+    const Eigen::Vector4d a = Ta * homogeneous[i];
+    A.row(2 * i) << Eigen::RowVector4d::Zero(), -b[i].z() * a.transpose(), b[i].y() * a.transpose();
+    A.row(2 * i + 1) << b[i].z() * a.transpose(), Eigen::RowVector4d::Zero(),
+        -b[i].x() * a.transpose();
   }
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
   const Eigen::VectorXd& sv = svd.singularValues();
@@ -110,7 +124,7 @@ bool GeneralPose(const std::vector<Eigen::Vector3d>& p_t,
   const Eigen::VectorXd p = svd.matrixV().col(11);
   Eigen::Matrix<double, 3, 4> Pn;
   Pn << p(0), p(1), p(2), p(3), p(4), p(5), p(6), p(7), p(8), p(9), p(10), p(11);
-  Eigen::Matrix<double, 3, 4> P = Tb.inverse() * Pn * Ta;
+  Eigen::Matrix<double, 3, 4> P = Pn * Ta;
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd3(P.leftCols<3>());
   const double scale = svd3.singularValues().mean();
   if (!(scale > 0.0)) {
@@ -118,16 +132,13 @@ bool GeneralPose(const std::vector<Eigen::Vector3d>& p_t,
     return false;
   }
   P /= scale;
-  // Sign: the points must be in front of the camera.
-  int in_front = 0;
-  for (const auto& q : p_t) in_front += (P * q.homogeneous()).z() > 0.0 ? 1 : -1;
-  if (in_front < 0) P = -P;
+  if (AlongBearings(P, homogeneous, b) < 0.0) P = -P;  // the points along their bearings
   *T_c_t = SE3d(SO3d::FromMatrix(ClosestRotation(P.leftCols<3>())), P.col(3));
   return true;
 }
 
 // Sum of squared pixel errors; false when a point does not project.
-bool Errors(const PinholeCamera& camera,
+bool Errors(const Camera& camera,
             const SE3d& T_c_t,
             const std::vector<Eigen::Vector3d>& p_t,
             const std::vector<Eigen::Vector2d>& uv,
@@ -143,7 +154,7 @@ bool Errors(const PinholeCamera& camera,
 
 }  // namespace
 
-PnpResult SolvePnp(const PinholeCamera& camera,
+PnpResult SolvePnp(const Camera& camera,
                    const std::vector<Eigen::Vector3d>& p_t,
                    const std::vector<Eigen::Vector2d>& uv,
                    const PnpOptions& options) {
@@ -157,24 +168,30 @@ PnpResult SolvePnp(const PinholeCamera& camera,
         "too few points (" + std::to_string(n) + ", need " + std::to_string(needed) + ")";
     return result;
   }
-  std::vector<Eigen::Vector2d> m(n);
+  // The closed form takes the points whose pixels have a bearing (header comment).
+  std::vector<Eigen::Vector3d> p_closed_form;
+  std::vector<Eigen::Vector3d> bearings;
   for (int i = 0; i < n; ++i) {
-    Eigen::Vector3d ray;
-    if (!camera.Unproject(uv[i], &ray)) {
-      result.message = "a pixel does not unproject (outside the camera model's valid region)";
-      return result;
-    }
-    m[i] = ray.head<2>();
+    Eigen::Vector3d bearing;
+    if (!camera.UnprojectToBearing(uv[i], &bearing)) continue;
+    p_closed_form.push_back(p_t[i]);
+    bearings.push_back(bearing);
+  }
+  if (static_cast<int>(bearings.size()) < needed) {
+    result.message = "too few pixels unproject (" + std::to_string(bearings.size()) + " of " +
+                     std::to_string(n) +
+                     "; the others are outside the camera model's valid region)";
+    return result;
   }
   SE3d T;
-  if (!(planar ? PlanarPose(p_t, m, &T, &result.message)
-               : GeneralPose(p_t, m, &T, &result.message))) {
+  if (!(planar ? PlanarPose(p_closed_form, bearings, &T, &result.message)
+               : GeneralPose(p_closed_form, bearings, &T, &result.message))) {
     return result;
   }
   // Levenberg-Marquardt on the pixel errors, right perturbation of T_c_t.
   double cost = 0.0;
   if (!Errors(camera, T, p_t, uv, &cost)) {
-    result.message = "the closed-form pose puts points behind the camera";
+    result.message = "the closed-form pose puts points outside the camera's valid region";
     return result;
   }
   double lambda = 1e-3;

@@ -43,6 +43,10 @@ DEFINE_double(pixel_sigma,
               0.0,
               "Pixel noise std [px] weighting the reprojection residuals; 0 estimates it from the "
               "residuals (robustly) and solves again");
+DEFINE_bool(hold_camera_chain,
+            false,
+            "Hold the cameras' relative poses at the camchain's T_cn_cnm1 (from `splinecal "
+            "intrinsics`): one T_cam_imu is estimated for the whole rig");
 DEFINE_string(initial_poses,
               "",
               "Initial IMU trajectory T_w_s in the IMU clock, EuRoC ground-truth or TUM format "
@@ -98,6 +102,25 @@ CalibrateInputs ReadCalibrateInputs() {
   CheckCameraIds(in.observations, in.camchain, observations_path, camchain_path);
   const std::vector<int> selection =
       ParseCameraSelection(FLAGS_cameras, static_cast<int>(in.camchain.size()));
+  if (FLAGS_hold_camera_chain) {
+    // T_cn_c0 of every camera from the T_cn_cnm1 chain, then relative to the first selected.
+    std::vector<SE3d> T_n_0 = {SE3d()};
+    for (size_t n = 1; n < in.camchain.size(); ++n) {
+      if (!in.camchain[n].T_cn_cnm1) {
+        throw Error(camchain_path, 0,
+                    "--hold-camera-chain: cam" + std::to_string(n) +
+                        " has no T_cn_cnm1 (the camera chain `splinecal intrinsics` writes)");
+      }
+      T_n_0.push_back(*in.camchain[n].T_cn_cnm1 * T_n_0.back());
+    }
+    std::vector<int> chosen = selection;
+    if (chosen.empty()) {
+      for (size_t n = 0; n < in.camchain.size(); ++n) chosen.push_back(static_cast<int>(n));
+    }
+    for (int n : chosen) {
+      options.camera_chain_T_cn_c0.push_back(T_n_0[n] * T_n_0[chosen.front()].inverse());
+    }
+  }
   SelectCameras(selection, &in.camchain, &in.observations);
   CheckEveryCameraObserved(in.observations, in.camchain, selection, observations_path);
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
@@ -168,7 +191,7 @@ Command CalibrateCommand() {
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
           "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE]\n"
-          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
+          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset] [--hold-camera-chain]\n"
           "    [--knot-spacing S] [--pixel-sigma PX] [--huber PX] [--min-corners N]\n"
           "    [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s] [--threads N]\n"
           "    --out DIR",
@@ -197,6 +220,7 @@ Command CalibrateCommand() {
             "(default: ADIS16448)"},
            {"imu_noise", ""},
            {"rolling_shutter", ""},
+           {"hold_camera_chain", ""},
            {"no_time_offset", ""},
            {"knot_spacing", "Spline knot spacing dt [s]; 0 chooses it from the IMU data", "0.05"},
            {"pixel_sigma", ""},

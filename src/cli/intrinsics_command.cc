@@ -155,13 +155,13 @@ int RunIntrinsics() {
       CalibrateIntrinsics(in.observations, in.target, in.cameras, in.options);
 
   Camchain camchain;
-  for (const IntrinsicsCameraResult& c : result.cameras) {
+  for (size_t n = 0; n < result.cameras.size(); ++n) {
     CameraCalibration calibration;
-    calibration.camera = c.camera;
-    calibration.T_cam_imu = c.T_cn_c0;  // TODO(merge): camera chain without IMU keys
+    calibration.camera = result.cameras[n].camera;
+    if (n > 0) calibration.T_cn_cnm1 = result.cameras[n].T_cn_cnm1;
     camchain.push_back(calibration);
   }
-  output.WriteFile("camchain.yaml", CamchainYamlText(camchain));
+  output.WriteFile("camchain.yaml", CamchainYamlText(camchain, CamchainKeys::kCamerasOnly));
   output.WriteFile("result.yaml", IntrinsicsResultYaml(result));
   IntrinsicsReportInputs inputs{FLAGS_observations, FLAGS_target, FLAGS_camchain};
   output.WriteFile("report.html", IntrinsicsReportHtml(result, inputs, 20000));

@@ -25,7 +25,7 @@ BodyState EvaluateBodyState(const SegmentKnots<double>& knots, const Segment<dou
   return state;
 }
 
-bool ProjectPoint(const PinholeCamera& camera,
+bool ProjectPoint(const Camera& camera,
                   const SE3d& T_c_s,
                   const BodyState& state,
                   const Eigen::Vector3d& x_w,
@@ -166,7 +166,7 @@ bool SolveAndProject(const ReprojectionSettings& settings,
                      ExposureSolution* solution,
                      ExposureState* state,
                      PointProjection* projection) {
-  const PinholeCamera& camera = *settings.camera;
+  const Camera& camera = *settings.camera;
   auto row_at = [&](double tau, double* v, double* v_dot) -> bool {
     if (!StateAt(settings, knots, t_exposure_base_s + tau, state)) return false;
     if (!ProjectPoint(camera, T_c_s, state->body, x_w, w, false, projection)) return false;

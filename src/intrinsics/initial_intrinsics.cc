@@ -110,7 +110,34 @@ std::vector<Camera> ShapeCandidates(const Camera& model) {
   Camera base = model;
   base.distortion_coeffs.setZero();
   base.projection_params.setZero();
-  return {base};
+  base.radtan_k3 = model.radtan_k3;
+  std::vector<Eigen::Vector2d> shapes;  // projection parameters (m0, m1)
+  switch (model.projection) {
+    case ProjectionModel::kPinhole:
+      shapes = {{0.0, 0.0}};
+      break;
+    case ProjectionModel::kOmni:  // xi: 0 is a pinhole, about 1 a fisheye [Mei07 init]
+      shapes = {{0.0, 0.0}, {0.6, 0.0}, {1.2, 0.0}};
+      break;
+    case ProjectionModel::kEucm:  // (alpha, beta = 1): alpha 0 is a pinhole
+      shapes = {{0.0, 1.0}, {0.4, 1.0}, {0.65, 1.0}};
+      break;
+    case ProjectionModel::kDoubleSphere:  // (xi, alpha): (0, 0) is a pinhole
+      shapes = {{0.0, 0.0}, {0.0, 0.4}, {-0.2, 0.6}};
+      break;
+  }
+  std::vector<double> fov_w = {0.0};
+  if (model.distortion == DistortionModel::kFov) fov_w = {0.3, 0.8, 1.3};  // w [rad]
+  std::vector<Camera> candidates;
+  for (const Eigen::Vector2d& shape : shapes) {
+    for (double w : fov_w) {
+      Camera candidate = base;
+      candidate.projection_params = shape;
+      candidate.distortion_coeffs(0) = w;
+      candidates.push_back(candidate);
+    }
+  }
+  return candidates;
 }
 
 }  // namespace splinecal

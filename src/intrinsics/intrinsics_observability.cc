@@ -76,7 +76,8 @@ std::string IntrinsicName(const Camera& camera, int index) {
     }
     case DistortionModel::kEquidistant:
       return StringPrintf("k%d", d + 1);
-    // TODO(merge): case DistortionModel::kFov: return "w".
+    case DistortionModel::kFov:
+      return d == 0 ? "w" : StringPrintf("d%d", d);
     default:
       return StringPrintf("d%d", d);
   }

@@ -1,6 +1,9 @@
 #include "splinecal/io/camchain_yaml.h"
 
+#include <glog/logging.h>
+
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -40,15 +43,82 @@ const std::vector<std::string> kCameraKeys = {"camera_model",
                                               "T_cn_cnm1",
                                               "cam_overlaps"};
 
-DistortionModel ParseDistortionModel(const YamlDocument& yaml, const std::string& key) {
+// A camera model's intrinsics in Kalibr's order: the projection's parameters first, then
+// fu fv pu pv (camera/camera_model.h's layout takes m0 m1 and fu fv pu pv from them).
+struct IntrinsicsOrder {
+  const char* names;  // for messages
+  int count;
+};
+
+constexpr ProjectionModel kProjectionModels[] = {ProjectionModel::kPinhole,
+                                                 ProjectionModel::kOmni,
+                                                 ProjectionModel::kEucm,
+                                                 ProjectionModel::kDoubleSphere};
+constexpr DistortionModel kDistortionModels[] = {DistortionModel::kNone,
+                                                 DistortionModel::kRadTan,
+                                                 DistortionModel::kEquidistant,
+                                                 DistortionModel::kFov};
+
+ProjectionModel ParseProjectionModel(const YamlDocument& yaml, const std::string& key) {
   const std::string name = yaml.String(key);
-  if (name == "radtan") return DistortionModel::kRadTan;
-  if (name == "equidistant") return DistortionModel::kEquidistant;
-  if (name == "none") return DistortionModel::kNone;
+  for (ProjectionModel m : kProjectionModels) {
+    if (name == ProjectionModelName(m)) return m;
+  }
   throw Error(
       yaml.path(),
       yaml.Line(key),
-      key + ": unsupported distortion model '" + name + "' (supported: radtan, equidistant, none)");
+      key + ": unsupported camera model '" + name +
+          "' (supported: pinhole, omni, eucm, ds; as pairs: " + SupportedCameraModelNames() + ")");
+}
+
+DistortionModel ParseDistortionModel(const YamlDocument& yaml,
+                                     const std::string& key,
+                                     ProjectionModel projection) {
+  const std::string name = yaml.String(key);
+  for (DistortionModel m : kDistortionModels) {
+    if (name != DistortionModelName(m)) continue;
+    if (!IsSupportedCameraModel(projection, m)) break;
+    return m;
+  }
+  std::string supported;
+  for (DistortionModel m : kDistortionModels) {
+    if (!IsSupportedCameraModel(projection, m)) continue;
+    supported += (supported.empty() ? "" : ", ") + DistortionModelName(m);
+  }
+  throw Error(yaml.path(),
+              yaml.Line(key),
+              key + ": unsupported distortion model '" + name + "' for camera model " +
+                  ProjectionModelName(projection) + " (supported: " + supported + ")");
+}
+
+// Kalibr's intrinsics order per camera model.
+IntrinsicsOrder KalibrIntrinsicsOrder(ProjectionModel model) {
+  switch (model) {
+    case ProjectionModel::kPinhole:
+      return {"[fu, fv, pu, pv]", 4};
+    case ProjectionModel::kOmni:
+      return {"[xi, fu, fv, pu, pv]", 5};
+    case ProjectionModel::kEucm:
+      return {"[alpha, beta, fu, fv, pu, pv]", 6};
+    case ProjectionModel::kDoubleSphere:
+      return {"[xi, alpha, fu, fv, pu, pv]", 6};
+  }
+  return {"[fu, fv, pu, pv]", 4};
+}
+
+// The numbers of distortion_coeffs a model takes (radtan: 4 or, with OpenCV's k3, 5).
+std::vector<size_t> CoefficientCounts(DistortionModel model) {
+  switch (model) {
+    case DistortionModel::kNone:
+      return {0};
+    case DistortionModel::kRadTan:
+      return {4, 5};
+    case DistortionModel::kEquidistant:
+      return {4};
+    case DistortionModel::kFov:
+      return {1};
+  }
+  return {0};
 }
 
 SE3d ReadRigidTransform(const YamlDocument& yaml, const std::string& key) {
@@ -85,6 +155,9 @@ SE3d ReadRigidTransform(const YamlDocument& yaml, const std::string& key) {
 // T_cam_imu and the time offset (Kalibr's key timeshift_cam_imu) of `cam`, when present.
 void ReadExtrinsics(const YamlDocument& yaml, const std::string& cam, CameraCalibration* c) {
   if (yaml.Has(cam + "/T_cam_imu")) c->T_cam_imu = ReadRigidTransform(yaml, cam + "/T_cam_imu");
+  if (cam != "cam0" && yaml.Has(cam + "/T_cn_cnm1")) {
+    c->T_cn_cnm1 = ReadRigidTransform(yaml, cam + "/T_cn_cnm1");
+  }
   if (yaml.Has(cam + "/timeshift_cam_imu")) {
     c->time_offset_s = yaml.BoundedNumber(cam + "/timeshift_cam_imu", kMaxTimeOffsetS, "s");
   }
@@ -93,50 +166,61 @@ void ReadExtrinsics(const YamlDocument& yaml, const std::string& cam, CameraCali
 CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
   yaml.CheckTypos(cam, kCameraKeys);
   CameraCalibration calibration;
-  PinholeCamera& camera = calibration.camera;
-  const std::string model = yaml.String(cam + "/camera_model");
-  if (model != "pinhole") {
-    throw Error(yaml.path(),
-                yaml.Line(cam + "/camera_model"),
-                cam + "/camera_model: unsupported camera model '" + model +
-                    "' (supported: pinhole with radtan, equidistant or none)");
-  }
+  Camera& camera = calibration.camera;
+  camera.projection = ParseProjectionModel(yaml, cam + "/camera_model");
+  const IntrinsicsOrder order = KalibrIntrinsicsOrder(camera.projection);
   const std::vector<double> intrinsics =
       yaml.BoundedNumbers(cam + "/intrinsics", kMaxIntrinsic, "px");
   const int64_t intrinsics_line = yaml.Line(cam + "/intrinsics");
-  if (intrinsics.size() != 4) {
+  if (static_cast<int>(intrinsics.size()) != order.count) {
     throw Error(yaml.path(),
                 intrinsics_line,
-                cam + "/intrinsics: expected 4 numbers [fu, fv, pu, pv], got " +
-                    std::to_string(intrinsics.size()));
+                cam + "/intrinsics: the " + ProjectionModelName(camera.projection) +
+                    " model expects " + std::to_string(order.count) + " numbers " + order.names +
+                    ", got " + std::to_string(intrinsics.size()));
   }
-  if (!(intrinsics[0] > 0.0) || !(intrinsics[1] > 0.0)) {
-    throw Error(
-        yaml.path(), intrinsics_line, cam + "/intrinsics: focal lengths fu, fv must be positive");
-  }
-  camera.fu = intrinsics[0];
-  camera.fv = intrinsics[1];
-  camera.pu = intrinsics[2];
-  camera.pv = intrinsics[3];
+  // Kalibr puts the projection's parameters first: [m0 (m1)] fu fv pu pv.
+  const int first = order.count - 4;
+  for (int i = 0; i < first; ++i) camera.projection_params(i) = intrinsics[i];
+  camera.fu = intrinsics[first];
+  camera.fv = intrinsics[first + 1];
+  camera.pu = intrinsics[first + 2];
+  camera.pv = intrinsics[first + 3];
   camera.distortion = yaml.Has(cam + "/distortion_model")
-                          ? ParseDistortionModel(yaml, cam + "/distortion_model")
+                          ? ParseDistortionModel(yaml, cam + "/distortion_model", camera.projection)
                           : DistortionModel::kNone;
   std::vector<double> coeffs;
   if (yaml.Has(cam + "/distortion_coeffs")) {
     coeffs = yaml.BoundedNumbers(cam + "/distortion_coeffs", kMaxDistortionCoefficient, "");
   }
-  const size_t expected = camera.distortion == DistortionModel::kNone ? 0 : 4;
+  const std::vector<size_t> expected = CoefficientCounts(camera.distortion);
   // `none` with four zeros is what some tools write: accept zeros.
   const bool zeros_for_none = camera.distortion == DistortionModel::kNone && coeffs.size() == 4 &&
                               coeffs == std::vector<double>(4, 0.0);
-  if (coeffs.size() != expected && !zeros_for_none) {
+  if (std::find(expected.begin(), expected.end(), coeffs.size()) == expected.end() &&
+      !zeros_for_none) {
+    std::string counts = std::to_string(expected[0]);
+    for (size_t i = 1; i < expected.size(); ++i) counts += " or " + std::to_string(expected[i]);
     throw Error(yaml.path(),
                 yaml.Line(cam + "/distortion_coeffs"),
                 cam + "/distortion_coeffs: the " + DistortionModelName(camera.distortion) +
-                    " model takes " + std::to_string(expected) + " coefficients, got " +
-                    std::to_string(coeffs.size()));
+                    " model takes " + counts + (counts == "1" ? " coefficient" : " coefficients") +
+                    ", got " + std::to_string(coeffs.size()));
   }
-  for (size_t i = 0; i < coeffs.size(); ++i) camera.distortion_coeffs(i) = coeffs[i];
+  if (camera.distortion != DistortionModel::kNone) {
+    for (size_t i = 0; i < coeffs.size(); ++i) camera.distortion_coeffs(i) = coeffs[i];
+  }
+  camera.radtan_k3 = camera.distortion == DistortionModel::kRadTan && coeffs.size() == 5;
+  std::string problem;
+  if (!camera.IsValid(&problem)) {
+    // The problem is in the coefficients when the camera is valid without them.
+    Camera without_distortion = camera;
+    without_distortion.distortion_coeffs.setZero();
+    const bool in_coefficients = without_distortion.IsValid();
+    throw Error(yaml.path(),
+                in_coefficients ? yaml.Line(cam + "/distortion_coeffs") : intrinsics_line,
+                cam + (in_coefficients ? "/distortion_coeffs: " : "/intrinsics: ") + problem);
+  }
   const std::vector<double> resolution = yaml.Numbers(cam + "/resolution");
   if (resolution.size() != 2 || !(resolution[0] >= 1.0) || !(resolution[1] >= 1.0) ||
       resolution[0] != std::floor(resolution[0]) || resolution[1] != std::floor(resolution[1]) ||
@@ -191,28 +275,53 @@ CameraCalibration ReadCam0Extrinsics(const std::string& path) {
   return calibration;
 }
 
-std::string CamchainYamlText(const Camchain& camchain) {
+namespace {
+
+// The intrinsics in Kalibr's order for the camera model (KalibrIntrinsicsOrder).
+Eigen::VectorXd KalibrIntrinsics(const Camera& camera) {
+  const int first = KalibrIntrinsicsOrder(camera.projection).count - 4;
+  Eigen::VectorXd v(first + 4);
+  for (int i = 0; i < first; ++i) v(i) = camera.projection_params(i);
+  v.tail<4>() << camera.fu, camera.fv, camera.pu, camera.pv;
+  return v;
+}
+
+// The coefficients the distortion model takes: radtan writes k3 when it is estimated or not 0.
+Eigen::VectorXd KalibrDistortionCoeffs(const Camera& camera) {
+  size_t count = CoefficientCounts(camera.distortion).front();
+  if (camera.distortion == DistortionModel::kRadTan &&
+      (camera.radtan_k3 || camera.distortion_coeffs(4) != 0.0)) {
+    count = 5;
+  }
+  return camera.distortion_coeffs.head(static_cast<Eigen::Index>(count));
+}
+
+}  // namespace
+
+std::string CamchainYamlText(const Camchain& camchain, CamchainKeys keys) {
+  const bool with_imu = keys == CamchainKeys::kWithImu;
   YamlWriter yaml;
   for (size_t i = 0; i < camchain.size(); ++i) {
     const CameraCalibration& c = camchain[i];
     yaml.BeginMap("cam" + std::to_string(i));
-    yaml.Scalar("camera_model", "pinhole");
-    yaml.Vector("intrinsics", Eigen::Vector4d(c.camera.fu, c.camera.fv, c.camera.pu, c.camera.pv));
+    yaml.Scalar("camera_model", ProjectionModelName(c.camera.projection));
+    yaml.Vector("intrinsics", KalibrIntrinsics(c.camera));
     yaml.Scalar("distortion_model", DistortionModelName(c.camera.distortion));
-    if (c.camera.distortion == DistortionModel::kNone) {
-      yaml.Vector("distortion_coeffs", Eigen::VectorXd(0));
-    } else {
-      yaml.Vector("distortion_coeffs", c.camera.distortion_coeffs);
-    }
+    yaml.Vector("distortion_coeffs", KalibrDistortionCoeffs(c.camera));
     yaml.Vector("resolution", Eigen::Vector2d(c.camera.width, c.camera.height));
-    yaml.Matrix("T_cam_imu", c.T_cam_imu.matrix());
-    if (i > 0) {
+    if (with_imu) yaml.Matrix("T_cam_imu", c.T_cam_imu.matrix());
+    if (i > 0 && with_imu) {
       // Kalibr's T_cn_cnm1 (camera n-1 into camera n), the one the T_cam_imu above imply, so that
       // the file never holds a stereo extrinsic that contradicts them.
       yaml.Matrix("T_cn_cnm1", (c.T_cam_imu * camchain[i - 1].T_cam_imu.inverse()).matrix());
+    } else if (i > 0) {
+      CHECK(c.T_cn_cnm1.has_value()) << "a camera chain without T_cn_cnm1 for cam" << i;
+      yaml.Matrix("T_cn_cnm1", c.T_cn_cnm1->matrix());
     }
-    yaml.Scalar("timeshift_cam_imu", c.time_offset_s);  // Kalibr's key
-    yaml.Scalar("line_delay", c.line_delay_s);
+    if (with_imu) {
+      yaml.Scalar("timeshift_cam_imu", c.time_offset_s);  // Kalibr's key
+      yaml.Scalar("line_delay", c.line_delay_s);
+    }
     if (!c.rostopic.empty()) yaml.Scalar("rostopic", c.rostopic);
     yaml.EndMap();
   }

@@ -15,8 +15,7 @@
 namespace splinecal {
 namespace {
 
-// Where the distortion coefficients start in the intrinsics layout.
-constexpr int kDistortionOffset = kNumIntrinsics - 5;
+constexpr int kDistortionOffset = kDistortionCoeffsIndex;
 
 Eigen::VectorXd Pick(const Eigen::Matrix<double, kNumIntrinsics, 1>& values,
                      const std::vector<int>& order) {
@@ -190,17 +189,14 @@ std::vector<int> KalibrDistortionOrder(const Camera& camera) {
     case DistortionModel::kNone:
       count = 0;
       break;
-    case DistortionModel::kRadTan: {
-      const std::vector<int> active = camera.ActiveIntrinsics();
-      const bool k3 =
-          std::find(active.begin(), active.end(), kDistortionOffset + 4) != active.end();
-      count = k3 ? 5 : 4;
+    case DistortionModel::kRadTan:
+      // As camchain.yaml: k3 when estimated or not 0 (io/camchain_yaml.h).
+      count = camera.radtan_k3 || camera.distortion_coeffs(4) != 0.0 ? 5 : 4;
       break;
-    }
     case DistortionModel::kEquidistant:
       count = 4;
       break;
-    default:  // TODO(merge): fov has 1.
+    case DistortionModel::kFov:
       count = 1;
       break;
   }

@@ -58,8 +58,8 @@ bool Observe(const PointView& view,
   if (solution.at_lower_bound || solution.at_upper_bound) return false;  // row outside image
   const SE3d T_w_c = view.spline->Pose(view.t_base_s + solution.tau_s) * cam.T_cam_imu.inverse();
   const Eigen::Vector3d p_c = T_w_c.inverse() * view.p_w;
-  if (!(p_c.z() >= options.min_depth_m) || !(p_c.norm() <= options.max_depth_m)) return false;
-  if (!cam.camera.IsDistortionMonotonic(p_c.x() / p_c.z(), p_c.y() / p_c.z())) return false;
+  if (!(p_c.norm() >= options.min_depth_m) || !(p_c.norm() <= options.max_depth_m)) return false;
+  if (!cam.camera.IsDistortionMonotonic(p_c)) return false;  // also: in the valid region
   if (!cam.camera.Project(p_c, uv) || !cam.camera.InImage(*uv)) return false;
   if (target_point && options.target.IsPlanar()) {
     const SE3d T_t_c = options.T_w_t.inverse() * T_w_c;
@@ -105,19 +105,19 @@ CameraSimulationResult SimulateCameras(const SE3Splined& spline,
     auto uniform = [&engine]() { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };
     const CameraCalibration& cam = camchain[0];
     for (int k = 0; k < options.num_landmarks; ++k) {
-      Eigen::Vector3d ray;
-      Eigen::Vector2d uv;
+      // A pixel with a bearing (the corners of a fisheye image may have none).
+      Eigen::Vector3d bearing = Eigen::Vector3d::UnitZ();
       for (int attempt = 0; attempt < 100; ++attempt) {
-        uv = Eigen::Vector2d(uniform() * (cam.camera.width - 1),
-                             uniform() * (cam.camera.height - 1));
-        if (cam.camera.Unproject(uv, &ray)) break;
+        const Eigen::Vector2d uv(uniform() * (cam.camera.width - 1),
+                                 uniform() * (cam.camera.height - 1));
+        if (cam.camera.UnprojectToBearing(uv, &bearing)) break;
       }
       const double t = spline.start_time() + uniform() * (spline.end_time() - spline.start_time());
       const double depth =
           options.landmark_min_depth_m +
           uniform() * (options.landmark_max_depth_m - options.landmark_min_depth_m);
       const SE3d T_w_c = spline.Pose(t) * cam.T_cam_imu.inverse();
-      result.landmarks_w[kLandmarkIdBase + k] = T_w_c * (ray.normalized() * depth);
+      result.landmarks_w[kLandmarkIdBase + k] = T_w_c * (bearing * depth);
     }
   }
   const int64_t period_ns = static_cast<int64_t>(std::llround(1e9 / options.camera_rate_hz));

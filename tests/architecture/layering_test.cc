@@ -36,6 +36,7 @@ const std::vector<std::string> kLayers = {
     "sim",          // IMU and camera simulation, trajectories
     "allan",        // Allan deviation and noise identification
     "calib",        // fit and calibrate
+    "intrinsics",   // camera intrinsics and camera-to-camera extrinsics from target views
     "report",       // result files and HTML reports of fit and calibrate
     "cli",          // the command-line front end
 };

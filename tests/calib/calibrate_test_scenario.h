@@ -1,6 +1,7 @@
 // A simulated camera-IMU calibration sequence for the calibrate tests and benchmark: the lively
 // target-viewing trajectory of sim/simulate_camera.h, a 200 Hz IMU with the ADIS16448 noise
-// (EuRoC), a 20 Hz EuRoC-like camera (752 x 480, radtan) with 0.5 px noise, an aprilgrid of
+// (EuRoC), a 20 Hz EuRoC-like camera (752 x 480, radtan; ScenarioOptions::camera replaces it)
+// with 0.5 px noise, an aprilgrid of
 // 6 x 6 tags of 8.8 cm (144 corners, ~100 visible per frame).
 //
 // By default the data come from a spline fitted on the knot layout `calibrate` uses (its model is
@@ -55,6 +56,8 @@ struct ScenarioOptions {
   // Data from ClosedFormCalibrationTrajectory(seed) instead of a spline (target only, no
   // landmarks).
   bool closed_form = false;
+  // The rig's camera (intrinsics, image size); none: EuRoC's cam0 (pinhole-radtan).
+  std::optional<Camera> camera;
 };
 
 // A closed-form IMU trajectory T_w_s over a target whose centre is target_centre_w (the camera
@@ -94,7 +97,7 @@ inline AnalyticTrajectory ClosedFormCalibrationTrajectory(uint64_t seed,
 inline CalibrationScenario MakeCalibrationScenario(const ScenarioOptions& o) {
   CalibrationScenario s;
   CameraCalibration cam;
-  cam.camera = EurocCamera();
+  cam.camera = o.camera ? *o.camera : EurocCamera();
   cam.T_cam_imu =
       SE3d(SO3d::Exp(Eigen::Vector3d(0.02, -0.01, 1.55)), Eigen::Vector3d(0.06, -0.02, 0.01));
   cam.time_offset_s = o.time_offset_s;

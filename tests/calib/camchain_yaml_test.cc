@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "camera/camera_test_models.h"
 #include "splinecal/error.h"
 #include "testing/shared_data.h"
 #include "testing/strict_yaml.h"
@@ -161,19 +162,48 @@ TEST(ReadCamchainYaml, RefusesBadFilesNamingTheKey) {
       "  distortion_coeffs: [0.1, 0.01, 0.0, 0.0]\n  resolution: [640, 480]\n";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"cam1:\n  camera_model: pinhole\n" + good_tail, "cam0"},
-      {"cam0:\n  camera_model: omni\n" + good_tail, "unsupported camera model 'omni'"},
+      {"cam0:\n  camera_model: mei\n" + good_tail, "unsupported camera model 'mei'"},
+      {"cam0:\n  camera_model: omni\n" + good_tail,
+       "the omni model expects 5 numbers [xi, fu, fv, pu, pv], got 4"},
+      {"cam0:\n  camera_model: ds\n  intrinsics: [-0.2, 0.57, 350, 349, 366, 249]\n"
+       "  distortion_model: radtan\n  distortion_coeffs: [0.1, 0.01, 0.0, 0.0]\n"
+       "  resolution: [752, 480]\n",
+       "unsupported distortion model 'radtan' for camera model ds (supported: none)"},
+      {"cam0:\n  camera_model: ds\n  intrinsics: [-0.2, 1.3, 350, 349, 366, 249]\n"
+       "  distortion_model: none\n  resolution: [752, 480]\n",
+       "cam0/intrinsics: ds alpha must be in [0, 1]"},
+      {"cam0:\n  camera_model: eucm\n  intrinsics: [-0.1, 1.0, 350, 349, 366, 249]\n"
+       "  distortion_model: none\n  resolution: [752, 480]\n",
+       "cam0/intrinsics: eucm alpha must be in [0, 1]"},
+      {"cam0:\n  camera_model: eucm\n  intrinsics: [0.6, 1.0, 350, -349, 366, 249]\n"
+       "  distortion_model: none\n  resolution: [752, 480]\n",
+       "focal lengths"},
+      {"cam0:\n  camera_model: omni\n  intrinsics: [-0.5, 350, 349, 366, 249]\n"
+       "  distortion_model: none\n  resolution: [752, 480]\n",
+       "omni xi must be >= 0"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+       "  distortion_model: fov\n  distortion_coeffs: [4.0]\n  resolution: [640, 480]\n",
+       "cam0/distortion_coeffs: fov w must be in [0, pi)"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+       "  distortion_model: fov\n  distortion_coeffs: [0.9, 0.1]\n  resolution: [640, 480]\n",
+       "the fov model takes 1 coefficient, got 2"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+       "  distortion_model: equi\n  distortion_coeffs: [0.1, 0.0, 0.0, 0.0]\n"
+       "  resolution: [640, 480]\n",
+       "unsupported distortion model 'equi'"},
+      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+       "  distortion_model: equidistant\n  distortion_coeffs: [0.1, 0.0, 0.0, 0.0, 0.0]\n"
+       "  resolution: [640, 480]\n",
+       "the equidistant model takes 4 coefficients, got 5"},
       {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320]\n"
        "  distortion_model: none\n  resolution: [640, 480]\n",
-       "expected 4 numbers"},
+       "expects 4 numbers"},
       {"cam0:\n  camera_model: pinhole\n  intrinsics: [-400, 400, 320, 240]\n"
        "  distortion_model: none\n  resolution: [640, 480]\n",
        "focal lengths"},
       {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
-       "  distortion_model: fov\n  distortion_coeffs: [0.5]\n  resolution: [640, 480]\n",
-       "unsupported distortion model 'fov'"},
-      {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
        "  distortion_model: radtan\n  distortion_coeffs: [0.1, 0.2]\n  resolution: [640, 480]\n",
-       "takes 4 coefficients, got 2"},
+       "takes 4 or 5 coefficients, got 2"},
       {"cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
        "  distortion_model: none\n  resolution: [640.5, 480]\n",
        "resolution"},
@@ -197,6 +227,110 @@ TEST(ReadCamchainYaml, RefusesBadFilesNamingTheKey) {
       EXPECT_THAT(e.what(), HasSubstr(message)) << yaml;
       EXPECT_THAT(e.what(), HasSubstr("bad.yaml")) << yaml;
     }
+  }
+}
+
+// Every model of the camera tests (camera/camera_test_models.h) written and read back.
+TEST(CamchainYamlText, RoundTripsEveryCameraModelExactly) {
+  testing::TempDir dir;
+  for (const testing::TestCamera& t : testing::AllTestCameras()) {
+    Camchain camchain(1);
+    camchain[0].camera = t.camera;
+    const std::string text = CamchainYamlText(camchain);
+    const Camchain back = ReadCamchainYaml(dir.Write("model.yaml", text));
+    ASSERT_EQ(back.size(), 1u);
+    const Camera& c = back[0].camera;
+    EXPECT_EQ(c.projection, t.camera.projection) << t.label;
+    EXPECT_EQ(c.distortion, t.camera.distortion) << t.label;
+    EXPECT_EQ(c.radtan_k3, t.camera.radtan_k3) << t.label;
+    EXPECT_EQ(c.intrinsics(), t.camera.intrinsics()) << t.label << "\n" << text;
+    EXPECT_EQ(c.width, t.camera.width);
+    EXPECT_EQ(c.height, t.camera.height);
+    EXPECT_EQ(c.model_name(), t.camera.model_name());
+  }
+}
+
+// The Kalibr order of intrinsics and coefficients, read and written, per camera model.
+TEST(ReadCamchainYaml, KalibrParameterOrderOfEveryModel) {
+  struct Case {
+    const char* model;
+    const char* intrinsics;
+    const char* distortion;
+    const char* coeffs;
+    IntrinsicsVector expected;  // splinecal's layout
+  };
+  auto v = [](std::initializer_list<double> values) {
+    IntrinsicsVector k = IntrinsicsVector::Zero();
+    int i = 0;
+    for (double x : values) k(i++) = x;
+    return k;
+  };
+  const std::vector<Case> cases = {
+      {"pinhole", "[401, 402, 321, 241]", "none", "[]", v({401, 402, 321, 241})},
+      {"pinhole",
+       "[401, 402, 321, 241]",
+       "radtan",
+       "[-0.28, 0.07, 0.0002, 0.00002]",
+       v({401, 402, 321, 241, 0, 0, -0.28, 0.07, 0.0002, 0.00002})},
+      {"pinhole",
+       "[401, 402, 321, 241]",
+       "radtan",
+       "[-0.28, 0.07, 0.0002, 0.00002, -0.01]",
+       v({401, 402, 321, 241, 0, 0, -0.28, 0.07, 0.0002, 0.00002, -0.01})},
+      {"pinhole",
+       "[401, 402, 321, 241]",
+       "equidistant",
+       "[0.01, 0.002, -0.001, 0.0003]",
+       v({401, 402, 321, 241, 0, 0, 0.01, 0.002, -0.001, 0.0003})},
+      {"pinhole", "[401, 402, 321, 241]", "fov", "[0.92]", v({401, 402, 321, 241, 0, 0, 0.92})},
+      {"omni", "[1.8, 401, 402, 321, 241]", "none", "[]", v({401, 402, 321, 241, 1.8})},
+      {"omni",
+       "[0.8, 401, 402, 321, 241]",
+       "radtan",
+       "[-0.05, 0.01, 0.0002, -0.0001]",
+       v({401, 402, 321, 241, 0.8, 0, -0.05, 0.01, 0.0002, -0.0001})},
+      {"eucm", "[0.59, 1.1, 401, 402, 321, 241]", "none", "[]", v({401, 402, 321, 241, 0.59, 1.1})},
+      {"ds",
+       "[-0.2409573942, 0.5669968992, 349.7560023, 348.7245423, 365.8944076, 249.3299557]",
+       "none",
+       "[]",
+       v({349.7560023, 348.7245423, 365.8944076, 249.3299557, -0.2409573942, 0.5669968992})},
+  };
+  testing::TempDir dir;
+  for (const Case& c : cases) {
+    const std::string yaml = std::string("cam0:\n  camera_model: ") + c.model +
+                             "\n  intrinsics: " + c.intrinsics +
+                             "\n  distortion_model: " + c.distortion +
+                             "\n  distortion_coeffs: " + c.coeffs + "\n  resolution: [640, 480]\n";
+    const Camchain camchain = ReadCamchainYaml(dir.Write("in.yaml", yaml));
+    EXPECT_EQ(camchain[0].camera.intrinsics(), c.expected) << yaml;
+    // Written back in the same order (17 significant digits reproduce the decimal inputs).
+    const YAML::Node written = testing::LoadStrictYaml(CamchainYamlText(camchain))["cam0"];
+    const YAML::Node given = testing::LoadStrictYaml(yaml)["cam0"];
+    EXPECT_EQ(written["camera_model"].as<std::string>(), c.model);
+    EXPECT_EQ(written["distortion_model"].as<std::string>(), c.distortion);
+    for (const char* key : {"intrinsics", "distortion_coeffs"}) {
+      ASSERT_EQ(written[key].size(), given[key].size()) << key << "\n" << yaml;
+      for (size_t i = 0; i < given[key].size(); ++i) {
+        EXPECT_EQ(written[key][i].as<double>(), given[key][i].as<double>()) << key << " " << i;
+      }
+    }
+  }
+}
+
+TEST(ReadCamchainYaml, InvalidParametersNameFileLineAndProblem) {
+  testing::TempDir dir;
+  const std::string path = dir.Write("ds.yaml",
+                                     "cam0:\n  camera_model: ds\n"
+                                     "  intrinsics: [-0.2, 1.3, 350, 349, 366, 249]\n"
+                                     "  distortion_model: none\n  resolution: [752, 480]\n");
+  try {
+    ReadCamchainYaml(path);
+    ADD_FAILURE() << "accepted ds alpha 1.3";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.path(), path);
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_THAT(e.message(), HasSubstr("ds alpha must be in [0, 1]"));
   }
 }
 

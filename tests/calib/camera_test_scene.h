@@ -20,21 +20,21 @@
 namespace splinecal {
 namespace testing {
 
-inline PinholeCamera EurocCamera() {
-  PinholeCamera c;
+inline Camera EurocCamera() {
+  Camera c;
   c.fu = 458.654;
   c.fv = 457.296;
   c.pu = 367.215;
   c.pv = 248.375;
   c.distortion = DistortionModel::kRadTan;
-  c.distortion_coeffs << -0.28340811, 0.07395907, 0.00019359, 1.76187114e-05;
+  c.distortion_coeffs << -0.28340811, 0.07395907, 0.00019359, 1.76187114e-05, 0.0;
   c.width = 752;
   c.height = 480;
   return c;
 }
 
 struct CameraTestScene {
-  PinholeCamera camera = EurocCamera();
+  Camera camera = EurocCamera();
   std::vector<std::array<double, 7>> poses;  // control-pose blocks T_w_s
   std::array<double, 7> T_c_s{};
   double shift = 0.004;      // [s]

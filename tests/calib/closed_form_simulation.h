@@ -111,10 +111,11 @@ inline CameraSimulationResult SimulateTargetFromTrajectory(const AnalyticTraject
         if (std::abs(next - tau) < kToleranceS) break;
         tau = std::clamp(next, 0.0, tau_max);
       }
-      if (!projected || !(p_c.z() >= options.min_depth_m) || !(p_c.norm() <= options.max_depth_m)) {
+      if (!projected || !(p_c.norm() >= options.min_depth_m) ||
+          !(p_c.norm() <= options.max_depth_m)) {
         continue;
       }
-      if (!cam.camera.IsDistortionMonotonic(p_c.x() / p_c.z(), p_c.y() / p_c.z())) continue;
+      if (!cam.camera.IsDistortionMonotonic(p_c)) continue;
       if (!cam.camera.InImage(uv)) continue;
       // The exposure solved (not clamped): the pixel's row is the one exposed at tau.
       if (std::abs(cam.line_delay_s * uv.y() - tau) > 1e-9) continue;

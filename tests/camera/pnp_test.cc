@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "calib/camera_test_scene.h"
+#include "camera/camera_test_models.h"
 #include "splinecal/camera/target.h"
 
 namespace splinecal {
@@ -22,7 +23,7 @@ struct Views {
   std::vector<Eigen::Vector2d> uv;
 };
 
-Views Project(const PinholeCamera& camera,
+Views Project(const Camera& camera,
               const SE3d& T_c_t,
               const std::map<int64_t, Eigen::Vector3d>& points,
               double noise_px,
@@ -47,7 +48,7 @@ SE3d TestPose(double tilt) {
 }
 
 TEST(SolvePnp, PlanarTargetNoiseFreeIsExact) {
-  const PinholeCamera camera = testing::EurocCamera();
+  const Camera camera = testing::EurocCamera();
   const CalibrationTarget target = MakeAprilGrid(6, 6, 0.05, 0.3);
   for (double tilt : {0.0, 0.3, 0.7}) {
     const SE3d T_c_t = TestPose(tilt);
@@ -63,7 +64,7 @@ TEST(SolvePnp, PlanarTargetNoiseFreeIsExact) {
 }
 
 TEST(SolvePnp, NonPlanarTargetNoiseFreeIsExact) {
-  const PinholeCamera camera = testing::EurocCamera();
+  const Camera camera = testing::EurocCamera();
   std::map<int64_t, Eigen::Vector3d> points;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-0.2, 0.2);
@@ -78,7 +79,7 @@ TEST(SolvePnp, NonPlanarTargetNoiseFreeIsExact) {
 TEST(SolvePnp, NoisyPixelsGiveAPoseGoodEnoughToStartFrom) {
   // 0.5 px noise, ~100 corners at 0.8 m: the pose is good to ~1 mm and ~0.1 degree; the test
   // allows 5x that.
-  const PinholeCamera camera = testing::EurocCamera();
+  const Camera camera = testing::EurocCamera();
   const CalibrationTarget target = MakeAprilGrid(6, 6, 0.05, 0.3);
   const SE3d T_c_t = TestPose(0.4);
   const Views v = Project(camera, T_c_t, target.points, 0.5, 9);
@@ -90,8 +91,46 @@ TEST(SolvePnp, NoisyPixelsGiveAPoseGoodEnoughToStartFrom) {
   EXPECT_NEAR(result.rms_px, 0.5 * std::sqrt(2.0), 0.1);  // RMS of 2-D errors
 }
 
+TEST(SolvePnp, EveryCameraModelNoiseFreeIsExact) {
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.05, 0.3);
+  for (const testing::TestCamera& c : testing::AllTestCameras()) {
+    const SE3d T_c_t = TestPose(0.3);
+    const Views v = Project(c.camera, T_c_t, target.points, 0.0, 1);
+    ASSERT_GE(v.p_t.size(), 50u) << c.label;
+    const PnpResult result = SolvePnp(c.camera, v.p_t, v.uv);
+    ASSERT_TRUE(result.ok) << c.label << ": " << result.message;
+    EXPECT_LT((T_c_t.inverse() * result.T_c_t).Log().norm(), kExactTolerance) << c.label;
+  }
+}
+
+TEST(SolvePnp, WideAngleTargetBesideTheCamera) {
+  // A 190 degree double-sphere camera sees a target standing beside it, 0.6 m away towards the
+  // image's corner (azimuth 45 degrees), from about 72 to 108 degrees off the optical axis: half
+  // of its corners lie behind the image plane (z < 0), where no ray (x, y, 1) exists; bearings
+  // carry them.
+  const testing::TestCamera wide = testing::AllTestCameras().back();
+  ASSERT_EQ(wide.camera.model_name(), "ds-none");
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.05, 0.3);
+  const double s = std::sqrt(0.5);
+  Eigen::Matrix3d R_c_t;  // target x along the optical axis, its normal towards the camera
+  R_c_t.col(0) = Eigen::Vector3d::UnitZ();
+  R_c_t.col(1) = Eigen::Vector3d(-s, s, 0.0);
+  R_c_t.col(2) = Eigen::Vector3d(-s, -s, 0.0);
+  const Eigen::Vector3d centre_t(0.1875, 0.1875, 0.0);  // the grid's centre (0.375 m across)
+  const Eigen::Vector3d centre_c = 0.6 * Eigen::Vector3d(s, s, 0.0);
+  const SE3d T_c_t(SO3d::FromMatrix(R_c_t), centre_c - R_c_t * centre_t);
+  const Views v = Project(wide.camera, T_c_t, target.points, 0.0, 1);
+  int behind = 0;
+  for (const Eigen::Vector3d& p : v.p_t) behind += (T_c_t * p).z() < 0.0;
+  ASSERT_GE(v.p_t.size(), 130u);
+  ASSERT_GE(behind, 60);
+  const PnpResult result = SolvePnp(wide.camera, v.p_t, v.uv);
+  ASSERT_TRUE(result.ok) << result.message;
+  EXPECT_LT((T_c_t.inverse() * result.T_c_t).Log().norm(), kExactTolerance);
+}
+
 TEST(SolvePnp, RefusesTooFewOrCollinearPoints) {
-  const PinholeCamera camera = testing::EurocCamera();
+  const Camera camera = testing::EurocCamera();
   const CalibrationTarget target = MakeAprilGrid(6, 6, 0.05, 0.3);
   const SE3d T_c_t = TestPose(0.2);
   Views v = Project(camera, T_c_t, target.points, 0.0, 1);

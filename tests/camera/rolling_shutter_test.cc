@@ -18,7 +18,7 @@ constexpr double kTimeTolerance = 1e-9;
 // The row function of a world point seen from the test scene's spline at t_base + tau.
 struct SplineRow {
   const SE3Splined* spline;
-  const PinholeCamera* camera;
+  const Camera* camera;
   SE3d T_c_s;
   double t_base_s;
   Eigen::Vector3d p_w;

@@ -82,5 +82,73 @@ TEST(SimulateCameraCommand, CalibrateRecoversTheSimulatedRig) {
   EXPECT_NEAR(T[2][3], 0.01, 1e-3);
 }
 
+// Every command that reads a camchain takes the wide-angle models: simulate and calibrate with a
+// TUM-VI-like double-sphere fisheye (global shutter, 4 s), the model and its parameters carried
+// through both output camchains in Kalibr's order.
+TEST(SimulateCameraCommand, WideAngleDoubleSphereThroughSimulateAndCalibrate) {
+  TempDir dir;
+  std::string camchain = ReadFileText(DataFile("camchain_truth.yaml"));
+  const auto replace = [&camchain](const std::string& from, const std::string& to) {
+    const size_t at = camchain.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    camchain.replace(at, from.size(), to);
+  };
+  replace("camera_model: pinhole", "camera_model: ds");
+  replace("intrinsics: [458.654, 457.296, 367.215, 248.375]",
+          "intrinsics: [-0.18, 0.59, 158.3, 158.2, 256.1, 255.4]");
+  replace("distortion_model: radtan", "distortion_model: none");
+  replace("distortion_coeffs: [-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05]",
+          "distortion_coeffs: []");
+  replace("resolution: [752, 480]", "resolution: [512, 512]");
+  replace("line_delay: 3.0e-05", "line_delay: 0.0");
+  const std::string path = dir.Write("camchain_ds.yaml", camchain);
+  ASSERT_EQ(RunTool({"simulate",
+                     "--trajectory",
+                     "calibration",
+                     "--duration",
+                     "4",
+                     "--camchain",
+                     path,
+                     "--target",
+                     DataFile("aprilgrid.yaml"),
+                     "--landmarks",
+                     "60",
+                     "--quiet",
+                     "--out",
+                     dir.File("sim")})
+                .exit_code,
+            0);
+  const YamlDocument truth(dir.File("sim/camchain.yaml"));
+  EXPECT_EQ(truth.String("cam0/camera_model"), "ds");
+  EXPECT_EQ(truth.Numbers("cam0/intrinsics"),
+            std::vector<double>({-0.18, 0.59, 158.3, 158.2, 256.1, 255.4}));
+  const auto calibrate = RunTool({"calibrate",
+                                  "--imu",
+                                  dir.File("sim/mav0/imu0/data.csv"),
+                                  "--observations",
+                                  dir.File("sim/observations.csv"),
+                                  "--camchain",
+                                  path,
+                                  "--target",
+                                  DataFile("aprilgrid.yaml"),
+                                  "--imu-yaml",
+                                  dir.File("sim/imu.yaml"),
+                                  "--threads",
+                                  "2",
+                                  "--quiet",
+                                  "--out",
+                                  dir.File("cal")});
+  ASSERT_EQ(calibrate.exit_code, 0) << calibrate.err;
+  const YamlDocument result(dir.File("cal/camchain-imucam.yaml"));
+  EXPECT_EQ(result.String("cam0/camera_model"), "ds");
+  EXPECT_EQ(result.String("cam0/distortion_model"), "none");
+  EXPECT_EQ(result.Numbers("cam0/intrinsics"),
+            std::vector<double>({-0.18, 0.59, 158.3, 158.2, 256.1, 255.4}));
+  const auto T = result.Rows("cam0/T_cam_imu");
+  EXPECT_NEAR(T[0][3], 0.06, 2e-3);  // the truth's lever arm (4 s of data: mm-level)
+  EXPECT_NEAR(T[1][3], -0.02, 2e-3);
+  EXPECT_NEAR(T[2][3], 0.01, 2e-3);
+}
+
 }  // namespace
 }  // namespace splinecal

@@ -104,7 +104,7 @@ class PlanarViewRenderer {
  public:
   static constexpr int kSub = 3;  // sub-pixels per pixel and axis
 
-  PlanarViewRenderer(const PinholeCamera& camera, const AprilGridTexture& texture)
+  PlanarViewRenderer(const Camera& camera, const AprilGridTexture& texture)
       : camera_(camera), texture_(texture) {
     rays_ = cv::Mat(camera.height * kSub, camera.width * kSub, CV_32FC2);
     for (int y = 0; y < rays_.rows; ++y) {
@@ -163,7 +163,7 @@ class PlanarViewRenderer {
   }
 
  private:
-  PinholeCamera camera_;
+  Camera camera_;
   const AprilGridTexture& texture_;
   cv::Mat rays_;
 };

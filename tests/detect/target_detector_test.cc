@@ -47,7 +47,7 @@ struct HomographyFit {
 // pinhole image. A corner with a wrong id lands a tag pitch (50 px here) away from the fit.
 HomographyFit FitGridHomography(const TargetDetection& detection,
                                 const CalibrationTarget& target,
-                                const PinholeCamera& camera) {
+                                const Camera& camera) {
   std::vector<cv::Point2d> plane, ideal;
   const double fx = camera.fu, fy = camera.fv, cx = camera.pu, cy = camera.pv;
   for (const CornerDetection& corner : detection.corners) {

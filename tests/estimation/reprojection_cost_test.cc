@@ -29,7 +29,7 @@ constexpr double kModelTolerancePx = 1e-8;
 // Pixel of X_w = (x_w, w) at the exposure time, found by bisection on the spline's Pose (an
 // implementation independent of the cost functions').
 bool ReferencePixel(const SE3Splined& spline,
-                    const PinholeCamera& camera,
+                    const Camera& camera,
                     const SE3d& T_c_s,
                     double t_base,
                     double line_delay,

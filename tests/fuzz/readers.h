@@ -110,10 +110,11 @@ inline void ReadCamchainRoundTrip(const std::string& path) {
     const CameraCalibration& a = camchain[i];
     const CameraCalibration& b = again[i];
     Expect(a.camera.intrinsics() == b.camera.intrinsics() &&
-               a.camera.distortion == b.camera.distortion && a.camera.width == b.camera.width &&
-               a.camera.height == b.camera.height &&
-               a.time_offset_s == b.time_offset_s && a.line_delay_s == b.line_delay_s &&
-               a.rostopic == b.rostopic,
+               a.camera.projection == b.camera.projection &&
+               a.camera.distortion == b.camera.distortion &&
+               a.camera.radtan_k3 == b.camera.radtan_k3 && a.camera.width == b.camera.width &&
+               a.camera.height == b.camera.height && a.time_offset_s == b.time_offset_s &&
+               a.line_delay_s == b.line_delay_s && a.rostopic == b.rostopic,
            "camchain read back exactly");
     // The rotation goes through a quaternion each way: equal to rounding.
     Expect((a.T_cam_imu.matrix() - b.T_cam_imu.matrix()).cwiseAbs().maxCoeff() <=

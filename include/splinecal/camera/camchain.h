@@ -14,6 +14,7 @@
 #define SPLINECAL_CAMERA_CAMCHAIN_H_
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,11 +25,14 @@
 namespace splinecal {
 
 struct CameraCalibration {
-  PinholeCamera camera;
+  Camera camera;
   SE3d T_cam_imu;  // identity when the file has none
   double time_offset_s = 0.0;
   double line_delay_s = 0.0;
   std::string rostopic;  // kept from the input, written back when not empty
+  // Camera n-1 into camera n (Kalibr's T_cn_cnm1), when the file has it (cam1 onwards): the
+  // rig's camera-to-camera poses from a camera calibration (`splinecal intrinsics`).
+  std::optional<SE3d> T_cn_cnm1;
 };
 
 // cam0, cam1, ... in order.

@@ -1,119 +1,151 @@
-// Pinhole camera with radial-tangential, equidistant or no distortion (Kalibr's `pinhole` camera
-// model with `radtan`, `equidistant` or `none`, CONVENTIONS.md "Camera ..."): projection and
-// unprojection with analytic Jacobians with respect to the point and to the intrinsics.
+// Camera models (Kalibr's, CONVENTIONS.md "Camera ..."): projection and unprojection with
+// analytic Jacobians with respect to the point and to the intrinsics, valid-region checks, and
+// the names used in camchain.yaml and on the command line.
 //
-// Projection of a point p_c = (X, Y, Z) in the camera frame (Z > 0, in front of the camera):
+// Every model is three stages, uv = K(D(P(p_c))):
 //
-//   x = X / Z,  y = Y / Z                                      (normalised image plane)
-//   (x_d, y_d) = D(x, y; k)                                    (distortion, below)
-//   u = fu x_d + pu,   v = fv y_d + pv                         [px]
+//   m   = P(p_c; m0, m1) = (x, y) / den(p_c)     projection to the normalised plane
+//                                                (camera/projection.h: den, valid region, lift)
+//   m_d = D(m; d0..d4)                           lens distortion (camera/distortion.h)
+//   uv  = (fu m_d,x + pu, fv m_d,y + pv)         [px]
 //
-// Distortion models (k = distortion_coeffs, r^2 = x^2 + y^2):
-//   none         D(x, y) = (x, y)
-//   radtan       (Brown-Conrady, k = [k1 k2 p1 p2], as OpenCV / Kalibr)
-//                  x_d = x (1 + k1 r^2 + k2 r^4) + 2 p1 x y + p2 (r^2 + 2 x^2)
-//                  y_d = y (1 + k1 r^2 + k2 r^4) + p1 (r^2 + 2 y^2) + 2 p2 x y
-//   equidistant  (Kannala-Brandt, k = [k1 k2 k3 k4], as Kalibr / OpenCV fisheye)
-//                  theta = atan(r),  theta_d = theta (1 + k1 theta^2 + k2 theta^4
-//                                                      + k3 theta^6 + k4 theta^8)
-//                  (x_d, y_d) = s (x, y),  s = theta_d / r
-//                Near the optical axis (r^2 < 1e-10) s uses its series
-//                  s = 1 + (k1 - 1/3) r^2     (first dropped term O(r^4) < 1e-20)
-//                and ds/dr / r = 2 (k1 - 1/3): r = sqrt(x^2 + y^2) is never differentiated at 0
-//                (sqrt'(0) is infinite for Jets).
+// The 8 supported models (Kalibr's names; "projection-distortion" on the command line):
 //
-// Intrinsics vector (the layout of every intrinsics Jacobian): [fu fv pu pv k_0 k_1 k_2 k_3],
-// 8 entries; the distortion entries of `none` are zero and their Jacobian columns are zero.
+//   name            camchain.yaml camera_model, intrinsics   distortion_model, coeffs
+//   pinhole-none    pinhole [fu fv pu pv]                  none []
+//   pinhole-radtan  pinhole [fu fv pu pv]                  radtan [k1 k2 p1 p2] or [.. k3]
+//   pinhole-equi    pinhole [fu fv pu pv]                  equidistant [k1 k2 k3 k4]
+//   pinhole-fov     pinhole [fu fv pu pv]                  fov [w]
+//   omni-none       omni [xi fu fv pu pv]                  none []
+//   omni-radtan     omni [xi fu fv pu pv]                  radtan [k1 k2 p1 p2] or [.. k3]
+//   eucm-none       eucm [alpha beta fu fv pu pv]          none []
+//   ds-none         ds [xi alpha fu fv pu pv]              none []
 //
-// Unprojection inverts D by Newton's method (2-D for radtan, 1-D in theta for equidistant) and
-// returns the ray (x, y, 1) (z = 1, so a point at depth Z is Z * ray). Its Jacobians come from
-// the implicit function D(x; k) = x_d(u, intrinsics):
-//   d(x, y)/d(u, v)       = J_D^-1 diag(1/fu, 1/fv)
-//   d(x, y)/d intrinsics  = J_D^-1 (d x_d / d intrinsics - d D / d k),   J_D = dD/d(x, y).
+// Intrinsics vector (the layout of every intrinsics Jacobian and of ProjectT), 11 entries:
+//   [fu fv pu pv | m0 m1 | d0 d1 d2 d3 d4]
+//   (m0, m1) = omni (xi, 0), eucm (alpha, beta), ds (xi, alpha), pinhole (0, 0);
+//   d = radtan (k1 k2 p1 p2 k3), equidistant (k1 k2 k3 k4 0), fov (w 0 0 0 0), none 0.
+// Entries a model does not use have zero Jacobian columns; ActiveIntrinsics() lists the others.
 //
-// Validity. Project returns false for points with Z <= kMinDepth (behind or on the camera
-// plane). A distortion polynomial folds back beyond some radius (radtan with k1 < 0, a large
-// equidistant theta): IsDistortionMonotonic tells whether the radial map is still increasing at
-// a point (det J_D > 0), the test the simulator uses with InImage for its field-of-view check.
+// Jacobians (chain rule through the stages):
+//   d uv / d p_c        = F J_m_p,                F = diag(fu, fv) dD/dm
+//   d uv / d (fu fv pu pv) = [[m_d,x, 0, 1, 0], [0, m_d,y, 0, 1]]
+//   d uv / d (m0, m1)   = F J_m_params
+//   d uv / d d          = diag(fu, fv) dD/dd
+// with J_m_p, J_m_params from camera/projection.h and dD/dm, dD/dd from camera/distortion.h.
+//
+// Validity. Project returns false outside the projection's valid region (camera/projection.h:
+// pinhole z > kMinDepth; omni, eucm, ds the regions of [Usenko18]). A distortion polynomial may
+// fold back beyond some radius (radtan with k1 < 0, a large equidistant theta), and an omni
+// camera with xi > 1 folds at its region's border: IsDistortionMonotonic tells whether the whole
+// projection is still locally invertible at a point,
+//   det [d uv / d p_c ; p_c^T / |p_c|] > 0
+// (the 2x2 Jacobian on the plane orthogonal to the ray, oriented so that it is fu fv / z^2 > 0
+// on the optical axis). The simulator uses it with InImage for its field-of-view check.
+//
+// Unprojection. UnprojectToBearing undoes K, then D (camera/distortion.h: Newton for radtan and
+// equidistant, closed form for fov), then P (closed form lift), and checks the result: the
+// bearing must project back onto uv (to kUnprojectAcceptance in normalised units) on a locally
+// invertible branch. It is valid for wide-angle (> 180 degree) cameras. Unproject returns the
+// ray (x, y, 1) of the same bearing (z = 1, so a point at depth z is z * ray) and fails for
+// bearings at or beyond 90 degrees from the axis. Its Jacobians follow from the implicit
+// function Project((x, y, 1)) = uv, with A = d uv / d (x, y) at z = 1 (the first two columns of
+// d uv / d p_c):
+//   d (x, y) / d uv          = A^-1
+//   d (x, y) / d intrinsics  = -A^-1 d uv / d intrinsics.
+//
+// ProjectT is the same projection for any scalar (ceres::Jet for automatic differentiation); it
+// shares the valid-region test (internal::ProjectionDenominator) with Project.
+//
+// References: camera/projection.h and camera/distortion.h; docs/conventions.md has the table
+// with the formulas.
 #ifndef SPLINECAL_CAMERA_CAMERA_MODEL_H_
 #define SPLINECAL_CAMERA_CAMERA_MODEL_H_
 
 #include <Eigen/Core>
 #include <cmath>
 #include <string>
+#include <vector>
+
+#include "splinecal/camera/distortion.h"
+#include "splinecal/camera/projection.h"
 
 namespace splinecal {
 
-enum class DistortionModel { kNone, kRadTan, kEquidistant };
-
-// "none", "radtan", "equidistant" (Kalibr's spelling).
+// "pinhole", "omni", "eucm", "ds" (Kalibr's camera_model).
+std::string ProjectionModelName(ProjectionModel model);
+// "none", "radtan", "equidistant", "fov" (Kalibr's distortion_model).
 std::string DistortionModelName(DistortionModel model);
+// "pinhole-radtan", "pinhole-equi", "omni-none", ... (Kalibr's command-line names; the
+// equidistant model is "equi" here). Unsupported pairs are named the same way.
+std::string CameraModelName(ProjectionModel projection, DistortionModel distortion);
+// True for the 8 supported pairs (file comment).
+bool IsSupportedCameraModel(ProjectionModel projection, DistortionModel distortion);
+// Accepts exactly the 8 names of the file comment; false (outputs untouched) for anything else.
+bool ParseCameraModelName(const std::string& name,
+                          ProjectionModel* projection,
+                          DistortionModel* distortion);
+// The 8 names, comma-separated, for messages.
+std::string SupportedCameraModelNames();
 
-inline constexpr int kNumIntrinsics = 8;  // [fu fv pu pv k0 k1 k2 k3]
+// Intrinsics layout (file comment).
+inline constexpr int kNumIntrinsics = 11;
+inline constexpr int kProjectionParamsIndex = 4;  // m0, m1
+inline constexpr int kDistortionCoeffsIndex = 6;  // d0..d4
 using IntrinsicsVector = Eigen::Matrix<double, kNumIntrinsics, 1>;
 
-namespace internal {
+// A camera: its projection and distortion models, their parameters and the image size.
+struct Camera {
+  // Points closer to a pinhole camera's plane than this [m] do not project (z <= kMinDepth).
+  static constexpr double kMinDepth = internal::kPinholeMinDepth;
+  // An unprojected bearing must project back onto its pixel within this, in normalised units
+  // (|uv error| / f; 1e-9 is ~1e-6 px at f = 1000 px, far above the 1e-14 the inversions reach).
+  static constexpr double kUnprojectAcceptance = 1e-9;
 
-// Below this r^2 the equidistant model uses its series (file comment).
-inline constexpr double kEquidistantSeriesRSq = 1e-10;
-
-// D(x, y; k) for any scalar (double or ceres::Jet). k points at 4 coefficients (ignored for
-// kNone).
-template <typename T>
-Eigen::Matrix<T, 2, 1> Distort(DistortionModel model, const T* k, const T& x, const T& y) {
-  using std::atan;
-  using std::sqrt;
-  if (model == DistortionModel::kNone) return Eigen::Matrix<T, 2, 1>(x, y);
-  const T r2 = x * x + y * y;
-  if (model == DistortionModel::kRadTan) {
-    const T radial = T(1.0) + k[0] * r2 + k[1] * r2 * r2;
-    const T xy = x * y;
-    return Eigen::Matrix<T, 2, 1>(x * radial + T(2.0) * k[2] * xy + k[3] * (r2 + T(2.0) * x * x),
-                                  y * radial + k[2] * (r2 + T(2.0) * y * y) + T(2.0) * k[3] * xy);
-  }
-  // Equidistant.
-  T s;
-  if (r2 < T(kEquidistantSeriesRSq)) {
-    s = T(1.0) + (k[0] - T(1.0 / 3.0)) * r2;
-  } else {
-    const T r = sqrt(r2);
-    const T theta = atan(r);
-    const T t2 = theta * theta;
-    const T theta_d = theta * (T(1.0) + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3]))));
-    s = theta_d / r;
-  }
-  return Eigen::Matrix<T, 2, 1>(s * x, s * y);
-}
-
-}  // namespace internal
-
-// A pinhole camera with its distortion and image size.
-struct PinholeCamera {
-  // Points closer to the camera plane than this [m] do not project (Z <= kMinDepth).
-  static constexpr double kMinDepth = 1e-6;
-
+  ProjectionModel projection = ProjectionModel::kPinhole;
+  DistortionModel distortion = DistortionModel::kNone;
   double fu = 1.0;  // focal lengths [px]
   double fv = 1.0;
   double pu = 0.0;  // principal point [px]
   double pv = 0.0;
-  DistortionModel distortion = DistortionModel::kNone;
-  Eigen::Vector4d distortion_coeffs = Eigen::Vector4d::Zero();  // radtan k1 k2 p1 p2; equi k1..k4
-  int width = 0;                                                // [px]
+  Eigen::Vector2d projection_params = Eigen::Vector2d::Zero();    // (m0, m1), file comment
+  DistortionCoeffs distortion_coeffs = DistortionCoeffs::Zero();  // d0..d4, file comment
+  // radtan only: k3 (d4) is estimated too (camchain.yaml gave 5 coefficients). Without it k3 is
+  // held at its value (0 unless given).
+  bool radtan_k3 = false;
+  int width = 0;   // [px]
   int height = 0;  // [px] (rows; the rolling shutter reads them top to bottom)
+
+  // "pinhole-radtan" etc.
+  std::string model_name() const { return CameraModelName(projection, distortion); }
 
   IntrinsicsVector intrinsics() const;
   void set_intrinsics(const IntrinsicsVector& intrinsics);
 
-  // Pixel of p_c; false (outputs untouched) when Z <= kMinDepth. Outputs optional (nullptr):
-  // J_uv_p = d uv / d p_c (2x3), J_uv_intrinsics = d uv / d intrinsics (2x8).
+  // Indices into the intrinsics vector that this model uses and an estimator may vary, in
+  // increasing order: fu fv pu pv, the projection's parameters, the distortion's coefficients
+  // (radtan's k3 only with radtan_k3). Every other entry is held constant by estimators.
+  std::vector<int> ActiveIntrinsics() const;
+
+  // True when the parameters are in the models' domains: a supported pair, finite values,
+  // fu, fv > 0; omni xi >= 0; eucm alpha in [0, 1], beta > 0; ds alpha in [0, 1], xi in (-1, 1];
+  // fov w in [0, pi). Otherwise false with the problem in words in *error (if not null).
+  bool IsValid(std::string* error = nullptr) const;
+
+  // Pixel of p_c; false (outputs untouched) outside the valid region. Outputs optional
+  // (nullptr): J_uv_p = d uv / d p_c (2x3), J_uv_intrinsics = d uv / d intrinsics (2x11).
   bool Project(const Eigen::Vector3d& p_c,
                Eigen::Vector2d* uv,
                Eigen::Matrix<double, 2, 3>* J_uv_p = nullptr,
                Eigen::Matrix<double, 2, kNumIntrinsics>* J_uv_intrinsics = nullptr) const;
 
-  // The ray (x, y, 1) whose projection is uv; false when Newton's method does not converge
-  // (a pixel outside the invertible part of the distortion). Outputs optional:
-  // J_ray_uv (3x2, last row 0), J_ray_intrinsics (3x8, last row 0).
+  // The unit bearing whose projection is uv, for any field of view; false when uv has no
+  // preimage in the valid region on a locally invertible branch (file comment).
+  bool UnprojectToBearing(const Eigen::Vector2d& uv, Eigen::Vector3d* unit_bearing) const;
+
+  // The ray (x, y, 1) whose projection is uv; false when UnprojectToBearing fails or the bearing
+  // is at or beyond 90 degrees from the optical axis. Outputs optional: J_ray_uv (3x2, last row
+  // 0), J_ray_intrinsics (3x11, last row 0).
   bool Unproject(const Eigen::Vector2d& uv,
                  Eigen::Vector3d* ray,
                  Eigen::Matrix<double, 3, 2>* J_ray_uv = nullptr,
@@ -124,38 +156,34 @@ struct PinholeCamera {
     return uv.x() >= 0.0 && uv.y() >= 0.0 && uv.x() <= width - 1.0 && uv.y() <= height - 1.0;
   }
 
-  // det dD/d(x, y) > 0 at the normalised point (x, y): the distortion has not folded back.
-  bool IsDistortionMonotonic(double x, double y) const;
+  // The projection is valid and still locally invertible (has not folded back) at p_c:
+  // det [d uv / d p_c ; p_c^T / |p_c|] > 0 (file comment).
+  bool IsDistortionMonotonic(const Eigen::Vector3d& p_c) const;
+  // The same at the point (x, y, 1) (normalised pinhole coordinates).
+  bool IsDistortionMonotonic(double x, double y) const {
+    return IsDistortionMonotonic(Eigen::Vector3d(x, y, 1.0));
+  }
 
-  // The same projection for any scalar (ceres::Jet in automatic differentiation tests):
-  // intrinsics[8] in the layout above. Returns false for Z <= kMinDepth.
+  // The same projection for any scalar (ceres::Jet in automatic differentiation): intrinsics
+  // points at kNumIntrinsics entries in the layout above. False outside the valid region.
   template <typename T>
-  static bool ProjectT(DistortionModel model,
+  static bool ProjectT(ProjectionModel projection,
+                       DistortionModel distortion,
                        const T* intrinsics,
                        const Eigen::Matrix<T, 3, 1>& p_c,
                        Eigen::Matrix<T, 2, 1>* uv) {
-    if (!(p_c.z() > T(kMinDepth))) return false;
-    const T x = p_c.x() / p_c.z();
-    const T y = p_c.y() / p_c.z();
-    const Eigen::Matrix<T, 2, 1> d = internal::Distort(model, intrinsics + 4, x, y);
-    (*uv)(0) = intrinsics[0] * d(0) + intrinsics[2];
-    (*uv)(1) = intrinsics[1] * d(1) + intrinsics[3];
+    T den;
+    if (!internal::ProjectionDenominator(
+            projection, intrinsics + kProjectionParamsIndex, p_c, &den)) {
+      return false;
+    }
+    const Eigen::Matrix<T, 2, 1> md = internal::Distort(
+        distortion, intrinsics + kDistortionCoeffsIndex, p_c.x() / den, p_c.y() / den);
+    (*uv)(0) = intrinsics[0] * md(0) + intrinsics[2];
+    (*uv)(1) = intrinsics[1] * md(1) + intrinsics[3];
     return true;
   }
 };
-
-namespace internal {
-
-// D and its Jacobians (double): J_d_xy = dD/d(x, y) (2x2), J_d_k = dD/dk (2x4, zero for kNone).
-void DistortWithJacobians(DistortionModel model,
-                          const Eigen::Vector4d& k,
-                          double x,
-                          double y,
-                          Eigen::Vector2d* d,
-                          Eigen::Matrix2d* J_d_xy,
-                          Eigen::Matrix<double, 2, 4>* J_d_k);
-
-}  // namespace internal
 
 }  // namespace splinecal
 

@@ -1,14 +1,19 @@
 // Pose of a calibration target in the camera from one image (perspective-n-point), the initial
 // guess of `splinecal calibrate`'s target poses.
 //
-//   1. Every pixel is unprojected to its ray (x, y, 1) (camera/camera_model.h), so the rest is
-//      distortion-free.
+//   1. Every pixel is unprojected to its unit bearing b (camera/camera_model.h,
+//      UnprojectToBearing), so the closed form is free of the camera model and works for
+//      wide-angle (> 180 degree) cameras as for pinhole ones. A pixel without a bearing (noise
+//      can push a corner seen at a fisheye's rim beyond the image of the model's valid region)
+//      is left out of the closed form and kept in the refinement.
 //   2. Closed form. Planar targets (every point at z = 0): the homography H ~ [r1 r2 t] from
-//      (X, Y, 1) to (x, y, 1) by the normalised direct linear transform (Hartley's scaling,
-//      smallest right singular vector), then R = closest rotation to [r1 r2 r1 x r2] (SVD),
-//      t = h3 / mean(|h1|, |h2|), the sign chosen so that the points are in front [Zhang00].
+//      (X, Y, 1) to b by the direct linear transform b x (H a) = 0 (Hartley's scaling of the
+//      target points; unit bearings need none; smallest right singular vector), then
+//      R = closest rotation to [r1 r2 r1 x r2] (SVD), t = h3 / mean(|h1|, |h2|), the sign chosen
+//      so that the points lie along their bearings, sum_i b_i . (H a_i) > 0 [Zhang00].
 //      Non-planar targets: the 3x4 projection [R | t] by the same DLT on (X, Y, Z, 1), R the
-//      closest rotation to its left block, the scale from its singular values.
+//      closest rotation to its left block, the scale from its singular values, the same sign
+//      rule.
 //   3. Levenberg-Marquardt on the pixel reprojection error (distortion included) over T_c_t with
 //      the RIGHT perturbation T_c_t Exp(d): d x_c / d d = R_c_t [I, -[p_t]x].
 // Rolling shutter is ignored here (the calibration models it); the result is an initial guess.
@@ -43,8 +48,9 @@ struct PnpResult {
 };
 
 // p_t[i] (target frame) is seen at uv[i]. Returns ok = false with a message for too few
-// points, degenerate geometry (collinear points, singular DLT) or points that do not unproject.
-PnpResult SolvePnp(const PinholeCamera& camera,
+// points (or too few whose pixels unproject), degenerate geometry (collinear points, singular
+// DLT) or a closed-form pose that puts points outside the camera model's valid region.
+PnpResult SolvePnp(const Camera& camera,
                    const std::vector<Eigen::Vector3d>& p_t,
                    const std::vector<Eigen::Vector2d>& uv,
                    const PnpOptions& options = PnpOptions());

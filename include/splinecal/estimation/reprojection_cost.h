@@ -14,7 +14,7 @@
 //   t = t_frame + time_offset + tau,   tau = line_delay * v(t),
 // the point in the IMU and camera frames and the pixel are
 //   x_s = R_w_s^T (x_w - p_w_s w),   x_c = R_c_s x_s + t_c_s w,   uv = pi(x_c)
-// (pi = PinholeCamera::Project; a homogeneous point projects like x_c / w for w > 0, and
+// (pi = Camera::Project; a homogeneous point projects like x_c / w for w > 0, and
 // rho -> 0 is a point at infinity, no division by rho anywhere). Residual, 2 rows per point:
 //   r = (uv - uv_observed) / sigma_px,
 // robustified per point inside the cost function by Huber's loss with threshold huber_px
@@ -39,8 +39,8 @@
 // multiplied by M; the line delay gets M dG/d line_delay + g_dot v / D; the time shift's
 // partial is d uv / dt (plus the landmark's reference-time term).
 // Control-pose, extrinsic and target-pose Jacobians are lifted to the ambient blocks
-// {px, py, pz, qx, qy, qz, qw} exactly by estimation/pose_block_jacobian.h, so ceres::GradientChecker
-// agrees with them through SE3Manifold.
+// {px, py, pz, qx, qy, qz, qw} exactly by estimation/pose_block_jacobian.h, so
+// ceres::GradientChecker agrees with them through SE3Manifold.
 //
 // Robust loss inside the cost function. Several points share one residual block (a frame's
 // target corners), but Ceres' LossFunction acts on a whole block. So each point's 2-vector r is
@@ -75,7 +75,7 @@ namespace splinecal {
 
 // What every reprojection residual of one camera shares.
 struct ReprojectionSettings {
-  const PinholeCamera* camera = nullptr;  // not owned
+  const Camera* camera = nullptr;  // not owned
   KnotLayout layout;  // only dt and n matter: residual times are seconds since t0
   double sigma_px = 1.0;  // pixel noise std [px]: residuals are divided by it
   double huber_px = 0.0;  // Huber threshold [px]; 0 = plain least squares
@@ -177,7 +177,7 @@ struct PointProjection {
 
 // False when the point is not in front of the camera. Jacobians only when with_jacobians
 // (uv_dot always).
-bool ProjectPoint(const PinholeCamera& camera,
+bool ProjectPoint(const Camera& camera,
                   const SE3d& T_c_s,
                   const BodyState& state,
                   const Eigen::Vector3d& x_w,

@@ -9,17 +9,19 @@
 //
 // A point is observed in a frame when (visibility and field-of-view checks):
 //   * its exposure time solves (Newton, camera/rolling_shutter.h; the row falls in the image),
-//   * it is in front of the camera by at least min_depth_m and within max_depth_m,
-//   * the distortion has not folded back there (PinholeCamera::IsDistortionMonotonic) and the
-//     pixel (before noise) is inside the image,
+//   * its distance from the camera centre is in [min_depth_m, max_depth_m],
+//   * it is in the camera model's valid region and the projection has not folded back there
+//     (Camera::IsDistortionMonotonic; a wide-angle camera sees points behind its image plane),
+//     and the pixel (before noise) is inside the image,
 //   * for a planar target: the camera is on the target's +z side and views it at most
 //     max_view_angle_deg away from the target's normal (detectors lose tags seen edge-on).
 // Pixel noise: N(0, pixel_noise_px^2) per coordinate from the library's seeded Gaussian sampler
 // (sim/noise_generator.h): the same seed gives the same file.
 //
 // Natural landmarks: num_landmarks points, each placed by picking a random frame, a random pixel
-// and a random depth in [landmark_min_depth_m, landmark_max_depth_m] and unprojecting it, so
-// every landmark is seen at least from where it was made; ids start at kLandmarkIdBase.
+// (of camera 0, one that has a bearing) and a random distance in [landmark_min_depth_m,
+// landmark_max_depth_m] along its bearing (Camera::UnprojectToBearing), so every landmark is
+// seen at least from where it was made; ids start at kLandmarkIdBase.
 //
 // A trajectory for calibration sequences: CalibrationCameraPose(t) moves the camera over the
 // target's centre (height ~1 m), always looking near it, with rotation about all three axes and
@@ -65,7 +67,7 @@ struct CameraSimulationOptions {
   double landmark_min_depth_m = 1.0;
   double landmark_max_depth_m = 6.0;
 
-  double min_depth_m = 0.05;  // closer points are not observed [m]
+  double min_depth_m = 0.05;  // closer points (distance from the camera) are not observed [m]
   double max_depth_m = 50.0;  // farther points are not observed [m]
 };
 
