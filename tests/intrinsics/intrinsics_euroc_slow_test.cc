@@ -23,13 +23,13 @@ struct EurocRun {
   IntrinsicsResult result;
 };
 
-EurocRun RunEuroc(int max_views) {
+EurocRun RunEuroc(int max_views, const std::string& model = "pinhole-radtan") {
   EurocRun run;
   run.target = ReadTargetYaml(testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"));
   const std::vector<Observation> observations =
       ReadObservationsCsv(testing::SharedDataPath("euroc_imu_april/observations.csv"));
   IntrinsicsCameraSpec spec;
-  spec.camera.distortion = DistortionModel::kRadTan;
+  EXPECT_TRUE(ParseCameraModelName(model, &spec.camera.projection, &spec.camera.distortion));
   spec.camera.width = 752;
   spec.camera.height = 480;
   IntrinsicsOptions options;
@@ -96,6 +96,42 @@ TEST(IntrinsicsEuroc, StereoBaselineWithinOneMillimetreOfThePublishedOne) {
   EXPECT_NEAR(baseline_mm, 110.074, 1.0);
   // Its std is what the two halves of a recording would disagree by: far below 1 mm.
   EXPECT_LT(1e3 * run.result.cameras[1].T_cn_cnm1_std.head<3>().norm(), 1.0);
+}
+
+// basalt's double sphere of this rig (REFERENCE.md B): fx, fy, cx, cy, xi, alpha per camera.
+constexpr double kBasaltDs[2][6] = {
+    {349.7560023, 348.7245423, 365.8944076, 249.3299557, -0.2409573942, 0.5669968992},
+    {361.6713884, 360.5856494, 379.4081839, 255.9772969, -0.2130083538, 0.5767008625}};
+
+TEST(IntrinsicsEuroc, DoubleSphereAgainstBasaltsPublishedCalibration) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april");
+  const EurocRun ds = RunEuroc(0, "ds-none");
+  const EurocRun radtan = RunEuroc(0);
+  for (int n = 0; n < 2; ++n) {
+    SCOPED_TRACE("cam" + std::to_string(n));
+    const Camera& c = ds.result.cameras[n].camera;
+    const double* b = kBasaltDs[n];
+    RecordProperty("cam" + std::to_string(n) + "_ds_fx_fy_cx_cy_xi_alpha_rms",
+                   std::to_string(c.fu) + " " + std::to_string(c.fv) + " " +
+                       std::to_string(c.pu) + " " + std::to_string(c.pv) + " " +
+                       std::to_string(c.projection_params(0)) + " " +
+                       std::to_string(c.projection_params(1)) + " " +
+                       std::to_string(ds.result.cameras[n].reprojection_rms_px));
+    // The principal point within 8 px (this recording covers less of the image than basalt's).
+    EXPECT_NEAR(c.pu, b[2], 8.0);
+    EXPECT_NEAR(c.pv, b[3], 8.0);
+    // The focal length near the optical axis, f / (1 + xi) (the double sphere's projection of
+    // a small angle), within 2% of basalt's. fx and xi themselves trade along a valley this
+    // recording does not resolve: fx lands 7% below basalt's, xi 0.05 lower (an open item of
+    // issue 14, docs/intrinsics.md).
+    EXPECT_NEAR(c.fu / (1.0 + c.projection_params(0)), b[0] / (1.0 + b[4]),
+                0.02 * b[0] / (1.0 + b[4]));
+    EXPECT_NEAR(c.fv / (1.0 + c.projection_params(0)), b[1] / (1.0 + b[4]),
+                0.02 * b[1] / (1.0 + b[4]));
+    // The wide-angle model explains the corners at least as well as radtan.
+    EXPECT_LE(ds.result.cameras[n].reprojection_rms_px,
+              radtan.result.cameras[n].reprojection_rms_px);
+  }
 }
 
 }  // namespace
