@@ -164,7 +164,7 @@ int RunIntrinsics() {
   output.WriteFile("camchain.yaml", CamchainYamlText(camchain, CamchainKeys::kCamerasOnly));
   output.WriteFile("result.yaml", IntrinsicsResultYaml(result));
   IntrinsicsReportInputs inputs{FLAGS_observations, FLAGS_target, FLAGS_camchain};
-  output.WriteFile("report.html", IntrinsicsReportHtml(result, inputs, 20000));
+  output.WriteFile("report.html", IntrinsicsReportHtml(result, inputs, 3000));
   output.Commit();
   if (!Quiet()) std::fputs(IntrinsicsSummaryText(result).c_str(), stderr);
   return 0;

@@ -296,6 +296,7 @@ std::string IntrinsicsSummaryText(const IntrinsicsResult& result) {
       text += StringPrintf(" %.3f (%.2g)", values(i), c.intrinsics_std(i));
     }
     text += "\n  distortion";
+    if (KalibrDistortionOrder(c.camera).empty()) text += " none";
     for (int i : KalibrDistortionOrder(c.camera)) {
       text += StringPrintf(" %.6f (%.2g)", values(i), c.intrinsics_std(i));
     }
