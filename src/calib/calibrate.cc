@@ -1,66 +1,20 @@
-#include "splinecal/calib/calibrate.h"
+#include "calibration_problem.h"
 
 #include <ceres/ceres.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
-#include <set>
 #include <string>
-#include <tuple>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
-#include "calibration_data.h"
-#include "calibration_warnings.h"
-#include "splinecal/calib/fit.h"
-#include "splinecal/camera/pnp.h"
-#include "splinecal/error.h"
-#include "splinecal/estimation/gravity_manifold.h"
-#include "splinecal/estimation/imu_costs.h"
-#include "splinecal/estimation/imu_noise_estimate.h"
-#include "splinecal/estimation/marginal_covariance.h"
-#include "splinecal/estimation/reprojection_cost.h"
-#include "splinecal/estimation/solve_rounds.h"
-#include "splinecal/estimation/spline_problem.h"
-#include "splinecal/imu/imu_rate.h"
-#include "splinecal/lie/se3_manifold.h"
-#include "splinecal/string_printf.h"
-#include "splinecal/units.h"
-#include "splinecal/vio/align.h"
-
 namespace splinecal {
-
-using calibrate_internal::AddStandardDeviationWarnings;
-using calibrate_internal::CheckInputs;
-using calibrate_internal::CheckRotationExcitation;
-using calibrate_internal::CheckTargetSeen;
-using calibrate_internal::FramePeriods;
-using calibrate_internal::ImuBetween;
-using calibrate_internal::Landmark;
-using calibrate_internal::MakeLandmarks;
-using calibrate_internal::MakeTargetFrames;
-using calibrate_internal::ObservationsInsideImu;
-using calibrate_internal::SpanOfFrames;
-using calibrate_internal::TargetFrame;
-
+namespace calibrate_internal {
 namespace {
 
-// Time windows of the reprojection residuals reach this far beyond the current exposure range
-// [s]: the time offset may move this much during one solve before the windows are rebuilt.
-constexpr double kWindowMargin_s = 0.005;
-// A solve that ends with an exposure range within this of its window's edge [s] is re-solved
-// with new windows.
-constexpr double kWindowRebuildMargin_s = 0.002;
-// The pixel sigma is re-estimated after each solve; a change above this fraction triggers
-// another round.
-constexpr double kSigmaChangeForNewRound = 0.1;
-// 1.4826 x median absolute deviation = std of a Gaussian.
-constexpr double kMadToStd = 1.4826;
 // Stops a solve (SOLVER_TERMINATE_SUCCESSFULLY) at the first iteration for which stop(summary)
 // holds, and remembers that it did; the caller rebuilds the problem and solves again. Needs
 // Solver::Options::update_state_every_iteration (stop reads the parameters). Two uses in Run:
@@ -91,172 +45,8 @@ class StopWhen : public ceres::IterationCallback {
 // then it stays where the data put it, so that the rounds cannot alternate for ever.
 constexpr int kMaxLineDelayReleases = 2;
 
-class CalibrationProblem {
- public:
-  CalibrationProblem(const std::vector<ImuSample>& imu,
-                     const Camchain& camchain,
-                     const CalibrateOptions& options,
-                     const CalibrationInitialGuess& guess,
-                     bool has_target)
-      : imu_(imu),
-        camchain_(camchain),
-        options_(options),
-        layout_(guess.layout),
-        has_target_(has_target) {
-    dt_s_ = layout_.dt_s();
-    const int n = layout_.num_control_poses;
-    spline_ = std::make_unique<SplineProblem>(
-        layout_,
-        guess.control_poses,
-        BiasSpline(options.model.bias_model, layout_, options.model.bias_knot_spacing_s));
-    imu_rate_hz_ = ImuRateHz(imu_);
-    imu_noise_ = std::make_unique<ImuNoiseEstimator>(
-        options.model.noise, imu_rate_hz_, options.model.imu_noise);
-    spline_->SetGravity(options.model.gravity_m_s2 * guess.gravity_w.normalized());
-    spline_->SetBiases(guess.gyro_bias, guess.accel_bias);
-    // Cameras.
-    cameras_.resize(camchain.size());
-    for (size_t c = 0; c < camchain.size(); ++c) {
-      const CameraCalibration& init = guess.camchain[c];
-      CameraState& cam = cameras_[c];
-      PoseToBlock(init.T_cam_imu, cam.extrinsic.data());
-      cam.time_offset_s = init.time_offset_s;
-      cam.line_delay =
-          options.rolling_shutter ? std::max(0.0, init.line_delay_s) : init.line_delay_s;
-    }
-    PoseToBlock(SE3d(), T_w_t_.data());
-    imu_ = ImuBetween(imu,
-                      layout_.t0_ns + layout_.dt_ns,
-                      layout_.t0_ns + static_cast<int64_t>(n - 2) * layout_.dt_ns);
-    if (imu_.size() < 2) throw Error("calibrate: fewer than 2 IMU samples inside the spline");
-  }
+}  // namespace
 
-  void SetFramePeriods(const std::vector<double>& periods) { frame_periods_ = periods; }
-  std::vector<TargetFrame>* target_frames() { return &target_frames_; }
-  std::vector<Landmark>* landmarks() { return &landmarks_; }
-  SE3Splined Spline() const { return spline_->Spline(); }
-  const KnotLayout& layout() const { return layout_; }
-  double TimeSinceT0(int64_t t_ns) const {
-    return 1e-9 * static_cast<double>(t_ns - layout_.t0_ns);
-  }
-
-  CalibrationResult Run();
-
- private:
-  // Per residual: which frame / landmark observation it is, and its window(s).
-  struct FrameResidual {
-    int frame = 0;
-    ControlPoseWindow window;
-  };
-  struct LandmarkResidual {
-    int landmark = 0;
-    int observation = 0;
-    ControlPoseWindow reference_window;
-    ControlPoseWindow window;
-  };
-  struct CameraState {
-    std::array<double, 7> extrinsic{};
-    double time_offset_s = 0.0;
-    double line_delay = 0.0;
-    double window_readout_s = 0.0;     // the readout the windows were built for
-    double window_before_s = 0.0;      // how far before the stamp + time offset they reach
-    double built_time_offset_s = 0.0;  // the time offset they were built around
-    double max_line_delay = 0.0;       // the line delay's upper bound (lower: 0)
-    bool line_delay_held = false;      // held constant at a bound (the active set)
-    int line_delay_releases = 0;       // times freed from a bound
-  };
-
-  const std::vector<double*>& control_blocks() const { return spline_->control_blocks(); }
-  ceres::Problem& problem() { return spline_->problem(); }
-
-  ReprojectionSettings Settings(int cam, double sigma, double huber) const {
-    ReprojectionSettings s;
-    s.camera = &camchain_[cam].camera;
-    s.layout = layout_;
-    s.sigma_px = sigma;
-    s.huber_px = huber;
-    s.shared = spline_->evaluation_callback();
-    if (HeldToReference(cam)) s.T_cam_cref = options_.camera_chain_T_cn_c0[cam];
-    return s;
-  }
-  // With a held camera chain every camera after the first rides on camera 0's T_cam_imu block.
-  bool HeldToReference(size_t c) const { return c > 0 && !options_.camera_chain_T_cn_c0.empty(); }
-  double* ExtrinsicBlock(size_t c) { return cameras_[HeldToReference(c) ? 0 : c].extrinsic.data(); }
-  SE3d CameraFromImu(size_t c) const {
-    const SE3d block = PoseFromBlock(cameras_[HeldToReference(c) ? 0 : c].extrinsic.data());
-    return HeldToReference(c) ? options_.camera_chain_T_cn_c0[c] * block : block;
-  }
-  // The window of a frame's exposures for the camera's current state (false near the ends).
-  bool FrameWindow(int cam, int64_t t_ns, double margin, ControlPoseWindow* window) const {
-    const CameraState& c = cameras_[cam];
-    const double t = TimeSinceT0(t_ns) + c.time_offset_s;
-    return layout_.WindowCovering(
-        t - std::max(margin, c.window_before_s), t + c.window_readout_s + margin, window);
-  }
-  bool Contains(const ControlPoseWindow& outer, const ControlPoseWindow& inner) const {
-    return inner.first_index >= outer.first_index && inner.last_index() <= outer.last_index();
-  }
-
-  void BuildProblem();
-  // The cost (pixel sigma, Huber threshold) and parameter blocks of a frame or landmark residual,
-  // and its unweighted pixel errors at the current values (false: cannot be evaluated).
-  std::unique_ptr<TargetFrameCostFunction> FrameCost(const FrameResidual& r,
-                                                     double sigma,
-                                                     double huber) const;
-  std::unique_ptr<LandmarkCostFunction> LandmarkCost(const LandmarkResidual& r,
-                                                     double sigma,
-                                                     double huber) const;
-  std::vector<double*> Blocks(const FrameResidual& r);
-  std::vector<double*> Blocks(const LandmarkResidual& r);
-  template <typename Residual>
-  bool PixelErrors(const Residual& r, std::vector<double>* errors);
-  double EstimatePixelSigma();
-  bool WindowsStillValid();
-  // Cheap check for the windows' StopWhen in Run: every camera's time offset and readout are
-  // still inside what the windows were built for, less kWindowRebuildMargin_s.
-  bool TimesInsideWindows() const {
-    for (size_t c = 0; c < cameras_.size(); ++c) {
-      const CameraState& cam = cameras_[c];
-      const double moved = cam.time_offset_s - cam.built_time_offset_s;
-      const double readout = cam.line_delay * (camchain_[c].camera.height - 1);
-      if (moved < -(cam.window_before_s - kWindowRebuildMargin_s) ||
-          moved + readout > cam.window_readout_s + kWindowMargin_s - kWindowRebuildMargin_s) {
-        return false;
-      }
-    }
-    return true;
-  }
-  // Holds every free line delay that sits on a bound (true: one did).
-  bool HoldLineDelaysAtBounds();
-  // Frees every held line delay whose cost gradient points into its interval (true: one was),
-  // and leaves the others' blocks variable for the covariance.
-  bool ReleaseLineDelays();
-  bool LineDelayAtBound(const CameraState& cam) const {
-    return cam.line_delay <= 0.0 || cam.line_delay >= cam.max_line_delay;
-  }
-  void ComputeCovariance(CalibrationResult* result);
-  void Collect(CalibrationResult* result);
-
-  std::vector<ImuSample> imu_;
-  const Camchain& camchain_;
-  const CalibrateOptions& options_;
-  KnotLayout layout_;
-  bool has_target_;
-  double dt_s_ = 0.0;
-  double imu_rate_hz_ = 0.0;
-  std::unique_ptr<ImuNoiseEstimator> imu_noise_;  // the densities weighting the IMU residuals
-  double sigma_px_ = 1.0;
-
-  std::unique_ptr<SplineProblem> spline_;  // control poses, biases, gravity
-  std::vector<CameraState> cameras_;
-  std::array<double, 7> T_w_t_{};
-  std::vector<double> frame_periods_;
-
-  std::vector<TargetFrame> target_frames_;
-  std::vector<Landmark> landmarks_;
-  std::vector<FrameResidual> frame_residuals_;
-  std::vector<LandmarkResidual> landmark_residuals_;
-};
 
 void CalibrationProblem::BuildProblem() {
   spline_->evaluation_callback()->Update();
@@ -270,6 +60,17 @@ void CalibrationProblem::BuildProblem() {
     cam.built_time_offset_s = cam.time_offset_s;
     if (!HeldToReference(c)) {
       problem().AddParameterBlock(cam.extrinsic.data(), 7, spline_->se3_manifold());
+    }
+    if (options_.estimate_intrinsics) {
+      // Only the entries the camera model uses vary (camera/camera_model.h).
+      const std::vector<int> active = camchain_[c].camera.ActiveIntrinsics();
+      std::vector<int> held;
+      for (int j = 0; j < kNumIntrinsics; ++j) {
+        if (std::find(active.begin(), active.end(), j) == active.end()) held.push_back(j);
+      }
+      problem().AddParameterBlock(cam.intrinsics.data(), kNumIntrinsics,
+                                  held.empty() ? nullptr
+                                               : new ceres::SubsetManifold(kNumIntrinsics, held));
     }
     problem().AddParameterBlock(&cam.time_offset_s, 1);
     problem().AddParameterBlock(&cam.line_delay, 1);
@@ -361,6 +162,7 @@ std::vector<double*> CalibrationProblem::Blocks(const FrameResidual& r) {
                               control_blocks().begin() + r.window.last_index() + 1);
   blocks.insert(blocks.end(),
                 {ExtrinsicBlock(c), &cam.time_offset_s, &cam.line_delay, T_w_t_.data()});
+  if (options_.estimate_intrinsics) blocks.push_back(cam.intrinsics.data());
   return blocks;
 }
 
@@ -570,167 +372,9 @@ bool CalibrationProblem::ReleaseLineDelays() {
   return any;
 }
 
-void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
-  // The marginal covariance of the calibration parameters (estimation/marginal_covariance.h),
-  // with every other free block -- control poses, bias spline, gravity, inverse depths -- as
-  // nuisance. Always the Schur backend: it needs only the nuisance block H_aa to be positive
-  // definite and tests the calibration parameters' own complement for singularity, so a weakly
-  // determined landmark depth does not withhold the calibration's standard deviations.
-  // Wanted: the cameras' blocks, then every bias control point; reported: the cameras' tangent
-  // coordinates as they are and the biases' time averages (MeanBiasMap), q = A x.
-  std::vector<const double*> wanted;
-  for (size_t c = 0; c < cameras_.size(); ++c) {
-    if (!HeldToReference(c)) wanted.push_back(cameras_[c].extrinsic.data());
-    if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].time_offset_s);
-    if (options_.rolling_shutter) wanted.push_back(&cameras_[c].line_delay);
-  }
-  std::map<const double*, int> offset;  // first row of each camera block in the covariance
-  int num_camera = 0;
-  for (const double* block : wanted) {
-    offset[block] = num_camera;
-    num_camera += problem().ParameterBlockTangentSize(block);
-  }
-  const int num_bias_points = spline_->bias_spline().num_points();
-  for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->gyro_bias(m));
-  for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->accel_bias(m));
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(num_camera + 6, num_camera + 6 * num_bias_points);
-  A.topLeftCorner(num_camera, num_camera).setIdentity();
-  A.bottomRightCorner(6, 6 * num_bias_points) = spline_->MeanBiasMap(imu_);
-  MarginalCovarianceOptions covariance_options;
-  covariance_options.backend = CovarianceBackend::kSchur;
-  covariance_options.num_threads = options_.solver.num_threads;
-  covariance_options.reported_map = A;
-  imu_noise_->AddToCovarianceOptions(
-      spline_.get(), options_.covariance.robust_window_s, &covariance_options);
-  const MarginalCovariance marginal =
-      ComputeMarginalCovariance(&problem(), wanted, covariance_options);
-  if (!marginal.ok) {
-    result->warnings.push_back(
-        "the covariance could not be computed (the problem is rank deficient: some parameter is "
-        "not determined by the data); standard deviations are not reported");
-    return;
-  }
-  const ReportedCovariance reported = ReportedCovarianceOf(marginal);
-  const Eigen::MatrixXd& cov = reported.covariance;
-  result->std_inflation = reported.inflation.maxCoeff();
-  result->robust_clusters = marginal.num_clusters;
-  auto block = [&](const double* a, int rows) {
-    return Eigen::MatrixXd(cov.block(offset[a], offset[a], rows, rows));
-  };
-  result->covariance_ok = true;
-  for (size_t c = 0; c < cameras_.size(); ++c) {
-    CameraState& cam = cameras_[c];
-    CameraEstimate& estimate = result->cameras[c];
-    // A held camera shares camera 0's right tangent (reprojection_cost.h, T_cam_cref).
-    const Eigen::MatrixXd cov6 = block(ExtrinsicBlock(c), 6);
-    const Eigen::Matrix3d R = CameraFromImu(c).rotationMatrix();
-    const Eigen::Matrix3d cov_t = R * cov6.topLeftCorner<3, 3>() * R.transpose();
-    estimate.translation_std_m = cov_t.diagonal().cwiseMax(0.0).cwiseSqrt();
-    estimate.rotation_std_deg =
-        cov6.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * kRadToDeg;
-    if (options_.estimate_time_offset) {
-      estimate.time_offset_std_s = std::sqrt(std::max(0.0, block(&cam.time_offset_s, 1)(0, 0)));
-    }
-    if (options_.rolling_shutter) {
-      estimate.line_delay_std_s = std::sqrt(std::max(0.0, block(&cam.line_delay, 1)(0, 0)));
-    }
-  }
-  const Eigen::VectorXd bias_std = cov.diagonal().tail(6).cwiseMax(0.0).cwiseSqrt();
-  result->gyro_bias_std = bias_std.head<3>();
-  result->accel_bias_std = bias_std.tail<3>();
-  AddStandardDeviationWarnings(options_, imu_noise_->estimate(), result);
-}
+}  // namespace calibrate_internal
 
-void CalibrationProblem::Collect(CalibrationResult* result) {
-  result->layout = layout_;
-  // Solved in the target's frame; written in the gravity-aligned world (calibrate.h).
-  result->gravity_target = spline_->gravity_w();
-  result->T_w_target =
-      SE3d(GravityAlignedRotation(result->gravity_target), Eigen::Vector3d::Zero());
-  result->gravity_w = result->T_w_target.so3() * result->gravity_target;
-  result->control_poses.clear();
-  const SE3Splined spline_t = Spline();  // T_t_s
-  for (const SE3d& T_t_s : spline_t.control_poses()) {
-    result->control_poses.push_back(result->T_w_target * T_t_s);
-  }
-  result->camchain = camchain_;
-  result->cameras.resize(cameras_.size());
-  for (size_t c = 0; c < cameras_.size(); ++c) {
-    CameraCalibration& out = result->camchain[c];
-    out.T_cam_imu = CameraFromImu(c);
-    out.time_offset_s = cameras_[c].time_offset_s;
-    out.line_delay_s = cameras_[c].line_delay;
-    result->cameras[c].calibration = out;
-    result->cameras[c].time_offset_estimated = options_.estimate_time_offset;
-    result->cameras[c].line_delay_estimated = options_.rolling_shutter;
-  }
-  // IMU residuals.
-  const ImuResidualStatistics imu_stats =
-      spline_->EvaluateImu(imu_, [&](const ImuSample& s, const ImuPrediction& p) {
-        if (options_.keep_residuals) {
-          result->imu_samples.push_back(
-              {s.t_ns, p.gyro - s.gyro, p.accel - s.accel, p.gyro_bias, p.accel_bias});
-        }
-      });
-  result->num_imu_samples = static_cast<int>(imu_.size());
-  result->gyro_rms = imu_stats.gyro_rms;
-  result->accel_rms = imu_stats.accel_rms;
-  result->gyro_bias = imu_stats.mean_gyro_bias;
-  result->accel_bias = imu_stats.mean_accel_bias;
-  // Reprojection residuals (pixels, no weights, no robust loss).
-  std::vector<double> cam_sq(cameras_.size(), 0.0);
-  std::vector<std::set<std::pair<int64_t, int>>> cam_frames(cameras_.size());
-  double all_sq = 0.0;
-  int all_count = 0;
-  for (const FrameResidual& r : frame_residuals_) {
-    const TargetFrame& frame = target_frames_[r.frame];
-    std::vector<double> e;
-    if (!PixelErrors(r, &e)) continue;
-    CameraEstimate& estimate = result->cameras[frame.cam];
-    ++estimate.num_frames;
-    for (size_t k = 0; k < frame.corners.size(); ++k) {
-      const Eigen::Vector2d error(e[2 * k], e[2 * k + 1]);
-      cam_sq[frame.cam] += error.squaredNorm();
-      all_sq += error.squaredNorm();
-      ++all_count;
-      ++estimate.num_observations;
-      if (options_.keep_residuals) {
-        result->reprojection_samples.push_back(
-            {frame.t_ns, frame.cam, frame.ids[k], frame.corners[k].uv, error});
-      }
-    }
-  }
-  std::set<int> landmarks_used;
-  for (const LandmarkResidual& r : landmark_residuals_) {
-    const Landmark& landmark = landmarks_[r.landmark];
-    const Observation& obs = landmark.others[r.observation];
-    std::vector<double> e;
-    if (!PixelErrors(r, &e)) continue;
-    landmarks_used.insert(r.landmark);
-    const Eigen::Vector2d error(e[0], e[1]);
-    cam_sq[landmark.cam] += error.squaredNorm();
-    all_sq += error.squaredNorm();
-    ++all_count;
-    ++result->cameras[landmark.cam].num_observations;
-    if (options_.keep_residuals) {
-      result->reprojection_samples.push_back({obs.t_ns, obs.cam_id, landmark.id, obs.uv, error});
-    }
-  }
-  result->num_landmarks = static_cast<int>(landmarks_used.size());
-  for (size_t c = 0; c < cameras_.size(); ++c) {
-    const int count = result->cameras[c].num_observations;
-    result->cameras[c].reprojection_rms_px = count > 0 ? std::sqrt(cam_sq[c] / count) : 0.0;
-  }
-  result->reprojection_rms_px = all_count > 0 ? std::sqrt(all_sq / all_count) : 0.0;
-  std::sort(result->reprojection_samples.begin(),
-            result->reprojection_samples.end(),
-            [](const ReprojectionSample& a, const ReprojectionSample& b) {
-              return std::tie(a.t_ns, a.cam_id, a.point_id) <
-                     std::tie(b.t_ns, b.cam_id, b.point_id);
-            });
-}
-
-}  // namespace
+using calibrate_internal::CalibrationProblem;
 
 CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
                             const std::vector<Observation>& all_observations,
@@ -787,6 +431,11 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
   }
   const double init_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - init_start).count();
+  if (options.estimate_intrinsics && (target == nullptr || !problem.landmarks()->empty())) {
+    throw Error("calibrate: --estimate-intrinsics needs target corners only (landmark residuals "
+                "take the intrinsics as given); the observations have " +
+                std::to_string(problem.landmarks()->size()) + " landmark(s)");
+  }
   CalibrationResult result = problem.Run();
   result.knot_spacing_s = initial.layout.dt_s();
   result.knot_spacing_rule = knot_rule;

@@ -43,6 +43,10 @@ DEFINE_double(pixel_sigma,
               0.0,
               "Pixel noise std [px] weighting the reprojection residuals; 0 estimates it from the "
               "residuals (robustly) and solves again");
+DEFINE_bool(estimate_intrinsics,
+            false,
+            "Refine every camera's intrinsics (its model's entries) jointly with the camera-IMU "
+            "calibration; needs --target and no natural landmarks");
 DEFINE_bool(hold_camera_chain,
             false,
             "Hold the cameras' relative poses at the camchain's T_cn_cnm1 (from `splinecal "
@@ -87,6 +91,7 @@ CalibrateInputs ReadCalibrateInputs() {
   options.estimate_time_offset = !FLAGS_no_time_offset;
   options.pixel_sigma_px = NonNegativeFlag("pixel-sigma", FLAGS_pixel_sigma);
   options.huber_px = NonNegativeFlag("huber", FLAGS_huber);
+  options.estimate_intrinsics = FLAGS_estimate_intrinsics;
   if (FLAGS_min_corners < 4) throw Error("--min-corners: must be at least 4");
   options.min_corners_per_frame = FLAGS_min_corners;
   options.solver.num_threads = ThreadsFlag();
@@ -191,7 +196,7 @@ Command CalibrateCommand() {
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
           "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE]\n"
-          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset] [--hold-camera-chain]\n"
+          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset] [--hold-camera-chain] [--estimate-intrinsics]\n"
           "    [--knot-spacing S] [--pixel-sigma PX] [--huber PX] [--min-corners N]\n"
           "    [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s] [--threads N]\n"
           "    --out DIR",
@@ -221,6 +226,7 @@ Command CalibrateCommand() {
            {"imu_noise", ""},
            {"rolling_shutter", ""},
            {"hold_camera_chain", ""},
+           {"estimate_intrinsics", ""},
            {"no_time_offset", ""},
            {"knot_spacing", "Spline knot spacing dt [s]; 0 chooses it from the IMU data", "0.05"},
            {"pixel_sigma", ""},

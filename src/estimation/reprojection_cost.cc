@@ -232,6 +232,7 @@ TargetFrameCostFunction::TargetFrameCostFunction(const ReprojectionSettings& set
   mutable_parameter_block_sizes()->push_back(1);  // time offset
   mutable_parameter_block_sizes()->push_back(1);  // line delay
   mutable_parameter_block_sizes()->push_back(7);  // T_w_t
+  if (settings_.estimate_intrinsics) mutable_parameter_block_sizes()->push_back(kNumIntrinsics);
 }
 
 bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
@@ -243,13 +244,22 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
   const double line_delay = parameters[n + 2][0];
   const SE3d T_w_t = PoseFromBlock(parameters[n + 3]);
   if (!(line_delay >= 0.0) || !std::isfinite(shift)) return false;
+  // With estimated intrinsics the camera of this evaluation is the block's.
+  ReprojectionSettings settings = settings_;
+  Camera estimated;
+  if (settings_.estimate_intrinsics) {
+    estimated = *settings_.camera;
+    estimated.set_intrinsics(Eigen::Map<const IntrinsicsVector>(parameters[n + 4]));
+    settings.camera = &estimated;
+  }
+  const Camera& camera = *settings.camera;
   const std::vector<int> indices = internal::WindowIndices(window_);
   internal::WindowKnots knots(settings_, indices, parameters, jacobians != nullptr);
   if (jacobians != nullptr) internal::ZeroJacobians(*this, jacobians);
   const double inv_sigma = 1.0 / settings_.sigma_px;
   const double k = settings_.huber_px * inv_sigma;
   const Eigen::Matrix3d R_w_t = T_w_t.rotationMatrix();
-  const int height = settings_.camera->height;
+  const int height = camera.height;
   for (size_t c = 0; c < corners_.size(); ++c) {
     const TargetCornerObservation& corner = corners_[c];
     const int row = 2 * static_cast<int>(c);
@@ -258,7 +268,7 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
     internal::ExposureState state;
     internal::PointProjection projection;
     const double tau0 = line_delay * corner.uv.y();
-    if (!internal::SolveAndProject(settings_,
+    if (!internal::SolveAndProject(settings,
                                    &knots,
                                    T_c_s,
                                    t_frame_s_ + shift,
@@ -282,9 +292,18 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
     internal::RobustifyPoint(k, &r, &S);
     residuals[row] = r.x();
     residuals[row + 1] = r.y();
-    internal::ProjectPoint(*settings_.camera, T_c_s, state.body, x_w, 1.0, true, &projection);
+    internal::ProjectPoint(camera, T_c_s, state.body, x_w, 1.0, true, &projection);
     const Eigen::Matrix2d M = RollingShutterCorrection(solution, line_delay, projection.uv_dot);
     const Eigen::Matrix2d F = inv_sigma * S * M;  // applied to every partial at fixed tau
+    if (settings_.estimate_intrinsics && jacobians[n + 4] != nullptr) {
+      const Eigen::Vector3d x_c =
+          T_c_s * (state.body.T_w_s.inverse() * x_w);  // the point at the exposure
+      Eigen::Vector2d uv;
+      Eigen::Matrix<double, 2, kNumIntrinsics> J_uv_intrinsics;
+      camera.Project(x_c, &uv, nullptr, &J_uv_intrinsics);
+      Eigen::Map<Eigen::Matrix<double, 2, kNumIntrinsics, Eigen::RowMajor>>(
+          jacobians[n + 4] + row * kNumIntrinsics) = F * J_uv_intrinsics;
+    }
     // Control poses of the exposure segment.
     ControlPoseJacobian<6> J_pose;
     EvaluatePoseJacobian(*state.knots, state.segment, nullptr, &J_pose);
@@ -318,6 +337,7 @@ LandmarkCostFunction::LandmarkCostFunction(const ReprojectionSettings& settings,
                                            const LandmarkObservation& observation)
     : settings_(settings), pose_indices_(std::move(pose_indices)), observation_(observation) {
   CHECK(settings_.camera != nullptr);
+  CHECK(!settings_.estimate_intrinsics) << "landmark residuals take the intrinsics as given";
   CHECK_GE(pose_indices_.size(), static_cast<size_t>(kSplineOrder));
   CHECK(std::is_sorted(pose_indices_.begin(), pose_indices_.end()));
   set_num_residuals(2);

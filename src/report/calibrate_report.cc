@@ -12,6 +12,7 @@
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/report/intrinsics_report.h"
 #include "splinecal/units.h"
 
 namespace splinecal {
@@ -38,6 +39,24 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
     yaml->Scalar("line_delay_std", c.line_delay_std_s);
   } else {
     yaml->Scalar("line_delay_std", "fixed");
+  }
+  yaml->Scalar("intrinsics_estimated", c.intrinsics_estimated);
+  if (c.intrinsics_estimated) {
+    // Kalibr's order, as camchain-imucam.yaml and `splinecal intrinsics` write them.
+    const Camera& camera = c.calibration.camera;
+    const IntrinsicsVector values = camera.intrinsics();
+    for (const auto& [key, order] :
+         {std::pair<const char*, std::vector<int>>{"intrinsics", KalibrIntrinsicsOrder(camera)},
+          std::pair<const char*, std::vector<int>>{"distortion_coeffs",
+                                                   KalibrDistortionOrder(camera)}}) {
+      Eigen::VectorXd value(order.size()), std(order.size());
+      for (size_t i = 0; i < order.size(); ++i) {
+        value(i) = values(order[i]);
+        std(i) = c.intrinsics_std(order[i]);
+      }
+      yaml->Vector(key, value);
+      yaml->Vector(std::string(key) + "_std", std);
+    }
   }
   yaml->Scalar("reprojection_rms_px", c.reprojection_rms_px);
   yaml->Scalar("num_frames", c.num_frames);

@@ -85,6 +85,36 @@ TEST(Calibrate, AHeldCameraChainRidesOnCameraZerosExtrinsic) {
   EXPECT_THROW(Calibrate(s.imu, observations, camchain, &s.target, options), Error);
 }
 
+TEST(Calibrate, EstimatedIntrinsicsFromAPerturbedStartWithinThreeStd) {
+  // --estimate-intrinsics: the start's focal lengths 4 px, principal point 3 px and k1 0.02 off;
+  // every estimated intrinsic within 3 of its reported std of the simulator's camera.
+  testing::ScenarioOptions o;
+  o.duration_s = 10.0;
+  const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
+  Camchain start = s.start;
+  Camera& camera = start[0].camera;
+  camera.fu += 4.0;
+  camera.fv -= 4.0;
+  camera.pu += 3.0;
+  camera.pv -= 3.0;
+  camera.distortion_coeffs(0) += 0.02;
+  CalibrateOptions options = FastOptions();
+  options.rolling_shutter = true;
+  options.estimate_intrinsics = true;
+  const CalibrationResult r = Calibrate(s.imu, s.observations, start, &s.target, options);
+  const CameraEstimate& e = r.cameras[0];
+  ASSERT_TRUE(e.intrinsics_estimated);
+  const IntrinsicsVector estimate = e.calibration.camera.intrinsics();
+  const IntrinsicsVector truth = s.truth[0].camera.intrinsics();
+  for (int i : s.truth[0].camera.ActiveIntrinsics()) {
+    SCOPED_TRACE(i);
+    ASSERT_TRUE(std::isfinite(e.intrinsics_std(i)));
+    EXPECT_LT(std::abs(estimate(i) - truth(i)), 3.0 * e.intrinsics_std(i))
+        << estimate(i) << " vs " << truth(i) << " std " << e.intrinsics_std(i);
+  }
+  EXPECT_NEAR(r.pixel_sigma_px, o.pixel_noise_px, 0.05 * o.pixel_noise_px);
+}
+
 TEST(Calibrate, WideAngleDoubleSphereRoundTrip) {
   // A TUM-VI-like double-sphere fisheye (512 x 512, f = 158 px: its image reaches 115 degrees
   // off the axis in the corners, inside the model's valid region, which ends at 125.6 degrees)

@@ -123,6 +123,9 @@ class ReprojectionCostTest : public ::testing::Test {
           std::max(1e-6,
                    Eigen::Map<const Eigen::VectorXd>(x0.data(), sizes[i]).cwiseAbs().maxCoeff());
       if (manifold != nullptr) options.initial_step = 1e-3;
+      // Intrinsics mix pixels (~500) and coefficients (~0.1): one step for all of them sized by
+      // the focal length would move a distortion coefficient by several times its value.
+      if (sizes[i] == kNumIntrinsics) options.initial_step = 1e-4;
       if (one_sided) {
         // Forward differences: (f(h) - f(0)) / h, Richardson-extrapolated over h.
         std::vector<Eigen::VectorXd> level;
@@ -230,6 +233,47 @@ TEST_F(ReprojectionCostTest, TargetJacobiansGlobalShutter) {
   ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.02, &window));
   const TargetFrameCostFunction cost(settings_, window, t_frame, Corners(t_frame, 1.0));
   ExpectJacobiansMatch(cost, TargetBlocks(window));
+}
+
+TEST_F(ReprojectionCostTest, TargetJacobiansWithEstimatedIntrinsicsAndAHeldChain) {
+  // `calibrate --estimate-intrinsics` with a camera held to a reference camera
+  // (ReprojectionSettings::estimate_intrinsics, T_cam_cref): the intrinsics block's Jacobian
+  // goes through the rolling-shutter correction like every other partial.
+  const double t_frame = 0.45;
+  settings_.huber_px = 1.5;
+  settings_.estimate_intrinsics = true;
+  settings_.T_cam_cref = SE3d(SO3d::Exp(Eigen::Vector3d(0.01, -0.02, 0.005)),
+                              Eigen::Vector3d(-0.1, 0.002, 0.001));
+  ControlPoseWindow window;
+  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.07, &window));
+  // The corners as the held camera sees them: its T_c_s is T_cam_cref times the block.
+  const std::array<double, 7> block = scene_.T_c_s;
+  PoseToBlock(settings_.T_cam_cref.inverse() * PoseFromBlock(block.data()), scene_.T_c_s.data());
+  std::vector<TargetCornerObservation> corners;
+  {
+    const std::array<double, 7> held = scene_.T_c_s;
+    scene_.T_c_s = block;
+    corners = Corners(t_frame, 2.0);
+    scene_.T_c_s = held;
+  }
+  const TargetFrameCostFunction cost(settings_, window, t_frame, corners);
+  IntrinsicsVector intrinsics = scene_.camera.intrinsics();
+  Blocks blocks = TargetBlocks(window);
+  blocks.parameters.push_back(intrinsics.data());
+  blocks.manifolds.push_back(nullptr);
+  ExpectJacobiansMatch(cost, blocks);
+  // At the true pixels and the true intrinsics the residual vanishes: the held camera's pose
+  // is the composite.
+  const TargetFrameCostFunction exact(settings_, window, t_frame, [&] {
+    const std::array<double, 7> held = scene_.T_c_s;
+    scene_.T_c_s = block;
+    std::vector<TargetCornerObservation> c = Corners(t_frame, 0.0);
+    scene_.T_c_s = held;
+    return c;
+  }());
+  std::vector<double> residuals(exact.num_residuals());
+  ASSERT_TRUE(exact.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));
+  for (double r : residuals) EXPECT_LT(std::abs(r) * settings_.sigma_px, kModelTolerancePx);
 }
 
 TEST_F(ReprojectionCostTest, TargetEvaluationOutsideTheWindowFails) {

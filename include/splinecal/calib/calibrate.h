@@ -93,6 +93,9 @@ struct CalibrateOptions {
   // camera_chain_T_cn_c0[n] held (camera 0's entry is the identity). Empty: every camera's
   // T_cam_imu is estimated on its own.
   std::vector<SE3d> camera_chain_T_cn_c0;
+  // Refine every camera's intrinsics (the entries its model uses) jointly with the rest; needs
+  // target corners only (no natural landmarks). Else they are held at the camchain's.
+  bool estimate_intrinsics = false;
   // Levenberg-Marquardt with SPARSE_NORMAL_CHOLESKY, up to 6 rounds (time windows rebuilt and
   // the pixel noise re-estimated between them).
   SolverOptions solver = [] {
@@ -130,6 +133,10 @@ struct CameraEstimate {
   Eigen::Vector3d translation_std_m =
       Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   double time_offset_std_s = std::numeric_limits<double>::quiet_NaN();
+  // With CalibrateOptions::estimate_intrinsics: the std of each intrinsics entry (layout of
+  // camera/camera_model.h; NaN where held).
+  IntrinsicsVector intrinsics_std = IntrinsicsVector::Constant(std::numeric_limits<double>::quiet_NaN());
+  bool intrinsics_estimated = false;
   double line_delay_std_s = std::numeric_limits<double>::quiet_NaN();
   bool time_offset_estimated = false;
   bool line_delay_estimated = false;

@@ -88,6 +88,11 @@ struct ReprojectionSettings {
   // T_c_s Exp(d)), so every Jacobian below holds as written. Identity: the block is this
   // camera's own.
   SE3d T_cam_cref;
+  // TargetFrameCostFunction only: the camera's intrinsics are a parameter block (the layout
+  // of camera/camera_model.h) after T_w_t, and `camera` gives the model and the image size.
+  // Their Jacobian is the camera model's d uv / d intrinsics at the exposure, times the
+  // rolling-shutter correction M like every other partial at fixed tau.
+  bool estimate_intrinsics = false;
 };
 
 // One observed target corner.
@@ -98,7 +103,8 @@ struct TargetCornerObservation {
 
 // Every target corner of one frame: 2 rows per corner.
 // Parameter blocks: window.num_poses control poses (7 each, first_index first), T_cam_imu (7),
-// time offset (1) [s], line_delay (1) [s/row], T_w_t (7).
+// time offset (1) [s], line_delay (1) [s/row], T_w_t (7), and with
+// ReprojectionSettings::estimate_intrinsics the intrinsics (kNumIntrinsics).
 class TargetFrameCostFunction : public ceres::CostFunction {
  public:
   // t_frame_s: the frame stamp (camera clock) in seconds since the spline's t0.

@@ -1,0 +1,182 @@
+#include "calibration_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+namespace splinecal {
+namespace calibrate_internal {
+
+void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
+  // The marginal covariance of the calibration parameters (estimation/marginal_covariance.h),
+  // with every other free block -- control poses, bias spline, gravity, inverse depths -- as
+  // nuisance. Always the Schur backend: it needs only the nuisance block H_aa to be positive
+  // definite and tests the calibration parameters' own complement for singularity, so a weakly
+  // determined landmark depth does not withhold the calibration's standard deviations.
+  // Wanted: the cameras' blocks, then every bias control point; reported: the cameras' tangent
+  // coordinates as they are and the biases' time averages (MeanBiasMap), q = A x.
+  std::vector<const double*> wanted;
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    if (!HeldToReference(c)) wanted.push_back(cameras_[c].extrinsic.data());
+    if (options_.estimate_intrinsics) wanted.push_back(cameras_[c].intrinsics.data());
+    if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].time_offset_s);
+    if (options_.rolling_shutter) wanted.push_back(&cameras_[c].line_delay);
+  }
+  std::map<const double*, int> offset;  // first row of each camera block in the covariance
+  int num_camera = 0;
+  for (const double* block : wanted) {
+    offset[block] = num_camera;
+    num_camera += problem().ParameterBlockTangentSize(block);
+  }
+  const int num_bias_points = spline_->bias_spline().num_points();
+  for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->gyro_bias(m));
+  for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->accel_bias(m));
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(num_camera + 6, num_camera + 6 * num_bias_points);
+  A.topLeftCorner(num_camera, num_camera).setIdentity();
+  A.bottomRightCorner(6, 6 * num_bias_points) = spline_->MeanBiasMap(imu_);
+  MarginalCovarianceOptions covariance_options;
+  covariance_options.backend = CovarianceBackend::kSchur;
+  covariance_options.num_threads = options_.solver.num_threads;
+  covariance_options.reported_map = A;
+  imu_noise_->AddToCovarianceOptions(
+      spline_.get(), options_.covariance.robust_window_s, &covariance_options);
+  const MarginalCovariance marginal =
+      ComputeMarginalCovariance(&problem(), wanted, covariance_options);
+  if (!marginal.ok) {
+    result->warnings.push_back(
+        "the covariance could not be computed (the problem is rank deficient: some parameter is "
+        "not determined by the data); standard deviations are not reported");
+    return;
+  }
+  const ReportedCovariance reported = ReportedCovarianceOf(marginal);
+  const Eigen::MatrixXd& cov = reported.covariance;
+  result->std_inflation = reported.inflation.maxCoeff();
+  result->robust_clusters = marginal.num_clusters;
+  auto block = [&](const double* a, int rows) {
+    return Eigen::MatrixXd(cov.block(offset[a], offset[a], rows, rows));
+  };
+  result->covariance_ok = true;
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    CameraState& cam = cameras_[c];
+    CameraEstimate& estimate = result->cameras[c];
+    // A held camera shares camera 0's right tangent (reprojection_cost.h, T_cam_cref).
+    const Eigen::MatrixXd cov6 = block(ExtrinsicBlock(c), 6);
+    const Eigen::Matrix3d R = CameraFromImu(c).rotationMatrix();
+    const Eigen::Matrix3d cov_t = R * cov6.topLeftCorner<3, 3>() * R.transpose();
+    estimate.translation_std_m = cov_t.diagonal().cwiseMax(0.0).cwiseSqrt();
+    estimate.rotation_std_deg =
+        cov6.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * kRadToDeg;
+    if (options_.estimate_intrinsics) {
+      const std::vector<int> active = camchain_[c].camera.ActiveIntrinsics();
+      const Eigen::MatrixXd cov_k = block(cam.intrinsics.data(), static_cast<int>(active.size()));
+      for (size_t j = 0; j < active.size(); ++j) {
+        estimate.intrinsics_std(active[j]) = std::sqrt(std::max(0.0, cov_k(j, j)));
+      }
+    }
+    if (options_.estimate_time_offset) {
+      estimate.time_offset_std_s = std::sqrt(std::max(0.0, block(&cam.time_offset_s, 1)(0, 0)));
+    }
+    if (options_.rolling_shutter) {
+      estimate.line_delay_std_s = std::sqrt(std::max(0.0, block(&cam.line_delay, 1)(0, 0)));
+    }
+  }
+  const Eigen::VectorXd bias_std = cov.diagonal().tail(6).cwiseMax(0.0).cwiseSqrt();
+  result->gyro_bias_std = bias_std.head<3>();
+  result->accel_bias_std = bias_std.tail<3>();
+  AddStandardDeviationWarnings(options_, imu_noise_->estimate(), result);
+}
+
+void CalibrationProblem::Collect(CalibrationResult* result) {
+  result->layout = layout_;
+  // Solved in the target's frame; written in the gravity-aligned world (calibrate.h).
+  result->gravity_target = spline_->gravity_w();
+  result->T_w_target =
+      SE3d(GravityAlignedRotation(result->gravity_target), Eigen::Vector3d::Zero());
+  result->gravity_w = result->T_w_target.so3() * result->gravity_target;
+  result->control_poses.clear();
+  const SE3Splined spline_t = Spline();  // T_t_s
+  for (const SE3d& T_t_s : spline_t.control_poses()) {
+    result->control_poses.push_back(result->T_w_target * T_t_s);
+  }
+  result->camchain = camchain_;
+  result->cameras.resize(cameras_.size());
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    CameraCalibration& out = result->camchain[c];
+    out.T_cam_imu = CameraFromImu(c);
+    if (options_.estimate_intrinsics) out.camera.set_intrinsics(cameras_[c].intrinsics);
+    result->cameras[c].intrinsics_estimated = options_.estimate_intrinsics;
+    out.time_offset_s = cameras_[c].time_offset_s;
+    out.line_delay_s = cameras_[c].line_delay;
+    result->cameras[c].calibration = out;
+    result->cameras[c].time_offset_estimated = options_.estimate_time_offset;
+    result->cameras[c].line_delay_estimated = options_.rolling_shutter;
+  }
+  // IMU residuals.
+  const ImuResidualStatistics imu_stats =
+      spline_->EvaluateImu(imu_, [&](const ImuSample& s, const ImuPrediction& p) {
+        if (options_.keep_residuals) {
+          result->imu_samples.push_back(
+              {s.t_ns, p.gyro - s.gyro, p.accel - s.accel, p.gyro_bias, p.accel_bias});
+        }
+      });
+  result->num_imu_samples = static_cast<int>(imu_.size());
+  result->gyro_rms = imu_stats.gyro_rms;
+  result->accel_rms = imu_stats.accel_rms;
+  result->gyro_bias = imu_stats.mean_gyro_bias;
+  result->accel_bias = imu_stats.mean_accel_bias;
+  // Reprojection residuals (pixels, no weights, no robust loss).
+  std::vector<double> cam_sq(cameras_.size(), 0.0);
+  std::vector<std::set<std::pair<int64_t, int>>> cam_frames(cameras_.size());
+  double all_sq = 0.0;
+  int all_count = 0;
+  for (const FrameResidual& r : frame_residuals_) {
+    const TargetFrame& frame = target_frames_[r.frame];
+    std::vector<double> e;
+    if (!PixelErrors(r, &e)) continue;
+    CameraEstimate& estimate = result->cameras[frame.cam];
+    ++estimate.num_frames;
+    for (size_t k = 0; k < frame.corners.size(); ++k) {
+      const Eigen::Vector2d error(e[2 * k], e[2 * k + 1]);
+      cam_sq[frame.cam] += error.squaredNorm();
+      all_sq += error.squaredNorm();
+      ++all_count;
+      ++estimate.num_observations;
+      if (options_.keep_residuals) {
+        result->reprojection_samples.push_back(
+            {frame.t_ns, frame.cam, frame.ids[k], frame.corners[k].uv, error});
+      }
+    }
+  }
+  std::set<int> landmarks_used;
+  for (const LandmarkResidual& r : landmark_residuals_) {
+    const Landmark& landmark = landmarks_[r.landmark];
+    const Observation& obs = landmark.others[r.observation];
+    std::vector<double> e;
+    if (!PixelErrors(r, &e)) continue;
+    landmarks_used.insert(r.landmark);
+    const Eigen::Vector2d error(e[0], e[1]);
+    cam_sq[landmark.cam] += error.squaredNorm();
+    all_sq += error.squaredNorm();
+    ++all_count;
+    ++result->cameras[landmark.cam].num_observations;
+    if (options_.keep_residuals) {
+      result->reprojection_samples.push_back({obs.t_ns, obs.cam_id, landmark.id, obs.uv, error});
+    }
+  }
+  result->num_landmarks = static_cast<int>(landmarks_used.size());
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    const int count = result->cameras[c].num_observations;
+    result->cameras[c].reprojection_rms_px = count > 0 ? std::sqrt(cam_sq[c] / count) : 0.0;
+  }
+  result->reprojection_rms_px = all_count > 0 ? std::sqrt(all_sq / all_count) : 0.0;
+  std::sort(result->reprojection_samples.begin(),
+            result->reprojection_samples.end(),
+            [](const ReprojectionSample& a, const ReprojectionSample& b) {
+              return std::tie(a.t_ns, a.cam_id, a.point_id) <
+                     std::tie(b.t_ns, b.cam_id, b.point_id);
+            });
+}
+
+}  // namespace calibrate_internal
+}  // namespace splinecal
