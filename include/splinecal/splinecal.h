@@ -24,6 +24,7 @@
 #define SPLINECAL_SPLINECAL_H_
 
 #include "splinecal/error.h"
+#include "splinecal/median.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 

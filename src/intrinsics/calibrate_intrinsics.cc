@@ -19,6 +19,7 @@
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "splinecal/median.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 
@@ -50,13 +51,6 @@ PoseBlock ToBlock(const SE3d& pose) {
   PoseBlock block;
   PoseToBlock(pose, block.data());
   return block;
-}
-
-double MedianOf(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  return values[mid];
 }
 
 // Everything the solve changes, kept between rounds.
@@ -221,7 +215,7 @@ void InitialiseCamera(int n,
   }
   // A PnP pose far worse than the typical view (a flipped planar pose, a mislabelled corner)
   // would start the solve in the wrong basin.
-  const double rms_limit = std::max(10.0, 10.0 * MedianOf(rms));
+  const double rms_limit = std::max(10.0, 10.0 * Median(rms));
   std::vector<size_t> kept;
   for (size_t v = 0; v < views->size(); ++v) {
     const TargetView& view = (*views)[v];
@@ -341,7 +335,7 @@ void RejectOutliers(const IntrinsicsOptions& options,
   }
   for (int n = 0; n < num_cameras; ++n) {
     // A floor keeps noise-free simulations (sigma ~ 0) from rejecting round-off.
-    state->sigma_px[n] = std::max(1.4826 * MedianOf(components[n]), 1e-6);
+    state->sigma_px[n] = std::max(1.4826 * Median(components[n]), 1e-6);
   }
   for (size_t v = 0; v < views->size(); ++v) {
     if ((*records)[v].status != ViewStatus::kUsed) continue;

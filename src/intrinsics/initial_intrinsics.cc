@@ -5,17 +5,11 @@
 #include <limits>
 
 #include "splinecal/camera/pnp.h"
+#include "splinecal/median.h"
 #include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
-
-// The median of `values` (not empty); reorders them.
-double Median(std::vector<double>* values) {
-  const size_t mid = values->size() / 2;
-  std::nth_element(values->begin(), values->begin() + mid, values->end());
-  return (*values)[mid];
-}
 
 // Up to kInitViews views with the most corners, spread over the recording: the views are cut
 // into kInitViews runs by time and each run gives its fullest view.
@@ -56,7 +50,7 @@ double Score(const Camera& camera, const std::vector<const TargetView*>& views) 
                       ? pnp.rms_px
                       : std::numeric_limits<double>::infinity());
   }
-  return rms.empty() ? std::numeric_limits<double>::infinity() : Median(&rms);
+  return rms.empty() ? std::numeric_limits<double>::infinity() : Median(std::move(rms));
 }
 
 }  // namespace

@@ -5,18 +5,9 @@
 #include <limits>
 
 #include "splinecal/lie/so3.h"
+#include "splinecal/median.h"
 
 namespace splinecal {
-namespace {
-
-double Median(std::vector<double> values) {
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  return values[mid];
-}
-
-}  // namespace
-
 SE3d RobustMeanPose(const std::vector<SE3d>& candidates, int* inliers) {
   const size_t n = candidates.size();
   std::vector<double> norms;
