@@ -124,7 +124,10 @@
 // allan/
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/allan_deviation.h"
+#include "splinecal/allan/edf.h"
+#include "splinecal/allan/motion.h"
 #include "splinecal/allan/noise_fit.h"
+#include "splinecal/allan/slope_lines.h"
 
 // calib/
 #include "splinecal/calib/calibrate.h"

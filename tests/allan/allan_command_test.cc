@@ -106,7 +106,7 @@ TEST(AllanCommand, PlainColumnsOfOneSensor) {
               0.05);
   EXPECT_FALSE(result["accelerometer"]);
   EXPECT_THAT(testing::ReadFileText(dir.File("out/allan.csv")),
-              StartsWith("#tau_s,gyro_x,gyro_y,gyro_x_err,gyro_y_err\n"));
+              StartsWith("#tau_s,gyro_x,gyro_y,gyro_x_low,gyro_y_low,gyro_x_high,gyro_y_high\n"));
 }
 
 TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {

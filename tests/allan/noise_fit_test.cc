@@ -101,11 +101,11 @@ TEST(FitNoise, ExactModelCurveGivesItsTerms) {
   }
   EXPECT_LT(fit.model_rms_log_error, 1e-9);
   // The bias-instability floor sits above 0.664 B by the other terms' share at the minimum.
-  ASSERT_TRUE(fit.bias_instability.identified) << fit.bias_instability.reason;
-  EXPECT_GT(fit.bias_instability.value, truth[NoiseTerm::kBiasInstability]);
-  EXPECT_LT(fit.bias_instability.value, 1.15 * truth[NoiseTerm::kBiasInstability]);
-  ASSERT_TRUE(fit.noise_density.identified) << fit.noise_density.reason;
-  EXPECT_NEAR(fit.noise_density.value / truth[NoiseTerm::kWhite], 1.0, 0.03);
+  ASSERT_TRUE(fit[NoiseTerm::kBiasInstability].identified) << fit[NoiseTerm::kBiasInstability].reason;
+  EXPECT_GT(fit[NoiseTerm::kBiasInstability].value, truth[NoiseTerm::kBiasInstability]);
+  EXPECT_LT(fit[NoiseTerm::kBiasInstability].value, 1.15 * truth[NoiseTerm::kBiasInstability]);
+  ASSERT_TRUE(fit[NoiseTerm::kWhite].identified) << fit[NoiseTerm::kWhite].reason;
+  EXPECT_NEAR(fit[NoiseTerm::kWhite].value / truth[NoiseTerm::kWhite], 1.0, 0.03);
 }
 
 struct RoundTrip {
@@ -138,29 +138,29 @@ TEST(FitNoise, RoundTripAdis16448AtFourScales) {
   for (const double scale : {1.0, 10.0, 100.0, 1000.0}) {
     SCOPED_TRACE("scale " + std::to_string(scale));
     const RoundTrip run = scale == 1.0 ? base : RunRoundTrip(gyro_draws, accel_draws, scale);
-    ASSERT_TRUE(run.gyro.noise_density.identified) << run.gyro.noise_density.reason;
-    ASSERT_TRUE(run.gyro.random_walk.identified) << run.gyro.random_walk.reason;
-    ASSERT_TRUE(run.accel.noise_density.identified) << run.accel.noise_density.reason;
-    ASSERT_TRUE(run.accel.random_walk.identified) << run.accel.random_walk.reason;
-    const double gyro_n = run.gyro.noise_density.value / (scale * kGyroNoiseDensity);
-    const double gyro_k = run.gyro.random_walk.value / (scale * kGyroRandomWalk);
-    const double accel_n = run.accel.noise_density.value / (scale * kAccelNoiseDensity);
-    const double accel_k = run.accel.random_walk.value / (scale * kAccelRandomWalk);
+    ASSERT_TRUE(run.gyro[NoiseTerm::kWhite].identified) << run.gyro[NoiseTerm::kWhite].reason;
+    ASSERT_TRUE(run.gyro[NoiseTerm::kRandomWalk].identified) << run.gyro[NoiseTerm::kRandomWalk].reason;
+    ASSERT_TRUE(run.accel[NoiseTerm::kWhite].identified) << run.accel[NoiseTerm::kWhite].reason;
+    ASSERT_TRUE(run.accel[NoiseTerm::kRandomWalk].identified) << run.accel[NoiseTerm::kRandomWalk].reason;
+    const double gyro_n = run.gyro[NoiseTerm::kWhite].value / (scale * kGyroNoiseDensity);
+    const double gyro_k = run.gyro[NoiseTerm::kRandomWalk].value / (scale * kGyroRandomWalk);
+    const double accel_n = run.accel[NoiseTerm::kWhite].value / (scale * kAccelNoiseDensity);
+    const double accel_k = run.accel[NoiseTerm::kRandomWalk].value / (scale * kAccelRandomWalk);
     EXPECT_NEAR(gyro_n, 1.0, kNoiseDensityTolerance);
     EXPECT_NEAR(gyro_k, 1.0, kRandomWalkTolerance);
     EXPECT_NEAR(accel_n, 1.0, kNoiseDensityTolerance);
     EXPECT_NEAR(accel_k, 1.0, kRandomWalkTolerance);
     // Scale invariance: the same ratios at every scale.
     EXPECT_NEAR(gyro_n,
-                base.gyro.noise_density.value / kGyroNoiseDensity,
+                base.gyro[NoiseTerm::kWhite].value / kGyroNoiseDensity,
                 kScaleInvarianceTolerance * gyro_n);
     EXPECT_NEAR(
-        gyro_k, base.gyro.random_walk.value / kGyroRandomWalk, kScaleInvarianceTolerance * gyro_k);
+        gyro_k, base.gyro[NoiseTerm::kRandomWalk].value / kGyroRandomWalk, kScaleInvarianceTolerance * gyro_k);
     EXPECT_NEAR(accel_n,
-                base.accel.noise_density.value / kAccelNoiseDensity,
+                base.accel[NoiseTerm::kWhite].value / kAccelNoiseDensity,
                 kScaleInvarianceTolerance * accel_n);
     EXPECT_NEAR(accel_k,
-                base.accel.random_walk.value / kAccelRandomWalk,
+                base.accel[NoiseTerm::kRandomWalk].value / kAccelRandomWalk,
                 kScaleInvarianceTolerance * accel_k);
     for (int j = 0; j < kNumNoiseTerms; ++j) {
       EXPECT_NEAR(run.gyro.model.value[j] / scale,
@@ -189,13 +189,13 @@ TEST(FitNoise, ShortRecordLeavesGyroRandomWalkUnidentified) {
   const AllanCurve curve = IntegratedSignal(std::move(gyro), kRateHz, "gyro x")
                                .Deviation(AllanClusterSizes(kSamples, 10, 0.1));
   const AxisNoiseFit fit = FitNoise(curve);
-  EXPECT_TRUE(fit.noise_density.identified);
-  EXPECT_NEAR(fit.noise_density.value / kGyroNoiseDensity, 1.0, 0.05);
-  EXPECT_FALSE(fit.random_walk.identified);
-  EXPECT_THAT(fit.random_walk.reason, HasSubstr("no region of its slope"));
-  EXPECT_FALSE(fit.bias_instability.identified);
-  EXPECT_GT(fit.random_walk_upper_bound, kGyroRandomWalk);
-  EXPECT_GT(fit.noise_density_upper_bound, kGyroNoiseDensity);
+  EXPECT_TRUE(fit[NoiseTerm::kWhite].identified);
+  EXPECT_NEAR(fit[NoiseTerm::kWhite].value / kGyroNoiseDensity, 1.0, 0.05);
+  EXPECT_FALSE(fit[NoiseTerm::kRandomWalk].identified);
+  EXPECT_THAT(fit[NoiseTerm::kRandomWalk].reason, HasSubstr("slope +1/2"));
+  EXPECT_FALSE(fit[NoiseTerm::kBiasInstability].identified);
+  EXPECT_GT(fit[NoiseTerm::kRandomWalk].upper_bound, kGyroRandomWalk);
+  EXPECT_GT(fit[NoiseTerm::kWhite].upper_bound, kGyroNoiseDensity);
 }
 
 TEST(FitNoise, NeedsTwoPositivePoints) {
