@@ -251,9 +251,11 @@ std::string Reason(NoiseTerm term,
       return "";
     case Failure::kNoWindow: {
       if (end - begin < options.min_points) {
-        return StringPrintf("fewer than %d averaging times where %s can show",
-                            options.min_points,
-                            NoiseTermName(term));
+        return StringPrintf(
+            "fewer than %d averaging times left where %s can show (beyond the white-noise range, "
+            "where white noise holds less than half the variance): record longer",
+            options.min_points,
+            NoiseTermName(term));
       }
       // The curve's own slope over the decade where the term would have to show.
       const bool long_end = NoiseTermSlope(term) > 0.0;

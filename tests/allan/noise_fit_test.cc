@@ -192,7 +192,7 @@ TEST(FitNoise, ShortRecordLeavesGyroRandomWalkUnidentified) {
   EXPECT_TRUE(fit[NoiseTerm::kWhite].identified);
   EXPECT_NEAR(fit[NoiseTerm::kWhite].value / kGyroNoiseDensity, 1.0, 0.05);
   EXPECT_FALSE(fit[NoiseTerm::kRandomWalk].identified);
-  EXPECT_THAT(fit[NoiseTerm::kRandomWalk].reason, HasSubstr("slope +1/2"));
+  EXPECT_THAT(fit[NoiseTerm::kRandomWalk].reason, HasSubstr("record longer"));
   EXPECT_FALSE(fit[NoiseTerm::kBiasInstability].identified);
   EXPECT_GT(fit[NoiseTerm::kRandomWalk].upper_bound, kGyroRandomWalk);
   EXPECT_GT(fit[NoiseTerm::kWhite].upper_bound, kGyroNoiseDensity);
@@ -200,6 +200,8 @@ TEST(FitNoise, ShortRecordLeavesGyroRandomWalkUnidentified) {
 
 TEST(FitNoise, NeedsTwoPositivePoints) {
   AllanCurve curve;
+  curve.num_samples = 100;
+  curve.cluster_sizes = {1, 10};
   curve.tau_s = {0.1, 1.0};
   curve.adev = {0.0, 1.0};
   curve.adev_error = {0.0, 0.1};
