@@ -8,9 +8,9 @@
 #include <thread>
 #include <utility>
 
+#include "sensor_units.h"
 #include "splinecal/error.h"
 #include "splinecal/string_printf.h"
-#include "sensor_units.h"
 
 namespace splinecal {
 namespace {
@@ -102,21 +102,19 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   }
   // The stretch [start_s, end_s), by sample index at the mean rate.
   if (!(options.start_s >= 0.0) || !(options.end_s > options.start_s)) {
-    throw fail(StringPrintf("--start %g s, --end %g s: expected 0 <= start < end",
-                            options.start_s,
-                            options.end_s));
+    throw fail(StringPrintf(
+        "--start %g s, --end %g s: expected 0 <= start < end", options.start_s, options.end_s));
   }
   const double duration_s = static_cast<double>(n) / recording.rate_hz;
   if (options.start_s >= duration_s) {
-    throw fail(StringPrintf("--start %g s is beyond the recording's %.6g s",
-                            options.start_s,
-                            duration_s));
+    throw fail(
+        StringPrintf("--start %g s is beyond the recording's %.6g s", options.start_s, duration_s));
   }
   const int64_t first = std::llround(std::ceil(options.start_s * recording.rate_hz - 1e-9));
-  const int64_t last = std::isfinite(options.end_s)
-                           ? std::min<int64_t>(n, std::llround(std::floor(
-                                                     options.end_s * recording.rate_hz + 1e-9)))
-                           : n;
+  const int64_t last =
+      std::isfinite(options.end_s)
+          ? std::min<int64_t>(n, std::llround(std::floor(options.end_s * recording.rate_hz + 1e-9)))
+          : n;
   if (first > 0 || last < n) Cut(first, last, &recording);
   n = last - first;
 

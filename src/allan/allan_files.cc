@@ -60,8 +60,9 @@ std::string KeyComment(const char* name, const KalibrKey& key, CombineAxes combi
   if (!key.present) return "";
   std::string text = std::string("# ") + name + ": ";
   if (key.upper_bound) {
-    text += "UPPER BOUND, no axis shows the slope of this term (the largest of the axes' bounds; "
-            "see result.yaml for why)";
+    text +=
+        "UPPER BOUND, no axis shows the slope of this term (the largest of the axes' bounds; "
+        "see result.yaml for why)";
   } else {
     text += std::string(combine == CombineAxes::kMax ? "max" : "mean") + " over the identified " +
             (key.num_axes == 1 ? "axis " : "axes ") + key.axes;
@@ -143,8 +144,7 @@ std::string AllanResultYamlText(const AllanResult& result) {
       yaml.Comment("second opinion: weighted least-squares fit of the IEEE Std 952 model");
       yaml.BeginMap("model");
       for (int j = 0; j < kNumNoiseTerms; ++j) {
-        WriteModelEstimate(
-            NoiseTermKey(static_cast<NoiseTerm>(j)), axis.fit.model_terms[j], &yaml);
+        WriteModelEstimate(NoiseTermKey(static_cast<NoiseTerm>(j)), axis.fit.model_terms[j], &yaml);
       }
       yaml.Scalar("rms_log_error", axis.fit.model_rms_log_error);
       yaml.EndMap();

@@ -23,11 +23,8 @@ const char* const kTermColors[kNumNoiseTerms] = {
 
 // A term's line, adev = coefficient * sqrt(basis(tau)), from tau_lo to tau_hi (a few points: the
 // slope is exact on log axes either way).
-void AddTermLine(NoiseTerm term,
-                 double coefficient,
-                 double tau_lo,
-                 double tau_hi,
-                 plot::Series* line) {
+void AddTermLine(
+    NoiseTerm term, double coefficient, double tau_lo, double tau_hi, plot::Series* line) {
   for (const double tau : {tau_lo, std::sqrt(tau_lo * tau_hi), tau_hi}) {
     line->x.push_back(tau);
     line->y.push_back(coefficient * std::sqrt(NoiseTermBasis(term, tau)));

@@ -129,7 +129,8 @@ double ChiSquareQuantile(double p, double dof) {
     } else {
       high = x;
     }
-    const double log_density = (a - 1.0) * std::log(0.5 * x) - 0.5 * x - LogGamma(a) - std::log(2.0);
+    const double log_density =
+        (a - 1.0) * std::log(0.5 * x) - 0.5 * x - LogGamma(a) - std::log(2.0);
     const double step = f / std::exp(log_density);
     double next = x - step;
     if (!(next > low && next < high) || !std::isfinite(next)) {

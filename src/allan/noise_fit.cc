@@ -477,7 +477,8 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
                                          size,
                                          dip_end,
                                          options);
-  const int after_walk = fit[NoiseTerm::kRandomWalk].identified ? walk.window.first + 1 : after_white;
+  const int after_walk =
+      fit[NoiseTerm::kRandomWalk].identified ? walk.window.first + 1 : after_white;
   fit[NoiseTerm::kRateRamp] = Estimate(NoiseTerm::kRateRamp,
                                        Decide(NoiseTerm::kRateRamp,
                                               of(NoiseTerm::kRateRamp),
@@ -504,8 +505,8 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
   for (size_t i = 0; i < curve.adev.size(); ++i) {
     if (!(curve.adev[i] > 0.0 && std::isfinite(curve.adev[i]))) continue;
     const auto variances = fit.model.TermVariances(curve.tau_s[i]);
-    const int dominant = static_cast<int>(
-        std::max_element(variances.begin(), variances.end()) - variances.begin());
+    const int dominant =
+        static_cast<int>(std::max_element(variances.begin(), variances.end()) - variances.begin());
     const double edf = OverlappingAllanEdf(NoiseTermNoiseType(static_cast<NoiseTerm>(dominant)),
                                            curve.num_samples,
                                            curve.cluster_sizes[i]);

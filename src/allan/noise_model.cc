@@ -1,5 +1,3 @@
-#include "splinecal/allan/noise_fit.h"
-
 #include <glog/logging.h>
 
 #include <Eigen/QR>
@@ -9,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "splinecal/allan/noise_fit.h"
 #include "splinecal/error.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"

@@ -9,7 +9,7 @@ namespace splinecal {
 namespace internal {
 
 struct SensorUnits {
-  const char* adev;  // deviation and B [rad/s]
+  const char* adev;     // deviation and B [rad/s]
   const char* density;  // N
   const char* walk;     // K
   const char* quantization;

@@ -27,11 +27,8 @@ bool LineFitsWindow(const std::vector<LogPoint>& points,
   return true;
 }
 
-std::vector<PointWindow> MaximalLineWindows(const std::vector<LogPoint>& points,
-                                            int begin,
-                                            int end,
-                                            double slope,
-                                            int min_points) {
+std::vector<PointWindow> MaximalLineWindows(
+    const std::vector<LogPoint>& points, int begin, int end, double slope, int min_points) {
   std::vector<PointWindow> windows;
   int last = begin - 1;  // b(a): the window [a, last] fits; never decreases with a
   int previous_last = begin - 2;

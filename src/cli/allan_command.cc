@@ -9,12 +9,12 @@
 #include <string>
 
 #include "splinecal/allan/allan.h"
-#include "splinecal/io/static_recording.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
 #include "splinecal/io/output_dir.h"
+#include "splinecal/io/static_recording.h"
 #include "splinecal/string_printf.h"
 
 DEFINE_int32(taus_per_decade, 10, "Averaging times per decade (before de-duplication)");
@@ -34,7 +34,9 @@ DEFINE_double(gyro_scale,
 DEFINE_double(accel_scale, 1.0, "Multiplies accel readings into m/s^2 (9.80665 for g)");
 DEFINE_string(combine, "mean", "How Kalibr keys combine the identified x, y, z axes: mean or max");
 DECLARE_double(start);  // shared with integrate: seconds after the first sample
-DEFINE_double(end, 0.0, "End of the stretch to analyse, seconds from the first sample; 0: the end [s]");
+DEFINE_double(end,
+              0.0,
+              "End of the stretch to analyse, seconds from the first sample; 0: the end [s]");
 DEFINE_bool(allow_motion,
             false,
             "Analyse a recording that moves instead of refusing it; every term is then marked "
@@ -47,7 +49,7 @@ namespace {
 std::string Summary(const char* name, const KalibrKey& key, const char* unit) {
   if (!key.present) return "";
   std::string note = key.upper_bound ? " (UPPER BOUND: no axis identified it, see result.yaml)"
-                                      : " (axes " + key.axes + ")";
+                                     : " (axes " + key.axes + ")";
   if (key.unreliable) note += " UNRELIABLE: the recording moves";
   return StringPrintf("allan: %-28s %.6g %s%s\n", name, key.value, unit, note.c_str());
 }
@@ -80,9 +82,8 @@ AllanInputs ReadAllanInputs() {
   options.start_s = FLAGS_start;
   if (FLAGS_end != 0.0) options.end_s = FLAGS_end;
   if (!(options.start_s >= 0.0) || !(options.end_s > options.start_s)) {
-    throw Error(StringPrintf("--start %g, --end %g: expected 0 <= start < end (seconds)",
-                             FLAGS_start,
-                             FLAGS_end));
+    throw Error(StringPrintf(
+        "--start %g, --end %g: expected 0 <= start < end (seconds)", FLAGS_start, FLAGS_end));
   }
   options.motion_policy =
       FLAGS_allow_motion ? MotionPolicy::kMarkUnreliable : MotionPolicy::kRefuse;
@@ -156,7 +157,8 @@ Command AllanCommand() {
   command.usage =
       "splinecal allan (--imu imu0/data.csv | --columns FILE --rate HZ [--sensor gyro|accel])\n"
       "    [--taus-per-decade N] [--max-tau-fraction F] [--combine mean|max] [--gyro-scale S]\n"
-      "    [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g] [--start S] [--end S]\n"
+      "    [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g] [--start S] [--end "
+      "S]\n"
       "    [--allow-motion] --out DIR";
   command.description =
       "Computes the overlapping Allan deviation of every axis at log-spaced averaging times and "
@@ -166,7 +168,8 @@ Command AllanCommand() {
       "overlapping estimator) follow its slope over a stated range and rule out the neighbouring "
       "slopes; otherwise it is reported as an upper bound with the reason. The IEEE Std 952 "
       "model fit is a second opinion. A recording that moves is refused (--allow-motion: marked "
-      "unreliable); --start/--end cut a static stretch out of a longer log. Writes allan.csv (tau_s, deviation and error per axis), imu.yaml (Kalibr "
+      "unreliable); --start/--end cut a static stretch out of a longer log. Writes allan.csv "
+      "(tau_s, deviation and error per axis), imu.yaml (Kalibr "
       "densities, not per-sample standard deviations), result.yaml (every term per axis) and "
       "allan.svg (log-log plot). The recording must be static: the IMU at rest for its whole "
       "length (hours for the random walk). See docs/allan.md.";

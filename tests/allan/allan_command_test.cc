@@ -193,11 +193,8 @@ TEST(AllanCommand, RealRecordingsThatMoveAreRefused) {
       for (const char* axis : {"x", "y", "z"}) {
         const YAML::Node node = result[sensor][axis];
         EXPECT_EQ(node["unreliable"].as<std::string>(), "the recording moves");
-        for (const char* term : {"quantization",
-                                 "noise_density",
-                                 "bias_instability",
-                                 "random_walk",
-                                 "rate_ramp"}) {
+        for (const char* term :
+             {"quantization", "noise_density", "bias_instability", "random_walk", "rate_ramp"}) {
           if (node[term].as<std::string>() == "not identified") continue;
           EXPECT_LE(node[term].as<double>(), node[std::string(term) + "_upper_bound"].as<double>())
               << sensor << " " << axis << " " << term;
@@ -237,7 +234,8 @@ TEST(AllanCommand, StartAndEndCutAStaticStretch) {
             5900);
 
   for (const std::vector<std::string>& flags :
-       {std::vector<std::string>{"--start", "400"}, std::vector<std::string>{"--start", "50", "--end", "20"}}) {
+       {std::vector<std::string>{"--start", "400"},
+        std::vector<std::string>{"--start", "50", "--end", "20"}}) {
     std::vector<std::string> args = {"allan", "--imu", imu, "--out", dir.File("bad"), "--quiet"};
     args.insert(args.end(), flags.begin(), flags.end());
     const testing::ToolResult run = RunTool(args);

@@ -35,9 +35,9 @@ StaticRecording GyroRecording(double rate_hz, Make&& make) {
 // White noise of density n plus a first-order Gauss-Markov bias of standard deviation sigma_b and
 // correlation time tc: b_k = phi b_{k-1} + sqrt(1 - phi^2) sigma_b w_k, phi = exp(-1 / (f tc)).
 TEST(NoiseDecisions, GaussMarkovBiasIsNoRandomWalk) {
-  constexpr double kN = 1e-3;        // [rad/s/sqrt(Hz)]
-  constexpr double kSigmaB = 1e-3;   // [rad/s]; its Allan deviation peaks near 0.62 sigma_b
-  constexpr double kTc = 50.0;       // [s]
+  constexpr double kN = 1e-3;       // [rad/s/sqrt(Hz)]
+  constexpr double kSigmaB = 1e-3;  // [rad/s]; its Allan deviation peaks near 0.62 sigma_b
+  constexpr double kTc = 50.0;      // [s]
   constexpr double kHours = 4.0;
   constexpr double kRate = 100.0;
   const int64_t n = static_cast<int64_t>(kHours * 3600 * kRate);

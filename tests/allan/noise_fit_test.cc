@@ -3,11 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <unsupported/Eigen/FFT>
-
 #include <cmath>
 #include <complex>
 #include <random>
+#include <unsupported/Eigen/FFT>
 #include <vector>
 
 #include "allan/static_series.h"
@@ -104,7 +103,8 @@ TEST(FitNoise, ExactModelCurveGivesItsTerms) {
   }
   EXPECT_LT(fit.model_rms_log_error, 1e-9);
   // The bias-instability floor sits above 0.664 B by the other terms' share at the minimum.
-  ASSERT_TRUE(fit[NoiseTerm::kBiasInstability].identified) << fit[NoiseTerm::kBiasInstability].reason;
+  ASSERT_TRUE(fit[NoiseTerm::kBiasInstability].identified)
+      << fit[NoiseTerm::kBiasInstability].reason;
   EXPECT_GT(fit[NoiseTerm::kBiasInstability].value, truth[NoiseTerm::kBiasInstability]);
   EXPECT_LT(fit[NoiseTerm::kBiasInstability].value, 1.15 * truth[NoiseTerm::kBiasInstability]);
   ASSERT_TRUE(fit[NoiseTerm::kWhite].identified) << fit[NoiseTerm::kWhite].reason;
@@ -142,9 +142,11 @@ TEST(FitNoise, RoundTripAdis16448AtFourScales) {
     SCOPED_TRACE("scale " + std::to_string(scale));
     const RoundTrip run = scale == 1.0 ? base : RunRoundTrip(gyro_draws, accel_draws, scale);
     ASSERT_TRUE(run.gyro[NoiseTerm::kWhite].identified) << run.gyro[NoiseTerm::kWhite].reason;
-    ASSERT_TRUE(run.gyro[NoiseTerm::kRandomWalk].identified) << run.gyro[NoiseTerm::kRandomWalk].reason;
+    ASSERT_TRUE(run.gyro[NoiseTerm::kRandomWalk].identified)
+        << run.gyro[NoiseTerm::kRandomWalk].reason;
     ASSERT_TRUE(run.accel[NoiseTerm::kWhite].identified) << run.accel[NoiseTerm::kWhite].reason;
-    ASSERT_TRUE(run.accel[NoiseTerm::kRandomWalk].identified) << run.accel[NoiseTerm::kRandomWalk].reason;
+    ASSERT_TRUE(run.accel[NoiseTerm::kRandomWalk].identified)
+        << run.accel[NoiseTerm::kRandomWalk].reason;
     const double gyro_n = run.gyro[NoiseTerm::kWhite].value / (scale * kGyroNoiseDensity);
     const double gyro_k = run.gyro[NoiseTerm::kRandomWalk].value / (scale * kGyroRandomWalk);
     const double accel_n = run.accel[NoiseTerm::kWhite].value / (scale * kAccelNoiseDensity);
@@ -157,8 +159,9 @@ TEST(FitNoise, RoundTripAdis16448AtFourScales) {
     EXPECT_NEAR(gyro_n,
                 base.gyro[NoiseTerm::kWhite].value / kGyroNoiseDensity,
                 kScaleInvarianceTolerance * gyro_n);
-    EXPECT_NEAR(
-        gyro_k, base.gyro[NoiseTerm::kRandomWalk].value / kGyroRandomWalk, kScaleInvarianceTolerance * gyro_k);
+    EXPECT_NEAR(gyro_k,
+                base.gyro[NoiseTerm::kRandomWalk].value / kGyroRandomWalk,
+                kScaleInvarianceTolerance * gyro_k);
     EXPECT_NEAR(accel_n,
                 base.accel[NoiseTerm::kWhite].value / kAccelNoiseDensity,
                 kScaleInvarianceTolerance * accel_n);
@@ -257,9 +260,10 @@ TEST(NoiseTermBasis, QuantizationCoefficientBySimulation) {
 // in its AVAR = 4 int_0^inf S(f) sin^4(pi f tau) / (pi f tau)^2 df, which gives N^2 / tau for white
 // noise of density N], made by Kasdin's fractional integration of white noise,
 // y = (1 - z^-1)^(-1/2) w: impulse response h_0 = 1, h_k = h_{k-1} (k - 1/2) / k, two-sided PSD
-// var(w) tau_0 / |2 sin(pi f tau_0)| ~ var(w) / (2 pi f), so var(w) = B^2. [Kasdin95] N. J. Kasdin, "Discrete simulation
-// of colored noise and stochastic processes and 1/f^alpha power law noise generation", Proc.
-// IEEE 83(5), 1995. The convolution runs through an FFT of twice the length (no wrap-around).
+// var(w) tau_0 / |2 sin(pi f tau_0)| ~ var(w) / (2 pi f), so var(w) = B^2. [Kasdin95] N. J. Kasdin,
+// "Discrete simulation of colored noise and stochastic processes and 1/f^alpha power law noise
+// generation", Proc. IEEE 83(5), 1995. The convolution runs through an FFT of twice the length (no
+// wrap-around).
 TEST(NoiseTermBasis, BiasInstabilityCoefficientBySimulation) {
   constexpr int kLog2 = 20;
   constexpr int64_t kSamples = int64_t{1} << kLog2;
@@ -296,8 +300,8 @@ TEST(NoiseTermBasis, BiasInstabilityCoefficientBySimulation) {
     EXPECT_NEAR(curve.adev[i] / predicted, 1.0, 0.15) << "m = " << sizes[i];
   }
   EXPECT_NEAR(mean_ratio, 1.0, 0.05);
-  EXPECT_NEAR(kBiasInstabilityFloor, std::sqrt(NoiseTermBasis(NoiseTerm::kBiasInstability, 1.0)),
-              1e-15);
+  EXPECT_NEAR(
+      kBiasInstabilityFloor, std::sqrt(NoiseTermBasis(NoiseTerm::kBiasInstability, 1.0)), 1e-15);
 }
 
 // Rate ramp: y_k = R k tau_0. Adjacent cluster averages differ by R tau exactly, so AVAR =
@@ -311,8 +315,7 @@ TEST(NoiseTermBasis, RateRampCoefficientBySimulation) {
   const std::vector<int64_t> sizes = {1, 10, 100, 1000, 10000};
   const AllanCurve pure = OverlappingAllanDeviation(ramp, kRateHz, sizes, "ramp");
   for (size_t i = 0; i < sizes.size(); ++i) {
-    const double predicted =
-        kR * std::sqrt(NoiseTermBasis(NoiseTerm::kRateRamp, pure.tau_s[i]));
+    const double predicted = kR * std::sqrt(NoiseTermBasis(NoiseTerm::kRateRamp, pure.tau_s[i]));
     EXPECT_NEAR(pure.adev[i] / predicted, 1.0, 1e-9) << "m = " << sizes[i];
   }
   std::mt19937_64 engine(23);

@@ -84,7 +84,7 @@ struct AllanResult {
   CombineAxes combine = CombineAxes::kMean;
   double start_s = 0.0;  // the stretch analysed, seconds from the recording's first sample
   double end_s = 0.0;
-  MotionCheck motion;  // moving and allowed: every term is unreliable
+  MotionCheck motion;                     // moving and allowed: every term is unreliable
   std::vector<AxisAllan> axes;            // in the recording's order
   KalibrKey gyroscope_noise_density;      // [rad/s/sqrt(Hz)]
   KalibrKey gyroscope_random_walk;        // [rad/s^2/sqrt(Hz)]

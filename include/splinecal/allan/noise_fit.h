@@ -103,10 +103,10 @@ PowerLawNoise NoiseTermNoiseType(NoiseTerm term);
 // One term's estimate and where it came from.
 struct TermEstimate {
   bool identified = false;
-  double value = 0.0;       // when identified: the coefficient (units in the file comment)
-  double value_low = 0.0;   // its interval at the fit's confidence
+  double value = 0.0;      // when identified: the coefficient (units in the file comment)
+  double value_low = 0.0;  // its interval at the fit's confidence
   double value_high = 0.0;
-  std::string reason;       // when not identified: why (one sentence)
+  std::string reason;  // when not identified: why (one sentence)
   // The averaging times the estimate used, and the curve's own least-squares slope over them.
   double tau_min_s = 0.0;
   double tau_max_s = 0.0;

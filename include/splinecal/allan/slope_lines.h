@@ -47,11 +47,8 @@ bool LineFitsWindow(const std::vector<LogPoint>& points,
 
 // The maximal windows of at least min_points points, among the points begin..end - 1, through
 // whose intervals a line of `slope` passes; at most one per start point, in order of start.
-std::vector<PointWindow> MaximalLineWindows(const std::vector<LogPoint>& points,
-                                            int begin,
-                                            int end,
-                                            double slope,
-                                            int min_points);
+std::vector<PointWindow> MaximalLineWindows(
+    const std::vector<LogPoint>& points, int begin, int end, double slope, int min_points);
 
 // The weighted least-squares intercept of a line of `slope` through the points of the window
 // (the weighted mean of log_adev - slope * log_tau), clamped into [c_low, c_high].
