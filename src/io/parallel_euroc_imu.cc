@@ -259,6 +259,20 @@ void RunTasks(int threads, int64_t count, Task&& task) {
   for (std::thread& thread : pool) thread.join();
 }
 
+// Maps the pages of [data, data + bytes) for writing in one call (Linux 5.14 and later; elsewhere
+// the first writes fault them in one page at a time): 480 MB of columns for 10^7 rows took 0.07 s
+// less system time than 120 000 page faults. Transparent huge pages were tried and dropped: 0.15 s
+// less on most runs, but up to 0.6 s more on others (2 MB pages this VM's host had to back
+// first).
+void Prefault(const void* data, size_t bytes) {
+#if defined(MADV_POPULATE_WRITE)
+  constexpr uintptr_t kPage = 4096;
+  const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kPage - 1) & ~(kPage - 1);
+  const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kPage - 1);
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#endif
+}
+
 // Shares of `text` of about `bytes` that end just after a newline (the last at the end). Many
 // more than threads (8 MB: 170 for 1.4 GB): a thread that the scheduler holds back, the machine
 // being busy with other work, then delays the others by one share, not by half the file.
@@ -327,8 +341,12 @@ std::optional<EurocImuColumns> ReadEurocImuParallel(const std::string& path,
   }
   if (bound < 2) return std::nullopt;
   EurocImuColumns columns;
-  // Zeroing 6 x 8 bytes per row (and the page faults) on both threads.
-  RunTasks(threads, 6, [&](int64_t a) { columns.values[a].resize(bound); });
+  // Zeroing 6 x 8 bytes per row on both threads, the pages mapped in one call per axis.
+  RunTasks(threads, 6, [&](int64_t a) {
+    columns.values[a].reserve(bound);
+    Prefault(columns.values[a].data(), bound * sizeof(double));
+    columns.values[a].resize(bound);
+  });
   Scaling scaling;
   // Limits in the file's unit, as the TextFileReader path checks them; kept finite (a tiny scale
   // would make them inf) so that they also refuse inf and nan.
