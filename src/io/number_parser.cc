@@ -1,5 +1,7 @@
 #include "splinecal/io/number_parser.h"
 
+#include "splinecal/io/number_parser_avx2.h"
+
 namespace splinecal {
 namespace internal {
 namespace {
@@ -51,10 +53,61 @@ constexpr ScaledPow10Table BuildTable() {
   return table;
 }
 
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+constexpr double PowerOfTwo(int e) {
+  double x = 1.0;
+  for (; e > 0; --e) x *= 2.0;
+  for (; e < 0; ++e) x *= 0.5;
+  return x;
+}
+
+// v * 2^e2 rounded to the nearest double (ties to even), v > 0.
+constexpr double RoundToDouble(unsigned __int128 v, int e2) {
+  int top = 127;
+  while (((v >> top) & 1) == 0) --top;
+  if (top < 53) return static_cast<double>(static_cast<uint64_t>(v)) * PowerOfTwo(e2);
+  const int dropped = top - 52;
+  uint64_t kept = static_cast<uint64_t>(v >> dropped);
+  const unsigned __int128 rest = v & ((static_cast<unsigned __int128>(1) << dropped) - 1);
+  const unsigned __int128 half = static_cast<unsigned __int128>(1) << (dropped - 1);
+  if (rest > half || (rest == half && (kept & 1) != 0)) ++kept;  // kept <= 2^53: exact
+  return static_cast<double>(kept) * PowerOfTwo(e2 + dropped);
+}
+
+// high = T * 2^e rounded, low = the rest rounded: high + low is within 2^-106 of 10^-k.
+constexpr DoubleDoublePow10Table BuildDoubleDoubleTable(const ScaledPow10Table& scaled) {
+  DoubleDoublePow10Table table{};
+  for (int k = 0; k <= -kMinPow10; ++k) {
+    const ScaledPow10& t = scaled.of[-k - kMinPow10];
+    const unsigned __int128 value = (static_cast<unsigned __int128>(t.high) << 64) | t.low;
+    // The top bit is bit 127: high keeps 53 bits, 75 are dropped.
+    const unsigned __int128 rest = value & ((static_cast<unsigned __int128>(1) << 75) - 1);
+    const unsigned __int128 half = static_cast<unsigned __int128>(1) << 74;
+    const bool up = rest > half || (rest == half && ((value >> 75) & 1) != 0);
+    table.high[k] = RoundToDouble(value, t.exponent2);
+    table.low[k] =
+        up ? -RoundToDouble((static_cast<unsigned __int128>(1) << 75) - rest, t.exponent2)
+           : (rest == 0 ? 0.0 : RoundToDouble(rest, t.exponent2));
+  }
+  return table;
+}
+#endif
+
 }  // namespace
 
 // Computed by the compiler: exact by construction, not typed in.
 constexpr ScaledPow10Table kScaledPow10 = BuildTable();
+
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+constexpr DoubleDoublePow10Table kDoubleDoublePow10 = BuildDoubleDoubleTable(kScaledPow10);
+
+bool CpuHasAvx2Parser() {
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+                          __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
+                          __builtin_cpu_supports("popcnt");
+  return has;
+}
+#endif
 
 }  // namespace internal
 }  // namespace splinecal

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "splinecal/io/number_parser.h"
+#include "splinecal/io/number_parser_avx2.h"
 #include "splinecal/io/text_file.h"
 
 namespace splinecal {
@@ -114,29 +115,94 @@ bool ParseRow(std::string_view line, int64_t* t_ns, double* values) {
 // A row is looked for within this many bytes: a EuRoC row of 17-digit numbers is about 140.
 constexpr int kRowWindow = 192;
 
-// The first 7 ',' or '\n' in the kRowWindow bytes at p (all readable), in order; returns how many
-// were found (at most 7).
-int FindSeparators(const char* p, const char* separators[7]) {
-  uint64_t words[kRowWindow / 64];
-  for (int w = 0; w < kRowWindow / 64; ++w) {
+// Always inlined: the templates below are compiled once per instruction set, inside the function
+// that names it (ParseChunkSse2, ParseChunkAvx2).
+#if defined(__GNUC__)
+#define SPLINECAL_INLINE __attribute__((always_inline)) inline
+#else
+#define SPLINECAL_INLINE inline
+#endif
+
+// How fields are read on processors without AVX2: SSE2 (io/number_parser.h).
+struct Sse2Fields {
+  // One bit per byte of the 64 bytes at p: ',' or '\n'.
+  static SPLINECAL_INLINE uint64_t Separators(const char* p) {
     uint64_t bits = 0;
 #if defined(__SSE2__)
     const __m128i comma = _mm_set1_epi8(',');
     const __m128i newline = _mm_set1_epi8('\n');
     for (int v = 0; v < 4; ++v) {
-      const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 64 * w + 16 * v));
+      const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * v));
       const __m128i found =
           _mm_or_si128(_mm_cmpeq_epi8(bytes, comma), _mm_cmpeq_epi8(bytes, newline));
       bits |= uint64_t{static_cast<uint16_t>(_mm_movemask_epi8(found))} << (16 * v);
     }
 #else
-    for (int i = 0; i < 64; ++i) {
-      const char c = p[64 * w + i];
-      bits |= uint64_t{c == ',' || c == '\n'} << i;
-    }
+    for (int i = 0; i < 64; ++i) bits |= uint64_t{p[i] == ',' || p[i] == '\n'} << i;
 #endif
-    words[w] = bits;
+    return bits;
   }
+  // The six readings [begins[a], ends[a]); false when one is no number.
+  static SPLINECAL_INLINE bool Readings(const char* const* begins,
+                                        const char* const* ends,
+                                        double* values) {
+    for (int a = 0; a < 6; ++a) {
+      if (!ParseDecimalField(begins[a], ends[a], &values[a]) &&
+          ParseNumberPrefix(begins[a], ends[a], &values[a]) != ends[a]) {
+        return false;
+      }
+    }
+    return true;
+  }
+};
+
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+// The same with AVX2 (io/number_parser_avx2.h): the six fields' digits first, then the six
+// roundings in two groups of four.
+struct Avx2Fields {
+  SPLINECAL_AVX2_TARGET static inline uint64_t Separators(const char* p) {
+    const __m256i comma = _mm256_set1_epi8(',');
+    const __m256i newline = _mm256_set1_epi8('\n');
+    uint64_t bits = 0;
+    for (int v = 0; v < 2; ++v) {
+      const __m256i bytes = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + 32 * v));
+      const __m256i found =
+          _mm256_or_si256(_mm256_cmpeq_epi8(bytes, comma), _mm256_cmpeq_epi8(bytes, newline));
+      bits |= uint64_t{static_cast<uint32_t>(_mm256_movemask_epi8(found))} << (32 * v);
+    }
+    return bits;
+  }
+  SPLINECAL_AVX2_TARGET static inline bool Readings(const char* const* begins,
+                                                    const char* const* ends,
+                                                    double* values) {
+    DecimalDigits digits[8];
+    bool read[6];
+    for (int a = 0; a < 6; ++a) read[a] = ReadDecimalFieldAvx2(begins[a], ends[a], &digits[a]);
+    double rounded[8];
+    const int open =
+        RoundDecimals4(digits, rounded) | (RoundDecimals4(digits + 4, rounded + 4) << 4);
+    for (int a = 0; a < 6; ++a) {
+      if (read[a] && ((open >> a) & 1) == 0) {
+        values[a] = rounded[a];
+      } else if (!(read[a] && DecimalToDouble(digits[a].w,
+                                              -static_cast<int>(digits[a].fraction_digits),
+                                              digits[a].negative != 0,
+                                              &values[a])) &&
+                 ParseNumberPrefix(begins[a], ends[a], &values[a]) != ends[a]) {
+        return false;
+      }
+    }
+    return true;
+  }
+};
+#endif
+
+// The first 7 ',' or '\n' in the kRowWindow bytes at p (all readable), in order; returns how many
+// were found (at most 7).
+template <typename Fields>
+SPLINECAL_INLINE int FindSeparators(const char* p, const char* separators[7]) {
+  uint64_t words[kRowWindow / 64];
+  for (int w = 0; w < kRowWindow / 64; ++w) words[w] = Fields::Separators(p + 64 * w);
   int count = 0;
   for (int w = 0; w < kRowWindow / 64 && count < 7; ++w) {
     for (uint64_t bits = words[w]; bits != 0 && count < 7; bits &= bits - 1) {
@@ -148,16 +214,18 @@ int FindSeparators(const char* p, const char* separators[7]) {
 
 // The common spelling of a row, "t,gx,gy,gz,ax,ay,az" then '\n' or "\r\n", read without a
 // search for the line end: the field ends are found first (FindSeparators), then every field is
-// read on its own (io/number_parser.h, or ParseNumberPrefix for what that leaves). Returns the
-// start of the next line, or nullptr for anything else, the last rows of the text included (then
+// read on its own (Fields, or ParseNumberPrefix for what that leaves). Returns the start of the
+// next line, or nullptr for anything else, the first and last rows of the text included (then
 // ParseRow on the trimmed line decides; for the rows accepted here both read the same numbers).
-const char* ParseCommonRow(
+template <typename Fields>
+SPLINECAL_INLINE const char* ParseCommonRow(
     const char* p, const char* end, std::string_view text, int64_t* t_ns, double* values) {
-  if (p - text.data() < kFieldWindow || text.data() + text.size() - p < kRowWindow) {
+  // Fields are read right-aligned, from up to kFieldWindow + 1 bytes before their end.
+  if (p - text.data() <= kFieldWindow || text.data() + text.size() - p < kRowWindow) {
     return nullptr;
   }
   const char* separators[7];
-  if (FindSeparators(p, separators) < 7 || *separators[6] != '\n' || separators[6] >= end) {
+  if (FindSeparators<Fields>(p, separators) < 7 || *separators[6] != '\n' || separators[6] >= end) {
     return nullptr;
   }
   for (int k = 0; k < 6; ++k) {
@@ -167,16 +235,14 @@ const char* ParseCommonRow(
       ParseNumberPrefix(p, separators[0], t_ns) != separators[0]) {
     return nullptr;
   }
+  const char* begins[6];
+  const char* ends[6];
   for (int a = 0; a < 6; ++a) {
-    const char* const begin = separators[a] + 1;
-    const char* field_end = separators[a + 1];
-    if (a == 5 && field_end[-1] == '\r') --field_end;
-    if (!ParseDecimalField(begin, field_end, &values[a]) &&
-        ParseNumberPrefix(begin, field_end, &values[a]) != field_end) {
-      return nullptr;
-    }
+    begins[a] = separators[a] + 1;
+    ends[a] = separators[a + 1];
   }
-  return separators[6] + 1;
+  if (ends[5][-1] == '\r') --ends[5];
+  return Fields::Readings(begins, ends, values) ? separators[6] + 1 : nullptr;
 }
 
 // Readings within the plausibility limits, multiplied by their scales.
@@ -187,10 +253,11 @@ struct Scaling {
 
 // Parses `chunk` into columns rows chunk->first_row onwards; stops at the first row that the
 // TextFileReader path must judge (chunk->ok = false).
-void ParseChunk(std::string_view text,
-                const Scaling& scaling,
-                EurocImuColumns* columns,
-                Chunk* chunk) {
+template <typename Fields>
+SPLINECAL_INLINE void ParseChunk(std::string_view text,
+                                 const Scaling& scaling,
+                                 EurocImuColumns* columns,
+                                 Chunk* chunk) {
   const char* p = chunk->text.data();
   const char* const end = p + chunk->text.size();
   int64_t row = chunk->first_row;
@@ -203,7 +270,7 @@ void ParseChunk(std::string_view text,
   while (p != end) {
     int64_t t_ns = 0;
     double values[6];
-    const char* next = ParseCommonRow(p, end, text, &t_ns, values);
+    const char* next = ParseCommonRow<Fields>(p, end, text, &t_ns, values);
     if (next == nullptr) {
       const char* const newline = static_cast<const char*>(std::memchr(p, '\n', end - p));
       const char* const line_end = newline != nullptr ? newline : end;
@@ -244,6 +311,22 @@ void ParseChunk(std::string_view text,
   chunk->last_t_ns = last_t_ns;
   chunk->largest_step_ns = largest_step_ns;
 }
+
+void ParseChunkSse2(std::string_view text,
+                    const Scaling& scaling,
+                    EurocImuColumns* columns,
+                    Chunk* chunk) {
+  ParseChunk<Sse2Fields>(text, scaling, columns, chunk);
+}
+
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+SPLINECAL_AVX2_TARGET void ParseChunkAvx2(std::string_view text,
+                                          const Scaling& scaling,
+                                          EurocImuColumns* columns,
+                                          Chunk* chunk) {
+  ParseChunk<Avx2Fields>(text, scaling, columns, chunk);
+}
+#endif
 
 // Runs task(0) .. task(count - 1) on `threads` threads (the calling one included), each thread
 // taking the next task when it is done with one.
@@ -314,7 +397,7 @@ int64_t CloseGaps(const std::vector<Chunk>& chunks, EurocImuColumns* columns) {
 std::optional<EurocImuColumns> ReadEurocImuParallel(const std::string& path,
                                                     double gyro_scale,
                                                     double accel_scale,
-                                                    int64_t share_bytes) {
+                                                    const ParallelReadOptions& options) {
   const MappedFile file(path);
   std::string_view text = file.text();
   if (text.empty()) return std::nullopt;
@@ -326,7 +409,7 @@ std::optional<EurocImuColumns> ReadEurocImuParallel(const std::string& path,
   }
   const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
   std::vector<Chunk> chunks =
-      SplitIntoChunks(text, static_cast<size_t>(std::max<int64_t>(share_bytes, 1)));
+      SplitIntoChunks(text, static_cast<size_t>(std::max<int64_t>(options.share_bytes, 1)));
   const int64_t num_chunks = static_cast<int64_t>(chunks.size());
   // Pass 1: an upper bound of each chunk's rows (its newlines, plus an unterminated last line),
   // so that every chunk is parsed straight into the final arrays.
@@ -356,9 +439,12 @@ std::optional<EurocImuColumns> ReadEurocImuParallel(const std::string& path,
                                  std::numeric_limits<double>::max());
   }
   // Pass 2: parse.
-  RunTasks(threads, num_chunks, [&](int64_t i) {
-    ParseChunk(file.text(), scaling, &columns, &chunks[i]);
-  });
+  auto parse = &ParseChunkSse2;
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+  if (options.avx2 && CpuHasAvx2Parser()) parse = &ParseChunkAvx2;
+#endif
+  RunTasks(
+      threads, num_chunks, [&](int64_t i) { parse(file.text(), scaling, &columns, &chunks[i]); });
   bool started = false;
   for (const Chunk& chunk : chunks) {
     if (!chunk.ok) return std::nullopt;

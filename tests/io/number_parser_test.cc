@@ -10,6 +10,8 @@
 #include <random>
 #include <string>
 
+#include "splinecal/io/number_parser_avx2.h"
+
 namespace splinecal {
 namespace internal {
 namespace {
@@ -26,6 +28,22 @@ class Field {
     end_ = begin_ + text.size();
   }
   bool Decimal(double* value) const { return ParseDecimalField(begin_, end_, value); }
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+  // The AVX2 reader, its digits rounded in the first of four lanes (the others filled with
+  // `neighbour`'s digits, as a row's other fields would be): false when it leaves the field to
+  // from_chars. Only where CpuHasAvx2Parser().
+  bool DecimalAvx2(const DecimalDigits& neighbour, double* value) const {
+    DecimalDigits digits[4] = {neighbour, neighbour, neighbour, neighbour};
+    if (!ReadDecimalFieldAvx2(begin_, end_, &digits[0])) return false;
+    double rounded[4];
+    if ((RoundDecimals4(digits, rounded) & 1) == 0) {
+      *value = rounded[0];
+      return true;
+    }
+    return DecimalToDouble(
+        digits[0].w, -static_cast<int>(digits[0].fraction_digits), digits[0].negative, value);
+  }
+#endif
   bool Integer(int64_t* value) const { return ParseInt64Field(begin_, end_, value); }
   // What std::from_chars reads when it reads the whole field.
   bool FromChars(double* value) const {
@@ -59,6 +77,18 @@ uint64_t Bits(double x) {
       return ::testing::AssertionFailure() << "'" << text << "' read as " << fast;
     }
   }
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+  DecimalDigits neighbour;
+  neighbour.w = 1234567890123456789u;
+  neighbour.fraction_digits = salt % 20;
+  double fast_avx2 = 0.0;
+  if (CpuHasAvx2Parser() && field.DecimalAvx2(neighbour, &fast_avx2)) {
+    double reference = 0.0;
+    if (!field.FromChars(&reference) || Bits(fast_avx2) != Bits(reference)) {
+      return ::testing::AssertionFailure() << "'" << text << "' read as " << fast_avx2 << " (AVX2)";
+    }
+  }
+#endif
   int64_t fast_integer = 0;
   if (field.Integer(&fast_integer)) {
     int64_t reference = 0;
@@ -87,6 +117,11 @@ TEST(NumberParser, ReadsTheCommonFieldsAsFromChars) {
                            "0.000000000000000000000000000001"}) {
     double value = 0.0;
     EXPECT_TRUE(Field(text).Decimal(&value)) << text;
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+    if (CpuHasAvx2Parser()) {
+      EXPECT_TRUE(Field(text).DecimalAvx2(DecimalDigits(), &value)) << text;
+    }
+#endif
     EXPECT_TRUE(SameAsFromChars(text));
   }
   for (const char* text : {"1403636579758555392", "0", "007", "9223372036854775807"}) {
@@ -120,6 +155,11 @@ TEST(NumberParser, LeavesEverythingElseToFromChars) {
                            "9007199254740993.0"}) {              // exactly halfway: a tie
     double value = 0.0;
     EXPECT_FALSE(Field(text).Decimal(&value)) << text;
+#if defined(SPLINECAL_HAS_AVX2_PARSER)
+    if (CpuHasAvx2Parser()) {
+      EXPECT_FALSE(Field(text).DecimalAvx2(DecimalDigits(), &value)) << text;
+    }
+#endif
   }
   for (const char* text :
        {"-5", "+5", "9223372036854775808", "12a", "1.0", "", "12345678901234567890"}) {

@@ -76,17 +76,22 @@ TEST(ReadEurocImuParallel, ManySharesReadAsTheLineByLinePath) {
   }
   TempDir dir;
   const std::string path = dir.Write("imu.csv", text);
-  const std::optional<EurocImuColumns> columns = ReadEurocImuParallel(path, 1.0, 1.0, 1000);
-  ASSERT_TRUE(columns.has_value());
   StaticReadOptions line_by_line;
   line_by_line.parallel_min_bytes = INT64_MAX;
   const StaticRecording recording = ReadEurocStaticRecording(path, line_by_line);
-  for (int a = 0; a < 6; ++a) {
-    ASSERT_EQ(columns->values[a], recording.axes[a].samples) << "axis " << a;
+  for (const bool avx2 : {false, true}) {  // AVX2 where the processor has it
+    ParallelReadOptions options;
+    options.share_bytes = 1000;
+    options.avx2 = avx2;
+    const std::optional<EurocImuColumns> columns = ReadEurocImuParallel(path, 1.0, 1.0, options);
+    ASSERT_TRUE(columns.has_value());
+    for (int a = 0; a < 6; ++a) {
+      ASSERT_EQ(columns->values[a], recording.axes[a].samples) << "axis " << a << " avx2 " << avx2;
+    }
+    EXPECT_EQ(columns->first_t_ns, 1403636579758555392LL);
+    EXPECT_EQ(columns->last_t_ns, 1403636579758555392LL + 5000000LL * 2999);
+    EXPECT_EQ(columns->largest_step_ns, 5000000LL);
   }
-  EXPECT_EQ(columns->first_t_ns, 1403636579758555392LL);
-  EXPECT_EQ(columns->last_t_ns, 1403636579758555392LL + 5000000LL * 2999);
-  EXPECT_EQ(columns->largest_step_ns, 5000000LL);
 }
 
 TEST(ReadEurocImuParallel, HandsAnythingUnusualBack) {
