@@ -61,6 +61,8 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/image_folder.h"
 #include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/io/number_parser.h"
+#include "splinecal/io/number_parser_avx2.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/parallel_euroc_imu.h"
