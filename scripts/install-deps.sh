@@ -4,6 +4,8 @@ set -euo pipefail
 
 packages=(build-essential cmake ninja-build libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
+          # scripts/allan_speed_bench.py: the numpy reference of the Allan speed target
+          python3-numpy
           # the image front end (splinecal detect, docs/detect.md): OpenCV (with the contrib
           # modules: ArUco is benchmarked against libapriltag), libapriltag, libjpeg, libpng, zlib
           libopencv-dev libopencv-contrib-dev libapriltag-dev libjpeg-dev libpng-dev zlib1g-dev)

@@ -66,6 +66,8 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/image_folder.h"
 #include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/io/number_parser.h"
+#include "splinecal/io/number_parser_avx2.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/parallel_euroc_imu.h"
@@ -129,7 +131,10 @@
 // allan/
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/allan_deviation.h"
+#include "splinecal/allan/edf.h"
+#include "splinecal/allan/motion.h"
 #include "splinecal/allan/noise_fit.h"
+#include "splinecal/allan/slope_lines.h"
 
 // calib/
 #include "splinecal/calib/calibrate.h"

@@ -9,12 +9,12 @@
 #include <string>
 
 #include "splinecal/allan/allan.h"
-#include "splinecal/io/static_recording.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
 #include "splinecal/io/output_dir.h"
+#include "splinecal/io/static_recording.h"
 #include "splinecal/string_printf.h"
 
 DEFINE_int32(taus_per_decade, 10, "Averaging times per decade (before de-duplication)");
@@ -32,7 +32,15 @@ DEFINE_double(gyro_scale,
               1.0,
               "Multiplies gyro readings into rad/s (pi/180 = 0.017453292519943295 for deg/s)");
 DEFINE_double(accel_scale, 1.0, "Multiplies accel readings into m/s^2 (9.80665 for g)");
-DEFINE_string(combine, "mean", "How Kalibr keys combine the x, y, z axes: mean or max");
+DEFINE_string(combine, "mean", "How Kalibr keys combine the identified x, y, z axes: mean or max");
+DECLARE_double(start);  // shared with integrate: seconds after the first sample
+DEFINE_double(end,
+              0.0,
+              "End of the stretch to analyse, seconds from the first sample; 0: the end [s]");
+DEFINE_bool(allow_motion,
+            false,
+            "Analyse a recording that moves instead of refusing it; every term is then marked "
+            "unreliable");
 
 namespace splinecal {
 namespace cli {
@@ -40,11 +48,10 @@ namespace {
 
 std::string Summary(const char* name, const KalibrKey& key, const char* unit) {
   if (!key.present) return "";
-  return StringPrintf("allan: %-28s %.6g %s%s\n",
-                      name,
-                      key.value,
-                      unit,
-                      key.upper_bound ? " (upper bound: not identifiable, see result.yaml)" : "");
+  std::string note = key.upper_bound ? " (UPPER BOUND: no axis identified it, see result.yaml)"
+                                     : " (axes " + key.axes + ")";
+  if (key.unreliable) note += " UNRELIABLE: the recording moves";
+  return StringPrintf("allan: %-28s %.6g %s%s\n", name, key.value, unit, note.c_str());
 }
 
 // What allan reads and checks before computing anything (Command::read_inputs).
@@ -72,6 +79,14 @@ AllanInputs ReadAllanInputs() {
     throw Error("--combine: expected mean or max, got '" + FLAGS_combine + "'");
   }
   options.progress = [](const std::string& line) { Progress(line); };
+  options.start_s = FLAGS_start;
+  if (FLAGS_end != 0.0) options.end_s = FLAGS_end;
+  if (!(options.start_s >= 0.0) || !(options.end_s > options.start_s)) {
+    throw Error(StringPrintf(
+        "--start %g, --end %g: expected 0 <= start < end (seconds)", FLAGS_start, FLAGS_end));
+  }
+  options.motion_policy =
+      FLAGS_allow_motion ? MotionPolicy::kMarkUnreliable : MotionPolicy::kRefuse;
   // Check the averaging-time flags before reading a large file.
   AllanClusterSizes(1, options.taus_per_decade, options.max_tau_fraction);
 
@@ -142,14 +157,19 @@ Command AllanCommand() {
   command.usage =
       "splinecal allan (--imu imu0/data.csv | --columns FILE --rate HZ [--sensor gyro|accel])\n"
       "    [--taus-per-decade N] [--max-tau-fraction F] [--combine mean|max] [--gyro-scale S]\n"
-      "    [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g] --out DIR";
+      "    [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g] [--start S] [--end "
+      "S]\n"
+      "    [--allow-motion] --out DIR";
   command.description =
-      "Computes the overlapping Allan deviation of every axis at log-spaced averaging times, "
-      "reads the white-noise density N off the -1/2 slope line at tau = 1 s, the random walk K "
-      "off the +1/2 slope line at tau = 3 s and the bias instability B off the flat floor, each "
-      "where its term dominates, and fits the IEEE Std 952 model (quantization, N, B, K, rate "
-      "ramp) by weighted least squares. A term without a region of its slope is reported as not "
-      "identifiable. Writes allan.csv (tau_s, deviation and error per axis), imu.yaml (Kalibr "
+      "Computes the overlapping Allan deviation of every axis at log-spaced averaging times and "
+      "decides each noise term from the measured curve: a term (quantization -1, white noise N "
+      "-1/2, bias instability B 0, random walk K +1/2, rate ramp +1) is identified only where "
+      "the deviation's 90% confidence intervals (equivalent degrees of freedom of the "
+      "overlapping estimator) follow its slope over a stated range and rule out the neighbouring "
+      "slopes; otherwise it is reported as an upper bound with the reason. The IEEE Std 952 "
+      "model fit is a second opinion. A recording that moves is refused (--allow-motion: marked "
+      "unreliable); --start/--end cut a static stretch out of a longer log. Writes allan.csv "
+      "(tau_s, deviation and error per axis), imu.yaml (Kalibr "
       "densities, not per-sample standard deviations), result.yaml (every term per axis) and "
       "allan.svg (log-log plot). The recording must be static: the IMU at rest for its whole "
       "length (hours for the random walk). See docs/allan.md.";
@@ -163,6 +183,11 @@ Command AllanCommand() {
                    {"taus_per_decade", ""},
                    {"max_tau_fraction", ""},
                    {"combine", ""},
+                   {"start",
+                    "Start of the stretch to analyse, seconds after the first sample (sample "
+                    "index / rate) [s]"},
+                   {"end", ""},
+                   {"allow_motion", ""},
                    {"gyro_scale", ""},
                    {"accel_scale", ""},
                    {"gyro_unit", ""},

@@ -108,9 +108,17 @@ void CheckAccelUnits(const std::string& path,
   int count = 0;
   for (const AxisSeries& axis : axes) {
     if (axis.sensor != ImuSensor::kAccelerometer || axis.samples.empty()) continue;
-    long double sum = 0.0L;
-    for (const double v : axis.samples) sum += v;
-    const double mean = static_cast<double>(sum / axis.samples.size());
+    // Four interleaved double sums: enough for a test against 0.5 g and 1.5 g, and vectorised
+    // (a long double sum of 3 x 10^7 readings took 58 ms, all on one thread before the analysis).
+    double sums[4] = {0.0, 0.0, 0.0, 0.0};
+    const size_t n = axis.samples.size();
+    const double* y = axis.samples.data();
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+      for (int lane = 0; lane < 4; ++lane) sums[lane] += y[i + lane];
+    }
+    for (; i < n; ++i) sums[0] += y[i];
+    const double mean = ((sums[0] + sums[1]) + (sums[2] + sums[3])) / static_cast<double>(n);
     squared += mean * mean;
     ++count;
   }

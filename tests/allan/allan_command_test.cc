@@ -12,6 +12,7 @@
 
 #include "splinecal/units.h"
 #include "testing/run_tool.h"
+#include "testing/shared_data.h"
 #include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
 
@@ -24,8 +25,12 @@ using testing::RunTool;
 using ::testing::StartsWith;
 using testing::TempDir;
 
-// A static EuRoC file: ADIS16448-like white noise and bias random walk on six axes.
-std::string WriteStaticEuroc(const TempDir& dir, const std::string& name, int rows) {
+// A static EuRoC file: ADIS16448-like white noise and bias random walk on six axes; with
+// bump_at_row >= 0, one second of rotation at 0.5 rad/s about x from that row on.
+std::string WriteStaticEuroc(const TempDir& dir,
+                             const std::string& name,
+                             int rows,
+                             int bump_at_row = -1) {
   std::mt19937_64 engine(17);
   std::normal_distribution<double> normal(0.0, 1.0);
   const double rate = 200.0;
@@ -42,6 +47,7 @@ std::string WriteStaticEuroc(const TempDir& dir, const std::string& name, int ro
       bias[a] += walk[a] / std::sqrt(rate) * normal(engine);
       y[a] = bias[a] + white[a] * std::sqrt(rate) * normal(engine);
     }
+    if (bump_at_row >= 0 && k >= bump_at_row && k < bump_at_row + 200) y[0] += 0.5;
     std::snprintf(line,
                   sizeof(line),
                   "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
@@ -106,7 +112,7 @@ TEST(AllanCommand, PlainColumnsOfOneSensor) {
               0.05);
   EXPECT_FALSE(result["accelerometer"]);
   EXPECT_THAT(testing::ReadFileText(dir.File("out/allan.csv")),
-              StartsWith("#tau_s,gyro_x,gyro_y,gyro_x_err,gyro_y_err\n"));
+              StartsWith("#tau_s,gyro_x,gyro_y,gyro_x_low,gyro_y_low,gyro_x_high,gyro_y_high\n"));
 }
 
 TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {
@@ -154,6 +160,89 @@ TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {
     EXPECT_THAT(run.err, HasSubstr(c.message));
     EXPECT_EQ(CountLines(run.err), 1) << run.err;
     EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml")) << c.message;
+  }
+}
+
+// Real recordings that move all the time: the EuRoC calibration sequence (waved in front of the
+// target) and V1_01_easy (a flight). Refused, with one line naming the file and what moves; with
+// --allow-motion every key is marked unreliable, and no identified value exceeds its own bound
+// (the earlier fit reported a gyro random walk 40,000 times the sensor's, above its own bound).
+TEST(AllanCommand, RealRecordingsThatMoveAreRefused) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/imu0.csv");
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");
+  for (const char* file : {"euroc_imu_april/imu0.csv", "euroc_v1_01_easy/imu0.csv"}) {
+    SCOPED_TRACE(file);
+    TempDir dir;
+    const std::string imu = testing::SharedDataPath(file);
+    const testing::ToolResult refused =
+        RunTool({"allan", "--imu", imu, "--out", dir.File("out"), "--quiet"});
+    EXPECT_EQ(refused.exit_code, 2) << refused.err;
+    EXPECT_EQ(CountLines(refused.err), 1) << refused.err;
+    EXPECT_THAT(refused.err, HasSubstr(std::string(file) + ": the recording is not static: "));
+    EXPECT_THAT(refused.err, HasSubstr("--allow-motion"));
+    EXPECT_FALSE(std::filesystem::exists(dir.File("out/result.yaml")));
+
+    const testing::ToolResult allowed =
+        RunTool({"allan", "--imu", imu, "--out", dir.File("out"), "--allow-motion"});
+    ASSERT_EQ(allowed.exit_code, 0) << allowed.err;
+    EXPECT_THAT(allowed.err, HasSubstr("UNRELIABLE"));
+    const YAML::Node result = testing::LoadStrictYamlFile(dir.File("out/result.yaml"));
+    EXPECT_TRUE(result["motion_detected"].as<bool>());
+    EXPECT_TRUE(result["gyroscope_random_walk_unreliable"].as<bool>());
+    for (const char* sensor : {"gyroscope", "accelerometer"}) {
+      for (const char* axis : {"x", "y", "z"}) {
+        const YAML::Node node = result[sensor][axis];
+        EXPECT_EQ(node["unreliable"].as<std::string>(), "the recording moves");
+        for (const char* term :
+             {"quantization", "noise_density", "bias_instability", "random_walk", "rate_ramp"}) {
+          if (node[term].as<std::string>() == "not identified") continue;
+          EXPECT_LE(node[term].as<double>(), node[std::string(term) + "_upper_bound"].as<double>())
+              << sensor << " " << axis << " " << term;
+        }
+      }
+    }
+    EXPECT_THAT(testing::ReadFileText(dir.File("out/imu.yaml")),
+                HasSubstr("UNRELIABLE: the recording moves"));
+  }
+}
+
+// A static recording that someone bumps after 30 s: refused, naming the time; --start cuts the
+// static stretch after it out of the log, --end one before it.
+TEST(AllanCommand, StartAndEndCutAStaticStretch) {
+  TempDir dir;
+  const std::string imu = WriteStaticEuroc(dir, "bumped.csv", 200 * 300, 200 * 30);
+  const testing::ToolResult refused =
+      RunTool({"allan", "--imu", imu, "--out", dir.File("out"), "--quiet"});
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_THAT(refused.err, HasSubstr("gyro_x"));
+  EXPECT_THAT(refused.err, HasSubstr("the first at t = 30.0 s"));
+
+  const testing::ToolResult after =
+      RunTool({"allan", "--imu", imu, "--start", "40", "--out", dir.File("after"), "--quiet"});
+  ASSERT_EQ(after.exit_code, 0) << after.err;
+  const YAML::Node result = testing::LoadStrictYamlFile(dir.File("after/result.yaml"));
+  EXPECT_DOUBLE_EQ(result["start_s"].as<double>(), 40.0);
+  EXPECT_DOUBLE_EQ(result["end_s"].as<double>(), 300.0);
+  EXPECT_EQ(result["num_samples"].as<int>(), 200 * 260);
+  EXPECT_FALSE(result["motion_detected"].as<bool>());
+  EXPECT_NEAR(result["gyroscope_noise_density"].as<double>() / 1.6968e-4, 1.0, 0.05);
+
+  const testing::ToolResult before =
+      RunTool({"allan", "--imu", imu, "--end", "29.5", "--out", dir.File("before"), "--quiet"});
+  ASSERT_EQ(before.exit_code, 0) << before.err;
+  EXPECT_EQ(testing::LoadStrictYamlFile(dir.File("before/result.yaml"))["num_samples"].as<int>(),
+            5900);
+
+  for (const std::vector<std::string>& flags :
+       {std::vector<std::string>{"--start", "400"},
+        std::vector<std::string>{"--start", "50", "--end", "20"}}) {
+    std::vector<std::string> args = {"allan", "--imu", imu, "--out", dir.File("bad"), "--quiet"};
+    args.insert(args.end(), flags.begin(), flags.end());
+    const testing::ToolResult run = RunTool(args);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_THAT(run.err, HasSubstr("--start"));
+    EXPECT_EQ(CountLines(run.err), 1) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.File("bad/result.yaml")));
   }
 }
 

@@ -37,10 +37,10 @@ TEST(FitNoiseMonteCarlo, MeanOverTenSeedsWithinTenPercent) {
           draws, kRateHz, sensor.noise_density, sensor.random_walk, sensor.offset);
       const AxisNoiseFit fit =
           FitNoise(IntegratedSignal(std::move(y), kRateHz, sensor.name).Deviation(sizes));
-      ASSERT_TRUE(fit.noise_density.identified) << fit.noise_density.reason;
-      ASSERT_TRUE(fit.random_walk.identified) << fit.random_walk.reason;
-      const double n_ratio = fit.noise_density.value / sensor.noise_density;
-      const double k_ratio = fit.random_walk.value / sensor.random_walk;
+      ASSERT_TRUE(fit[NoiseTerm::kWhite].identified) << fit[NoiseTerm::kWhite].reason;
+      ASSERT_TRUE(fit[NoiseTerm::kRandomWalk].identified) << fit[NoiseTerm::kRandomWalk].reason;
+      const double n_ratio = fit[NoiseTerm::kWhite].value / sensor.noise_density;
+      const double k_ratio = fit[NoiseTerm::kRandomWalk].value / sensor.random_walk;
       std::printf("%s seed %d: N ratio %.4f, K ratio %.4f (model N %.4f, K %.4f)\n",
                   sensor.name,
                   seed,

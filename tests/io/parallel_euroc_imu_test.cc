@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <random>
 #include <string>
 
+#include "splinecal/io/static_recording.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -38,6 +41,57 @@ TEST(ReadEurocImuParallel, ReadsEveryRowInOrderAndScales) {
   EXPECT_EQ(columns->first_t_ns, 1000000000LL);
   EXPECT_EQ(columns->last_t_ns, 1000000000LL + 5000000LL * 999);
   EXPECT_EQ(columns->largest_step_ns, 5000000LL);
+}
+
+// Many small shares (the line ends counted per share, rows parsed into place, the gaps of comment
+// lines closed), rows in the common spelling (17 significant digits) and in others (exponents,
+// blanks, CRLF, '+'), a file without a header: every number as the line-by-line path reads it.
+TEST(ReadEurocImuParallel, ManySharesReadAsTheLineByLinePath) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::string text;
+  for (int k = 0; k < 3000; ++k) {
+    char row[256];
+    const double v[6] = {0.01 * normal(rng),
+                         1e-5 * normal(rng),
+                         -0.2 * normal(rng),
+                         0.1 + normal(rng),
+                         0.05 * normal(rng),
+                         9.81 + 0.03 * normal(rng)};
+    const char* format = k % 5 == 0   ? "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\r\n"
+                         : k % 7 == 0 ? "%lld, %.6e,+%.6f,%.17g ,%.9f,%.17g,%.17g\n"
+                                      : "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n";
+    std::snprintf(row,
+                  sizeof(row),
+                  format,
+                  1403636579758555392LL + 5000000LL * k,
+                  v[0],
+                  v[1],
+                  v[2],
+                  v[3],
+                  v[4],
+                  v[5]);
+    text += row;
+    if (k % 211 == 0) text += "# a comment\n\n";
+  }
+  TempDir dir;
+  const std::string path = dir.Write("imu.csv", text);
+  StaticReadOptions line_by_line;
+  line_by_line.parallel_min_bytes = INT64_MAX;
+  const StaticRecording recording = ReadEurocStaticRecording(path, line_by_line);
+  for (const bool avx2 : {false, true}) {  // AVX2 where the processor has it
+    ParallelReadOptions options;
+    options.share_bytes = 1000;
+    options.avx2 = avx2;
+    const std::optional<EurocImuColumns> columns = ReadEurocImuParallel(path, 1.0, 1.0, options);
+    ASSERT_TRUE(columns.has_value());
+    for (int a = 0; a < 6; ++a) {
+      ASSERT_EQ(columns->values[a], recording.axes[a].samples) << "axis " << a << " avx2 " << avx2;
+    }
+    EXPECT_EQ(columns->first_t_ns, 1403636579758555392LL);
+    EXPECT_EQ(columns->last_t_ns, 1403636579758555392LL + 5000000LL * 2999);
+    EXPECT_EQ(columns->largest_step_ns, 5000000LL);
+  }
 }
 
 TEST(ReadEurocImuParallel, HandsAnythingUnusualBack) {

@@ -21,10 +21,12 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "splinecal/allan/allan_deviation.h"
+#include "splinecal/allan/motion.h"
 #include "splinecal/allan/noise_fit.h"
 #include "splinecal/imu/static_recording.h"
 
@@ -32,11 +34,21 @@ namespace splinecal {
 
 enum class CombineAxes { kMean, kMax };
 
+// What to do with a recording that moves (allan/motion.h): refuse it (throw), or compute and
+// mark every term unreliable.
+enum class MotionPolicy { kRefuse, kMarkUnreliable };
+
 struct AllanOptions {
   int taus_per_decade = 10;       // averaging times per decade (before de-duplication)
   double max_tau_fraction = 0.1;  // longest averaging time, as a fraction of the record
   CombineAxes combine = CombineAxes::kMean;
   NoiseFitOptions fit;
+  // The stretch analysed, in seconds from the first sample (sample index / rate): [start_s,
+  // end_s). Throws when it is empty or starts beyond the recording.
+  double start_s = 0.0;
+  double end_s = std::numeric_limits<double>::infinity();
+  MotionOptions motion;
+  MotionPolicy motion_policy = MotionPolicy::kRefuse;
   // 0: the hardware's threads. Axes run in parallel; with fewer axes than threads, each axis's
   // passes are split too (results do not depend on the thread count).
   int num_threads = 0;
@@ -58,7 +70,9 @@ struct KalibrKey {
   bool present = false;      // the sensor is in the input
   double value = 0.0;        // mean or max over the axes whose slope line identified it
   int num_axes = 0;          // how many axes that was
-  bool upper_bound = false;  // no axis identified it: value combines the axes' upper bounds
+  std::string axes;          // which: "x, z"
+  bool upper_bound = false;  // no axis identified it: value is the largest of the axes' bounds
+  bool unreliable = false;   // the recording moves (MotionPolicy::kMarkUnreliable)
 };
 
 struct AllanResult {
@@ -68,6 +82,9 @@ struct AllanResult {
   int taus_per_decade = 0;
   double max_tau_fraction = 0.0;
   CombineAxes combine = CombineAxes::kMean;
+  double start_s = 0.0;  // the stretch analysed, seconds from the recording's first sample
+  double end_s = 0.0;
+  MotionCheck motion;                     // moving and allowed: every term is unreliable
   std::vector<AxisAllan> axes;            // in the recording's order
   KalibrKey gyroscope_noise_density;      // [rad/s/sqrt(Hz)]
   KalibrKey gyroscope_random_walk;        // [rad/s^2/sqrt(Hz)]
@@ -77,15 +94,16 @@ struct AllanResult {
 
 // The whole computation; consumes the recording's samples (memory is freed axis by axis).
 // Throws splinecal::Error (naming recording.source when set) for: no axes, axes of different
-// lengths, a rate that is not positive, a sample that is not finite, a constant axis, or too few
-// samples for 3 averaging times (the message says how many are needed).
+// lengths, a rate that is not positive, a sample that is not finite, a constant axis, too few
+// samples for 3 averaging times (the message says how many are needed), an empty --start/--end
+// stretch, or motion under MotionPolicy::kRefuse.
 AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& options = {});
 
 // The smallest number of samples that gives `count` averaging times with these options.
 int64_t MinimumSamplesForAveragingTimes(int count, int taus_per_decade, double max_tau_fraction);
 
-// allan.csv: "#tau_s", one Allan deviation column per axis, then one error column per axis
-// (gyro in rad/s, accel in m/s^2), 17 significant digits.
+// allan.csv: "#tau_s", one Allan deviation column per axis, then the low and high ends of each
+// axis's confidence interval (gyro in rad/s, accel in m/s^2), 17 significant digits.
 std::string AllanCsvText(const AllanResult& result);
 // result.yaml: Kalibr keys at the top, then gyroscope: {x: {...}, ...}, accelerometer: {...}.
 std::string AllanResultYamlText(const AllanResult& result);

@@ -14,38 +14,57 @@
 // accelerometer: replace rad by m/s): Q [rad], N [rad/s/sqrt(Hz)], B [rad/s],
 // K [rad/s^2/sqrt(Hz)], R [rad/s^2].
 //
-// Two estimates are made, as the issue asks:
-//  1. The full model: a weighted non-negative least-squares fit of (Q^2, N^2, B^2, K^2, R^2) to
-//     AVAR at every averaging time (the terms are linear in these), with weights from the error
-//     bars (relative variance error 2 * adev_error / adev, floored at 2 * min_relative_error),
-//     re-weighted twice with the fitted model in place of the noisy measurement so that points
-//     that happen to fall low do not get too much weight. Solved by Lawson-Hanson active sets.
-//  2. The slope lines (Kalibr's keys take these): each term is read only where it dominates,
-//     i.e. where its share of the fitted model variance is at least `dominance` (0.9 for N, so
-//     the other terms shift a point by at most 5% in deviation; 0.8 for K, see NoiseFitOptions):
-//       N: the -1/2 slope line through those points (weighted mean of log(adev sqrt(tau))),
-//          read at tau = 1 s;
-//       K: the +1/2 slope line through its points (log(adev sqrt(3 / tau))), read at tau = 3 s;
-//       B: the lowest deviation where B's share is at least `flat_dominance` (0.5), / 0.664.
-//     A term whose region has fewer than min_points averaging times is reported as not
-//     identifiable, with the reason, instead of a number that means nothing.
+// Each term is decided from the measured curve itself [IEEE952, annex C]: it is *identified* only
+// where the measured deviation, with its confidence interval from the equivalent degrees of
+// freedom of the overlapping estimator (allan/edf.h, [Riley08, section 5.3]), follows that term's
+// slope over a stated range of averaging times. Precisely, for a term of slope s:
+//  1. a line of slope s passes through the intervals (at `confidence`) of at least min_points
+//     consecutive averaging times, computed with the EDF of that term's noise type
+//     (allan/slope_lines.h);
+//  2. over that range no line of a neighbouring slope (s - 1/2, s + 1/2) does: the data tells
+//     this slope from the next, so a stretch whose intervals are too wide to tell (the long end of
+//     a short record) identifies nothing;
+//  3. the range sits where the term can dominate: quantization before the white-noise range,
+//     white noise at the short end (after a filter dip), bias instability, random walk and rate
+//     ramp after it; the random walk and the rate ramp, which grow without bound, must not be
+//     followed by a significant fall (a Gauss-Markov bias rises like a random walk up to its
+//     correlation time, then falls: it is no random walk); and a flat bias-instability range must
+//     be wider than the bend between a -1/2 and a +1/2 line at its own interval width.
+// The value is the line's weighted least-squares intercept, clamped into the intercepts that pass
+// through every interval, read as the term's coefficient (N at tau = 1 s, K at tau = 3 s,
+// B = floor / 0.664, Q = adev tau / sqrt(3), R = adev sqrt(2) / tau); its interval is that of
+// the most precise point of the range. Otherwise the term is *not identified*: the reason says
+// which rule failed, and its upper bound is reported instead.
+//
+// Upper bound of a term: the largest coefficient that no point's interval top (at
+// bound_confidence) contradicts, min_i high_i / sqrt(basis(tau_i)) (every term's variance is at
+// most the total). A filtered
+// sensor's curve dips below the white-noise line at the shortest averaging times (the sensor's
+// anti-alias or averaging filter removes high-frequency noise), so the points of that dip, and
+// for the white noise every point before its range, are left out: the bound then holds. An
+// identified value is never above its own bound.
+//
+// The full IEEE 952 model fit (weighted non-negative least squares on the variances, Lawson-
+// Hanson) stays as a second opinion; where it disagrees with the slope lines, the term says so.
 //
 // Scale invariance: multiplying the signal by s multiplies every estimate by s exactly (up to
-// rounding): the weights are relative, the regions depend on shares, the NNLS columns are
+// rounding): intervals are relative, the decisions use logarithms only, the NNLS columns are
 // normalised.
 //
-// References: [IEEE952] IEEE Std 952-1997, annex C; [ElSheimy08] N. El-Sheimy, H. Hou, X. Niu,
-// "Analysis and Modeling of Inertial Sensors Using Allan Variance", IEEE Trans. Instrum. Meas.
-// 57(1), 2008; [LawsonHanson74] C. L. Lawson, R. J. Hanson, "Solving Least Squares Problems",
-// 1974, ch. 23 (NNLS).
+// References: [IEEE952] IEEE Std 952-1997, annex C; [Riley08] W. J. Riley, "Handbook of Frequency
+// Stability Analysis", NIST SP 1065, 2008; [ElSheimy08] N. El-Sheimy, H. Hou, X. Niu, "Analysis
+// and Modeling of Inertial Sensors Using Allan Variance", IEEE Trans. Instrum. Meas. 57(1), 2008;
+// [LawsonHanson74] C. L. Lawson, R. J. Hanson, "Solving Least Squares Problems", 1974, ch. 23.
 #ifndef SPLINECAL_ALLAN_NOISE_FIT_H_
 #define SPLINECAL_ALLAN_NOISE_FIT_H_
 
 #include <Eigen/Core>
 #include <array>
 #include <string>
+#include <vector>
 
 #include "splinecal/allan/allan_deviation.h"
+#include "splinecal/allan/edf.h"
 
 namespace splinecal {
 
@@ -55,6 +74,8 @@ constexpr int kNumNoiseTerms = 5;
 
 // "quantization", "noise_density", "bias_instability", "random_walk", "rate_ramp" (YAML keys).
 const char* NoiseTermKey(NoiseTerm term);
+// "quantization noise", "white noise", "bias instability", "random walk", "rate ramp".
+const char* NoiseTermName(NoiseTerm term);
 
 // The model's coefficients Q, N, B, K, R (all >= 0; see the file comment for units).
 struct NoiseModel {
@@ -74,42 +95,57 @@ double NoiseTermBasis(NoiseTerm term, double tau_s);
 // sqrt(2 ln 2 / pi) = 0.6643: the Allan deviation floor of a bias instability B is 0.664 B.
 constexpr double kBiasInstabilityFloor = 0.6642824702679601;
 
-// One estimate and where it came from.
+// The log-log slope of a term's Allan deviation: -1, -1/2, 0, +1/2, +1.
+double NoiseTermSlope(NoiseTerm term);
+// The power-law noise type whose EDF a term's intervals use (allan/edf.h).
+PowerLawNoise NoiseTermNoiseType(NoiseTerm term);
+
+// One term's estimate and where it came from.
 struct TermEstimate {
   bool identified = false;
-  double value = 0.0;  // when identified
+  double value = 0.0;      // when identified: the coefficient (units in the file comment)
+  double value_low = 0.0;  // its interval at the fit's confidence
+  double value_high = 0.0;
   std::string reason;  // when not identified: why (one sentence)
-  // The averaging times the estimate used.
+  // The averaging times the estimate used, and the curve's own least-squares slope over them.
   double tau_min_s = 0.0;
   double tau_max_s = 0.0;
   int num_points = 0;
+  double measured_slope = 0.0;
+  // The largest coefficient no point contradicts (see the file comment); infinity when no point
+  // is usable.
+  double upper_bound = 0.0;
+  // Where the model fit disagrees with this estimate; empty when it agrees.
+  std::string model_note;
 };
 
 struct NoiseFitOptions {
-  // Share of the model variance that makes a slope region. The random-walk region lies at the
-  // long, noisy end of the curve, where a spurious rate-ramp term easily takes 10% of the fitted
-  // variance (3 of 10 simulated 4-hour gyro records had no point with a 90% random-walk share),
-  // so its threshold is lower; its points then overstate K by about 5% on average.
-  double dominance = 0.9;              // white noise
-  double random_walk_dominance = 0.8;  // random walk
-  double flat_dominance = 0.5;         // share for the bias-instability floor
-  int min_points = 3;                  // averaging times needed in a region
-  // Floor of the relative error of a point, standing for model error (anti-alias filters,
-  // temperature) that the counting error 1 / sqrt(2 (K - 1)) ignores at short tau.
+  // Two-sided confidence of the intervals the decisions use.
+  double confidence = 0.9;
+  // Confidence of the interval tops the upper bounds use: higher, so that one point at the long
+  // end that falls low by chance (1 in 10 at 90%) neither drags a bound below the truth nor
+  // contradicts an identified value.
+  double bound_confidence = 0.99;
+  int min_points = 3;  // averaging times needed in a range
+  // Model fit: floor of a point's relative error, standing for model error (anti-alias filters,
+  // temperature) that the counting error ignores at short tau; re-weighting passes.
   double min_relative_error = 0.01;
   int reweight_iterations = 2;
 };
 
 struct AxisNoiseFit {
-  // Slope-line estimates (Kalibr's keys use noise_density and random_walk).
-  TermEstimate noise_density;     // N: -1/2 line at tau = 1 s
-  TermEstimate random_walk;       // K: +1/2 line at tau = 3 s
-  TermEstimate bias_instability;  // B: floor / 0.664
-  // Upper bounds that hold whatever dominates: the -1/2 and +1/2 lines below every point's
-  // 2-sigma top, min over tau of adev (1 + 2 e) sqrt(tau) and adev (1 + 2 e) sqrt(3 / tau), with e
-  // the relative error. Used when a slope line is not identifiable.
-  double noise_density_upper_bound = 0.0;
-  double random_walk_upper_bound = 0.0;
+  // Slope-line estimates, one per term (Kalibr's keys use kWhite and kRandomWalk).
+  std::array<TermEstimate, kNumNoiseTerms> terms;
+  const TermEstimate& operator[](NoiseTerm term) const { return terms[static_cast<int>(term)]; }
+  TermEstimate& operator[](NoiseTerm term) { return terms[static_cast<int>(term)]; }
+
+  // The averaging times up to which the curve dips below the white-noise line (a filtered
+  // sensor); 0 when it does not.
+  double filter_dip_tau_s = 0.0;
+  // Each point's interval at the fit's confidence, with the EDF of the noise type that the model
+  // fit says dominates there (for plots and allan.csv).
+  std::vector<double> adev_low;
+  std::vector<double> adev_high;
 
   // The weighted least-squares fit of the whole model. A term counts as identified when it
   // holds at least half of the model variance at some measured averaging time.
@@ -122,6 +158,10 @@ struct AxisNoiseFit {
 // Fits the noise terms of one axis. Throws splinecal::Error when the curve has fewer than 2
 // averaging times with a positive deviation.
 AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options = {});
+
+// The IEEE 952 model alone (the second opinion inside FitNoise): fills model, model_terms and
+// model_rms_log_error from the points with a positive deviation.
+void FitNoiseModel(const AllanCurve& curve, const NoiseFitOptions& options, AxisNoiseFit* fit);
 
 // Non-negative least squares: argmin |A x - b| subject to x >= 0 (Lawson-Hanson). Columns are
 // scaled internally; `A` needs full column rank on its active set (terms that are exactly
