@@ -68,9 +68,11 @@ void CalibrationProblem::BuildProblem() {
       for (int j = 0; j < kNumIntrinsics; ++j) {
         if (std::find(active.begin(), active.end(), j) == active.end()) held.push_back(j);
       }
+      if (!held.empty() && cam.intrinsics_manifold == nullptr) {
+        cam.intrinsics_manifold = std::make_shared<ceres::SubsetManifold>(kNumIntrinsics, held);
+      }
       problem().AddParameterBlock(cam.intrinsics.data(), kNumIntrinsics,
-                                  held.empty() ? nullptr
-                                               : new ceres::SubsetManifold(kNumIntrinsics, held));
+                                  cam.intrinsics_manifold.get());
     }
     problem().AddParameterBlock(&cam.time_offset_s, 1);
     problem().AddParameterBlock(&cam.line_delay, 1);

@@ -137,6 +137,9 @@ class CalibrationProblem {
   struct CameraState {
     std::array<double, 7> extrinsic{};
     IntrinsicsVector intrinsics = IntrinsicsVector::Zero();  // a block with estimate_intrinsics
+    // Holds the entries the model does not use; the problem does not own its manifolds (the
+    // spline's are shared), so the camera does.
+    std::shared_ptr<ceres::Manifold> intrinsics_manifold;
     double time_offset_s = 0.0;
     double line_delay = 0.0;
     double window_readout_s = 0.0;     // the readout the windows were built for
