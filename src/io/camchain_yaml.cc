@@ -92,7 +92,7 @@ DistortionModel ParseDistortionModel(const YamlDocument& yaml,
 }
 
 // Kalibr's intrinsics order per camera model.
-IntrinsicsOrder KalibrIntrinsicsOrder(ProjectionModel model) {
+IntrinsicsOrder IntrinsicsOrderToRead(ProjectionModel model) {
   switch (model) {
     case ProjectionModel::kPinhole:
       return {"[fu, fv, pu, pv]", 4};
@@ -168,7 +168,7 @@ CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
   CameraCalibration calibration;
   Camera& camera = calibration.camera;
   camera.projection = ParseProjectionModel(yaml, cam + "/camera_model");
-  const IntrinsicsOrder order = KalibrIntrinsicsOrder(camera.projection);
+  const IntrinsicsOrder order = IntrinsicsOrderToRead(camera.projection);
   const std::vector<double> intrinsics =
       yaml.BoundedNumbers(cam + "/intrinsics", kMaxIntrinsic, "px");
   const int64_t intrinsics_line = yaml.Line(cam + "/intrinsics");
@@ -277,23 +277,12 @@ CameraCalibration ReadCam0Extrinsics(const std::string& path) {
 
 namespace {
 
-// The intrinsics in Kalibr's order for the camera model (KalibrIntrinsicsOrder).
-Eigen::VectorXd KalibrIntrinsics(const Camera& camera) {
-  const int first = KalibrIntrinsicsOrder(camera.projection).count - 4;
-  Eigen::VectorXd v(first + 4);
-  for (int i = 0; i < first; ++i) v(i) = camera.projection_params(i);
-  v.tail<4>() << camera.fu, camera.fv, camera.pu, camera.pv;
-  return v;
-}
-
-// The coefficients the distortion model takes: radtan writes k3 when it is estimated or not 0.
-Eigen::VectorXd KalibrDistortionCoeffs(const Camera& camera) {
-  size_t count = CoefficientCounts(camera.distortion).front();
-  if (camera.distortion == DistortionModel::kRadTan &&
-      (camera.radtan_k3 || camera.distortion_coeffs(4) != 0.0)) {
-    count = 5;
-  }
-  return camera.distortion_coeffs.head(static_cast<Eigen::Index>(count));
+// The values of camera's intrinsics vector at `order` (camera/camchain.h's Kalibr orders).
+Eigen::VectorXd Pick(const Camera& camera, const std::vector<int>& order) {
+  const IntrinsicsVector values = camera.intrinsics();
+  Eigen::VectorXd picked(order.size());
+  for (size_t i = 0; i < order.size(); ++i) picked(i) = values(order[i]);
+  return picked;
 }
 
 }  // namespace
@@ -305,9 +294,9 @@ std::string CamchainYamlText(const Camchain& camchain, CamchainKeys keys) {
     const CameraCalibration& c = camchain[i];
     yaml.BeginMap("cam" + std::to_string(i));
     yaml.Scalar("camera_model", ProjectionModelName(c.camera.projection));
-    yaml.Vector("intrinsics", KalibrIntrinsics(c.camera));
+    yaml.Vector("intrinsics", Pick(c.camera, KalibrIntrinsicsOrder(c.camera)));
     yaml.Scalar("distortion_model", DistortionModelName(c.camera.distortion));
-    yaml.Vector("distortion_coeffs", KalibrDistortionCoeffs(c.camera));
+    yaml.Vector("distortion_coeffs", Pick(c.camera, KalibrDistortionOrder(c.camera)));
     yaml.Vector("resolution", Eigen::Vector2d(c.camera.width, c.camera.height));
     if (with_imu) yaml.Matrix("T_cam_imu", c.T_cam_imu.matrix());
     if (i > 0 && with_imu) {

@@ -15,8 +15,6 @@
 namespace splinecal {
 namespace {
 
-constexpr int kDistortionOffset = kDistortionCoeffsIndex;
-
 Eigen::VectorXd Pick(const Eigen::Matrix<double, kNumIntrinsics, 1>& values,
                      const std::vector<int>& order) {
   Eigen::VectorXd picked(order.size());
@@ -169,40 +167,6 @@ std::string ViewsTableHtml(const IntrinsicsResult& result) {
 }
 
 }  // namespace
-
-std::vector<int> KalibrIntrinsicsOrder(const Camera& camera) {
-  switch (camera.projection) {
-    case ProjectionModel::kOmni:
-      return {4, 0, 1, 2, 3};
-    case ProjectionModel::kEucm:
-    case ProjectionModel::kDoubleSphere:
-      return {4, 5, 0, 1, 2, 3};
-    default:
-      return {0, 1, 2, 3};
-  }
-}
-
-std::vector<int> KalibrDistortionOrder(const Camera& camera) {
-  std::vector<int> order;
-  int count = 0;
-  switch (camera.distortion) {
-    case DistortionModel::kNone:
-      count = 0;
-      break;
-    case DistortionModel::kRadTan:
-      // As camchain.yaml: k3 when estimated or not 0 (io/camchain_yaml.h).
-      count = camera.radtan_k3 || camera.distortion_coeffs(4) != 0.0 ? 5 : 4;
-      break;
-    case DistortionModel::kEquidistant:
-      count = 4;
-      break;
-    case DistortionModel::kFov:
-      count = 1;
-      break;
-  }
-  for (int i = 0; i < count; ++i) order.push_back(kDistortionOffset + i);
-  return order;
-}
 
 std::string IntrinsicsResultYaml(const IntrinsicsResult& result) {
   YamlWriter yaml;

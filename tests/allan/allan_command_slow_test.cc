@@ -9,10 +9,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "splinecal/io/euroc.h"
 #include "testing/run_tool.h"
 #include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
@@ -45,25 +47,19 @@ std::string WriteScaled(const TempDir& dir, double scale) {
   const double walk[6] = {kTrue[1], kTrue[1], kTrue[1], kTrue[3], kTrue[3], kTrue[3]};
   double bias[6] = {0, 0, 0, 0, 0, 0};
   const std::string path = dir.File("scale" + std::to_string(static_cast<int>(scale)) + ".csv");
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  std::fputs("#timestamp [ns],w_RS_S_x,w_RS_S_y,w_RS_S_z,a_RS_S_x,a_RS_S_y,a_RS_S_z\n", file);
+  std::vector<ImuSample> samples(kRows);
   for (int k = 0; k < kRows; ++k) {
     double y[6];
     for (int a = 0; a < 6; ++a) {
       bias[a] += walk[a] / std::sqrt(kRateHz) * normal(engine);
       y[a] = offset[a] + scale * (bias[a] + white[a] * std::sqrt(kRateHz) * normal(engine));
     }
-    std::fprintf(file,
-                 "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                 1403636579758555392LL + 5000000LL * k,
-                 y[0],
-                 y[1],
-                 y[2],
-                 y[3],
-                 y[4],
-                 y[5]);
+    samples[k].t_ns = 1403636579758555392LL + 5000000LL * k;
+    samples[k].gyro = Eigen::Vector3d(y[0], y[1], y[2]);
+    samples[k].accel = Eigen::Vector3d(y[3], y[4], y[5]);
   }
-  std::fclose(file);
+  std::ofstream file(path);
+  WriteEurocImu(samples, &file);
   return path;
 }
 

@@ -8,8 +8,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <sstream>
 #include <string>
 
+#include "splinecal/io/euroc.h"
 #include "splinecal/units.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
@@ -37,10 +39,7 @@ std::string WriteStaticEuroc(const TempDir& dir,
   const double white[6] = {1.6968e-4, 1.6968e-4, 1.6968e-4, 2e-3, 2e-3, 2e-3};
   const double walk[6] = {1.9393e-5, 1.9393e-5, 1.9393e-5, 3e-3, 3e-3, 3e-3};
   double bias[6] = {0.01, -0.02, 0.0, 0.1, 0.0, 9.81};
-  std::string text =
-      "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
-      "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n";
-  char line[256];
+  std::vector<ImuSample> samples(rows);
   for (int k = 0; k < rows; ++k) {
     double y[6];
     for (int a = 0; a < 6; ++a) {
@@ -48,19 +47,13 @@ std::string WriteStaticEuroc(const TempDir& dir,
       y[a] = bias[a] + white[a] * std::sqrt(rate) * normal(engine);
     }
     if (bump_at_row >= 0 && k >= bump_at_row && k < bump_at_row + 200) y[0] += 0.5;
-    std::snprintf(line,
-                  sizeof(line),
-                  "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                  1403636579758555392LL + 5000000LL * k,
-                  y[0],
-                  y[1],
-                  y[2],
-                  y[3],
-                  y[4],
-                  y[5]);
-    text += line;
+    samples[k].t_ns = 1403636579758555392LL + 5000000LL * k;
+    samples[k].gyro = Eigen::Vector3d(y[0], y[1], y[2]);
+    samples[k].accel = Eigen::Vector3d(y[3], y[4], y[5]);
   }
-  return dir.Write(name, text);
+  std::ostringstream text;
+  WriteEurocImu(samples, &text);
+  return dir.Write(name, text.str());
 }
 
 TEST(AllanCommand, WritesItsFourFiles) {

@@ -38,6 +38,14 @@ struct CameraCalibration {
 // cam0, cam1, ... in order.
 using Camchain = std::vector<CameraCalibration>;
 
+// Kalibr's order of a camera's parameters, as indices into the intrinsics layout of
+// camera/camera_model.h: the `intrinsics` (pinhole [fu fv pu pv], omni [xi fu fv pu pv], eucm
+// [alpha beta fu fv pu pv], ds [xi alpha fu fv pu pv]) and the `distortion_coeffs` (radtan k1 k2
+// p1 p2, plus OpenCV's k3 when it is estimated or not 0; equidistant k1..k4; fov w; none: none).
+// camchain.yaml, result.yaml and the reports all write parameters in this order.
+std::vector<int> KalibrIntrinsicsOrder(const Camera& camera);
+std::vector<int> KalibrDistortionOrder(const Camera& camera);
+
 // The first observation whose cam_id names no camera of `camchain` (negative, or not below its
 // size); nullptr when every observation has its camera.
 const Observation* FindObservationWithoutCamera(const std::vector<Observation>& observations,

@@ -28,13 +28,6 @@ struct IntrinsicsReportInputs {
   std::string camchain_path;  // empty: not given
 };
 
-// Kalibr's order of the intrinsics (indices into the layout of camera/camera_model.h):
-// pinhole [fu fv pu pv], omni [xi fu fv pu pv], eucm [alpha beta fu fv pu pv],
-// ds [xi alpha fu fv pu pv]; and of the distortion coefficients (radtan k1 k2 p1 p2 [k3],
-// equidistant k1..k4, fov w, none: none).
-std::vector<int> KalibrIntrinsicsOrder(const Camera& camera);
-std::vector<int> KalibrDistortionOrder(const Camera& camera);
-
 std::string IntrinsicsResultYaml(const IntrinsicsResult& result);
 std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
                                  const IntrinsicsReportInputs& inputs,
