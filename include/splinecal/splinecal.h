@@ -101,6 +101,7 @@
 #include "splinecal/estimation/imu_costs.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/imu_noise_mode.h"
+#include "splinecal/estimation/interval_manifold.h"
 #include "splinecal/estimation/knot_spacing.h"
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/options.h"

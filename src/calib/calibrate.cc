@@ -74,24 +74,27 @@ void CalibrationProblem::BuildProblem() {
       problem().AddParameterBlock(cam.intrinsics.data(), kNumIntrinsics,
                                   cam.intrinsics_manifold.get());
     }
-    problem().AddParameterBlock(&cam.time_offset_s, 1);
-    problem().AddParameterBlock(&cam.line_delay, 1);
+    // Both intervals are kept by the blocks' Plus, not by Ceres' bounds
+    // (estimation/interval_manifold.h: bounds would double the Jacobian evaluations).
     if (options_.estimate_time_offset) {
       cam.time_offset_s =
           std::clamp(cam.time_offset_s, -options_.max_time_offset_s, options_.max_time_offset_s);
-      problem().SetParameterLowerBound(&cam.time_offset_s, 0, -options_.max_time_offset_s);
-      problem().SetParameterUpperBound(&cam.time_offset_s, 0, options_.max_time_offset_s);
+      cam.time_offset_manifold = std::make_shared<IntervalManifold>(-options_.max_time_offset_s,
+                                                                    options_.max_time_offset_s);
+      problem().AddParameterBlock(&cam.time_offset_s, 1, cam.time_offset_manifold.get());
     } else {
+      problem().AddParameterBlock(&cam.time_offset_s, 1);
       problem().SetParameterBlockConstant(&cam.time_offset_s);
     }
     if (options_.rolling_shutter) {
       // The readout cannot exceed the frame period.
       cam.max_line_delay = frame_periods_[c] / std::max(1, height - 1);
       cam.line_delay = std::clamp(cam.line_delay, 0.0, cam.max_line_delay);
-      problem().SetParameterLowerBound(&cam.line_delay, 0, 0.0);
-      problem().SetParameterUpperBound(&cam.line_delay, 0, cam.max_line_delay);
+      cam.line_delay_manifold = std::make_shared<IntervalManifold>(0.0, cam.max_line_delay);
+      problem().AddParameterBlock(&cam.line_delay, 1, cam.line_delay_manifold.get());
       if (cam.line_delay_held) problem().SetParameterBlockConstant(&cam.line_delay);
     } else {
+      problem().AddParameterBlock(&cam.line_delay, 1);
       problem().SetParameterBlockConstant(&cam.line_delay);
     }
   }
@@ -128,7 +131,8 @@ void CalibrationProblem::BuildProblem() {
       landmark_residuals_.push_back(residual);
       added_rho = true;
     }
-    if (added_rho) problem().SetParameterLowerBound(&landmark.rho, 0, 0.0);
+    // rho >= 0 by its Plus, not by a bound (estimation/interval_manifold.h).
+    if (added_rho) problem().SetManifold(&landmark.rho, rho_manifold_.get());
   }
 }
 

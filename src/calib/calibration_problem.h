@@ -13,6 +13,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -30,6 +31,7 @@
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/imu_costs.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
+#include "splinecal/estimation/interval_manifold.h"
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/estimation/solve_rounds.h"
@@ -140,6 +142,8 @@ class CalibrationProblem {
     // Holds the entries the model does not use; the problem does not own its manifolds (the
     // spline's are shared), so the camera does.
     std::shared_ptr<ceres::Manifold> intrinsics_manifold;
+    std::shared_ptr<ceres::Manifold> time_offset_manifold;  // [-max, max] when estimated
+    std::shared_ptr<ceres::Manifold> line_delay_manifold;   // [0, max_line_delay]
     double time_offset_s = 0.0;
     double line_delay = 0.0;
     double window_readout_s = 0.0;     // the readout the windows were built for
@@ -234,6 +238,9 @@ class CalibrationProblem {
 
   std::unique_ptr<SplineProblem> spline_;  // control poses, biases, gravity
   std::vector<CameraState> cameras_;
+  // Every landmark's inverse depth stays >= 0 (estimation/interval_manifold.h).
+  std::shared_ptr<ceres::Manifold> rho_manifold_ =
+      std::make_shared<IntervalManifold>(0.0, std::numeric_limits<double>::infinity());
   std::array<double, 7> T_w_t_{};
   std::vector<double> frame_periods_;
 

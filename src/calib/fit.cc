@@ -26,6 +26,7 @@
 #include "splinecal/vio/hand_eye.h"
 #include "splinecal/estimation/imu_costs.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
+#include "splinecal/estimation/interval_manifold.h"
 #include "splinecal/estimation/pose_cost.h"
 #include "splinecal/estimation/solver_progress.h"
 #include "splinecal/estimation/marginal_covariance.h"
@@ -148,6 +149,8 @@ struct FitProblem::Impl {
   std::string knot_rule;
   std::vector<std::string> warnings;
 
+  // Declared before the problem that refers to it, so that it outlives it.
+  std::unique_ptr<IntervalManifold> time_offset_manifold;  // [-max, max] when estimated
   std::unique_ptr<SplineProblem> spline_problem;  // control poses, biases, gravity
   double time_offset = 0.0;
   std::array<double, 7> extrinsic = {0, 0, 0, 0, 0, 0, 1};
@@ -413,12 +416,17 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
 
 void FitProblem::Impl::BuildProblem() {
   ceres::Problem& problem = spline_problem->Reset();
-  problem.AddParameterBlock(&time_offset, 1);
   problem.AddParameterBlock(extrinsic.data(), 7, spline_problem->se3_manifold());
   if (options.estimate_time_offset) {
-    problem.SetParameterLowerBound(&time_offset, 0, -options.max_time_offset_s);
-    problem.SetParameterUpperBound(&time_offset, 0, options.max_time_offset_s);
+    // The interval is kept by the block's Plus, not by Ceres' bounds
+    // (estimation/interval_manifold.h: bounds would double the Jacobian evaluations).
+    if (!time_offset_manifold) {
+      time_offset_manifold = std::make_unique<IntervalManifold>(-options.max_time_offset_s,
+                                                                options.max_time_offset_s);
+    }
+    problem.AddParameterBlock(&time_offset, 1, time_offset_manifold.get());
   } else {
+    problem.AddParameterBlock(&time_offset, 1);
     problem.SetParameterBlockConstant(&time_offset);
   }
   if (!options.estimate_extrinsic) problem.SetParameterBlockConstant(extrinsic.data());

@@ -4,10 +4,11 @@
 #include <glog/logging.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <random>
+
+#include "sparse_cholesky.h"
 
 namespace splinecal {
 namespace estimation_internal {
@@ -235,10 +236,10 @@ bool CompressedInformation::SchurCovariance(const std::vector<const double*>& re
   if (na > 0) {
     const Eigen::SparseMatrix<double> H_aa = H.topLeftCorner(na, na);
     const Eigen::MatrixXd H_ac = Eigen::MatrixXd(H.topRightCorner(na, num_wanted));
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H_aa);
-    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0.0)) return false;
-    X = ldlt.solve(H_ac);
-    if (ldlt.info() != Eigen::Success || !X.allFinite()) return false;
+    const SparseCholesky cholesky(H_aa);
+    if (!cholesky.ok()) return false;
+    X = cholesky.Solve(H_ac);
+    if (X.rows() != na || !X.allFinite()) return false;
     schur -= H_ac.transpose() * X;
   }
   // Inverse through the eigen-decomposition of the diagonally scaled complement: refuses one
@@ -308,25 +309,25 @@ bool CompressedInformation::LabelTraces(int probes, std::map<int, double>* trace
   for (const auto& [label, rows] : num_residuals_) (*traces)[label] = 0.0;
   if (size == 0 || probes < 1) return size == 0;
   const Eigen::SparseMatrix<double> H = Assemble(offsets, size);
-  const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(H);
-  if (llt.info() != Eigen::Success) return false;
+  const SparseCholesky cholesky(H);
+  if (!cholesky.ok()) return false;
   std::mt19937 random(kProbeSeed);
   std::bernoulli_distribution coin(0.5);
-  Eigen::VectorXd z(size);
+  Eigen::MatrixXd Z(size, probes);
   for (int p = 0; p < probes; ++p) {
-    for (int i = 0; i < size; ++i) z[i] = coin(random) ? 1.0 : -1.0;
-    // w = P^T L^-T z: E[w w^T] = P^T L^-T L^-1 P = H^-1 (Eigen factors P H P^T = L L^T).
-    const Eigen::VectorXd v = llt.matrixU().solve(z);
-    const Eigen::VectorXd w = llt.permutationPinv() * v;
-    if (!w.allFinite()) return false;
-    for (const auto& [key, group] : groups_) {
-      Eigen::VectorXd w_group(group.H.rows());
-      for (size_t k = 0; k < group.blocks.size(); ++k) {
-        w_group.segment(group.offsets[k], group.sizes[k]) =
-            w.segment(offsets.at(group.blocks[k]), group.sizes[k]);
-      }
-      (*traces)[key.first] += w_group.dot(group.H * w_group) / probes;
+    for (int i = 0; i < size; ++i) Z(i, p) = coin(random) ? 1.0 : -1.0;
+  }
+  // W = P^T L^-T Z: E[w w^T] = P^T L^-T L^-1 P = H^-1 for each column w (P H P^T = L L^T).
+  const Eigen::MatrixXd W = cholesky.SolveLt(Z);
+  if (W.rows() != size || !W.allFinite()) return false;
+  for (const auto& [key, group] : groups_) {
+    Eigen::MatrixXd W_group(group.H.rows(), probes);
+    for (size_t k = 0; k < group.blocks.size(); ++k) {
+      W_group.middleRows(group.offsets[k], group.sizes[k]) =
+          W.middleRows(offsets.at(group.blocks[k]), group.sizes[k]);
     }
+    // sum over the probes of w_g^T H_g w_g
+    (*traces)[key.first] += (group.H * W_group).cwiseProduct(W_group).sum() / probes;
   }
   return true;
 }

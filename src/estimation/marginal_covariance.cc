@@ -5,7 +5,6 @@
 #include <glog/logging.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>

@@ -133,11 +133,27 @@ struct ExposureState {
   BodyState body;
 };
 
+// The last state StateAt computed within one Evaluate call. A global-shutter frame exposes all
+// its corners at the same time, so its corners share one spline evaluation (and one control-pose
+// Jacobian) instead of each recomputing the same numbers; rolling-shutter rows differ and miss.
+struct StateMemo {
+  bool valid = false;
+  double t_s = 0.0;
+  ExposureState state;
+  bool has_pose_jacobian = false;
+  ControlPoseJacobian<6> J_pose;  // of state.segment, once asked for
+};
+
 // Evaluates the body state at t_s (seconds since t0, IMU clock) from the window.
 bool StateAt(const ReprojectionSettings& settings,
              WindowKnots* knots,
              double t_s,
-             ExposureState* state) {
+             ExposureState* state,
+             StateMemo* memo = nullptr) {
+  if (memo != nullptr && memo->valid && memo->t_s == t_s) {
+    *state = memo->state;
+    return true;
+  }
   int index = 0;
   double u = 0.0;
   SegmentPosition position;
@@ -150,7 +166,27 @@ bool StateAt(const ReprojectionSettings& settings,
   state->segment = MakeSegment(index, u, settings.layout.dt_s());
   state->knots = k;
   state->body = EvaluateBodyState(*k, state->segment);
+  if (memo != nullptr) {
+    memo->valid = true;
+    memo->t_s = t_s;
+    memo->state = *state;
+    memo->has_pose_jacobian = false;
+  }
   return true;
+}
+
+// The control-pose Jacobian of the pose at `state` (spline/segment_jacobians.h), from the memo
+// when it holds that state's.
+const ControlPoseJacobian<6>& PoseJacobianAt(const ExposureState& state,
+                                             StateMemo* memo,
+                                             ControlPoseJacobian<6>* storage) {
+  const bool memo_state = memo->valid && memo->state.segment_index == state.segment_index &&
+                          memo->state.segment.u == state.segment.u;
+  if (memo_state && memo->has_pose_jacobian) return memo->J_pose;
+  ControlPoseJacobian<6>* J = memo_state ? &memo->J_pose : storage;
+  EvaluatePoseJacobian(*state.knots, state.segment, nullptr, J);
+  if (memo_state) memo->has_pose_jacobian = true;
+  return *J;
 }
 
 // Solves the exposure time of X_w = (x_w, w) in a frame at t_frame_s + shift (IMU clock) and
@@ -165,10 +201,11 @@ bool SolveAndProject(const ReprojectionSettings& settings,
                      double w,
                      ExposureSolution* solution,
                      ExposureState* state,
-                     PointProjection* projection) {
+                     PointProjection* projection,
+                     StateMemo* memo = nullptr) {
   const Camera& camera = *settings.camera;
   auto row_at = [&](double tau, double* v, double* v_dot) -> bool {
-    if (!StateAt(settings, knots, t_exposure_base_s + tau, state)) return false;
+    if (!StateAt(settings, knots, t_exposure_base_s + tau, state, memo)) return false;
     if (!ProjectPoint(camera, T_c_s, state->body, x_w, w, false, projection)) return false;
     *v = projection->uv.y();
     *v_dot = projection->uv_dot.y();
@@ -260,6 +297,7 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
   const double k = settings_.huber_px * inv_sigma;
   const Eigen::Matrix3d R_w_t = T_w_t.rotationMatrix();
   const int height = camera.height;
+  internal::StateMemo memo;
   for (size_t c = 0; c < corners_.size(); ++c) {
     const TargetCornerObservation& corner = corners_[c];
     const int row = 2 * static_cast<int>(c);
@@ -278,7 +316,8 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
                                    1.0,
                                    &solution,
                                    &state,
-                                   &projection)) {
+                                   &projection,
+                                   &memo)) {
       return false;
     }
     Eigen::Vector2d r = (projection.uv - corner.uv) * inv_sigma;
@@ -305,8 +344,8 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
           jacobians[n + 4] + row * kNumIntrinsics) = F * J_uv_intrinsics;
     }
     // Control poses of the exposure segment.
-    ControlPoseJacobian<6> J_pose;
-    EvaluatePoseJacobian(*state.knots, state.segment, nullptr, &J_pose);
+    ControlPoseJacobian<6> J_pose_storage;
+    const ControlPoseJacobian<6>& J_pose = internal::PoseJacobianAt(state, &memo, &J_pose_storage);
     const Eigen::Matrix<double, 2, 6> F_J_e = F * projection.J_uv_e;
     for (int b = 0; b < kSplineOrder; ++b) {
       const int slot = J_pose.first_index + b - window_.first_index;
