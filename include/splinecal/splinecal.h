@@ -95,6 +95,7 @@
 // estimation/
 #include "splinecal/estimation/bias_costs.h"
 #include "splinecal/estimation/bias_spline.h"
+#include "splinecal/estimation/compact_frame_cost.h"
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/gravity_tangent.h"
 #include "splinecal/estimation/imu_autodiff_costs.h"

@@ -28,6 +28,7 @@
 #include "splinecal/calib/fit.h"
 #include "splinecal/camera/pnp.h"
 #include "splinecal/error.h"
+#include "splinecal/estimation/compact_frame_cost.h"
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/imu_costs.h"
 #include "splinecal/estimation/imu_noise_estimate.h"

@@ -371,6 +371,67 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
   return true;
 }
 
+bool TargetFrameCostFunction::LinearizeGlobalShutter(double const* const* parameters,
+                                                     bool with_target_pose,
+                                                     bool with_intrinsics,
+                                                     GlobalShutterLinearization* out) const {
+  const int n = window_.num_poses;
+  const double line_delay = parameters[n + 2][0];
+  if (line_delay != 0.0 || (with_intrinsics && !settings_.estimate_intrinsics)) return false;
+  const SE3d T_c_s = settings_.T_cam_cref * PoseFromBlock(parameters[n]);
+  const double shift = parameters[n + 1][0];
+  const SE3d T_w_t = PoseFromBlock(parameters[n + 3]);
+  if (!std::isfinite(shift)) return false;
+  Camera estimated;
+  if (settings_.estimate_intrinsics) {
+    estimated = *settings_.camera;
+    estimated.set_intrinsics(Eigen::Map<const IntrinsicsVector>(parameters[n + 4]));
+  }
+  const Camera& camera = settings_.estimate_intrinsics ? estimated : *settings_.camera;
+  const std::vector<int> indices = internal::WindowIndices(window_);
+  internal::WindowKnots knots(settings_, indices, parameters, /*with_jacobians=*/true);
+  internal::ExposureState state;
+  if (!internal::StateAt(settings_, &knots, t_frame_s_ + shift, &state)) return false;
+  EvaluatePoseJacobian(*state.knots, state.segment, nullptr, &out->J_pose);
+  out->xi << state.body.v_s, state.body.w_s;
+  const int m = num_residuals();
+  const int target_columns = with_target_pose ? 6 : 0;
+  out->r.resize(m);
+  out->G.resize(m, 6 + target_columns + (with_intrinsics ? kNumIntrinsics : 0));
+  const double inv_sigma = 1.0 / settings_.sigma_px;
+  const double k = settings_.huber_px * inv_sigma;
+  const Eigen::Matrix3d R_w_t = T_w_t.rotationMatrix();
+  for (size_t c = 0; c < corners_.size(); ++c) {
+    const TargetCornerObservation& corner = corners_[c];
+    const int row = 2 * static_cast<int>(c);
+    const Eigen::Vector3d x_w = T_w_t * corner.p_t;
+    internal::PointProjection projection;
+    if (!internal::ProjectPoint(camera, T_c_s, state.body, x_w, 1.0, true, &projection)) {
+      return false;
+    }
+    Eigen::Vector2d r = (projection.uv - corner.uv) * inv_sigma;
+    Eigen::Matrix2d S;
+    internal::RobustifyPoint(k, &r, &S);
+    out->r.segment<2>(row) = r;
+    const Eigen::Matrix2d F = inv_sigma * S;  // M = I at line_delay 0
+    out->G.block<2, 6>(row, 0) = F * projection.J_uv_e;
+    if (with_target_pose) {
+      Eigen::Matrix<double, 3, 6> J_xw_d;
+      J_xw_d.leftCols<3>() = R_w_t;
+      J_xw_d.rightCols<3>() = -R_w_t * Hat(corner.p_t);
+      out->G.block<2, 6>(row, 6) = F * projection.J_uv_xw * J_xw_d;
+    }
+    if (with_intrinsics) {
+      const Eigen::Vector3d x_c = T_c_s * (state.body.T_w_s.inverse() * x_w);
+      Eigen::Vector2d uv;
+      Eigen::Matrix<double, 2, kNumIntrinsics> J_uv_intrinsics;
+      camera.Project(x_c, &uv, nullptr, &J_uv_intrinsics);
+      out->G.block<2, kNumIntrinsics>(row, 6 + target_columns) = F * J_uv_intrinsics;
+    }
+  }
+  return true;
+}
+
 LandmarkCostFunction::LandmarkCostFunction(const ReprojectionSettings& settings,
                                            std::vector<int> pose_indices,
                                            const LandmarkObservation& observation)

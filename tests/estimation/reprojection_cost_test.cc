@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "calib/camera_test_scene.h"
+#include "splinecal/estimation/compact_frame_cost.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "testing/numeric_diff.h"
 
@@ -242,8 +243,8 @@ TEST_F(ReprojectionCostTest, TargetJacobiansWithEstimatedIntrinsicsAndAHeldChain
   const double t_frame = 0.45;
   settings_.huber_px = 1.5;
   settings_.estimate_intrinsics = true;
-  settings_.T_cam_cref = SE3d(SO3d::Exp(Eigen::Vector3d(0.01, -0.02, 0.005)),
-                              Eigen::Vector3d(-0.1, 0.002, 0.001));
+  settings_.T_cam_cref =
+      SE3d(SO3d::Exp(Eigen::Vector3d(0.01, -0.02, 0.005)), Eigen::Vector3d(-0.1, 0.002, 0.001));
   ControlPoseWindow window;
   ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.07, &window));
   // The corners as the held camera sees them: its T_c_s is T_cam_cref times the block.
@@ -274,6 +275,119 @@ TEST_F(ReprojectionCostTest, TargetJacobiansWithEstimatedIntrinsicsAndAHeldChain
   std::vector<double> residuals(exact.num_residuals());
   ASSERT_TRUE(exact.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));
   for (double r : residuals) EXPECT_LT(std::abs(r) * settings_.sigma_px, kModelTolerancePx);
+}
+
+// What Ceres sees of a residual block in tangent coordinates: 1/2 |r|^2, J^T r and J^T J over
+// the blocks marked free (the others get no Jacobian, as constant blocks in Ceres).
+struct NormalEquations {
+  double cost = 0.0;
+  Eigen::VectorXd gradient;
+  Eigen::MatrixXd information;
+};
+
+NormalEquations NormalEquationsOf(const ceres::CostFunction& cost,
+                                  const Blocks& blocks,
+                                  const std::vector<bool>& free) {
+  const std::vector<int32_t>& sizes = cost.parameter_block_sizes();
+  const int rows = cost.num_residuals();
+  std::vector<std::vector<double>> storage(sizes.size());
+  std::vector<double*> jacobians(sizes.size(), nullptr);
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    if (!free[i]) continue;
+    storage[i].assign(rows * sizes[i], 0.0);
+    jacobians[i] = storage[i].data();
+  }
+  Eigen::VectorXd r(rows);
+  EXPECT_TRUE(cost.Evaluate(blocks.parameters.data(), r.data(), jacobians.data()));
+  std::vector<Eigen::MatrixXd> parts;
+  int columns = 0;
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    if (!free[i]) continue;
+    Eigen::MatrixXd plus = Eigen::MatrixXd::Identity(sizes[i], sizes[i]);
+    if (blocks.manifolds[i] != nullptr) {
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> P(
+          sizes[i], blocks.manifolds[i]->TangentSize());
+      blocks.manifolds[i]->PlusJacobian(blocks.parameters[i], P.data());
+      plus = P;
+    }
+    parts.push_back(
+        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+            storage[i].data(), rows, sizes[i]) *
+        plus);
+    columns += static_cast<int>(parts.back().cols());
+  }
+  Eigen::MatrixXd J(rows, columns);
+  for (size_t k = 0, column = 0; k < parts.size(); column += parts[k].cols(), ++k) {
+    J.middleCols(column, parts[k].cols()) = parts[k];
+  }
+  // A residual-only evaluation has the same cost.
+  Eigen::VectorXd r_only(rows);
+  EXPECT_TRUE(cost.Evaluate(blocks.parameters.data(), r_only.data(), nullptr));
+  EXPECT_NEAR(r_only.squaredNorm(), r.squaredNorm(), 1e-12 * r.squaredNorm());
+  return {0.5 * r.squaredNorm(), J.transpose() * r, J.transpose() * J};
+}
+
+void ExpectSameNormalEquations(const NormalEquations& got, const NormalEquations& rows) {
+  // Householder QR is backward stable: the products agree to rounding of the largest entries.
+  EXPECT_NEAR(got.cost, rows.cost, 1e-12 * rows.cost);
+  EXPECT_LT((got.gradient - rows.gradient).cwiseAbs().maxCoeff(),
+            1e-10 * rows.gradient.cwiseAbs().maxCoeff());
+  EXPECT_LT((got.information - rows.information).cwiseAbs().maxCoeff(),
+            1e-10 * rows.information.cwiseAbs().maxCoeff());
+}
+
+TEST_F(ReprojectionCostTest, CompactFrameHasTheRowsNormalEquations) {
+  // estimation/compact_frame_cost.h: Ceres must take the same steps on the compact frame. Huber
+  // active on part of the corners; the line delay held at 0 (no Jacobian), as in calibrate.
+  const double t_frame = 0.62;
+  scene_.line_delay = 0.0;
+  settings_.huber_px = 1.5;
+  ControlPoseWindow window;
+  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.02, &window));
+  auto rows =
+      std::make_unique<TargetFrameCostFunction>(settings_, window, t_frame, Corners(t_frame, 2.0));
+  const TargetFrameCostFunction* frame = rows.get();
+  ASSERT_TRUE(CompactFrameCostFunction::SavesRows(*frame));
+  const CompactFrameCostFunction compact(std::move(rows));
+  EXPECT_EQ(&CompactResidual::RowsOf(compact), frame);
+  EXPECT_EQ(compact.num_residuals(), 6 + 6 + kNumIntrinsics + 1);
+  const Blocks blocks = TargetBlocks(window);
+  const int n = window.num_poses;
+  // Control poses, T_cam_imu and the time offset free; then the target pose free too.
+  std::vector<bool> free(blocks.parameters.size(), true);
+  free[n + 2] = false;  // line delay
+  free[n + 3] = false;  // T_w_t
+  ExpectSameNormalEquations(NormalEquationsOf(compact, blocks, free),
+                            NormalEquationsOf(*frame, blocks, free));
+  free[n + 3] = true;
+  ExpectSameNormalEquations(NormalEquationsOf(compact, blocks, free),
+                            NormalEquationsOf(*frame, blocks, free));
+  // An estimated line delay cannot be compacted: the evaluation refuses.
+  std::vector<double*> jacobians(blocks.parameters.size(), nullptr);
+  std::vector<double> line_delay_jacobian(compact.num_residuals());
+  jacobians[n + 2] = line_delay_jacobian.data();
+  std::vector<double> residuals(compact.num_residuals());
+  EXPECT_FALSE(compact.Evaluate(blocks.parameters.data(), residuals.data(), jacobians.data()));
+}
+
+TEST_F(ReprojectionCostTest, CompactFrameWithEstimatedIntrinsics) {
+  const double t_frame = 0.45;
+  scene_.line_delay = 0.0;
+  settings_.estimate_intrinsics = true;
+  ControlPoseWindow window;
+  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.02, &window));
+  auto rows =
+      std::make_unique<TargetFrameCostFunction>(settings_, window, t_frame, Corners(t_frame, 1.0));
+  const TargetFrameCostFunction* frame = rows.get();
+  const CompactFrameCostFunction compact(std::move(rows));
+  IntrinsicsVector intrinsics = scene_.camera.intrinsics();
+  Blocks blocks = TargetBlocks(window);
+  blocks.parameters.push_back(intrinsics.data());
+  blocks.manifolds.push_back(nullptr);
+  std::vector<bool> free(blocks.parameters.size(), true);
+  free[window.num_poses + 2] = false;  // line delay
+  ExpectSameNormalEquations(NormalEquationsOf(compact, blocks, free),
+                            NormalEquationsOf(*frame, blocks, free));
 }
 
 TEST_F(ReprojectionCostTest, TargetEvaluationOutsideTheWindowFails) {

@@ -121,6 +121,25 @@ class TargetFrameCostFunction : public ceres::CostFunction {
   double t_frame_s() const { return t_frame_s_; }
   const std::vector<TargetCornerObservation>& corners() const { return corners_; }
 
+  // The frame linearised through the body pose, for a GLOBAL-shutter frame (line_delay 0):
+  // every corner is seen at the same exposure time t, so its rows depend on the control poses,
+  // T_cam_imu and the time offset only through the right perturbation e of T_w_s(t):
+  //   d r / d control pose k = A J_T_k,   d r / d T_cam_imu = -A,   d r / d time offset = A xi
+  // with A = d r / d e (2 rows per corner x 6; the Huber scaling S and 1/sigma included), J_T_k
+  // the spline's control-pose Jacobian and xi = [v_s; w_s] the body twist (header comment).
+  // G = [A | d r / d T_w_t (tangent, 6) | d r / d intrinsics (ambient)], the last two only when
+  // asked for. False where Evaluate would fail, or when the line delay is not 0.
+  struct GlobalShutterLinearization {
+    Eigen::VectorXd r;  // the residuals Evaluate returns
+    Eigen::MatrixXd G;
+    ControlPoseJacobian<6> J_pose;
+    Eigen::Matrix<double, 6, 1> xi;
+  };
+  bool LinearizeGlobalShutter(double const* const* parameters,
+                              bool with_target_pose,
+                              bool with_intrinsics,
+                              GlobalShutterLinearization* out) const;
+
  private:
   ReprojectionSettings settings_;
   ControlPoseWindow window_;
