@@ -20,7 +20,8 @@ std::string ShapeText(const std::vector<py::ssize_t>& shape, bool expected) {
   std::string text = "(";
   for (size_t i = 0; i < shape.size(); ++i) {
     if (i > 0) text += ", ";
-    text += shape[i] < 0 && expected ? "n" : std::to_string(shape[i]);
+    // Free lengths read n (rows), then k (columns).
+    text += shape[i] < 0 && expected ? (i == 0 ? "n" : "k") : std::to_string(shape[i]);
   }
   return text + (shape.size() == 1 ? ",)" : ")");
 }

@@ -21,7 +21,14 @@ namespace {
 
 // Times to evaluate at: an int or an int64 array (n,), in any order.
 std::vector<int64_t> QueryTimes(py::handle t_ns) {
-  if (py::isinstance<py::int_>(t_ns)) return {t_ns.cast<int64_t>()};
+  if (py::isinstance<py::int_>(t_ns)) {
+    try {
+      return {t_ns.cast<int64_t>()};
+    } catch (const py::cast_error&) {
+      throw py::value_error("t_ns: " + py::str(t_ns).cast<std::string>() +
+                            " does not fit int64 nanoseconds");
+    }
+  }
   return TimesNs(t_ns, "t_ns", /*increasing=*/false);
 }
 
