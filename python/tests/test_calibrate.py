@@ -12,7 +12,7 @@ WALL_TIMES = ("initialisation_time_s", "solve_time_s", "covariance_time_s")
 
 def test_calibrate_equals_the_command_line(tmp_path):
     sim = tmp_path / "sim"
-    run_tool("simulate", "--trajectory", "calibration", "--duration", 8,
+    run_tool("simulate", "--trajectory", "calibration", "--duration", 5,
              "--camchain", CALIBRATION / "camchain_truth.yaml",
              "--target", CALIBRATION / "aprilgrid.yaml", "--seed", 2, "--out", sim)
     inputs = dict(imu=sim / "mav0/imu0/data.csv", observations=sim / "observations.csv",
