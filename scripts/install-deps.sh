@@ -7,6 +7,9 @@ packages=(build-essential cmake ninja-build libceres-dev libeigen3-dev libgoogle
           libsuitesparse-dev  # CHOLMOD: the covariances' sparse Cholesky (src/estimation/sparse_cholesky.h)
           # scripts/allan_speed_bench.py: the numpy reference of the Allan speed target
           python3-numpy
+          # the Python module (python/, docs/python.md) and its tests: pybind11, the interpreter's
+          # headers, pytest, and PyYAML to read the command line's result.yaml in the tests
+          pybind11-dev python3-dev python3-pytest python3-yaml
           # the image front end (splinecal detect, docs/detect.md): OpenCV (with the contrib
           # modules: ArUco is benchmarked against libapriltag), libapriltag, libjpeg, libpng, zlib
           libopencv-dev libopencv-contrib-dev libapriltag-dev libjpeg-dev libpng-dev zlib1g-dev)

@@ -272,7 +272,7 @@ CalibrationResult CalibrationProblem::Run() {
   const SolverOptions& solver = options_.solver;
   ceres::Solver::Options solver_options = ToCeresOptions(solver, 0.0, nullptr);
   solver_options.update_state_every_iteration = true;  // for the StopWhen callbacks
-  SolveRounds rounds(solver_options, options_.solver.progress);
+  SolveRounds rounds(solver_options, options_.solver.progress, options_.solver.stop);
   for (int round = 1; round <= solver.max_rounds; ++round) {
     BuildProblem();
     if (frame_residuals_.empty() && landmark_residuals_.empty()) {

@@ -204,23 +204,18 @@ int RunSimulate() {
   PoseFitOptions fit_options;
   fit_options.progress = [](const std::string& line) { Progress(line); };
   SimulationRun run;
-  run.spline =
-      FitSimulationTrajectory(trajectory, start_ns, end_ns, in.knot_spacing_ns, fit_options);
   run.start_ns = start_ns;
   run.end_ns = end_ns;
   run.knot_spacing_s = in.knot_spacing_s;
   run.options = options;
   run.camchain = camchain;
   run.camera_options = camera_options;
+  RunSimulation(trajectory, fit_options, &run);
   const PoseFitResult& fit = run.spline.fit;
-
   const SE3Splined spline = fit.MakeSpline();
-  std::vector<ImuSample>& imu = run.imu;
-  SimulateImu(spline, start_ns, end_ns, options, &imu, &run.truth);
-
-  CameraSimulationResult& cameras = run.cameras;
+  const std::vector<ImuSample>& imu = run.imu;
+  const CameraSimulationResult& cameras = run.cameras;
   if (!camchain.empty()) {
-    cameras = SimulateCameras(spline, camchain, start_ns, end_ns, camera_options);
     Progress("simulate: " + std::to_string(cameras.num_frames) + " camera frames, " +
              std::to_string(cameras.num_target_observations) + " target and " +
              std::to_string(cameras.num_landmark_observations) + " landmark observations");

@@ -54,6 +54,11 @@ const ceres::Solver::Summary& SolveRounds::Solve(
     progress = std::make_unique<SolverProgressCallback>(progress_, progress_prefix);
     round_options.callbacks.push_back(progress.get());
   }
+  std::unique_ptr<SolverStopCallback> stop;
+  if (stop_) {
+    stop = std::make_unique<SolverStopCallback>(stop_);
+    round_options.callbacks.push_back(stop.get());
+  }
   for (ceres::IterationCallback* callback : callbacks) round_options.callbacks.push_back(callback);
   const auto start = std::chrono::steady_clock::now();
   ceres::Solve(round_options, problem, &last_);
@@ -66,7 +71,8 @@ const ceres::Solver::Summary& SolveRounds::Solve(
 
 SolveRounds::SolveRounds(const SolverOptions& options, double jacobian_entries)
     : options_(ToCeresOptions(options, jacobian_entries, &linear_solver_)),
-      progress_(options.progress) {}
+      progress_(options.progress),
+      stop_(options.stop) {}
 
 SolveSummary SolveRounds::Summary() const {
   SolveSummary summary;

@@ -25,4 +25,10 @@ ceres::CallbackReturnType SolverProgressCallback::operator()(
   return ceres::SOLVER_CONTINUE;
 }
 
+SolverStopCallback::SolverStopCallback(std::function<bool()> stop) : stop_(std::move(stop)) {}
+
+ceres::CallbackReturnType SolverStopCallback::operator()(const ceres::IterationSummary&) {
+  return stop_() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+}
+
 }  // namespace splinecal

@@ -42,6 +42,9 @@ struct SolverOptions {
   double max_normal_cholesky_jacobian_entries = 8e6;
   // One line per solver iteration (empty: silent).
   std::function<void(const std::string&)> progress;
+  // Asked once per solver iteration (empty: never); true stops the solve at once with Ceres'
+  // USER_FAILURE, which the estimates report as a failed solve. The Python module's Ctrl-C.
+  std::function<bool()> stop;
 };
 
 // Throws splinecal::Error (naming `what`) for values no solve can use.
@@ -67,9 +70,11 @@ struct SolveSummary {
 
 class SolveRounds {
  public:
-  SolveRounds(ceres::Solver::Options options, std::function<void(const std::string&)> progress)
-      : options_(std::move(options)), progress_(std::move(progress)) {}
-  // ToCeresOptions(options, jacobian_entries, ...) with options.progress.
+  SolveRounds(ceres::Solver::Options options,
+              std::function<void(const std::string&)> progress,
+              std::function<bool()> stop = {})
+      : options_(std::move(options)), progress_(std::move(progress)), stop_(std::move(stop)) {}
+  // ToCeresOptions(options, jacobian_entries, ...) with options.progress and options.stop.
   SolveRounds(const SolverOptions& options, double jacobian_entries);
 
   // Solves `problem` as the next round; progress lines start with `progress_prefix`;
@@ -94,6 +99,7 @@ class SolveRounds {
   std::string linear_solver_;  // before options_: its constructor writes it
   ceres::Solver::Options options_;
   std::function<void(const std::string&)> progress_;
+  std::function<bool()> stop_;
   ceres::Solver::Summary last_;
   int rounds_ = 0;
   int iterations_ = 0;

@@ -32,6 +32,14 @@ struct SimulationRun {
   CameraSimulationResult cameras;
 };
 
+// Runs the simulation `run` describes (start_ns, end_ns, knot_spacing_s, options, camchain and
+// camera_options set by the caller): fits the spline to `trajectory` (progress through
+// fit_options), simulates the IMU on it and, with a camchain, the cameras; fills run->spline,
+// imu, truth and cameras. The one pipeline of `splinecal simulate` and the Python module.
+void RunSimulation(const SimulationTrajectory& trajectory,
+                   const PoseFitOptions& fit_options,
+                   SimulationRun* run);
+
 std::string SimulationResultYaml(const SimulationRun& run);
 
 }  // namespace splinecal

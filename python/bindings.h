@@ -1,0 +1,21 @@
+// The parts of the Python module `splinecal` (docs/python.md), one function per area, each
+// adding its classes and functions to the module. module.cc calls them in this order.
+#ifndef SPLINECAL_PYTHON_BINDINGS_H_
+#define SPLINECAL_PYTHON_BINDINGS_H_
+
+#include <pybind11/pybind11.h>
+
+namespace splinecal {
+namespace python {
+
+void BindSpline(pybind11::module_& m);     // SE3Spline (spline_bindings.cc)
+void BindAllan(pybind11::module_& m);      // allan_deviation, allan (allan_bindings.cc)
+void BindSimulate(pybind11::module_& m);   // simulate (simulate_bindings.cc)
+void BindFit(pybind11::module_& m);        // fit (fit_bindings.cc)
+void BindCalibrate(pybind11::module_& m);  // calibrate (calibrate_bindings.cc)
+void BindDetect(pybind11::module_& m);     // detect (detect_bindings.cc)
+
+}  // namespace python
+}  // namespace splinecal
+
+#endif  // SPLINECAL_PYTHON_BINDINGS_H_

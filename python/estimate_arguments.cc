@@ -1,0 +1,80 @@
+#include "estimate_arguments.h"
+
+#include "numpy_io.h"
+#include "splinecal/io/euroc.h"
+#include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/units.h"
+
+namespace splinecal {
+namespace python {
+
+namespace {
+
+// The g of "units of g" [m/s^2], as `--accel-unit g`.
+constexpr double kStandardGravity = 9.80665;
+
+}  // namespace
+
+void ApplyEstimateArguments(const EstimateArguments& arguments,
+                            SplineModelOptions* model,
+                            SolverOptions* solver) {
+  // Bounded as the command line bounds it: int64 knot times cannot overflow.
+  if (!(arguments.knot_spacing >= 0.0) || !(arguments.knot_spacing <= 1e9)) {
+    throw py::value_error("knot_spacing: expected 0 (chosen from the data) to 1e9 s, got " +
+                          std::to_string(arguments.knot_spacing));
+  }
+  model->knot_spacing_s = arguments.knot_spacing;
+  model->gravity_m_s2 = PositiveArgument(arguments.gravity, "gravity");
+  if (!arguments.imu_yaml.is_none()) {
+    model->noise = ReadImuYaml(PathArgument(arguments.imu_yaml, "imu_yaml"));
+  }
+  bool known = false;
+  for (ImuNoiseMode mode :
+       {ImuNoiseMode::kEstimated, ImuNoiseMode::kReweighted, ImuNoiseMode::kGiven}) {
+    if (arguments.imu_noise == ImuNoiseModeName(mode)) {
+      model->imu_noise = mode;
+      known = true;
+    }
+  }
+  if (!known) {
+    throw py::value_error("imu_noise: expected estimated, reweighted or given, got '" +
+                          arguments.imu_noise + "'");
+  }
+  if (arguments.threads < 1 || arguments.threads > 256) {
+    throw py::value_error("threads: expected 1 to 256, got " + std::to_string(arguments.threads));
+  }
+  solver->num_threads = arguments.threads;
+}
+
+std::vector<ImuSample> ImuInUnits(py::handle imu, const EstimateArguments& arguments) {
+  ImuReadOptions read;
+  read.yaml_hint =
+      "IMU noise densities (Kalibr's imu.yaml) go to imu_yaml; imu takes the IMU samples";
+  if (arguments.accel_unit == "g") {
+    read.accel_scale = kStandardGravity;
+    read.check_accel_units = false;
+  } else if (arguments.accel_unit != "m/s^2") {
+    throw py::value_error("accel_unit: expected m/s^2 or g, got '" + arguments.accel_unit + "'");
+  }
+  if (arguments.gyro_unit == "deg/s") {
+    read.gyro_scale = kDegToRad;
+  } else if (arguments.gyro_unit != "rad/s") {
+    throw py::value_error("gyro_unit: expected rad/s or deg/s, got '" + arguments.gyro_unit + "'");
+  }
+  const bool from_file = AsPath(imu).has_value();
+  std::vector<ImuSample> samples = ImuSamples(imu, read);
+  if (!from_file) {  // the reader scales what it reads; arrays are scaled here
+    for (ImuSample& s : samples) {
+      s.gyro *= read.gyro_scale;
+      s.accel *= read.accel_scale;
+    }
+  }
+  return samples;
+}
+
+std::string ImuYamlPath(const EstimateArguments& arguments) {
+  return arguments.imu_yaml.is_none() ? "" : PathArgument(arguments.imu_yaml, "imu_yaml");
+}
+
+}  // namespace python
+}  // namespace splinecal

@@ -1,0 +1,43 @@
+// The keyword arguments fit() and calibrate() share, read as their command-line flags are
+// (src/cli/common_flags.cc): the spline model (knot_spacing, gravity, imu_yaml, imu_noise), the
+// IMU's units and the solver's threads.
+#ifndef SPLINECAL_PYTHON_ESTIMATE_ARGUMENTS_H_
+#define SPLINECAL_PYTHON_ESTIMATE_ARGUMENTS_H_
+
+#include <pybind11/pybind11.h>
+
+#include <string>
+#include <vector>
+
+#include "splinecal/estimation/options.h"
+#include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/imu/imu_sample.h"
+
+namespace splinecal {
+namespace python {
+
+struct EstimateArguments {
+  double knot_spacing = 0.0;  // [s]; 0: chosen from the IMU data
+  double gravity = 9.81;      // [m/s^2]
+  pybind11::object imu_yaml;  // path of a Kalibr imu.yaml, or None (ADIS16448)
+  std::string imu_noise = "estimated";
+  std::string accel_unit = "m/s^2";
+  std::string gyro_unit = "rad/s";
+  int threads = 1;
+};
+
+// Fills `model` and `solver` (threads) from the arguments; ValueError for a bad one.
+void ApplyEstimateArguments(const EstimateArguments& arguments,
+                            SplineModelOptions* model,
+                            SolverOptions* solver);
+
+// The IMU samples of `imu` (a path or a dict, numpy_io.h) in rad/s and m/s^2.
+std::vector<ImuSample> ImuInUnits(pybind11::handle imu, const EstimateArguments& arguments);
+
+// The path of imu_yaml for the report inputs ("" for None).
+std::string ImuYamlPath(const EstimateArguments& arguments);
+
+}  // namespace python
+}  // namespace splinecal
+
+#endif  // SPLINECAL_PYTHON_ESTIMATE_ARGUMENTS_H_

@@ -1,0 +1,59 @@
+"""allan_deviation against a numpy overlapping Allan deviation; allan against `splinecal allan`."""
+import numpy as np
+
+import splinecal
+from conftest import assert_same, load_yaml, run_tool
+
+RATE_HZ = 100.0
+
+
+def overlapping_adev(y, rate_hz, tau):
+    """IEEE Std 952 / NIST SP 1065 overlapping Allan deviation, from the phase theta."""
+    y = np.asarray(y, dtype=np.longdouble)
+    theta = np.concatenate([[0], np.cumsum(y - y.mean())]) / rate_hz
+    n = len(y)
+    adev = []
+    for t in tau:
+        m = int(round(t * rate_hz))
+        d = theta[2 * m:] - 2 * theta[m:n + 1 - m] + theta[:n + 1 - 2 * m]
+        adev.append(np.sqrt(np.sum(d * d) / (2 * t * t * (n - 2 * m + 1))))
+    return np.array(adev, dtype=np.float64)
+
+
+def noise(n, columns, seed):
+    rng = np.random.default_rng(seed)
+    white = rng.normal(0.0, 1e-2, (n, columns))
+    walk = np.cumsum(rng.normal(0.0, 1e-4, (n, columns)), axis=0)
+    return white + walk
+
+
+def test_allan_deviation_equals_numpy():
+    x = noise(20000, 3, seed=1)
+    tau, adev = splinecal.allan_deviation(x, RATE_HZ, taus_per_decade=10)
+    assert adev.shape == (len(tau), 3)
+    assert np.all(np.diff(tau) > 0)
+    for column in range(3):
+        np.testing.assert_allclose(adev[:, column], overlapping_adev(x[:, column], RATE_HZ, tau),
+                                   rtol=1e-10, atol=0)
+
+
+def test_allan_deviation_of_one_column_is_one_dimensional():
+    x = noise(5000, 1, seed=2)[:, 0]
+    tau, adev = splinecal.allan_deviation(x, RATE_HZ)
+    assert adev.shape == tau.shape
+    np.testing.assert_allclose(adev, overlapping_adev(x, RATE_HZ, tau), rtol=1e-10, atol=0)
+
+
+def test_allan_equals_the_command_line(tmp_path):
+    rng = np.random.default_rng(3)
+    n = 60000  # 10 minutes at 100 Hz
+    imu = np.hstack([rng.normal(0.0, 1.7e-4 * 10, (n, 3)),
+                     rng.normal(0.0, 2e-3 * 10, (n, 3)) + [0.0, 0.0, 9.81]])
+    columns = tmp_path / "static.txt"
+    np.savetxt(columns, imu, fmt="%.17g")
+    run_tool("allan", "--columns", columns, "--rate", RATE_HZ, "--out", tmp_path / "out")
+    expected = load_yaml(tmp_path / "out" / "result.yaml")
+    result = splinecal.allan(imu, RATE_HZ)
+    assert result["source"] == "numpy array"
+    expected["source"] = "numpy array"  # the command names its file
+    assert_same(result, expected, tol=1e-12)
