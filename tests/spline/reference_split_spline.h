@@ -17,14 +17,14 @@
 // agrees with splinecal's; the position does not (the coupled spline blends translations through
 // the rotations).
 //
-// Derivatives ([Sommer20] Sec. 4, Theorem 1 on SO(3)): with w the body angular velocity of the
+// Derivatives ([Sommer20] Theorem 1, on SO(3)): with w the body angular velocity of the
 // partial product R_0 A_1 .. A_j,
 //     w_1 = bdot_1 phi_1,   w_j = A_j^T w_{j-1} + bdot_j phi_j,   w_s = w_3,
 //     a_w = sum_j bddot_j (p_j - p_{j-1}).
 //
 // Jacobians. Control point k is perturbed as R_k Exp(dphi_k) (right, as splinecal) and
 // p_k + dp_k (additive in the world, as basalt); a Jacobian block is 3x6 [d/dp_k | d/dphi_k].
-//   * Knot deltas ([Sommer20] eqs. (38)-(39)):
+//   * Knot deltas (Log(Exp(phi) Exp(d)) ~ phi + Jr^-1 d, Log(Exp(-d) Exp(phi)) ~ phi - Jl^-1 d):
 //       d phi_j = Jr^-1(phi_j) dphi_j - Jl^-1(phi_j) dphi_{j-1},
 //       Jr^-1(phi) = I + P/2 + e P^2,  Jl^-1(phi) = I - P/2 + e P^2   (P = [phi]x,
 //       e = 1/x^2 - (1 + cos x) / (2 x sin x), x = |phi|).
@@ -47,7 +47,7 @@
 // the e's) in every evaluation, as basalt-headers' Se3Spline does; KnotMode::kCached computes
 // them once per knot, as splinecal's SE3Spline does.
 //
-// References (docs/references.md)
+// References ([Sommer20] is in docs/references.md; [Kim95] is cited here only)
 //   [Sommer20] C. Sommer, V. Usenko, D. Schubert, N. Demmel, D. Cremers, "Efficient Derivative
 //              Computation for Cumulative B-Splines on Lie Groups", CVPR 2020.
 //   [Kim95]    M.-J. Kim, M.-S. Kim, S. Y. Shin, "A General Construction Scheme for Unit
