@@ -100,11 +100,17 @@ inline void PredictAccelWithJacobian(const SegmentKnots<double>& knots,
   internal::SegmentTrace<double> trace;
   internal::ForwardPass(knots, segment, request, &trace);
   const Eigen::Vector3d a_s = trace.av[2] + trace.w[2].cross(trace.v[2]);
-  const Eigen::Vector3d g_s = internal::RotateToBody(knots, trace, g_w);
-  if (accel != nullptr) *accel = a_s - g_s + b_a;
+  // With J_accel_gw the rotation matrix is needed anyway: rotate g_w with it (one product)
+  // instead of the four matrix-vector products of RotateToBody.
+  Eigen::Vector3d g_s;
   if (J_accel_gw != nullptr) {
-    *J_accel_gw = -internal::SegmentRotation(knots, trace).transpose();
+    const Eigen::Matrix3d R_s_w = internal::SegmentRotation(knots, trace).transpose();
+    g_s.noalias() = R_s_w * g_w;
+    *J_accel_gw = -R_s_w;
+  } else {
+    g_s = internal::RotateToBody(knots, trace, g_w);
   }
+  if (accel != nullptr) *accel = a_s - g_s + b_a;
   if (J_accel_ctrl == nullptr) return;
   internal::CheckJacobianCaches(knots);
   internal::SpecificForceJacobian(knots, segment, trace, g_s, J_accel_ctrl);

@@ -127,10 +127,11 @@ inline void ChainToControlPoses(const SegmentKnots<double>& knots,
                                 ControlPoseJacobian<3>* J) {
   const KnotDeltaJacobians* K = knots.jacobians;
   J->first_index = knots.first_index;
-  for (auto& block : J->blocks) block.setZero();
-  J->blocks[0].rightCols<3>() = N_S0;
-  // Knot j contributes G_j Jr^-1(Omega_j) to block j and -G_j Jl^-1(Omega_j) to block j-1, with
-  // G [[D, U], [0, D]] = [G.v D, G.v U + G.w D] and D = I +- 1/2 P + c P^2 (P = [phi_j]x).
+  // Knot j contributes G_j Jr^-1(Omega_j) to block j+1 (`next`) and -G_j Jl^-1(Omega_j) to block
+  // j (`prev`), with G [[D, U], [0, D]] = [G.v D, G.v U + G.w D] and D = I +- 1/2 P + c P^2
+  // (P = [phi_j]x). Each block is written once (assigned, not zeroed and accumulated).
+  std::array<Eigen::Matrix<double, 3, 6>, 3> next;
+  std::array<Eigen::Matrix<double, 3, 6>, 3> prev;
   for (int j = 0; j < 3; ++j) {
     const Rows3x6& g = G[j];
     const KnotDeltaJacobians& c = K[j];
@@ -139,17 +140,18 @@ inline void ChainToControlPoses(const SegmentKnots<double>& knots,
     const Eigen::Matrix3d gw_p = MulHat(g.w, phi);
     const Eigen::Matrix3d gv_even = g.v + c.inv_c * MulHat(gv_p, phi);  // G.v (I + c P^2)
     const Eigen::Matrix3d gw_even = g.w + c.inv_c * MulHat(gw_p, phi);
-    auto next_trans = J->blocks[j + 1].leftCols<3>();
-    auto next_rot = J->blocks[j + 1].rightCols<3>();
-    auto prev_trans = J->blocks[j].leftCols<3>();
-    auto prev_rot = J->blocks[j].rightCols<3>();
-    next_trans += gv_even + 0.5 * gv_p;
-    next_rot += gw_even + 0.5 * gw_p;
-    next_rot.noalias() += g.v * c.Jr_inv_upper;
-    prev_trans -= gv_even - 0.5 * gv_p;
-    prev_rot -= gw_even - 0.5 * gw_p;
-    prev_rot.noalias() -= g.v * c.Jl_inv_upper;
+    next[j].leftCols<3>() = gv_even + 0.5 * gv_p;
+    next[j].rightCols<3>() = gw_even + 0.5 * gw_p;
+    next[j].rightCols<3>().noalias() += g.v * c.Jr_inv_upper;
+    prev[j].leftCols<3>() = gv_even - 0.5 * gv_p;
+    prev[j].rightCols<3>() = gw_even - 0.5 * gw_p;
+    prev[j].rightCols<3>().noalias() += g.v * c.Jl_inv_upper;
   }
+  J->blocks[0].leftCols<3>() = -prev[0].leftCols<3>();
+  J->blocks[0].rightCols<3>() = N_S0 - prev[0].rightCols<3>();
+  J->blocks[1] = next[0] - prev[1];
+  J->blocks[2] = next[1] - prev[2];
+  J->blocks[3] = next[2];
 }
 
 // Rotation sensitivities S_0..S_3 of the output orientation (derivation, step 3).
