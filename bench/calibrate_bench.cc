@@ -19,6 +19,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -106,6 +107,11 @@ const EurocRecording& GetEurocRecording() {
 }
 
 void BM_CalibrateEuroc(benchmark::State& state) {
+  const std::string dir = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_imu_april";
+  if (!std::filesystem::exists(dir)) {
+    state.SkipWithError(("shared data absent: " + dir).c_str());
+    return;
+  }
   const EurocRecording& r = GetEurocRecording();
   CalibrateOptions options;  // the command's defaults (cli/calibrate_command.cc)
   options.model.knot_spacing_s = 1e-3 * static_cast<double>(state.range(0));

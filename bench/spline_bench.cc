@@ -26,6 +26,7 @@
 #include <random>
 #include <vector>
 
+#include "benchmark_control_poses.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/se3_manifold.h"
@@ -35,22 +36,10 @@
 namespace splinecal {
 namespace {
 
-constexpr int kNumControlPoses = 200;
-constexpr int kNumSamples = 1024;  // distinct sample times, cycled
-constexpr int64_t kT0Ns = 1403715273262142976;
-constexpr int64_t kDtNs = 50000000;  // 0.05 s
+using bench::kDtNs;
+using bench::kNumSamples;
+using bench::kT0Ns;
 constexpr double kSqrtInformation = 100.0;
-
-Vector6d RandomTwist(std::mt19937* rng, double max_angle, double max_translation) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> angle(0.1, max_angle);
-  std::uniform_real_distribution<double> offset(-max_translation, max_translation);
-  Vector6d xi;
-  xi.head<3>() = Eigen::Vector3d(offset(*rng), offset(*rng), offset(*rng));
-  xi.tail<3>() =
-      angle(*rng) * Eigen::Vector3d(normal(*rng), normal(*rng), normal(*rng)).normalized();
-  return xi;
-}
 
 struct Fixture {
   std::unique_ptr<SE3Splined> spline;
@@ -64,10 +53,7 @@ const Fixture& GetFixture() {
   static const Fixture* fixture = [] {
     auto* f = new Fixture;
     std::mt19937 rng(42);
-    std::vector<SE3d> poses{SE3d::Exp(RandomTwist(&rng, 2.0, 3.0))};
-    for (int i = 1; i < kNumControlPoses; ++i) {
-      poses.push_back(poses.back() * SE3d::Exp(RandomTwist(&rng, 1.0, 0.5)));
-    }
+    const std::vector<SE3d> poses = bench::BenchmarkControlPoses(&rng);
     f->spline = std::make_unique<SE3Splined>(poses, kT0Ns, kDtNs);
     std::uniform_int_distribution<int64_t> time(f->spline->start_time_ns(),
                                                 f->spline->end_time_ns());

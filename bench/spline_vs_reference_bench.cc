@@ -30,6 +30,7 @@
 #include <random>
 #include <vector>
 
+#include "benchmark_control_poses.h"
 #include "spline/reference_split_spline.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/lie/se3.h"
@@ -39,23 +40,11 @@
 namespace splinecal {
 namespace {
 
-// The fixture of bench/spline_bench.cc: 200 control poses 0.05 s apart, steps of 0.1-1 rad and up
-// to 0.5 m per axis, 1024 query times drawn uniformly over the valid range.
-constexpr int kNumControlPoses = 200;
-constexpr int kNumSamples = 1024;
-constexpr int64_t kT0Ns = 1403715273262142976;
-constexpr int64_t kDtNs = 50000000;
-
-Vector6d RandomTwist(std::mt19937* rng, double max_angle, double max_translation) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> angle(0.1, max_angle);
-  std::uniform_real_distribution<double> offset(-max_translation, max_translation);
-  Vector6d xi;
-  xi.head<3>() = Eigen::Vector3d(offset(*rng), offset(*rng), offset(*rng));
-  xi.tail<3>() =
-      angle(*rng) * Eigen::Vector3d(normal(*rng), normal(*rng), normal(*rng)).normalized();
-  return xi;
-}
+// The fixture of bench/spline_bench.cc (bench/benchmark_control_poses.h): 200 control poses 0.05 s
+// apart, steps of 0.1-1 rad and up to 0.5 m per axis, 1024 query times over the valid range.
+using bench::kDtNs;
+using bench::kNumSamples;
+using bench::kT0Ns;
 
 struct Fixture {
   std::vector<SE3d> poses;
@@ -74,10 +63,7 @@ const Fixture& GetFixture() {
   static const Fixture* fixture = [] {
     auto* f = new Fixture;
     std::mt19937 rng(42);
-    f->poses.push_back(SE3d::Exp(RandomTwist(&rng, 2.0, 3.0)));
-    for (int i = 1; i < kNumControlPoses; ++i) {
-      f->poses.push_back(f->poses.back() * SE3d::Exp(RandomTwist(&rng, 1.0, 0.5)));
-    }
+    f->poses = bench::BenchmarkControlPoses(&rng);
     f->spline = std::make_unique<SE3Splined>(f->poses, kT0Ns, kDtNs);
     std::vector<Eigen::Matrix3d> R;
     std::vector<Eigen::Vector3d> p;
