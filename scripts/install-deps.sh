@@ -4,7 +4,7 @@ set -euo pipefail
 
 packages=(build-essential cmake ninja-build libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
-          libsuitesparse-dev  # CHOLMOD: the covariances' sparse Cholesky (src/estimation/sparse_cholesky.h)
+          libsuitesparse-dev  # Ceres' sparse Cholesky and Schur solvers (SuiteSparse)
           # scripts/allan_speed_bench.py: the numpy reference of the Allan speed target
           python3-numpy
           # the Python module (python/, docs/python.md) and its tests: pybind11, the interpreter's

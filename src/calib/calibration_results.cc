@@ -11,9 +11,9 @@ namespace calibrate_internal {
 void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   // The marginal covariance of the calibration parameters (estimation/marginal_covariance.h),
   // with every other free block -- control poses, bias spline, gravity, inverse depths -- as
-  // nuisance. Always the Schur backend: it needs only the nuisance block H_aa to be positive
-  // definite and tests the calibration parameters' own complement for singularity, so a weakly
-  // determined landmark depth does not withhold the calibration's standard deviations.
+  // nuisance. Always the kSchur backend (one sparse factorisation of the whole information): it
+  // takes the 450 bias coordinates through their 6 time averages, one solve each, and refuses a
+  // reported covariance whose correlation matrix is numerically singular.
   // Wanted: the cameras' blocks, then every bias control point; reported: the cameras' tangent
   // coordinates as they are and the biases' time averages (MeanBiasMap), q = A x.
   std::vector<const double*> wanted;

@@ -6,9 +6,9 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <random>
+#include <unordered_map>
 
-#include "sparse_cholesky.h"
+#include "information_factor.h"
 #include "splinecal/estimation/compact_frame_cost.h"
 
 namespace splinecal {
@@ -16,11 +16,9 @@ namespace estimation_internal {
 
 namespace {
 
-// The diagonally scaled Schur complement must have eigenvalues above this fraction of its
-// largest: below, a parameter is not determined (its std would be > ~1e6 x its scale).
+// The reported covariance's correlation matrix must have eigenvalues above this fraction of its
+// largest: below, a combination of the reported quantities is not determined.
 constexpr double kMinScaledEigenvalue = 1e-12;
-// Hutchinson's probes are reproducible: the same problem gives the same traces.
-constexpr uint32_t kProbeSeed = 20261124;
 
 // r = R [d_0; d_1; ...]: a linear residual over Euclidean (tangent) blocks d_k.
 class LinearCostFunction : public ceres::CostFunction {
@@ -190,30 +188,44 @@ const double* CompressedInformation::TangentBlock(const double* block) const {
 Eigen::SparseMatrix<double> CompressedInformation::Assemble(
     const std::map<const double*, int>& offsets, int size) const {
   // Straight into compressed columns, block by block (a triplet per entry, ~5x the non-zeros,
-  // took longer than the Cholesky factorisation of the result). Each entry sums the groups in
-  // their order, as setFromTriplets' duplicates would.
-  std::vector<const double*> blocks;  // in offset order: block ids
-  std::map<const double*, int> id;
-  for (const auto& [block, offset] : offsets) blocks.push_back(block);
-  std::sort(blocks.begin(), blocks.end(), [&](const double* a, const double* b) {
-    return offsets.at(a) < offsets.at(b);
-  });
-  for (size_t i = 0; i < blocks.size(); ++i) id[blocks[i]] = static_cast<int>(i);
-  std::vector<int> block_size(blocks.size(), 0);
-  std::vector<std::vector<int>> group_ids;               // per group: its blocks' ids
-  std::vector<std::vector<int>> rows_of(blocks.size());  // per column block: its row blocks
+  // took longer than the factorisation of the result). Each entry sums the groups in their
+  // order, as setFromTriplets' duplicates would.
+  // Blocks by id, ids in offset order (so that sorted ids are sorted rows).
+  std::vector<std::pair<int, const double*>> by_offset;
+  by_offset.reserve(offsets.size());
+  for (const auto& [block, offset] : offsets) by_offset.emplace_back(offset, block);
+  std::sort(by_offset.begin(), by_offset.end());
+  const int num_blocks = static_cast<int>(by_offset.size());
+  std::unordered_map<const double*, int> id;
+  id.reserve(2 * by_offset.size());
+  std::vector<int> block_offset(num_blocks);
+  std::vector<int> block_size(num_blocks, 0);
+  for (int b = 0; b < num_blocks; ++b) {
+    id[by_offset[b].second] = b;
+    block_offset[b] = by_offset[b].first;
+  }
+  // Per group its blocks' ids; per column block the row blocks at or above it.
+  std::vector<std::vector<int>> group_ids;
+  group_ids.reserve(groups_.size());
+  std::vector<std::vector<int>> rows_of(num_blocks);
   for (const auto& [key, group] : groups_) {
     std::vector<int>& ids = group_ids.emplace_back();
     for (size_t k = 0; k < group.blocks.size(); ++k) {
       ids.push_back(id.at(group.blocks[k]));
       block_size[ids.back()] = group.sizes[k];
     }
-    for (int b : ids) rows_of[b].insert(rows_of[b].end(), ids.begin(), ids.end());
+    for (int b : ids) {
+      for (int a : ids) {
+        if (a <= b) rows_of[b].push_back(a);
+      }
+    }
   }
-  // Per column block: its sorted row blocks and where each starts within a column.
-  std::vector<std::vector<int>> start_in_column(blocks.size());
-  std::vector<int> outer(size + 1, 0);
-  for (size_t b = 0; b < blocks.size(); ++b) {
+  // Column c of block b holds every row of the row blocks a < b, then rows 0..c of block b.
+  std::vector<std::vector<int>> start_in_column(num_blocks);  // of each row block
+  Eigen::SparseMatrix<double> H(size, size);
+  int* outer = H.outerIndexPtr();
+  outer[0] = 0;
+  for (int b = 0; b < num_blocks; ++b) {
     std::vector<int>& rows = rows_of[b];
     std::sort(rows.begin(), rows.end());
     rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
@@ -222,19 +234,20 @@ Eigen::SparseMatrix<double> CompressedInformation::Assemble(
       start_in_column[b].push_back(height);
       height += block_size[a];
     }
-    const int column0 = offsets.at(blocks[b]);
-    for (int c = 0; c < block_size[b]; ++c) outer[column0 + c + 1] = height;
+    const int above = height - block_size[b];  // rows of the blocks before the diagonal one
+    for (int c = 0; c < block_size[b]; ++c) outer[block_offset[b] + c + 1] = above + c + 1;
   }
   for (int c = 0; c < size; ++c) outer[c + 1] += outer[c];
-  std::vector<int> inner(outer[size]);
-  std::vector<double> values(outer[size], 0.0);
-  for (size_t b = 0; b < blocks.size(); ++b) {
-    const int column0 = offsets.at(blocks[b]);
+  H.resizeNonZeros(outer[size]);
+  int* inner = H.innerIndexPtr();
+  double* values = H.valuePtr();
+  std::fill(values, values + outer[size], 0.0);
+  for (int b = 0; b < num_blocks; ++b) {
     for (int c = 0; c < block_size[b]; ++c) {
-      int position = outer[column0 + c];
+      int position = outer[block_offset[b] + c];
       for (int a : rows_of[b]) {
-        const int row0 = offsets.at(blocks[a]);
-        for (int r = 0; r < block_size[a]; ++r) inner[position++] = row0 + r;
+        const int last = a == b ? c : block_size[a] - 1;
+        for (int r = 0; r <= last; ++r) inner[position++] = block_offset[a] + r;
       }
     }
   }
@@ -243,107 +256,114 @@ Eigen::SparseMatrix<double> CompressedInformation::Assemble(
     const std::vector<int>& ids = group_ids[g++];
     for (size_t kb = 0; kb < ids.size(); ++kb) {
       const int b = ids[kb];
-      const int column0 = offsets.at(blocks[b]);
       for (size_t ka = 0; ka < ids.size(); ++ka) {
         const int a = ids[ka];
+        if (a > b) continue;
         const auto it = std::lower_bound(rows_of[b].begin(), rows_of[b].end(), a);
         const int start = start_in_column[b][it - rows_of[b].begin()];
         for (int c = 0; c < block_size[b]; ++c) {
-          double* column = values.data() + outer[column0 + c] + start;
-          for (int r = 0; r < block_size[a]; ++r) {
+          double* column = values + outer[block_offset[b] + c] + start;
+          const int last = a == b ? c : block_size[a] - 1;
+          for (int r = 0; r <= last; ++r) {
             column[r] += group.H(group.offsets[ka] + r, group.offsets[kb] + c);
           }
         }
       }
     }
   }
-  return Eigen::Map<const Eigen::SparseMatrix<double>>(
-      size, size, outer[size], outer.data(), inner.data(), values.data());
+  return H;
 }
 
-bool CompressedInformation::SchurCovariance(const std::vector<const double*>& requested,
-                                            Eigen::MatrixXd* covariance,
-                                            SchurExtras* extras) {
-  std::map<const double*, int> wanted_offsets;
-  int num_wanted = 0;
-  for (const double* block : requested) {
-    const auto size = block_sizes_.find(block);
-    if (size == block_sizes_.end() || wanted_offsets.count(block) != 0) return false;
-    wanted_offsets[block] = num_wanted;
-    num_wanted += size->second;
-  }
-  // Nuisance blocks first (in the order they were met), then the wanted ones.
-  std::map<const double*, int> offsets;
-  int num_nuisance = 0;
+int CompressedInformation::EliminationOffsets(std::map<const double*, int>* offsets) const {
+  std::map<const double*, int> id;
+  std::vector<const double*> blocks;
+  std::vector<std::vector<int>> cliques;
+  cliques.reserve(groups_.size());
   for (const auto& [key, group] : groups_) {
-    for (size_t k = 0; k < group.blocks.size(); ++k) {
-      const double* block = group.blocks[k];
-      if (wanted_offsets.count(block) != 0) continue;
-      if (offsets.emplace(block, num_nuisance).second) num_nuisance += group.sizes[k];
+    std::vector<int>& clique = cliques.emplace_back();
+    for (const double* block : group.blocks) {
+      const auto [it, added] = id.emplace(block, static_cast<int>(blocks.size()));
+      if (added) blocks.push_back(block);
+      clique.push_back(it->second);
     }
   }
-  for (const auto& [block, offset] : wanted_offsets) offsets[block] = num_nuisance + offset;
-  const int size = num_nuisance + num_wanted;
-  const Eigen::SparseMatrix<double> H = Assemble(offsets, size);
-  const int na = num_nuisance;
-  Eigen::MatrixXd schur = Eigen::MatrixXd(H.bottomRightCorner(num_wanted, num_wanted));
-  Eigen::MatrixXd X;  // H_aa^-1 H_ac
-  if (na > 0) {
-    const Eigen::SparseMatrix<double> H_aa = H.topLeftCorner(na, na);
-    const Eigen::MatrixXd H_ac = Eigen::MatrixXd(H.topRightCorner(na, num_wanted));
-    const SparseCholesky cholesky(H_aa);
-    if (!cholesky.ok()) return false;
-    X = cholesky.Solve(H_ac);
-    if (X.rows() != na || !X.allFinite()) return false;
-    schur -= H_ac.transpose() * X;
+  offsets->clear();
+  int size = 0;
+  for (int b : BlockEliminationOrder(static_cast<int>(blocks.size()), cliques)) {
+    (*offsets)[blocks[b]] = size;
+    size += block_sizes_.at(blocks[b]);
   }
-  // Inverse through the eigen-decomposition of the diagonally scaled complement: refuses one
-  // that is numerically singular (a parameter the data does not determine).
-  const Eigen::VectorXd scale = schur.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-  const Eigen::MatrixXd scaled = scale.asDiagonal() * schur * scale.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
-  const Eigen::VectorXd lambda = eigen.eigenvalues();
+  return size;
+}
+
+bool CompressedInformation::MappedCovariance(const std::vector<const double*>& requested,
+                                             Eigen::MatrixXd* covariance,
+                                             CovarianceExtras* extras) {
+  std::map<const double*, int> requested_offsets;  // in x
+  int num_requested = 0;
+  for (const double* block : requested) {
+    const auto size = block_sizes_.find(block);
+    if (size == block_sizes_.end() || requested_offsets.count(block) != 0) return false;
+    requested_offsets[block] = num_requested;
+    num_requested += size->second;
+  }
+  const Eigen::MatrixXd A =
+      extras == nullptr || extras->A.size() == 0
+          ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(num_requested, num_requested))
+          : extras->A;
+  if (A.cols() != num_requested) return false;
+  std::map<const double*, int> offsets;  // in H
+  const int size = EliminationOffsets(&offsets);
+  const InformationFactor factor(Assemble(offsets, size));
+  if (!factor.ok()) return false;
+  // B = E_c A^T: the reported coordinates' directions in H.
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(size, A.rows());
+  for (const auto& [block, x_offset] : requested_offsets) {
+    const int block_size = block_sizes_.at(block);
+    B.middleRows(offsets.at(block), block_size) = A.middleCols(x_offset, block_size).transpose();
+  }
+  const Eigen::MatrixXd Y = factor.Solve(B);
+  if (Y.rows() != size || !Y.allFinite()) return false;
+  Eigen::MatrixXd Q = B.transpose() * Y;
+  Q = 0.5 * (Q + Q.transpose());
+  // A combination of the reported quantities that the data does not determine shows as a
+  // (numerically) singular correlation matrix.
+  const Eigen::VectorXd scale = Q.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scale.asDiagonal() * Q *
+                                                             scale.asDiagonal());
+  const Eigen::VectorXd& lambda = eigen.eigenvalues();
   if (!(lambda.minCoeff() > kMinScaledEigenvalue * lambda.maxCoeff())) return false;
-  *covariance = scale.asDiagonal() *
-                (eigen.eigenvectors() * lambda.cwiseInverse().asDiagonal() *
-                 eigen.eigenvectors().transpose()) *
-                scale.asDiagonal();
+  *covariance = Q;
   if (extras != nullptr) {
-    const Eigen::MatrixXd A =
-        extras->A.size() == 0 ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(num_wanted, num_wanted))
-                              : extras->A;
-    const Eigen::MatrixXd W = *covariance * A.transpose();  // Cov(c) A^T
-    extras->mapped = A * W;
+    extras->robust.resize(0, 0);
+    extras->noise.resize(0, 0);
     if (cluster_gradients_.size() >= 2) {
       const double clusters = static_cast<double>(cluster_gradients_.size());
       Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(A.rows(), A.rows());
       for (const auto& [cluster, gradient] : cluster_gradients_) {
-        Eigen::VectorXd g = Eigen::VectorXd::Zero(size);
+        Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());  // Y^T g_k
         for (const auto& [block, g_block] : gradient) {
           const auto offset = offsets.find(block);
-          if (offset != offsets.end()) g.segment(offset->second, g_block.size()) += g_block;
+          if (offset == offsets.end()) continue;
+          x += Y.middleRows(offset->second, g_block.size()).transpose() * g_block;
         }
-        Eigen::VectorXd v = g.tail(num_wanted);
-        if (na > 0) v -= X.transpose() * g.head(na);
-        const Eigen::VectorXd x = W.transpose() * v;
         meat += x * x.transpose();
       }
       extras->robust = clusters / (clusters - 1.0) * meat;  // small-sample factor G / (G - 1)
     }
     if (!extras->label_factors.empty()) {
-      const Eigen::MatrixXd XW = na > 0 ? Eigen::MatrixXd(X * W) : Eigen::MatrixXd();
-      Eigen::MatrixXd noise = extras->mapped;
+      Eigen::MatrixXd noise = Q;
       for (const auto& [key, group] : groups_) {
-        const auto factor = extras->label_factors.find(key.first);
-        if (factor == extras->label_factors.end() || factor->second == 1.0) continue;
-        Eigen::MatrixXd TW_g(group.H.rows(), A.rows());
-        for (size_t k = 0; k < group.blocks.size(); ++k) {
-          const int offset = offsets.at(group.blocks[k]);
-          TW_g.middleRows(group.offsets[k], group.sizes[k]) =
-              offset >= na ? Eigen::MatrixXd(W.middleRows(offset - na, group.sizes[k]))
-                           : Eigen::MatrixXd(-XW.middleRows(offset, group.sizes[k]));
+        const auto factor_of_label = extras->label_factors.find(key.first);
+        if (factor_of_label == extras->label_factors.end() || factor_of_label->second == 1.0) {
+          continue;
         }
-        noise += (factor->second - 1.0) * TW_g.transpose() * group.H * TW_g;
+        Eigen::MatrixXd Y_g(group.H.rows(), A.rows());
+        for (size_t k = 0; k < group.blocks.size(); ++k) {
+          Y_g.middleRows(group.offsets[k], group.sizes[k]) =
+              Y.middleRows(offsets.at(group.blocks[k]), group.sizes[k]);
+        }
+        noise += (factor_of_label->second - 1.0) * Y_g.transpose() * group.H * Y_g;
       }
       extras->noise = noise;
     }
@@ -352,37 +372,24 @@ bool CompressedInformation::SchurCovariance(const std::vector<const double*>& re
   return covariance->allFinite();
 }
 
-bool CompressedInformation::LabelTraces(int probes, std::map<int, double>* traces) const {
-  std::map<const double*, int> offsets;
-  int size = 0;
-  for (const auto& [key, group] : groups_) {
-    for (size_t k = 0; k < group.blocks.size(); ++k) {
-      if (offsets.emplace(group.blocks[k], size).second) size += group.sizes[k];
-    }
-  }
+bool CompressedInformation::LabelTraces(std::map<int, double>* traces) const {
   traces->clear();
   for (const auto& [label, rows] : num_residuals_) (*traces)[label] = 0.0;
-  if (size == 0 || probes < 1) return size == 0;
-  const Eigen::SparseMatrix<double> H = Assemble(offsets, size);
-  const SparseCholesky cholesky(H);
-  if (!cholesky.ok()) return false;
-  std::mt19937 random(kProbeSeed);
-  std::bernoulli_distribution coin(0.5);
-  Eigen::MatrixXd Z(size, probes);
-  for (int p = 0; p < probes; ++p) {
-    for (int i = 0; i < size; ++i) Z(i, p) = coin(random) ? 1.0 : -1.0;
-  }
-  // W = P^T L^-T Z: E[w w^T] = P^T L^-T L^-1 P = H^-1 for each column w (P H P^T = L L^T).
-  const Eigen::MatrixXd W = cholesky.SolveLt(Z);
-  if (W.rows() != size || !W.allFinite()) return false;
+  std::map<const double*, int> offsets;
+  const int size = EliminationOffsets(&offsets);
+  if (size == 0) return true;
+  InformationFactor factor(Assemble(offsets, size));
+  if (!factor.ComputeSelectedInverse()) return false;
+  std::vector<int> indices;
   for (const auto& [key, group] : groups_) {
-    Eigen::MatrixXd W_group(group.H.rows(), probes);
+    // The group's coordinates in H, in the order of group.H.
+    indices.clear();
     for (size_t k = 0; k < group.blocks.size(); ++k) {
-      W_group.middleRows(group.offsets[k], group.sizes[k]) =
-          W.middleRows(offsets.at(group.blocks[k]), group.sizes[k]);
+      const int offset = offsets.at(group.blocks[k]);
+      for (int c = 0; c < group.sizes[k]; ++c) indices.push_back(offset + c);
     }
-    // sum over the probes of w_g^T H_g w_g
-    (*traces)[key.first] += (group.H * W_group).cwiseProduct(W_group).sum() / probes;
+    // tr(H^-1 H_g) = sum_ij (H^-1)_ij (H_g)_ji, both symmetric.
+    (*traces)[key.first] += factor.InverseOn(indices).cwiseProduct(group.H).sum();
   }
   return true;
 }

@@ -55,38 +55,39 @@ class CompressedInformation {
   // residual).
   const double* TangentBlock(const double* block) const;
 
-  // Cov(c) = (H_cc - H_ca H_aa^-1 H_ac)^-1 of the requested blocks c (every other block is
-  // nuisance). False when H_aa is not positive definite or the complement is numerically
-  // singular. Consumes the groups.
-  // Extras in reported coordinates q = A x of the requested blocks' tangent coordinates x
-  // (A empty: q = x):
-  //   * mapped: A Cov(c) A^T;
+  // The covariance of q = A x, x the requested blocks' tangent coordinates (A empty: q = x),
+  // every other block being nuisance: A Cov(c) A^T with Cov(c) = (H^-1)_cc
+  // = (H_cc - H_ca H_aa^-1 H_ac)^-1. Computed from one sparse LDL^T of the whole H
+  // (estimation/information_factor.h) as B^T Y with Y = H^-1 B, B = E_c A^T (E_c places the
+  // requested coordinates in H): one solve per reported coordinate, whatever the number of
+  // requested ones (calibrate's 450 bias coordinates enter through their 6 time averages).
+  // False when H is not positive definite, or when the covariance of q is numerically singular
+  // (its correlation matrix has an eigenvalue below 1e-12 of its largest: a combination of the
+  // reported quantities the data does not determine). Consumes the groups.
+  // Extras, with Y as above:
   //   * with clusters, robust: the cluster-robust covariance A (H^-1 M H^-1)_cc A^T with
-  //     M = G / (G - 1) sum_k g_k g_k^T over the G clusters, formed from
-  //     A (H^-1 g)_c = W^T (g_c - H_ca H_aa^-1 g_a), W = Cov(c) A^T (block elimination);
+  //     M = G / (G - 1) sum_k g_k g_k^T over the G clusters: sum_k (Y^T g_k)(Y^T g_k)^T G/(G-1);
   //   * with label_factors (label -> f_l), noise: the covariance when label l's residuals have
   //     f_l times the variance their weights assume, A (H^-1 (sum_l f_l H_l) H^-1)_cc A^T
-  //     = A Cov(c) A^T + sum_{groups of labels with f != 1} (f - 1) (T W)_g^T H_g (T W)_g with
-  //     T = [-H_aa^-1 H_ac; I] (the c rows of H^-1 are Cov(c) T^T, and T^T H T = Cov(c)^-1).
-  struct SchurExtras {
+  //     = B^T Y + sum_{groups of labels with f != 1} (f - 1) Y_g^T H_g Y_g (Y_g: the group's
+  //     rows of Y).
+  struct CovarianceExtras {
     Eigen::MatrixXd A;
     std::map<int, double> label_factors;
-    Eigen::MatrixXd mapped;
     Eigen::MatrixXd robust;  // empty without clusters (or fewer than 2)
     Eigen::MatrixXd noise;   // empty without label_factors
   };
-  bool SchurCovariance(const std::vector<const double*>& requested,
-                       Eigen::MatrixXd* covariance,
-                       SchurExtras* extras = nullptr);
+  bool MappedCovariance(const std::vector<const double*>& requested,
+                        Eigen::MatrixXd* covariance,
+                        CovarianceExtras* extras = nullptr);
   int num_clusters() const { return static_cast<int>(cluster_gradients_.size()); }
 
   // t_l = tr(H^-1 H_l) for every label l (H_l = the information of label l's residuals): the
-  // number of parameters label l's residuals determine, sum_l t_l = dim H. Estimated by
-  // Hutchinson's method, t_l = E[w^T H_l w] with w = P^T L^-T z, z a Rademacher vector and
-  // H = P^T L L^T P the sparse Cholesky factorisation, so that E[w w^T] = H^-1; `probes`
-  // vectors from a fixed seed (relative std about sqrt(2 / (probes t_l))). False when H is not
-  // positive definite. Keeps the groups.
-  bool LabelTraces(int probes, std::map<int, double>* traces) const;
+  // number of parameters label l's residuals determine, sum_l t_l = dim H. Exact: each group's
+  // tr(H^-1 H_g) = sum (H^-1 .* H_g) over the group's coordinates, whose entries of H^-1 come
+  // from the selected inversion of estimation/information_factor.h (H^-1 on H's own pattern).
+  // False when H is not positive definite. Keeps the groups.
+  bool LabelTraces(std::map<int, double>* traces) const;
 
  private:
   struct Group {
@@ -99,7 +100,11 @@ class CompressedInformation {
   };
   using GroupKey = std::pair<int, const double*>;  // (label, first parameter block)
 
-  // The sparse H = sum of the groups' information, each block at offsets[block].
+  // Every block's offset in H in the elimination order of estimation/information_factor.h
+  // (minimum degree on the block graph); returns the size of H.
+  int EliminationOffsets(std::map<const double*, int>* offsets) const;
+  // The upper triangle (diagonal included) of the sparse H = sum of the groups' information,
+  // each block at offsets[block]: what the factorisation reads, as it reads it (no copy).
   Eigen::SparseMatrix<double> Assemble(const std::map<const double*, int>& offsets,
                                        int size) const;
 

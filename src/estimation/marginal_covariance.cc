@@ -59,25 +59,21 @@ MarginalCovariance ComputeMarginalCovariance(ceres::Problem* problem,
       if (ok) ok = covariance.Compute(tangent_blocks, compressed.problem());
       if (ok) ok = covariance.GetCovarianceMatrixInTangentSpace(tangent_blocks, full.data());
     } else {
-      result.method = "Schur complement by sparse Cholesky of the compressed information";
-      Eigen::MatrixXd marginal;
-      CompressedInformation::SchurExtras schur_extras;
-      schur_extras.A = options.reported_map;
-      schur_extras.label_factors = options.noise_factors;
-      ok = compressed.SchurCovariance(blocks, &marginal, extras ? &schur_extras : nullptr);
+      result.method = "sparse LDL^T of the compressed information (block minimum degree order)";
+      Eigen::MatrixXd mapped;
+      CompressedInformation::CovarianceExtras covariance_extras;
+      covariance_extras.A = options.reported_map;
+      covariance_extras.label_factors = options.noise_factors;
+      ok = compressed.MappedCovariance(blocks, &mapped, &covariance_extras);
       if (ok) {
-        if (extras) {
-          full.resize(schur_extras.mapped.rows(), schur_extras.mapped.cols());
-          full = schur_extras.mapped;
-          if (schur_extras.robust.allFinite() && schur_extras.robust.size() > 0) {
-            result.robust_covariance = schur_extras.robust;
-            result.num_clusters = compressed.num_clusters();
-          }
-          if (schur_extras.noise.allFinite() && schur_extras.noise.size() > 0) {
-            result.noise_covariance = schur_extras.noise;
-          }
-        } else {
-          full = marginal;
+        full.resize(mapped.rows(), mapped.cols());
+        full = mapped;
+        if (covariance_extras.robust.allFinite() && covariance_extras.robust.size() > 0) {
+          result.robust_covariance = covariance_extras.robust;
+          result.num_clusters = compressed.num_clusters();
+        }
+        if (covariance_extras.noise.allFinite() && covariance_extras.noise.size() > 0) {
+          result.noise_covariance = covariance_extras.noise;
         }
       }
     }

@@ -15,7 +15,7 @@ VarianceComponents EstimateVarianceComponents(ceres::Problem* problem,
   const estimation_internal::CompressedInformation information(problem, group_of);
   if (information.evaluation_failed()) return result;
   std::map<int, double> traces;
-  if (!information.LabelTraces(options.probes, &traces)) return result;
+  if (!information.LabelTraces(&traces)) return result;
   result.ok = true;
   for (const auto& [label, rows] : information.num_residuals()) {
     VarianceComponent& group = result.groups[label];

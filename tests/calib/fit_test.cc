@@ -220,7 +220,7 @@ TEST(Fit, TheThreeCovarianceComputationsAgree) {
   ASSERT_TRUE(direct.covariance_ok);
   ASSERT_TRUE(compressed.covariance_ok);
   ASSERT_TRUE(cholesky.covariance_ok);
-  EXPECT_THAT(cholesky.covariance_method, HasSubstr("Cholesky"));
+  EXPECT_THAT(cholesky.covariance_method, HasSubstr("sparse LDL^T"));
   const Eigen::MatrixXd& C = direct.covariance;
   ASSERT_EQ(C.rows(), 8 + 1 + 6);
   for (const FitResult* other : {&compressed, &cholesky}) {

@@ -131,16 +131,15 @@ TEST(VarianceComponents, RedundancyAndFactorMatchTheDenseFormulas) {
     const VarianceComponent& c = vc.groups.at(g);
     EXPECT_EQ(c.num_residuals, 400);
     EXPECT_NEAR(c.squared_sum, squares, 1e-9 * squares);
-    // Hutchinson with 32 probes: the trace (here 0.5 to 4.5 of the 5 parameters) to a few
-    // tenths; the redundancy (about 397) to 0.1%.
-    EXPECT_NEAR(c.redundancy, 400.0 - trace, 1.0) << g;
+    // The traces are exact (selected inversion): the redundancy to rounding.
+    EXPECT_NEAR(c.redundancy, 400.0 - trace, 1e-9 * 400.0) << g;
     EXPECT_TRUE(c.identifiable);
     // The factor estimates (true / assumed)^2: 0.25 and 4, to 3 of its relative std sqrt(2/r).
     const double expected = std::pow(true_sigma[g] / assumed_sigma[g], 2);
     EXPECT_NEAR(c.factor, expected, 3.0 * std::sqrt(2.0 / c.redundancy) * expected) << g;
   }
   // The traces share out the 5 parameters.
-  EXPECT_NEAR(vc.groups.at(0).redundancy + vc.groups.at(1).redundancy, 800.0 - 5.0, 1.0);
+  EXPECT_NEAR(vc.groups.at(0).redundancy + vc.groups.at(1).redundancy, 800.0 - 5.0, 1e-9 * 800.0);
 }
 
 TEST(VarianceComponents, AGroupBelowTheMinimumRedundancyIsNotIdentifiable) {

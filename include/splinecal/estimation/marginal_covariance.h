@@ -13,10 +13,11 @@
 //   * small problems: ceres::Covariance (SPARSE_QR, its rank detection) on the equivalent
 //     problem whose residual per group is R d with R^T R = H_group (same J^T J, same answer);
 //   * large ones (more than max_ceres_covariance_entries compressed Jacobian entries, where
-//     ceres::Covariance's copies of the Jacobian would dominate memory): H_aa by a sparse LDLT
-//     (AMD ordering; banded by the spline's local support) and the Schur complement above,
-//     inverted through the eigen-decomposition of its diagonally scaled form, which refuses a
-//     numerically singular complement (eigenvalues below 1e-12 of the largest).
+//     ceres::Covariance's copies of the Jacobian would dominate memory): one sparse LDL^T of the
+//     whole H, in a minimum-degree order of its parameter blocks (banded by the spline's local
+//     support), and Cov(c) = (H^-1)_cc by one solve per reported coordinate; it refuses an H that
+//     is not positive definite and a covariance whose correlation matrix is numerically singular
+//     (eigenvalues below 1e-12 of the largest).
 // Both give the same numbers (tests/estimation/marginal_covariance_test.cc). Residuals with a
 // ceres::LossFunction are taken without it (splinecal's robust residuals robustify inside).
 #ifndef SPLINECAL_ESTIMATION_MARGINAL_COVARIANCE_H_
@@ -35,27 +36,27 @@ namespace splinecal {
 enum class CovarianceBackend {
   kAuto,           // by size (file comment)
   kCeres,          // ceres::Covariance on the compressed problem
-  kSchur,          // sparse Schur complement of the compressed information
+  kSchur,          // (H^-1)_cc by a sparse factorisation of the compressed information
   kCeresUncompressed,  // ceres::Covariance on the problem itself (tests: the reference)
 };
 
 struct MarginalCovarianceOptions {
   CovarianceBackend backend = CovarianceBackend::kAuto;
   // kAuto uses ceres::Covariance up to this many compressed Jacobian entries (~5 minutes of
-  // 200 Hz IMU at dt = 0.1 s), the Schur complement above.
+  // 200 Hz IMU at dt = 0.1 s), the sparse factorisation above.
   double max_ceres_covariance_entries = 3e6;
   int num_threads = 1;
   // Residual clusters for the cluster-robust covariance (below): the cluster (>= 0) of each
-  // residual block, e.g. its time window. Empty: not computed. Uses the Schur backend.
+  // residual block, e.g. its time window. Empty: not computed. Uses the kSchur backend.
   std::function<int(ceres::ResidualBlockId)> cluster_of;
   // Noise levels the data shows (estimation/variance_components.h): residual group l's variance
   // is noise_factors[l] times what its weights assume (groups by group_of; groups not listed:
-  // 1). Empty: not computed. Uses the Schur backend.
+  // 1). Empty: not computed. Uses the kSchur backend.
   std::function<int(ceres::ResidualBlockId)> group_of;
   std::map<int, double> noise_factors;
   // Reported quantities q = reported_map x of the blocks' tangent coordinates x (e.g. a bias
   // spline's time average); empty: q = x. With a map, every covariance of the result is of q.
-  // Uses the Schur backend.
+  // Uses the kSchur backend.
   Eigen::MatrixXd reported_map;
 };
 

@@ -13,8 +13,9 @@
 // and sigma_l is replaced by sigma_l sqrt(f_l); the problem is solved again with the new weights
 // until the factors settle near 1. sum_l tr(H^-1 H_l) = dim H: each group "uses up" the
 // parameters it determines, so e_l^T e_l / n_l alone would underestimate the noise of a group
-// that determines many parameters (the gyro at fine knot spacings). The traces come from
-// Hutchinson's estimator (src/estimation/compressed_information.h). The relative standard
+// that determines many parameters (the gyro at fine knot spacings). The traces are exact: the
+// entries of H^-1 they need lie on H's own pattern and come from a selected inversion of its
+// sparse factorisation (src/estimation/information_factor.h). The relative standard
 // deviation of f_l is about sqrt(2 / r_l): a group with a small redundancy (a bias random-walk
 // prior that the data overrides) does not determine its own noise level, and `identifiable`
 // says so.
@@ -29,7 +30,6 @@
 namespace splinecal {
 
 struct VarianceComponentOptions {
-  int probes = 32;  // Hutchinson vectors (relative std of a trace ~ sqrt(2 / (probes tr)))
   // A group with a smaller redundancy does not determine its variance (f_l uncertain by more
   // than sqrt(2 / 30) = 26%).
   double min_redundancy = 30.0;
