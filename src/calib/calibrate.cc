@@ -269,7 +269,7 @@ CalibrationResult CalibrationProblem::Run() {
     cameras_[c].window_before_s =
         kWindowMargin_s + (options_.rolling_shutter ? 0.5 * frame_periods_[c] : 0.0);
   }
-  const SolverOptions& solver = options_.solver;
+  const SolverOptions solver = spline_->ResolvedSolverOptions(options_.solver);
   ceres::Solver::Options solver_options = ToCeresOptions(solver, 0.0, nullptr);
   solver_options.update_state_every_iteration = true;  // for the StopWhen callbacks
   SolveRounds rounds(solver_options, options_.solver.progress, options_.solver.stop);
