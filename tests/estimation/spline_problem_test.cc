@@ -29,6 +29,17 @@ struct ControlPositionResidual {
   Eigen::Vector3d p_;
 };
 
+// A ControlPositionResidual at every `step`-th control pose of `truth`.
+void AddControlPositions(const SE3Splined& truth, int step, SplineProblem* spline_problem) {
+  for (int i = 0; i < truth.num_control_poses(); i += step) {
+    spline_problem->problem().AddResidualBlock(
+        new ceres::AutoDiffCostFunction<ControlPositionResidual, 3, 7>(
+            new ControlPositionResidual(truth.control_pose(i).translation())),
+        nullptr,
+        spline_problem->control_block(i));
+  }
+}
+
 // The IMU of a known trajectory plus a few positions (the user's residual) determine the whole
 // trajectory: from a perturbed start, the solve recovers the true control poses.
 TEST(SplineProblem, ImuPlusAUsersOwnResidualRecoversTheTrajectory) {
@@ -43,13 +54,7 @@ TEST(SplineProblem, ImuPlusAUsersOwnResidualRecoversTheTrajectory) {
   spline_problem.SetGravity(data.gravity_w);
   ceres::Problem& problem = spline_problem.Reset();
   spline_problem.AddImuResiduals(data.imu, 1e-3, 1e-2);
-  for (int i = 0; i < layout.num_control_poses; i += 5) {
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<ControlPositionResidual, 3, 7>(
-            new ControlPositionResidual(data.truth.control_pose(i).translation())),
-        nullptr,
-        spline_problem.control_block(i));
-  }
+  AddControlPositions(data.truth, 5, &spline_problem);
   // The IMU cannot see a rotation about gravity: hold the first pose's attitude.
   problem.SetManifold(spline_problem.control_block(0), nullptr);
   problem.SetParameterBlockConstant(spline_problem.control_block(0));
@@ -95,13 +100,7 @@ TEST(SplineProblem, BothSparseLibrariesReachTheSameSolution) {
     spline_problem.AddImuResiduals(data.imu, 1e-3, 1e-2);
     ImuNoise noise = ImuNoise::Adis16448();
     spline_problem.AddBiasRandomWalkResiduals(noise);
-    for (int i = 0; i < layout.num_control_poses; i += 5) {
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<ControlPositionResidual, 3, 7>(
-              new ControlPositionResidual(data.truth.control_pose(i).translation())),
-          nullptr,
-          spline_problem.control_block(i));
-    }
+    AddControlPositions(data.truth, 5, &spline_problem);
     problem.SetParameterBlockConstant(spline_problem.control_block(0));
     SolverOptions solver;
     solver.max_iterations = 30;
