@@ -301,7 +301,7 @@ CalibrationResult CalibrationProblem::Run() {
     }
     // The IMU noise from the residuals (variance components): weights that match the data's
     // own noise, so that the covariance below reflects it.
-    const double noise_change = imu_noise_->Update(spline_.get());
+    const double noise_change = imu_noise_->Update(spline_.get(), solver.num_threads);
     if (noise_change > kSigmaChangeForNewRound) again = true;
     const bool windows_valid = !guard.triggered() && WindowsStillValid();
     if (!windows_valid) again = true;

@@ -521,7 +521,8 @@ FitResult FitProblem::Impl::Solve() {
     }
     // The IMU noise from the residuals (variance components, estimation/imu_noise_estimate.h).
     if (spline_problem->evaluation_callback()) spline_problem->evaluation_callback()->Update();
-    const bool reweighted = imu_noise->Update(spline_problem.get()) > kNoiseChangeForNewRound;
+    const bool reweighted =
+        imu_noise->Update(spline_problem.get(), solver.num_threads) > kNoiseChangeForNewRound;
     if (!moved && !reweighted) break;
     if (options.solver.progress) {
       options.solver.progress(moved ? "fit: time offset moved poses across knots; solving again"
