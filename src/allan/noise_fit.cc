@@ -26,9 +26,15 @@ struct Points {
   std::vector<double> tau;
   std::vector<double> adev;
   std::vector<int64_t> m;
+  std::vector<int64_t> stride;  // of the start indices (allan/work_budget.h)
   int64_t num_samples = 0;
   int size() const { return static_cast<int>(tau.size()); }
 };
+
+// The stride of point i; a curve built by hand has none: every start index.
+int64_t StrideOf(const AllanCurve& curve, size_t i) {
+  return curve.strides.empty() ? 1 : curve.strides.at(i);
+}
 
 std::string Seconds(double tau_s) { return StringPrintf("%.3g s", tau_s); }
 
@@ -46,7 +52,8 @@ std::string SlopeText(double slope) {
 std::vector<LogPoint> IntervalsFor(NoiseTerm term, const Points& p, double confidence) {
   std::vector<LogPoint> points(p.size());
   for (int i = 0; i < p.size(); ++i) {
-    const double edf = OverlappingAllanEdf(NoiseTermNoiseType(term), p.num_samples, p.m[i]);
+    const double edf =
+        StridedAllanEdf(NoiseTermNoiseType(term), p.num_samples, p.m[i], p.stride[i]);
     const DeviationInterval interval = AllanDeviationInterval(p.adev[i], edf, confidence);
     points[i] = {std::log(p.tau[i]),
                  std::log(p.adev[i]),
@@ -389,6 +396,7 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
     p.tau.push_back(curve.tau_s[i]);
     p.adev.push_back(curve.adev[i]);
     p.m.push_back(curve.cluster_sizes[i]);
+    p.stride.push_back(StrideOf(curve, i));
   }
   const int size = p.size();
   std::array<std::vector<LogPoint>, kNumNoiseTerms> points;
@@ -507,9 +515,10 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
     const auto variances = fit.model.TermVariances(curve.tau_s[i]);
     const int dominant =
         static_cast<int>(std::max_element(variances.begin(), variances.end()) - variances.begin());
-    const double edf = OverlappingAllanEdf(NoiseTermNoiseType(static_cast<NoiseTerm>(dominant)),
-                                           curve.num_samples,
-                                           curve.cluster_sizes[i]);
+    const double edf = StridedAllanEdf(NoiseTermNoiseType(static_cast<NoiseTerm>(dominant)),
+                                       curve.num_samples,
+                                       curve.cluster_sizes[i],
+                                       StrideOf(curve, i));
     const DeviationInterval interval =
         AllanDeviationInterval(curve.adev[i], edf, options.confidence);
     fit.adev_low[i] = interval.low;

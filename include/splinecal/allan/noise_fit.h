@@ -16,8 +16,9 @@
 //
 // Each term is decided from the measured curve itself [IEEE952, annex C]: it is *identified* only
 // where the measured deviation, with its confidence interval from the equivalent degrees of
-// freedom of the overlapping estimator (allan/edf.h, [Riley08, section 5.3]), follows that term's
-// slope over a stated range of averaging times. Precisely, for a term of slope s:
+// freedom of the overlapping estimator (allan/edf.h, [Riley08, section 5.3]; of the strided one
+// where the curve says a point used every s-th start index, AllanCurve::strides), follows that
+// term's slope over a stated range of averaging times. Precisely, for a term of slope s:
 //  1. a line of slope s passes through the intervals (at `confidence`) of at least min_points
 //     consecutive averaging times, computed with the EDF of that term's noise type
 //     (allan/slope_lines.h);
