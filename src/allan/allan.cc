@@ -217,6 +217,7 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   const int threads = std::min<int>(total_threads, static_cast<int>(num_axes));
   const int threads_per_axis = std::max(1, total_threads / threads);
   auto work = [&]() {
+    std::vector<double> scratch;  // the strided sums' window, reused by this thread's next axis
     for (size_t a = next++; a < num_axes; a = next++) {
       AxisSeries& series = recording.axes[a];
       AxisAllan& axis = result.axes[a];
@@ -226,7 +227,7 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
       try {
         const IntegratedSignal signal(std::move(series.samples), recording.rate_hz, axis.name);
         axis.mean = signal.mean();
-        axis.curve = signal.Deviation(sizes, strides, threads_per_axis);
+        axis.curve = signal.Deviation(sizes, strides, threads_per_axis, &scratch);
         axis.fit = FitNoise(axis.curve, options.fit);
       } catch (...) {
         errors[a] = std::current_exception();

@@ -273,7 +273,8 @@ AllanCurve IntegratedSignal::Deviation(const std::vector<int64_t>& cluster_sizes
 
 AllanCurve IntegratedSignal::Deviation(const std::vector<int64_t>& cluster_sizes,
                                        const std::vector<int64_t>& strides,
-                                       int num_threads) const {
+                                       int num_threads,
+                                       std::vector<double>* scratch) const {
   if (strides.size() != cluster_sizes.size()) {
     throw Error("got " + std::to_string(strides.size()) + " strides for " +
                 std::to_string(cluster_sizes.size()) + " cluster sizes");
@@ -298,8 +299,8 @@ AllanCurve IntegratedSignal::Deviation(const std::vector<int64_t>& cluster_sizes
     // The overlapping estimator: the near sweep and the comb.
     variances = Variances(cluster_sizes, num_threads);
   } else {
-    const std::vector<long double> sums =
-        internal::StridedSecondDifferenceSums(sums_.data(), n, cluster_sizes, strides, num_threads);
+    const std::vector<long double> sums = internal::StridedSecondDifferenceSums(
+        sums_.data(), n, cluster_sizes, strides, num_threads, scratch);
     for (size_t i = 0; i < cluster_sizes.size(); ++i) {
       const long double m = static_cast<long double>(cluster_sizes[i]);
       const long double terms =

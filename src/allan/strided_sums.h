@@ -23,12 +23,15 @@ namespace internal {
 
 // The sums above (the terms of each block added in double, at most kMaxKernelLength of them, the
 // blocks in long double), on up to num_threads threads; the result does not depend on
-// num_threads. Requires 1 <= m_i <= N / 2, strides >= 1, each dividing the largest.
+// num_threads. Requires 1 <= m_i <= N / 2, strides >= 1, each dividing the largest. The calling
+// thread's window lives in *scratch when it is given (grown as needed, kept for the next call:
+// pages written once are cheap to write again), else in memory of its own.
 std::vector<long double> StridedSecondDifferenceSums(const double* sums,
                                                      int64_t num_samples,
                                                      const std::vector<int64_t>& cluster_sizes,
                                                      const std::vector<int64_t>& strides,
-                                                     int num_threads);
+                                                     int num_threads,
+                                                     std::vector<double>* scratch = nullptr);
 
 }  // namespace internal
 }  // namespace splinecal

@@ -293,6 +293,22 @@ TEST(StridedAllanDeviation, ExactCurveLiesWithinTheStridedIntervals) {
   EXPECT_LE(outside_90, 0.15 * strided_points);
 }
 
+// Strides longer than the record (rows of the polyphase layout beyond S_N): one term each.
+TEST(StridedAllanDeviation, StridesBeyondTheRecord) {
+  const std::vector<double> y = GyroLikeAxis(100, 12);
+  const IntegratedSignal signal(std::vector<double>(y), 200.0, "gyro x");
+  const std::vector<int64_t> sizes = {1, 2, 7, 50};
+  const std::vector<int64_t> strides = {256, 1, 128, 256};
+  const AllanCurve curve = signal.Deviation(sizes, strides, 2);
+  EXPECT_EQ(curve.num_terms, (std::vector<int64_t>{1, 97, 1, 1}));
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    EXPECT_LE(RelativeDifference(curve.adev[i],
+                                 std::sqrt(DirectStridedAllanVariance(y, sizes[i], strides[i]))),
+              1e-12)
+        << "m = " << sizes[i];
+  }
+}
+
 TEST(StridedAllanDeviation, ErrorBarsFromTheTermsUsed) {
   const IntegratedSignal signal(AccelLikeAxis(1000, 11), 10.0, "accel x");
   const AllanCurve curve = signal.Deviation({1, 100, 2, 3}, {64, 64, 1, 4});
