@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
@@ -210,6 +211,10 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   std::vector<std::exception_ptr> errors(num_axes);
   std::atomic<size_t> next{0};
   std::mutex progress_mutex;
+  // The fit's relative intervals depend only on N, the averaging times and their strides: one
+  // table for every axis, made by the first thread that needs it.
+  std::once_flag intervals_once;
+  std::optional<FitIntervals> intervals;
   // Axes run in parallel; threads left over (fewer axes than threads) split each axis's passes.
   const int total_threads =
       options.num_threads > 0 ? options.num_threads
@@ -228,7 +233,8 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
         const IntegratedSignal signal(std::move(series.samples), recording.rate_hz, axis.name);
         axis.mean = signal.mean();
         axis.curve = signal.Deviation(sizes, strides, threads_per_axis, &scratch);
-        axis.fit = FitNoise(axis.curve, options.fit);
+        std::call_once(intervals_once, [&] { intervals.emplace(n, sizes, strides, options.fit); });
+        axis.fit = FitNoise(axis.curve, options.fit, &*intervals);
       } catch (...) {
         errors[a] = std::current_exception();
         continue;
