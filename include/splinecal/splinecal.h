@@ -25,6 +25,8 @@
 
 #include "splinecal/error.h"
 #include "splinecal/median.h"
+#include "splinecal/memory_reuse.h"
+#include "splinecal/run_tasks.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 

@@ -269,7 +269,7 @@ CalibrationResult CalibrationProblem::Run() {
     cameras_[c].window_before_s =
         kWindowMargin_s + (options_.rolling_shutter ? 0.5 * frame_periods_[c] : 0.0);
   }
-  const SolverOptions& solver = options_.solver;
+  const SolverOptions solver = spline_->ResolvedSolverOptions(options_.solver);
   ceres::Solver::Options solver_options = ToCeresOptions(solver, 0.0, nullptr);
   solver_options.update_state_every_iteration = true;  // for the StopWhen callbacks
   SolveRounds rounds(solver_options, options_.solver.progress, options_.solver.stop);
@@ -301,7 +301,7 @@ CalibrationResult CalibrationProblem::Run() {
     }
     // The IMU noise from the residuals (variance components): weights that match the data's
     // own noise, so that the covariance below reflects it.
-    const double noise_change = imu_noise_->Update(spline_.get());
+    const double noise_change = imu_noise_->Update(spline_.get(), solver.num_threads);
     if (noise_change > kSigmaChangeForNewRound) again = true;
     const bool windows_valid = !guard.triggered() && WindowsStillValid();
     if (!windows_valid) again = true;

@@ -35,14 +35,17 @@ constexpr PoseSigma kPnpSigma = {0.003, 0.003};
 constexpr PoseSigma kInitialPoseSigma = {0.01, 0.01};
 
 // The fitted spline re-sampled onto `layout` (dt / 10 steps over its valid range).
-std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layout) {
+std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layout,
+                               int num_threads) {
   std::vector<StampedPose> samples;
   const int64_t step = std::max<int64_t>(1, layout.dt_ns / 10);
   for (int64_t t = fitted.start_time_ns(); t <= fitted.end_time_ns(); t += step) {
     const SE3d T = fitted.PoseNs(t);
     samples.push_back({t, T.translation(), T.so3().quaternion()});
   }
-  return FitControlPoses(samples, layout).control_poses;
+  PoseFitOptions options;
+  options.num_threads = num_threads;
+  return FitControlPoses(samples, layout, options).control_poses;
 }
 
 // An initial guess from the continuous-time fit of the IMU to `poses` (`source` names them in
@@ -80,7 +83,8 @@ CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
   }
   CalibrationInitialGuess guess;
   guess.layout = LayoutFor(imu, observations, camchain, options.model.knot_spacing_s);
-  guess.control_poses = ResampleOnto(fit->MakeSpline(), guess.layout);
+  guess.control_poses =
+      ResampleOnto(fit->MakeSpline(), guess.layout, options.solver.num_threads);
   guess.gravity_w = fit->gravity_w;
   guess.gyro_bias = fit->gyro_bias;
   guess.accel_bias = fit->accel_bias;

@@ -499,7 +499,7 @@ FitResult FitProblem::Impl::Solve() {
   const double jacobian_entries =
       3.0 * static_cast<double>(imu.size()) * (2.0 * 24.0 + 6.0 * bias_points + 2.0) +
       6.0 * static_cast<double>(used_poses.size()) * 31.0;
-  const SolverOptions& solver = options.solver;
+  const SolverOptions solver = spline_problem->ResolvedSolverOptions(options.solver);
   SolveRounds rounds(solver, jacobian_entries);
 #ifdef __GLIBC__
   // Return what the initialisation freed (the pose fit's solver) before the main solve, whose
@@ -521,7 +521,8 @@ FitResult FitProblem::Impl::Solve() {
     }
     // The IMU noise from the residuals (variance components, estimation/imu_noise_estimate.h).
     if (spline_problem->evaluation_callback()) spline_problem->evaluation_callback()->Update();
-    const bool reweighted = imu_noise->Update(spline_problem.get()) > kNoiseChangeForNewRound;
+    const bool reweighted =
+        imu_noise->Update(spline_problem.get(), solver.num_threads) > kNoiseChangeForNewRound;
     if (!moved && !reweighted) break;
     if (options.solver.progress) {
       options.solver.progress(moved ? "fit: time offset moved poses across knots; solving again"

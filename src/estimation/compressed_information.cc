@@ -10,6 +10,7 @@
 
 #include "information_factor.h"
 #include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/run_tasks.h"
 
 namespace splinecal {
 namespace estimation_internal {
@@ -71,75 +72,133 @@ void CompressedInformation::Group::Resize() {
   H = std::move(bigger);
 }
 
+namespace {
+
+// One residual block's share of the information, computed without touching any shared state
+// (so that blocks linearise in parallel): its rows' J^T J and J^T e over the stacked tangent
+// columns of its free parameter blocks.
+struct Linearization {
+  const ceres::CostFunction* cost = nullptr;  // the rows (not a compact form)
+  std::vector<double*> blocks;
+  std::vector<int> tangent;  // per block; 0 for a constant block (no columns)
+  int label = 0;
+  int cluster = -1;
+  bool ok = false;
+  int rows = 0;
+  double squared_sum = 0.0;
+  Eigen::MatrixXd JtJ;
+  Eigen::VectorXd Jte;  // with clusters only
+};
+
+// Residual blocks linearised at once before their shares are merged in order: bounds the memory
+// of the parallel part.
+constexpr int kChunk = 1024;
+
+void Linearize(const ceres::Problem& problem, bool with_gradient, Linearization* out) {
+  const std::vector<double*>& blocks = out->blocks;
+  const int rows = out->cost->num_residuals();
+  out->rows = rows;
+  std::vector<std::vector<double>> jacobians(blocks.size());
+  std::vector<double*> pointers(blocks.size(), nullptr);
+  int columns = 0;
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    if (out->tangent[k] == 0) continue;
+    jacobians[k].resize(static_cast<size_t>(rows) * problem.ParameterBlockSize(blocks[k]));
+    pointers[k] = jacobians[k].data();
+    columns += out->tangent[k];
+  }
+  Eigen::VectorXd e(rows);
+  out->ok = out->cost->Evaluate(blocks.data(), e.data(), pointers.data());
+  if (!out->ok) return;
+  out->squared_sum = e.squaredNorm();
+  // The tangent Jacobian J (rows x columns): each block's ambient Jacobian times its manifold's
+  // PlusJacobian.
+  Eigen::MatrixXd J(rows, columns);
+  int column = 0;
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    if (pointers[k] == nullptr) continue;
+    const int ambient = problem.ParameterBlockSize(blocks[k]);
+    const int tangent = out->tangent[k];
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+        J_ambient(pointers[k], rows, ambient);
+    const ceres::Manifold* manifold = problem.GetManifold(blocks[k]);
+    if (manifold != nullptr) {
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> plus(ambient,
+                                                                                  tangent);
+      CHECK(manifold->PlusJacobian(blocks[k], plus.data()));
+      J.middleCols(column, tangent).noalias() = J_ambient * plus;
+    } else {
+      J.middleCols(column, tangent) = J_ambient;
+    }
+    column += tangent;
+  }
+  out->JtJ.noalias() = J.transpose() * J;
+  if (with_gradient) out->Jte.noalias() = J.transpose() * e;
+}
+
+}  // namespace
+
 CompressedInformation::CompressedInformation(ceres::Problem* problem,
                                              const ResidualLabel& label_of,
-                                             const ResidualLabel& cluster_of) {
+                                             const ResidualLabel& cluster_of,
+                                             int num_threads) {
   std::vector<ceres::ResidualBlockId> residual_blocks;
   problem->GetResidualBlocks(&residual_blocks);
-  std::vector<double*> blocks;
-  std::vector<std::vector<double>> jacobians;
-  std::vector<double*> jacobian_pointers;
-  std::vector<double> residuals;
-  for (ceres::ResidualBlockId id : residual_blocks) {
-    const int label = label_of ? label_of(id) : 0;
-    if (label < 0) continue;
-    // The rows themselves, also where Ceres sees them compacted (their count matters here).
-    const ceres::CostFunction* cost =
-        &CompactResidual::RowsOf(*problem->GetCostFunctionForResidualBlock(id));
-    problem->GetParameterBlocksForResidualBlock(id, &blocks);
-    const int rows = cost->num_residuals();
-    residuals.resize(rows);
-    jacobians.resize(blocks.size());
-    jacobian_pointers.resize(blocks.size());
-    for (size_t k = 0; k < blocks.size(); ++k) {
-      if (problem->IsParameterBlockConstant(blocks[k])) {
-        jacobian_pointers[k] = nullptr;
+  std::vector<Linearization> chunk;
+  for (size_t first = 0; first < residual_blocks.size(); first += kChunk) {
+    const size_t last = std::min(residual_blocks.size(), first + kChunk);
+    // What the problem says of each block, read on this thread; the linearisations in parallel.
+    chunk.clear();
+    for (size_t i = first; i < last; ++i) {
+      const ceres::ResidualBlockId id = residual_blocks[i];
+      const int label = label_of ? label_of(id) : 0;
+      if (label < 0) continue;
+      Linearization& item = chunk.emplace_back();
+      item.label = label;
+      item.cluster = cluster_of ? cluster_of(id) : -1;
+      // The rows themselves, also where Ceres sees them compacted (their count matters here).
+      item.cost = &CompactResidual::RowsOf(*problem->GetCostFunctionForResidualBlock(id));
+      problem->GetParameterBlocksForResidualBlock(id, &item.blocks);
+      for (double* block : item.blocks) {
+        item.tangent.push_back(problem->IsParameterBlockConstant(block)
+                                   ? 0
+                                   : problem->ParameterBlockTangentSize(block));
+      }
+    }
+    RunTasks(num_threads, static_cast<int64_t>(chunk.size()), [&](int64_t i) {
+      Linearize(*problem, static_cast<bool>(cluster_of), &chunk[i]);
+    });
+    // Merged in the residual blocks' order: the sums do not depend on the threads.
+    for (const Linearization& item : chunk) {
+      if (!item.ok) {
+        evaluation_failed_ = true;
         continue;
       }
-      jacobians[k].resize(static_cast<size_t>(rows) * problem->ParameterBlockSize(blocks[k]));
-      jacobian_pointers[k] = jacobians[k].data();
-    }
-    if (!cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data())) {
-      evaluation_failed_ = true;
-      continue;
-    }
-    num_residuals_[label] += rows;
-    double& squares = squared_sum_[label];
-    for (double r : residuals) squares += r * r;
-    Group& group = groups_[GroupKey(label, blocks[0])];
-    // Tangent Jacobians of this residual block, column-stacked in the group's block order.
-    std::vector<std::pair<int, Eigen::MatrixXd>> parts;
-    for (size_t k = 0; k < blocks.size(); ++k) {
-      if (jacobian_pointers[k] == nullptr) continue;
-      const int ambient = problem->ParameterBlockSize(blocks[k]);
-      const int tangent = problem->ParameterBlockTangentSize(blocks[k]);
-      Eigen::MatrixXd J =
-          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-              jacobians[k].data(), rows, ambient);
-      const ceres::Manifold* manifold = problem->GetManifold(blocks[k]);
-      if (manifold != nullptr) {
-        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> plus(ambient,
-                                                                                    tangent);
-        CHECK(manifold->PlusJacobian(blocks[k], plus.data()));
-        J = J * plus;
+      num_residuals_[item.label] += item.rows;
+      squared_sum_[item.label] += item.squared_sum;
+      Group& group = groups_[GroupKey(item.label, item.blocks[0])];
+      std::vector<std::pair<int, int>> parts;  // (index in the group, first column in J)
+      int column = 0;
+      for (size_t k = 0; k < item.blocks.size(); ++k) {
+        if (item.tangent[k] == 0) continue;
+        block_sizes_[item.blocks[k]] = item.tangent[k];
+        parts.emplace_back(group.Index(item.blocks[k], item.tangent[k]), column);
+        column += item.tangent[k];
       }
-      block_sizes_[blocks[k]] = tangent;
-      parts.emplace_back(group.Index(blocks[k], tangent), std::move(J));
-    }
-    group.Resize();
-    if (cluster_of) {
-      std::map<const double*, Eigen::VectorXd>& gradient = cluster_gradients_[cluster_of(id)];
-      const Eigen::Map<const Eigen::VectorXd> e(residuals.data(), rows);
-      for (const auto& [a, J_a] : parts) {
-        Eigen::VectorXd& g = gradient[group.blocks[a]];
-        if (g.size() == 0) g = Eigen::VectorXd::Zero(J_a.cols());
-        g += J_a.transpose() * e;
+      group.Resize();
+      if (cluster_of) {
+        std::map<const double*, Eigen::VectorXd>& gradient = cluster_gradients_[item.cluster];
+        for (const auto& [a, column_a] : parts) {
+          Eigen::VectorXd& g = gradient[group.blocks[a]];
+          if (g.size() == 0) g = Eigen::VectorXd::Zero(group.sizes[a]);
+          g += item.Jte.segment(column_a, group.sizes[a]);
+        }
       }
-    }
-    for (const auto& [a, J_a] : parts) {
-      for (const auto& [b, J_b] : parts) {
-        group.H.block(group.offsets[a], group.offsets[b], J_a.cols(), J_b.cols()) +=
-            J_a.transpose() * J_b;
+      for (const auto& [a, column_a] : parts) {
+        for (const auto& [b, column_b] : parts) {
+          group.H.block(group.offsets[a], group.offsets[b], group.sizes[a], group.sizes[b]) +=
+              item.JtJ.block(column_a, column_b, group.sizes[a], group.sizes[b]);
+        }
       }
     }
   }

@@ -33,10 +33,13 @@ class CompressedInformation {
   // Evaluates every residual block of `problem` once at its current values. label_of may be
   // empty (every block gets label 0). cluster_of (may be empty): the cluster of each residual
   // block (>= 0) for the cluster-robust covariance; the gradient g_k = sum J^T e of each
-  // cluster's residuals is kept.
+  // cluster's residuals is kept. The residual blocks are evaluated on up to num_threads threads
+  // (their cost functions must allow it, as Ceres' do) and merged in order, so the result does
+  // not depend on num_threads.
   explicit CompressedInformation(ceres::Problem* problem,
                                  const ResidualLabel& label_of = {},
-                                 const ResidualLabel& cluster_of = {});
+                                 const ResidualLabel& cluster_of = {},
+                                 int num_threads = 1);
 
   bool evaluation_failed() const { return evaluation_failed_; }
 

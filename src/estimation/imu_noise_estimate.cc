@@ -101,15 +101,17 @@ bool ImuNoiseEstimator::AddToCovarianceOptions(const SplineProblem* spline_probl
   return robust_window_s > 0.0 || !options->noise_factors.empty();
 }
 
-double ImuNoiseEstimator::Update(SplineProblem* spline_problem) {
+double ImuNoiseEstimator::Update(SplineProblem* spline_problem, int num_threads) {
   if (estimate_.mode == ImuNoiseMode::kGiven) return 0.0;
   // The random-walk prior's quadratic form has rank 3 (num_points - 1): a constant bias costs
   // nothing (estimation/bias_costs.h).
   const double prior_rank = 3.0 * (spline_problem->bias_spline().num_points() - 1);
+  VarianceComponentOptions options;
+  options.num_threads = num_threads;
   const VarianceComponents components = EstimateVarianceComponents(
       &spline_problem->problem(),
       [spline_problem](ceres::ResidualBlockId id) { return GroupOf(*spline_problem, id); },
-      {},
+      options,
       {{static_cast<int>(ImuResidualKind::kGyroRandomWalk), prior_rank},
        {static_cast<int>(ImuResidualKind::kAccelRandomWalk), prior_rank}});
   if (!components.ok) return 0.0;

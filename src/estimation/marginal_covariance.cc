@@ -39,7 +39,8 @@ MarginalCovariance ComputeMarginalCovariance(ceres::Problem* problem,
   } else {
     const bool extras = options.cluster_of || !options.noise_factors.empty() ||
                         options.reported_map.size() > 0;
-    CompressedInformation compressed(problem, options.group_of, options.cluster_of);
+    CompressedInformation compressed(
+        problem, options.group_of, options.cluster_of, options.num_threads);
     if (compressed.evaluation_failed()) {
       result.method = "none: a residual could not be evaluated at the solution";
       return result;

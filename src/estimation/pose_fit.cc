@@ -1,6 +1,5 @@
 #include "splinecal/estimation/pose_fit.h"
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/ceres.h>
 #include <glog/logging.h>
 
@@ -11,6 +10,7 @@
 #include <utility>
 
 #include "splinecal/error.h"
+#include "splinecal/estimation/pose_block_jacobian.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
@@ -87,21 +87,42 @@ class SegmentPoseCost : public ceres::CostFunction {
   SE3Manifold manifold_;
 };
 
-// w_s (Log(T_{i-1}^-1 T_i) - Log(T_i^-1 T_{i+1})): the weak smoothness prior (pose_fit.h).
-struct SmoothnessPrior {
-  explicit SmoothnessPrior(double weight) : weight(weight) {}
+// w_s (Omega_i - Omega_{i+1}), Omega_k = Log(T_{k-1}^-1 T_k): the weak smoothness prior
+// (pose_fit.h). Under the right perturbations T_k Exp(d_k) (spline/segment.h, KnotDeltaJacobians)
+//   d Omega_k / d d_k = Jr^-1(Omega_k),   d Omega_k / d d_{k-1} = -Jl^-1(Omega_k),
+// so d r / d d_{i-1} = -w Jl^-1(Omega_i), d r / d d_i = w (Jr^-1(Omega_i) + Jl^-1(Omega_{i+1})),
+// d r / d d_{i+1} = -w Jr^-1(Omega_{i+1}), lifted to the ambient blocks
+// (estimation/pose_block_jacobian.h). Analytic: its automatic differentiation through three
+// SE(3) logarithms was most of a pose fit's Jacobian time (docs/performance.md, issue 17).
+class SmoothnessPriorCost : public ceres::SizedCostFunction<6, 7, 7, 7> {
+ public:
+  explicit SmoothnessPriorCost(double weight) : weight_(weight) {}
 
-  template <typename T>
-  bool operator()(const T* previous, const T* current, const T* next, T* residual) const {
-    const SE3<T> T_a = PoseFromBlock(previous);
-    const SE3<T> T_b = PoseFromBlock(current);
-    const SE3<T> T_c = PoseFromBlock(next);
-    const Vector6<T> second_difference = (T_a.inverse() * T_b).Log() - (T_b.inverse() * T_c).Log();
-    for (int i = 0; i < 6; ++i) residual[i] = T(weight) * second_difference[i];
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    const SE3d T_a = PoseFromBlock(parameters[0]);
+    const SE3d T_b = PoseFromBlock(parameters[1]);
+    const SE3d T_c = PoseFromBlock(parameters[2]);
+    const Vector6d omega_ab = (T_a.inverse() * T_b).Log();
+    const Vector6d omega_bc = (T_b.inverse() * T_c).Log();
+    Eigen::Map<Vector6d> r(residuals);
+    r = weight_ * (omega_ab - omega_bc);
+    if (!r.allFinite()) return false;
+    if (jacobians == nullptr) return true;
+    const Matrix6d J[3] = {
+        -weight_ * LeftJacobianInverseSE3(omega_ab),
+        weight_ * (RightJacobianInverseSE3(omega_ab) + LeftJacobianInverseSE3(omega_bc)),
+        -weight_ * RightJacobianInverseSE3(omega_bc)};
+    for (int k = 0; k < 3; ++k) {
+      if (jacobians[k] == nullptr) continue;
+      internal::LiftPoseJacobian(J[k], internal::MakePoseBlockLift(parameters[k]), jacobians[k]);
+    }
     return true;
   }
 
-  double weight;
+ private:
+  double weight_;
 };
 
 // The measured pose at t_ns (clamped to the ends): position linear, rotation geodesic.
@@ -140,6 +161,29 @@ class ProgressCallback : public ceres::IterationCallback {
   std::function<void(const std::string&)> progress_;
 };
 
+// Ends the solve once kRejectedSteps consecutive steps below kRoundingStep were rejected: the
+// cost then sits at its rounding floor, and Levenberg-Marquardt would only shrink its trust
+// region, rejecting step after step at the same parameters, until the parameter tolerance ends
+// the solve there (the resampling of calibrate's initial guess: 2 useful iterations, then 6
+// rejected ones of 0.11 s each). Rejected steps leave the parameters as they are, so the result
+// is the one the tolerance would have ended on.
+class RoundingFloorStop : public ceres::IterationCallback {
+ public:
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    const bool stuck = summary.iteration > 0 && !summary.step_is_successful &&
+                       summary.step_norm < kRoundingStep;
+    rejected_ = stuck ? rejected_ + 1 : 0;
+    return rejected_ >= kRejectedSteps ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                                       : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  // A step of a micrometre (and microradian) over all control poses together.
+  static constexpr double kRoundingStep = 1e-6;
+  static constexpr int kRejectedSteps = 2;
+  int rejected_ = 0;
+};
+
 }  // namespace
 
 namespace internal {
@@ -151,6 +195,10 @@ ceres::CostFunction* NewSegmentPoseCost(std::vector<double> u,
   CHECK_EQ(u.size(), measured.size());
   CHECK(!u.empty());
   return new SegmentPoseCost(std::move(u), std::move(measured), dt_s, rotation_weight_m_per_rad);
+}
+
+ceres::CostFunction* NewSmoothnessPriorCost(double weight) {
+  return new SmoothnessPriorCost(weight);
 }
 
 }  // namespace internal
@@ -241,8 +289,7 @@ PoseFitResult FitControlPoses(const std::vector<StampedPose>& poses,
   }
   if (options.smoothness_weight > 0.0) {
     for (int i = 1; i + 1 < layout.num_control_poses; ++i) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SmoothnessPrior, 6, 7, 7, 7>(
-                                   new SmoothnessPrior(options.smoothness_weight)),
+      problem.AddResidualBlock(internal::NewSmoothnessPriorCost(options.smoothness_weight),
                                nullptr,
                                blocks[i - 1].data(),
                                blocks[i].data(),
@@ -261,6 +308,8 @@ PoseFitResult FitControlPoses(const std::vector<StampedPose>& poses,
   solver_options.gradient_tolerance = 1e-14;
   solver_options.parameter_tolerance = 1e-12;
   solver_options.logging_type = ceres::SILENT;
+  RoundingFloorStop rounding_floor_stop;
+  solver_options.callbacks.push_back(&rounding_floor_stop);
   std::unique_ptr<ProgressCallback> callback;
   if (options.progress) {
     callback = std::make_unique<ProgressCallback>(options.progress);
@@ -276,7 +325,9 @@ PoseFitResult FitControlPoses(const std::vector<StampedPose>& poses,
     result.control_poses[i] = PoseFromBlock(blocks[i].data());
   }
   result.iterations = static_cast<int>(summary.iterations.size());
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  // USER_SUCCESS: stopped at the rounding floor (RoundingFloorStop), converged as well.
+  result.converged = summary.termination_type == ceres::CONVERGENCE ||
+                     summary.termination_type == ceres::USER_SUCCESS;
   result.solver_report = summary.BriefReport();
   PoseFitErrors(result.MakeSpline(), poses, &result);
   return result;

@@ -31,6 +31,9 @@ ceres::Solver::Options ToCeresOptions(const SolverOptions& options,
                      (options.linear_solver == LinearSolver::kAuto &&
                       jacobian_entries > options.max_normal_cholesky_jacobian_entries);
   ceres_options.linear_solver_type = schur ? ceres::SPARSE_SCHUR : ceres::SPARSE_NORMAL_CHOLESKY;
+  if (!schur && options.sparse_library == SparseLibrary::kEigen) {
+    ceres_options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+  }
   if (linear_solver_name != nullptr) {
     *linear_solver_name = schur ? "SPARSE_SCHUR" : "SPARSE_NORMAL_CHOLESKY";
   }

@@ -20,6 +20,7 @@
 #include "splinecal/io/number_parser.h"
 #include "splinecal/io/number_parser_avx2.h"
 #include "splinecal/io/text_file.h"
+#include "splinecal/run_tasks.h"
 
 namespace splinecal {
 namespace internal {
@@ -327,20 +328,6 @@ SPLINECAL_AVX2_TARGET void ParseChunkAvx2(std::string_view text,
   ParseChunk<Avx2Fields>(text, scaling, columns, chunk);
 }
 #endif
-
-// Runs task(0) .. task(count - 1) on `threads` threads (the calling one included), each thread
-// taking the next task when it is done with one.
-template <typename Task>
-void RunTasks(int threads, int64_t count, Task&& task) {
-  std::atomic<int64_t> next{0};
-  auto work = [&]() {
-    for (int64_t i = next++; i < count; i = next++) task(i);
-  };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < std::min<int64_t>(threads, count); ++i) pool.emplace_back(work);
-  work();
-  for (std::thread& thread : pool) thread.join();
-}
 
 // Maps the pages of [data, data + bytes) for writing in one call (Linux 5.14 and later; elsewhere
 // the first writes fault them in one page at a time): 480 MB of columns for 10^7 rows took 0.07 s

@@ -1,5 +1,6 @@
 #include "splinecal/estimation/pose_fit.h"
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
@@ -99,6 +100,53 @@ TEST(SegmentPoseCost, AnalyticJacobiansMatchNumericThroughTheManifold) {
         (results.local_jacobians[k] - results.local_numeric_jacobians[k]).cwiseAbs().maxCoeff();
     EXPECT_LT(error, kJacobianTolerance * std::max(1.0, scale)) << "block " << k << "\n"
                                                                 << results.error_log;
+  }
+}
+
+// The smoothness prior's analytic Jacobians against Ceres' automatic differentiation of the
+// same residual through PoseFromBlock, at unit quaternions (the blocks the manifold keeps), on
+// control poses perturbed by ~0.3 rad and 0.3 m (large Omega: Jr^-1 and Jl^-1 far from I).
+struct SmoothnessPriorByAutodiff {
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* c, T* residual) const {
+    const SE3<T> T_a = PoseFromBlock(a);
+    const SE3<T> T_b = PoseFromBlock(b);
+    const SE3<T> T_c = PoseFromBlock(c);
+    const Vector6<T> r = T(weight) * ((T_a.inverse() * T_b).Log() - (T_b.inverse() * T_c).Log());
+    for (int k = 0; k < 6; ++k) residual[k] = r[k];
+    return true;
+  }
+  double weight = 0.3;
+};
+
+TEST(SmoothnessPriorCost, AnalyticJacobiansMatchAutomaticDifferentiation) {
+  const SE3Splined spline = RandomSmoothSpline(4, 0, 100'000'000, 5);
+  std::mt19937 rng(6);
+  std::normal_distribution<double> normal(0.0, 0.3);
+  std::vector<std::array<double, 7>> blocks(3);
+  for (int k = 0; k < 3; ++k) {
+    Vector6d offset;
+    for (int a = 0; a < 6; ++a) offset[a] = normal(rng);
+    PoseToBlock(spline.control_pose(k) * SE3d::Exp(offset), blocks[k].data());
+  }
+  const double* parameters[3] = {blocks[0].data(), blocks[1].data(), blocks[2].data()};
+  std::unique_ptr<ceres::CostFunction> analytic(internal::NewSmoothnessPriorCost(0.3));
+  ceres::AutoDiffCostFunction<SmoothnessPriorByAutodiff, 6, 7, 7, 7> automatic(
+      new SmoothnessPriorByAutodiff);
+  double r_analytic[6];
+  double r_automatic[6];
+  std::array<std::array<double, 42>, 3> J_analytic;
+  std::array<std::array<double, 42>, 3> J_automatic;
+  double* ja[3] = {J_analytic[0].data(), J_analytic[1].data(), J_analytic[2].data()};
+  double* jb[3] = {J_automatic[0].data(), J_automatic[1].data(), J_automatic[2].data()};
+  ASSERT_TRUE(analytic->Evaluate(parameters, r_analytic, ja));
+  ASSERT_TRUE(automatic.Evaluate(parameters, r_automatic, jb));
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(r_analytic[k], r_automatic[k], 1e-14);
+  for (int b = 0; b < 3; ++b) {
+    for (int e = 0; e < 42; ++e) {
+      // Both exact: equal to rounding of terms of order weight * |Omega|.
+      EXPECT_NEAR(J_analytic[b][e], J_automatic[b][e], 1e-12) << "block " << b << " entry " << e;
+    }
   }
 }
 

@@ -29,6 +29,17 @@ struct ControlPositionResidual {
   Eigen::Vector3d p_;
 };
 
+// A ControlPositionResidual at every `step`-th control pose of `truth`.
+void AddControlPositions(const SE3Splined& truth, int step, SplineProblem* spline_problem) {
+  for (int i = 0; i < truth.num_control_poses(); i += step) {
+    spline_problem->problem().AddResidualBlock(
+        new ceres::AutoDiffCostFunction<ControlPositionResidual, 3, 7>(
+            new ControlPositionResidual(truth.control_pose(i).translation())),
+        nullptr,
+        spline_problem->control_block(i));
+  }
+}
+
 // The IMU of a known trajectory plus a few positions (the user's residual) determine the whole
 // trajectory: from a perturbed start, the solve recovers the true control poses.
 TEST(SplineProblem, ImuPlusAUsersOwnResidualRecoversTheTrajectory) {
@@ -43,13 +54,7 @@ TEST(SplineProblem, ImuPlusAUsersOwnResidualRecoversTheTrajectory) {
   spline_problem.SetGravity(data.gravity_w);
   ceres::Problem& problem = spline_problem.Reset();
   spline_problem.AddImuResiduals(data.imu, 1e-3, 1e-2);
-  for (int i = 0; i < layout.num_control_poses; i += 5) {
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<ControlPositionResidual, 3, 7>(
-            new ControlPositionResidual(data.truth.control_pose(i).translation())),
-        nullptr,
-        spline_problem.control_block(i));
-  }
+  AddControlPositions(data.truth, 5, &spline_problem);
   // The IMU cannot see a rotation about gravity: hold the first pose's attitude.
   problem.SetManifold(spline_problem.control_block(0), nullptr);
   problem.SetParameterBlockConstant(spline_problem.control_block(0));
@@ -75,6 +80,54 @@ TEST(SplineProblem, ImuPlusAUsersOwnResidualRecoversTheTrajectory) {
   const ImuResidualStatistics stats = spline_problem.EvaluateImu(data.imu);
   EXPECT_LT(stats.gyro_rms, 1e-7);
   EXPECT_LT(stats.accel_rms, 1e-6);
+}
+
+// The bias spline's problem solved with each sparse library (estimation/solve_rounds.h): the
+// same steps to rounding, so the same solution; and the library SplineProblem prefers.
+TEST(SplineProblem, BothSparseLibrariesReachTheSameSolution) {
+  FitScenario scenario;
+  scenario.duration_s = 6.0;
+  const FitData data = MakeFitData(scenario);
+  const KnotLayout layout = data.truth.layout();
+  auto solve = [&](SparseLibrary library, std::vector<SE3d>* solved, int* iterations) {
+    SplineProblem spline_problem(layout,
+                                 PerturbedControlPoses(data.truth, 0.02, 0.02, 7),
+                                 BiasSpline(BiasModel::kSpline, layout, 1.0),
+                                 ResidualOptions());
+    EXPECT_EQ(spline_problem.PreferredSparseLibrary(), SparseLibrary::kEigen);
+    spline_problem.SetGravity(data.gravity_w);
+    ceres::Problem& problem = spline_problem.Reset();
+    spline_problem.AddImuResiduals(data.imu, 1e-3, 1e-2);
+    ImuNoise noise = ImuNoise::Adis16448();
+    spline_problem.AddBiasRandomWalkResiduals(noise);
+    AddControlPositions(data.truth, 5, &spline_problem);
+    problem.SetParameterBlockConstant(spline_problem.control_block(0));
+    SolverOptions solver;
+    solver.max_iterations = 30;
+    solver.sparse_library = library;
+    const ceres::Solver::Options ceres_options = ToCeresOptions(solver, 0.0, nullptr);
+    EXPECT_EQ(ceres_options.sparse_linear_algebra_library_type,
+              library == SparseLibrary::kEigen ? ceres::EIGEN_SPARSE : ceres::SUITE_SPARSE);
+    SolveRounds rounds(ceres_options, {});
+    rounds.Solve(&problem, "");
+    ASSERT_FALSE(rounds.failed());
+    *solved = spline_problem.ControlPoses();
+    *iterations = rounds.iterations();
+  };
+  std::vector<SE3d> cholmod;
+  std::vector<SE3d> eigen;
+  int cholmod_iterations = 0;
+  int eigen_iterations = 0;
+  solve(SparseLibrary::kSuiteSparse, &cholmod, &cholmod_iterations);
+  solve(SparseLibrary::kEigen, &eigen, &eigen_iterations);
+  EXPECT_EQ(cholmod_iterations, eigen_iterations);
+  for (size_t i = 0; i < cholmod.size(); ++i) {
+    // Two factorisations of the same normal equations: equal to rounding times the condition.
+    EXPECT_LT((cholmod[i].translation() - eigen[i].translation()).norm(), 1e-9) << i;
+    EXPECT_LT((cholmod[i].so3().inverse() * eigen[i].so3()).Log().norm(), 1e-9) << i;
+  }
+  const SplineProblem constant(layout, data.truth.control_poses(), BiasSpline(), {});
+  EXPECT_EQ(constant.PreferredSparseLibrary(), SparseLibrary::kSuiteSparse);
 }
 
 // r = [x + y; x + y]: the information matrix has rank 1, so no backend reports a covariance.

@@ -63,8 +63,8 @@ class ImuNoiseEstimator {
   // Estimates the noise from `spline_problem`'s solved problem (every residual block not added
   // by it counts as one more group) and re-weights what the mode re-weights. Returns the
   // largest relative change of a weight's standard deviation, |sigma_new / sigma_old - 1| (0
-  // when nothing was re-weighted or the estimate failed).
-  double Update(SplineProblem* spline_problem);
+  // when nothing was re-weighted or the estimate failed). num_threads: evaluating the residuals.
+  double Update(SplineProblem* spline_problem, int num_threads = 1);
 
   // For MarginalCovarianceOptions: the group of a residual block of `spline_problem`, and the
   // variance factors (measured / used)^2 of the white-noise groups (empty for kGiven).

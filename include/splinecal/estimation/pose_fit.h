@@ -92,6 +92,10 @@ ceres::CostFunction* NewSegmentPoseCost(std::vector<double> u,
                                         double dt_s,
                                         double rotation_weight_m_per_rad);
 
+// The smoothness prior of control poses i-1, i, i+1 (6 rows over three pose blocks): w_s times
+// the second difference above, with analytic Jacobians (Jr^-1, Jl^-1 of SE(3)).
+ceres::CostFunction* NewSmoothnessPriorCost(double weight);
+
 }  // namespace internal
 
 }  // namespace splinecal

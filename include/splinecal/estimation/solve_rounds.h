@@ -27,6 +27,22 @@ enum class LinearSolver {
   kSparseSchur,
 };
 
+// Ceres' sparse linear algebra for kSparseNormalCholesky's factorisation (docs/performance.md,
+// issue 17: calibrate on EuRoC at 0.01 s knots, 0.25 s per iteration with CHOLMOD, 0.14 s with
+// Eigen; fit of V1_01 with constant biases, 0.35 s with CHOLMOD, 0.62 s with Eigen).
+enum class SparseLibrary {
+  // kSuiteSparse, unless the estimate knows its structure better (SplineProblem's
+  // PreferredSparseLibrary, which fit and calibrate ask).
+  kAuto,
+  // CHOLMOD's supernodal Cholesky: dense kernels on column blocks, fastest on a banded matrix
+  // (control poses and constant biases).
+  kSuiteSparse,
+  // Eigen's simplicial LDL^T: fastest when a bias spline's control points -- each coupled to the
+  // hundreds of control poses of its support -- interleave with the poses and leave CHOLMOD
+  // supernodes of a few columns, whose per-block overhead then dominates.
+  kEigen,
+};
+
 struct SolverOptions {
   int max_iterations = 50;  // per round
   int max_rounds = 4;       // solves at most (each after a rebuild the estimate asked for)
@@ -37,6 +53,7 @@ struct SolverOptions {
   // Levenberg-Marquardt's first trust region (Ceres' default 1e4).
   double initial_trust_region_radius = 1e4;
   LinearSolver linear_solver = LinearSolver::kAuto;
+  SparseLibrary sparse_library = SparseLibrary::kAuto;
   // kAuto switches to SPARSE_SCHUR above this many Jacobian entries (8e6: 64 MB, ~2.7 minutes
   // of 200 Hz IMU), where SPARSE_NORMAL_CHOLESKY's transient second copy of J dominates memory.
   double max_normal_cholesky_jacobian_entries = 8e6;

@@ -36,6 +36,7 @@
 
 #include "splinecal/estimation/bias_spline.h"
 #include "splinecal/estimation/gravity_manifold.h"
+#include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
@@ -145,6 +146,19 @@ class SplineProblem {
   void AddImuResiduals(const std::vector<ImuSample>& imu, double sigma_gyro, double sigma_accel);
   // The random-walk prior of the bias spline (nothing for a constant bias), Kalibr densities.
   void AddBiasRandomWalkResiduals(const ImuNoise& noise);
+
+  // The sparse library for this problem's normal equations (estimation/solve_rounds.h): kEigen
+  // with a bias spline, kSuiteSparse with constant biases.
+  SparseLibrary PreferredSparseLibrary() const {
+    return bias_.num_points() > 1 ? SparseLibrary::kEigen : SparseLibrary::kSuiteSparse;
+  }
+  // `solver` with kAuto resolved by PreferredSparseLibrary.
+  SolverOptions ResolvedSolverOptions(SolverOptions solver) const {
+    if (solver.sparse_library == SparseLibrary::kAuto) {
+      solver.sparse_library = PreferredSparseLibrary();
+    }
+    return solver;
+  }
 
   // Which of this object's residuals `id` is (kNotImu for the caller's own).
   ImuResidualKind ResidualKind(ceres::ResidualBlockId id) const;

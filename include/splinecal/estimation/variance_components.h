@@ -30,6 +30,7 @@
 namespace splinecal {
 
 struct VarianceComponentOptions {
+  int num_threads = 1;  // evaluating the residual blocks
   // A group with a smaller redundancy does not determine its variance (f_l uncertain by more
   // than sqrt(2 / 30) = 26%).
   double min_redundancy = 30.0;
