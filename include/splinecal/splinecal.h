@@ -139,6 +139,7 @@
 #include "splinecal/allan/motion.h"
 #include "splinecal/allan/noise_fit.h"
 #include "splinecal/allan/slope_lines.h"
+#include "splinecal/allan/work_budget.h"
 
 // calib/
 #include "splinecal/calib/calibrate.h"
