@@ -17,6 +17,7 @@
 #include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
 #include "testing/numeric_diff.h"
+#include "testing/trajectory_models.h"
 
 namespace splinecal {
 namespace {
@@ -331,10 +332,8 @@ TEST_P(PredictImuAutoDiff, OnPoseBlocksTimesPlusJacobianMatchesAnalytic) {
 
 INSTANTIATE_TEST_SUITE_P(Models,
                          PredictImuAutoDiff,
-                         ::testing::Values(TrajectoryModel::kSE3, TrajectoryModel::kSplitSO3R3),
-                         [](const ::testing::TestParamInfo<TrajectoryModel>& info) {
-                           return std::string(TrajectoryModelName(info.param));
-                         });
+                         testing::BothTrajectoryModels(),
+                         testing::TrajectoryModelTestName);
 
 }  // namespace
 }  // namespace splinecal

@@ -170,14 +170,11 @@ inline void PredictAccelWithJacobian(TrajectoryModel model,
                                      Eigen::Vector3d* accel,
                                      ControlPoseJacobian<3>* J_accel_ctrl,
                                      Eigen::Matrix3d* J_accel_gw = nullptr) {
-  switch (model) {
-    case TrajectoryModel::kSE3:
-      PredictAccelWithJacobian(knots, segment, g_w, b_a, accel, J_accel_ctrl, J_accel_gw);
-      return;
-    case TrajectoryModel::kSplitSO3R3:
-      PredictSplitAccelWithJacobian(knots, segment, g_w, b_a, accel, J_accel_ctrl, J_accel_gw);
-      return;
+  if (model == TrajectoryModel::kSplitSO3R3) {
+    PredictSplitAccelWithJacobian(knots, segment, g_w, b_a, accel, J_accel_ctrl, J_accel_gw);
+    return;
   }
+  PredictAccelWithJacobian(knots, segment, g_w, b_a, accel, J_accel_ctrl, J_accel_gw);
 }
 
 // The same on an SE3Spline<double> (the accelerometer follows spline.model()).

@@ -35,14 +35,11 @@ void EvaluateSegmentBody(TrajectoryModel model,
                          NonDeducedT<Vector3<T>>* w_dot_s,
                          NonDeducedT<Vector3<T>>* v_s,
                          NonDeducedT<Vector3<T>>* a_s) {
-  switch (model) {
-    case TrajectoryModel::kSE3:
-      EvaluateSegmentBody(knots, segment, T_w_s, R_w_s, w_s, w_dot_s, v_s, a_s);
-      return;
-    case TrajectoryModel::kSplitSO3R3:
-      EvaluateSplitSegmentBody(knots, segment, T_w_s, R_w_s, w_s, w_dot_s, v_s, a_s);
-      return;
+  if (model == TrajectoryModel::kSplitSO3R3) {
+    EvaluateSplitSegmentBody(knots, segment, T_w_s, R_w_s, w_s, w_dot_s, v_s, a_s);
+    return;
   }
+  EvaluateSegmentBody(knots, segment, T_w_s, R_w_s, w_s, w_dot_s, v_s, a_s);
 }
 
 }  // namespace internal
@@ -58,14 +55,11 @@ void EvaluateSegment(TrajectoryModel model,
                      internal::NonDeducedT<Vector3<T>>* w_dot_s = nullptr,
                      internal::NonDeducedT<Vector3<T>>* v_w = nullptr,
                      internal::NonDeducedT<Vector3<T>>* a_w = nullptr) {
-  switch (model) {
-    case TrajectoryModel::kSE3:
-      EvaluateSegment(knots, segment, T_w_s, w_s, w_dot_s, v_w, a_w);
-      return;
-    case TrajectoryModel::kSplitSO3R3:
-      EvaluateSplitSegment(knots, segment, T_w_s, w_s, w_dot_s, v_w, a_w);
-      return;
+  if (model == TrajectoryModel::kSplitSO3R3) {
+    EvaluateSplitSegment(knots, segment, T_w_s, w_s, w_dot_s, v_w, a_w);
+    return;
   }
+  EvaluateSegment(knots, segment, T_w_s, w_s, w_dot_s, v_w, a_w);
 }
 
 // EvaluatePoseJacobian or EvaluateSplitPoseJacobian (double; knots with Jacobian caches).
@@ -74,14 +68,11 @@ inline void EvaluatePoseJacobian(TrajectoryModel model,
                                  const Segment<double>& segment,
                                  SE3d* T_w_s,
                                  ControlPoseJacobian<6>* J_pose_ctrl) {
-  switch (model) {
-    case TrajectoryModel::kSE3:
-      EvaluatePoseJacobian(knots, segment, T_w_s, J_pose_ctrl);
-      return;
-    case TrajectoryModel::kSplitSO3R3:
-      EvaluateSplitPoseJacobian(knots, segment, T_w_s, J_pose_ctrl);
-      return;
+  if (model == TrajectoryModel::kSplitSO3R3) {
+    EvaluateSplitPoseJacobian(knots, segment, T_w_s, J_pose_ctrl);
+    return;
   }
+  EvaluatePoseJacobian(knots, segment, T_w_s, J_pose_ctrl);
 }
 
 // EvaluateLinearAccelerationJacobian or EvaluateSplitLinearAccelerationJacobian.
@@ -90,14 +81,11 @@ inline void EvaluateLinearAccelerationJacobian(TrajectoryModel model,
                                                const Segment<double>& segment,
                                                Eigen::Vector3d* a_w,
                                                ControlPoseJacobian<3>* J_aw_ctrl) {
-  switch (model) {
-    case TrajectoryModel::kSE3:
-      EvaluateLinearAccelerationJacobian(knots, segment, a_w, J_aw_ctrl);
-      return;
-    case TrajectoryModel::kSplitSO3R3:
-      EvaluateSplitLinearAccelerationJacobian(knots, segment, a_w, J_aw_ctrl);
-      return;
+  if (model == TrajectoryModel::kSplitSO3R3) {
+    EvaluateSplitLinearAccelerationJacobian(knots, segment, a_w, J_aw_ctrl);
+    return;
   }
+  EvaluateLinearAccelerationJacobian(knots, segment, a_w, J_aw_ctrl);
 }
 
 }  // namespace splinecal
