@@ -31,6 +31,7 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/target_yaml.h"
+#include "splinecal/memory_reuse.h"
 
 namespace splinecal {
 namespace {
@@ -137,4 +138,13 @@ BENCHMARK(BM_CalibrateEuroc)
 }  // namespace
 }  // namespace splinecal
 
-BENCHMARK_MAIN();
+// The tool's allocator setting (splinecal/memory_reuse.h), so that the library call is measured
+// as the command runs it.
+int main(int argc, char** argv) {
+  splinecal::KeepFreedMemoryForReuse();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

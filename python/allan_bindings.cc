@@ -82,6 +82,7 @@ py::dict Allan(py::handle imu,
                py::object rate_hz,
                int taus_per_decade,
                double max_tau_fraction,
+               int max_passes,
                const std::string& combine,
                double start,
                py::object end,
@@ -91,6 +92,8 @@ py::dict Allan(py::handle imu,
   AllanOptions options;
   options.taus_per_decade = taus_per_decade;
   options.max_tau_fraction = max_tau_fraction;
+  if (max_passes < 0) throw py::value_error("max_passes: expected 0 (no budget) or positive");
+  options.max_passes = max_passes;
   if (combine == "mean") {
     options.combine = CombineAxes::kMean;
   } else if (combine == "max") {
@@ -135,7 +138,8 @@ void BindAllan(py::module_& m) {
         py::arg("max_tau_fraction") = 0.1,
         R"((tau (m,) [s], adev (m, k)): the overlapping Allan deviation of each column of x (n, k)
 (or (n,) -> adev (m,)) sampled at rate_hz, at the log-spaced averaging times of
-`splinecal allan` (taus_per_decade per decade, up to max_tau_fraction of the record).)");
+`splinecal allan` (taus_per_decade per decade, up to max_tau_fraction of the record), fully
+overlapping at every one (no work budget).)");
   m.def("allan",
         &Allan,
         py::arg("imu"),
@@ -143,6 +147,7 @@ void BindAllan(py::module_& m) {
         py::kw_only(),
         py::arg("taus_per_decade") = 10,
         py::arg("max_tau_fraction") = 0.1,
+        py::arg("max_passes") = kDefaultAllanMaxPasses,
         py::arg("combine") = "mean",
         py::arg("start") = 0.0,
         py::arg("end") = py::none(),
@@ -151,7 +156,8 @@ void BindAllan(py::module_& m) {
         py::arg("accel_scale") = 1.0,
         R"(IMU noise from a static recording, as `splinecal allan`: imu is an array (n, 6) of
 gyro xyz [rad/s] and accel xyz [m/s^2] at rate_hz, or the path of a EuRoC imu0/data.csv.
-Returns result.yaml's content as a dict (Kalibr densities, every term per axis).)");
+max_passes is the work budget of `--max-passes` (0: always fully overlapping). Returns
+result.yaml's content as a dict (Kalibr densities, every term per axis).)");
 }
 
 }  // namespace python

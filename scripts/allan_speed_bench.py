@@ -7,9 +7,17 @@ time) on ONE axis of the same data already in memory, both at 10 averaging times
 allantools itself is not a Debian package; this is its method written from the formula, not its
 code. Target: splinecal / numpy <= 0.6.
 
-Usage: scripts/allan_speed_bench.py BUILD_DIR/splinecal [ROUNDS]   (needs python3-numpy)
+With --per-decade LIST (e.g. 3,10,30,100,1000) it times instead the whole command at each number
+of averaging times per decade (issue 16: the time nearly independent of it, under the default
+work budget of --max-passes 100), ROUNDS rounds taken in turn, and prints a table: median wall
+time, the command's CPU time, the averaging times, the passes over each axis they would take
+fully overlapping and the passes used, and the Kalibr keys (the same within their intervals).
+
+Usage: scripts/allan_speed_bench.py BUILD_DIR/splinecal [ROUNDS] [--per-decade LIST]
+       (needs python3-numpy)
 """
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -70,13 +78,73 @@ def oadev_cumsum(y, rate, sizes):
     return np.array(out)
 
 
+def timed_command(tool, per_decade, out):
+    """Runs the whole command; returns (wall, user + system) seconds."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    subprocess.run([tool, "allan", "--imu", PATH, "--out", out, "--taus-per-decade",
+                    str(per_decade), "--quiet"], check=True)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def yaml_number(text, key):
+    """The value of a top-level `key: value` line of result.yaml."""
+    for line in text.splitlines():
+        if line.startswith(key + ":"):
+            return float(line.split(":", 1)[1].split("#")[0])
+    return float("nan")
+
+
+def per_decade_table(tool, rounds, settings):
+    """The whole command at each number of averaging times per decade (issue 16)."""
+    subprocess.run(["cat", PATH], stdout=subprocess.DEVNULL, check=True)  # page cache warm
+    times = {p: [] for p in settings}
+    for _ in range(rounds):
+        for p in settings:  # in turn, so that a change of load hits every setting alike
+            times[p].append(timed_command(tool, p, "/tmp/splinecal_allan_speed_out_%d" % p))
+    reference = statistics.median(w for w, _ in times[10]) if 10 in settings else None
+    print("| per decade | averaging times | passes fully overlapping | passes used | wall (median) "
+          "| user + system (median) | vs 10 per decade | gyro N | gyro K | accel N | accel K |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for p in settings:
+        out = "/tmp/splinecal_allan_speed_out_%d" % p
+        result = open(os.path.join(out, "result.yaml")).read()
+        rows = sum(1 for line in open(os.path.join(out, "allan.csv")) if not line.startswith("#"))
+        wall = statistics.median(w for w, _ in times[p])
+        cpu = statistics.median(c for _, c in times[p])
+        print("| %d | %d | %.4g | %.4g | %.3f s (%s) | %.2f s | %s | %.4g | %.4g | %.4g | %.4g |" % (
+            p, rows, yaml_number(result, "overlapping_passes"), yaml_number(result, "passes_used"),
+            wall, " ".join("%.2f" % w for w, _ in times[p]), cpu,
+            "%.2f" % (wall / reference) if reference else "-",
+            yaml_number(result, "gyroscope_noise_density"),
+            yaml_number(result, "gyroscope_random_walk"),
+            yaml_number(result, "accelerometer_noise_density"),
+            yaml_number(result, "accelerometer_random_walk")))
+    print("load average at the end: %s" % " ".join("%.2f" % v for v in os.getloadavg()))
+
+
 def main():
-    tool = sys.argv[1]
-    rounds = int(sys.argv[2]) if len(sys.argv) > 2 else 3
+    args = sys.argv[1:]
+    settings = None
+    if "--per-decade" in args:
+        at = args.index("--per-decade")
+        settings = [int(v) for v in args[at + 1].split(",")]
+        del args[at:at + 2]
+    tool = args[0]
+    rounds = int(args[1]) if len(args) > 1 else 3
+    if settings is not None and os.path.exists(PATH):
+        per_decade_table(tool, rounds, settings)
+        return
     y = axes()
     if not os.path.exists(PATH):
         print("writing %s (once)" % PATH, file=sys.stderr)
         write_euroc(y)
+    if settings is not None:
+        del y
+        per_decade_table(tool, rounds, settings)
+        return
     gyro_x = np.ascontiguousarray(y[:, 0])
     del y
     sizes = cluster_sizes(ROWS)

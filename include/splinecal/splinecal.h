@@ -26,6 +26,7 @@
 
 #include "splinecal/error.h"
 #include "splinecal/median.h"
+#include "splinecal/memory_reuse.h"
 #include "splinecal/run_tasks.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
@@ -143,6 +144,7 @@
 #include "splinecal/allan/motion.h"
 #include "splinecal/allan/noise_fit.h"
 #include "splinecal/allan/slope_lines.h"
+#include "splinecal/allan/work_budget.h"
 
 // calib/
 #include "splinecal/calib/calibrate.h"

@@ -57,3 +57,16 @@ def test_allan_equals_the_command_line(tmp_path):
     assert result["source"] == "numpy array"
     expected["source"] = "numpy array"  # the command names its file
     assert_same(result, expected, tol=1e-12)
+
+
+def test_allan_work_budget():
+    rng = np.random.default_rng(4)
+    n = 20000
+    imu = np.hstack([rng.normal(0.0, 1.7e-3, (n, 3)), rng.normal(0.0, 2e-2, (n, 3)) + [0, 0, 9.81]])
+    strided = splinecal.allan(imu, RATE_HZ, taus_per_decade=1000)
+    assert strided["max_passes"] == 100
+    assert strided["strided_averaging_times"] > 0
+    assert strided["passes_used"] <= 100
+    exact = splinecal.allan(imu, RATE_HZ, taus_per_decade=1000, max_passes=0)
+    assert exact["strided_averaging_times"] == 0
+    assert exact["passes_used"] == exact["overlapping_passes"]

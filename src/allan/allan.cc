@@ -5,6 +5,8 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
+#include <optional>
+#include <string>
 #include <thread>
 #include <utility>
 
@@ -59,6 +61,44 @@ void Cut(int64_t first, int64_t last, StaticRecording* recording) {
     axis.samples.erase(axis.samples.begin() + last, axis.samples.end());
     axis.samples.erase(axis.samples.begin(), axis.samples.begin() + first);
   }
+}
+
+// The progress line on the work budget: how many passes the averaging times take, and where
+// they are strided.
+std::string BudgetSummary(int64_t n,
+                          const std::vector<int64_t>& sizes,
+                          const std::vector<int64_t>& strides,
+                          double rate_hz) {
+  int64_t overlapping = 0;
+  int64_t used = 0;
+  int64_t smallest = 0;
+  int64_t largest = 1;
+  double strided_up_to_s = 0.0;
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    overlapping += AllanTermCount(n, sizes[i], 1);
+    used += AllanTermCount(n, sizes[i], strides[i]);
+    if (strides[i] == 1) continue;
+    smallest = smallest == 0 ? strides[i] : std::min(smallest, strides[i]);
+    largest = std::max(largest, strides[i]);
+    strided_up_to_s = std::max(strided_up_to_s, sizes[i] / rate_hz);
+  }
+  const double passes = static_cast<double>(overlapping) / static_cast<double>(n);
+  if (largest == 1) {
+    return StringPrintf("allan: %zu averaging times, %.4g passes per axis, all fully overlapping",
+                        sizes.size(),
+                        passes);
+  }
+  const std::string stride_range =
+      smallest == largest ? std::to_string(smallest)
+                          : std::to_string(smallest) + " to " + std::to_string(largest);
+  return StringPrintf(
+      "allan: %zu averaging times would take %.4g passes per axis; within the budget "
+      "(--max-passes) they take %.4g: those up to %.3g s use every s-th start index, s = %s",
+      sizes.size(),
+      passes,
+      static_cast<double>(used) / static_cast<double>(n),
+      strided_up_to_s,
+      stride_range.c_str());
 }
 
 }  // namespace
@@ -147,12 +187,21 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
         static_cast<long long>(needed)));
   }
 
+  std::vector<int64_t> strides;
+  try {
+    strides = AllanStrides(n, sizes, options.max_passes);
+  } catch (const Error& e) {
+    throw fail(e.message());
+  }
+  if (options.progress) options.progress(BudgetSummary(n, sizes, strides, recording.rate_hz));
+
   AllanResult result;
   result.source = source;
   result.rate_hz = recording.rate_hz;
   result.num_samples = n;
   result.taus_per_decade = options.taus_per_decade;
   result.max_tau_fraction = options.max_tau_fraction;
+  result.max_passes = options.max_passes;
   result.combine = options.combine;
   result.start_s = static_cast<double>(first) / recording.rate_hz;
   result.end_s = static_cast<double>(last) / recording.rate_hz;
@@ -162,6 +211,10 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   std::vector<std::exception_ptr> errors(num_axes);
   std::atomic<size_t> next{0};
   std::mutex progress_mutex;
+  // The fit's relative intervals depend only on N, the averaging times and their strides: one
+  // table for every axis, made by the first thread that needs it.
+  std::once_flag intervals_once;
+  std::optional<FitIntervals> intervals;
   // Axes run in parallel; threads left over (fewer axes than threads) split each axis's passes.
   const int total_threads =
       options.num_threads > 0 ? options.num_threads
@@ -169,6 +222,7 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
   const int threads = std::min<int>(total_threads, static_cast<int>(num_axes));
   const int threads_per_axis = std::max(1, total_threads / threads);
   auto work = [&]() {
+    std::vector<double> scratch;  // the strided sums' window, reused by this thread's next axis
     for (size_t a = next++; a < num_axes; a = next++) {
       AxisSeries& series = recording.axes[a];
       AxisAllan& axis = result.axes[a];
@@ -178,8 +232,9 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
       try {
         const IntegratedSignal signal(std::move(series.samples), recording.rate_hz, axis.name);
         axis.mean = signal.mean();
-        axis.curve = signal.Deviation(sizes, threads_per_axis);
-        axis.fit = FitNoise(axis.curve, options.fit);
+        axis.curve = signal.Deviation(sizes, strides, threads_per_axis, &scratch);
+        std::call_once(intervals_once, [&] { intervals.emplace(n, sizes, strides, options.fit); });
+        axis.fit = FitNoise(axis.curve, options.fit, &*intervals);
       } catch (...) {
         errors[a] = std::current_exception();
         continue;

@@ -8,22 +8,20 @@
 #include <thread>
 #include <utility>
 
+#include "second_differences.h"
+#include "splinecal/allan/work_budget.h"
 #include "splinecal/error.h"
+#include "strided_sums.h"
 
 namespace splinecal {
 namespace {
 
-// The kernel: squared second differences of the stored sums a (sums_ of IntegratedSignal),
-//   sum_{j in block} (a[j + 2m] - 2 a[j + m] + a[j])^2,
-// summed over blocks of at most kBlock terms in double, in kLanes interleaved accumulators
-// (independent add chains the compiler keeps in vector registers, so the loop is limited by loads,
-// not by the latency of one accumulator). The terms are >= 0, so a block's relative rounding
-// error is below (kBlock / kLanes + kLanes) * 2^-53 ~ 6e-14; block sums are added in long double.
-// The lanes make the result independent of the vector width, so every clone below computes the
-// same bits (ISO C++ mode: no contraction into FMA). Eight lanes: four cluster sizes at once (see
-// BlockSums4) then need 32 accumulators, which AVX2's 16 registers still hold as 8 vectors.
-constexpr int kLanes = 8;
-constexpr int64_t kBlock = 4096;
+using internal::BlockSum;
+using internal::BlockSums4;
+
+// Start indices per block of the near sweep: at most internal::kMaxKernelLength per kernel call
+// (second_differences.h).
+constexpr int64_t kBlock = internal::kMaxKernelLength;
 
 // Memory traffic, not arithmetic, limits a pass over 10^7 samples, so the passes are organised
 // around the cache (a 10^7-sample axis is 80 MB):
@@ -39,83 +37,6 @@ constexpr int64_t kBlock = 4096;
 //    once and is reused twice from cache.
 constexpr int64_t kNearSpan = int64_t{1} << 21;
 constexpr int64_t kChunk = 8192;
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// One portable build, code paths chosen when the program loads (GCC function multi-versioning):
-// AVX-512 or AVX2 where the CPU has them, SSE2 otherwise. Same results (see kLanes).
-#define SPLINECAL_ALLAN_CLONES \
-  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define SPLINECAL_ALLAN_CLONES
-#endif
-
-SPLINECAL_ALLAN_CLONES
-double BlockSum(const double* a0, const double* a1, const double* a2, int64_t length) {
-  double acc[kLanes] = {};
-  int64_t j = 0;
-  for (; j + kLanes <= length; j += kLanes) {
-    for (int lane = 0; lane < kLanes; ++lane) {
-      const double d = a2[j + lane] - 2.0 * a1[j + lane] + a0[j + lane];
-      acc[lane] += d * d;
-    }
-  }
-  for (; j < length; ++j) {
-    const double d = a2[j] - 2.0 * a1[j] + a0[j];
-    acc[j % kLanes] += d * d;
-  }
-  // Pairwise reduction of the lanes.
-  for (int width = kLanes / 2; width >= 1; width /= 2) {
-    for (int lane = 0; lane < width; ++lane) acc[lane] += acc[lane + width];
-  }
-  return acc[0];
-}
-
-// BlockSum for four cluster sizes m_g over the same start indices: a0 = a + j is loaded once for
-// all four (9 loads per 4 terms instead of 12; 30% less time with the single sweep above). Each
-// m's lanes add their terms in the same order as BlockSum, so both give the same bits.
-SPLINECAL_ALLAN_CLONES
-void BlockSums4(const double* a0,
-                const double* const* a1,
-                const double* const* a2,
-                int64_t length,
-                double* sums) {
-  double acc[4][kLanes] = {};
-  const double* const b0 = a1[0];
-  const double* const b1 = a1[1];
-  const double* const b2 = a1[2];
-  const double* const b3 = a1[3];
-  const double* const c0 = a2[0];
-  const double* const c1 = a2[1];
-  const double* const c2 = a2[2];
-  const double* const c3 = a2[3];
-  int64_t j = 0;
-  for (; j + kLanes <= length; j += kLanes) {
-    for (int lane = 0; lane < kLanes; ++lane) {
-      const int64_t k = j + lane;
-      const double x = a0[k];
-      const double d0 = c0[k] - 2.0 * b0[k] + x;
-      const double d1 = c1[k] - 2.0 * b1[k] + x;
-      const double d2 = c2[k] - 2.0 * b2[k] + x;
-      const double d3 = c3[k] - 2.0 * b3[k] + x;
-      acc[0][lane] += d0 * d0;
-      acc[1][lane] += d1 * d1;
-      acc[2][lane] += d2 * d2;
-      acc[3][lane] += d3 * d3;
-    }
-  }
-  for (; j < length; ++j) {
-    for (int g = 0; g < 4; ++g) {
-      const double d = a2[g][j] - 2.0 * a1[g][j] + a0[j];
-      acc[g][j % kLanes] += d * d;
-    }
-  }
-  for (int g = 0; g < 4; ++g) {
-    for (int width = kLanes / 2; width >= 1; width /= 2) {
-      for (int lane = 0; lane < width; ++lane) acc[g][lane] += acc[g][lane + width];
-    }
-    sums[g] = acc[g][0];
-  }
-}
 
 // sum_{j=0}^{count-1} (a[j + 2m] - 2 a[j + m] + a[j])^2 for one far m (comb traversal).
 long double FarSum(const double* a, int64_t m, int64_t count) {
@@ -197,6 +118,14 @@ std::vector<int64_t> AllanClusterSizes(int64_t num_samples,
 
 double AllanRelativeError(int64_t num_samples, int64_t m) {
   const int64_t clusters = num_samples / m;
+  if (clusters < 2) return std::numeric_limits<double>::infinity();
+  return 1.0 / std::sqrt(2.0 * static_cast<double>(clusters - 1));
+}
+
+double AllanRelativeError(int64_t num_samples, int64_t m, int64_t stride) {
+  if (stride == 1) return AllanRelativeError(num_samples, m);
+  // A strided estimate has at most as many independent terms as it has terms (allan/edf.h).
+  const int64_t clusters = std::min(num_samples / m, AllanTermCount(num_samples, m, stride));
   if (clusters < 2) return std::numeric_limits<double>::infinity();
   return 1.0 / std::sqrt(2.0 * static_cast<double>(clusters - 1));
 }
@@ -339,17 +268,53 @@ std::vector<double> IntegratedSignal::Variances(const std::vector<int64_t>& clus
 
 AllanCurve IntegratedSignal::Deviation(const std::vector<int64_t>& cluster_sizes,
                                        int num_threads) const {
+  return Deviation(cluster_sizes, std::vector<int64_t>(cluster_sizes.size(), 1), num_threads);
+}
+
+AllanCurve IntegratedSignal::Deviation(const std::vector<int64_t>& cluster_sizes,
+                                       const std::vector<int64_t>& strides,
+                                       int num_threads,
+                                       std::vector<double>* scratch) const {
+  if (strides.size() != cluster_sizes.size()) {
+    throw Error("got " + std::to_string(strides.size()) + " strides for " +
+                std::to_string(cluster_sizes.size()) + " cluster sizes");
+  }
+  const int64_t n = num_samples();
+  const int64_t largest_stride =
+      strides.empty() ? 1 : *std::max_element(strides.begin(), strides.end());
+  for (size_t i = 0; i < cluster_sizes.size(); ++i) {
+    CheckClusterSize(cluster_sizes[i]);
+    if (strides[i] < 1 || largest_stride % strides[i] != 0) {
+      throw Error("stride " + std::to_string(strides[i]) + " does not divide the largest, " +
+                  std::to_string(largest_stride));
+    }
+  }
   AllanCurve curve;
   curve.rate_hz = rate_hz_;
-  curve.num_samples = num_samples();
+  curve.num_samples = n;
   curve.cluster_sizes = cluster_sizes;
-  const std::vector<double> variances = Variances(cluster_sizes, num_threads);
+  curve.strides = strides;
+  std::vector<double> variances;
+  if (largest_stride == 1) {
+    // The overlapping estimator: the near sweep and the comb.
+    variances = Variances(cluster_sizes, num_threads);
+  } else {
+    const std::vector<long double> sums = internal::StridedSecondDifferenceSums(
+        sums_.data(), n, cluster_sizes, strides, num_threads, scratch);
+    for (size_t i = 0; i < cluster_sizes.size(); ++i) {
+      const long double m = static_cast<long double>(cluster_sizes[i]);
+      const long double terms =
+          static_cast<long double>(AllanTermCount(n, cluster_sizes[i], strides[i]));
+      variances.push_back(static_cast<double>(sums[i] / (2.0L * m * m * terms)));
+    }
+  }
   for (size_t i = 0; i < cluster_sizes.size(); ++i) {
     const int64_t m = cluster_sizes[i];
     const double adev = std::sqrt(variances[i]);
     curve.tau_s.push_back(static_cast<double>(m) / rate_hz_);
     curve.adev.push_back(adev);
-    curve.adev_error.push_back(adev * AllanRelativeError(num_samples(), m));
+    curve.adev_error.push_back(adev * AllanRelativeError(n, m, strides[i]));
+    curve.num_terms.push_back(AllanTermCount(n, m, strides[i]));
   }
   return curve;
 }

@@ -1,4 +1,5 @@
 // The text files of `splinecal allan --out DIR` (allan/allan.h): allan.csv, result.yaml, imu.yaml.
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -71,6 +72,42 @@ std::string KeyComment(const char* name, const KalibrKey& key, CombineAxes combi
   return text + "\n";
 }
 
+// The work budget (allan/work_budget.h): what the deviation evaluated per axis, in passes (N
+// terms each), and which averaging times were strided (per averaging time: allan.csv).
+void WriteWorkBudget(const AllanResult& result, YamlWriter* yaml) {
+  yaml->Scalar("max_passes", result.max_passes);
+  if (result.axes.empty()) return;
+  const AllanCurve& curve = result.axes.front().curve;
+  int64_t overlapping = 0;
+  int64_t used = 0;
+  int strided = 0;
+  Eigen::VectorXd tau_range(2);
+  Eigen::VectorXd stride_range(2);
+  for (size_t i = 0; i < curve.strides.size(); ++i) {
+    overlapping += AllanTermCount(curve.num_samples, curve.cluster_sizes[i], 1);
+    used += curve.num_terms[i];
+    if (curve.strides[i] == 1) continue;
+    const double stride = static_cast<double>(curve.strides[i]);
+    if (strided++ == 0) {
+      tau_range << curve.tau_s[i], curve.tau_s[i];
+      stride_range << stride, stride;
+    }
+    tau_range[1] = std::max(tau_range[1], curve.tau_s[i]);
+    stride_range[0] = std::min(stride_range[0], stride);
+    stride_range[1] = std::max(stride_range[1], stride);
+  }
+  const double n = static_cast<double>(curve.num_samples);
+  yaml->Comment("passes of N second differences per axis: all start indices, and those used");
+  yaml->Scalar("overlapping_passes", static_cast<double>(overlapping) / n);
+  yaml->Scalar("passes_used", static_cast<double>(used) / n);
+  yaml->Scalar("strided_averaging_times", strided);
+  if (strided > 0) {
+    yaml->Comment("every s-th start index (s: stride, per averaging time in allan.csv)");
+    yaml->Vector("strided_tau_range_s", tau_range);
+    yaml->Vector("stride_range", stride_range);
+  }
+}
+
 }  // namespace
 
 std::string AllanCsvText(const AllanResult& result) {
@@ -78,14 +115,16 @@ std::string AllanCsvText(const AllanResult& result) {
   for (const AxisAllan& axis : result.axes) text += "," + axis.name;
   for (const AxisAllan& axis : result.axes) text += "," + axis.name + "_low";
   for (const AxisAllan& axis : result.axes) text += "," + axis.name + "_high";
-  text += "\n";
+  text += ",stride,terms\n";
   const size_t rows = result.axes.empty() ? 0 : result.axes.front().curve.tau_s.size();
   for (size_t i = 0; i < rows; ++i) {
     text += FormatDouble(result.axes.front().curve.tau_s[i]);
     for (const AxisAllan& axis : result.axes) text += "," + FormatDouble(axis.curve.adev[i]);
     for (const AxisAllan& axis : result.axes) text += "," + FormatDouble(axis.fit.adev_low[i]);
     for (const AxisAllan& axis : result.axes) text += "," + FormatDouble(axis.fit.adev_high[i]);
-    text += "\n";
+    const AllanCurve& curve = result.axes.front().curve;
+    text +=
+        "," + std::to_string(curve.strides[i]) + "," + std::to_string(curve.num_terms[i]) + "\n";
   }
   return text;
 }
@@ -102,6 +141,7 @@ std::string AllanResultYamlText(const AllanResult& result) {
   yaml.Scalar("end_s", result.end_s);
   yaml.Scalar("taus_per_decade", result.taus_per_decade);
   yaml.Scalar("max_tau_fraction", result.max_tau_fraction);
+  WriteWorkBudget(result, &yaml);
   yaml.Scalar("combine", std::string(result.combine == CombineAxes::kMax ? "max" : "mean"));
   yaml.Scalar("motion_detected", result.motion.moving);
   if (result.motion.moving) {

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "splinecal/allan/work_budget.h"
+
 namespace splinecal {
 namespace {
 
@@ -103,6 +105,13 @@ double OverlappingAllanEdf(PowerLawNoise noise, int64_t num_samples, int64_t m) 
       break;
   }
   return std::isfinite(edf) ? std::max(edf, kMinimumEdf) : kMinimumEdf;
+}
+
+double StridedAllanEdf(PowerLawNoise noise, int64_t num_samples, int64_t m, int64_t stride) {
+  const double overlapping = OverlappingAllanEdf(noise, num_samples, m);
+  if (stride == 1) return overlapping;
+  const double terms = static_cast<double>(AllanTermCount(num_samples, m, stride));
+  return std::max(kMinimumEdf, std::min(overlapping, terms));
 }
 
 double RegularizedGammaP(double a, double x) {

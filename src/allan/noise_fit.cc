@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,9 +27,16 @@ struct Points {
   std::vector<double> tau;
   std::vector<double> adev;
   std::vector<int64_t> m;
+  std::vector<int64_t> stride;  // of the start indices (allan/work_budget.h)
+  std::vector<size_t> index;    // in the curve
   int64_t num_samples = 0;
   int size() const { return static_cast<int>(tau.size()); }
 };
+
+// The stride of point i; a curve built by hand has none: every start index.
+int64_t StrideOf(const AllanCurve& curve, size_t i) {
+  return curve.strides.empty() ? 1 : curve.strides.at(i);
+}
 
 std::string Seconds(double tau_s) { return StringPrintf("%.3g s", tau_s); }
 
@@ -40,18 +48,23 @@ std::string SlopeText(double slope) {
   return "+1";
 }
 
-// The curve with each point's interval from `term`'s EDF (allan/edf.h). weight: 1 / variance of
+// The curve with each point's interval from `term`'s EDF (allan/edf.h; the relative intervals
+// from `intervals`, at its confidence or its bound confidence). weight: 1 / variance of
 // ln(adev) ~ 2 edf (ln of a chi-square with edf degrees of freedom over edf has variance ~ 2 /
 // edf; ln adev is half of it).
-std::vector<LogPoint> IntervalsFor(NoiseTerm term, const Points& p, double confidence) {
+std::vector<LogPoint> IntervalsFor(NoiseTerm term,
+                                   const Points& p,
+                                   const FitIntervals& intervals,
+                                   bool bound) {
   std::vector<LogPoint> points(p.size());
   for (int i = 0; i < p.size(); ++i) {
-    const double edf = OverlappingAllanEdf(NoiseTermNoiseType(term), p.num_samples, p.m[i]);
-    const DeviationInterval interval = AllanDeviationInterval(p.adev[i], edf, confidence);
+    const double edf =
+        StridedAllanEdf(NoiseTermNoiseType(term), p.num_samples, p.m[i], p.stride[i]);
+    const DeviationInterval& relative = intervals.Relative(term, bound, p.index[i]);
     points[i] = {std::log(p.tau[i]),
                  std::log(p.adev[i]),
-                 std::log(interval.low),
-                 std::log(interval.high),
+                 std::log(p.adev[i] * relative.low),
+                 std::log(p.adev[i] * relative.high),
                  2.0 * edf};
   }
   return points;
@@ -373,7 +386,9 @@ std::string ModelNote(NoiseTerm term, const TermEstimate& slope_line, const Term
 
 }  // namespace
 
-AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
+AxisNoiseFit FitNoise(const AllanCurve& curve,
+                      const NoiseFitOptions& options,
+                      const FitIntervals* intervals) {
   CHECK_EQ(curve.tau_s.size(), curve.adev.size());
   CHECK_EQ(curve.cluster_sizes.size(), curve.adev.size());
   if (!(options.confidence > 0.0 && options.confidence < 1.0)) {
@@ -389,13 +404,21 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
     p.tau.push_back(curve.tau_s[i]);
     p.adev.push_back(curve.adev[i]);
     p.m.push_back(curve.cluster_sizes[i]);
+    p.stride.push_back(StrideOf(curve, i));
+    p.index.push_back(i);
   }
+  std::optional<FitIntervals> own_intervals;
+  if (intervals == nullptr) {
+    intervals =
+        &own_intervals.emplace(curve.num_samples, curve.cluster_sizes, curve.strides, options);
+  }
+  CHECK(intervals->Fits(curve)) << "FitIntervals made for another curve";
   const int size = p.size();
   std::array<std::vector<LogPoint>, kNumNoiseTerms> points;
   std::array<std::vector<LogPoint>, kNumNoiseTerms> bound_points;
   for (int j = 0; j < kNumNoiseTerms; ++j) {
-    points[j] = IntervalsFor(static_cast<NoiseTerm>(j), p, options.confidence);
-    bound_points[j] = IntervalsFor(static_cast<NoiseTerm>(j), p, options.bound_confidence);
+    points[j] = IntervalsFor(static_cast<NoiseTerm>(j), p, *intervals, false);
+    bound_points[j] = IntervalsFor(static_cast<NoiseTerm>(j), p, *intervals, true);
   }
   auto of = [&](NoiseTerm term) -> const std::vector<LogPoint>& {
     return points[static_cast<int>(term)];
@@ -507,11 +530,10 @@ AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options) {
     const auto variances = fit.model.TermVariances(curve.tau_s[i]);
     const int dominant =
         static_cast<int>(std::max_element(variances.begin(), variances.end()) - variances.begin());
-    const double edf = OverlappingAllanEdf(NoiseTermNoiseType(static_cast<NoiseTerm>(dominant)),
-                                           curve.num_samples,
-                                           curve.cluster_sizes[i]);
-    const DeviationInterval interval =
-        AllanDeviationInterval(curve.adev[i], edf, options.confidence);
+    const DeviationInterval& relative =
+        intervals->Relative(static_cast<NoiseTerm>(dominant), false, i);
+    const DeviationInterval interval = {curve.adev[i] * relative.low,
+                                        curve.adev[i] * relative.high};
     fit.adev_low[i] = interval.low;
     fit.adev_high[i] = interval.high;
   }

@@ -272,7 +272,8 @@ CalibrationResult CalibrationProblem::Run() {
   const SolverOptions solver = spline_->ResolvedSolverOptions(options_.solver);
   ceres::Solver::Options solver_options = ToCeresOptions(solver, 0.0, nullptr);
   solver_options.update_state_every_iteration = true;  // for the StopWhen callbacks
-  SolveRounds rounds(solver_options, options_.solver.progress, options_.solver.stop);
+  SolveRounds rounds(
+      solver_options, options_.solver.progress, options_.solver.stop, solver.warm_start_rounds);
   for (int round = 1; round <= solver.max_rounds; ++round) {
     BuildProblem();
     if (frame_residuals_.empty() && landmark_residuals_.empty()) {

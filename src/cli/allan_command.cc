@@ -18,6 +18,12 @@
 #include "splinecal/string_printf.h"
 
 DEFINE_int32(taus_per_decade, 10, "Averaging times per decade (before de-duplication)");
+DEFINE_int32(max_passes,
+             splinecal::kDefaultAllanMaxPasses,
+             "Work budget: at most P * N second differences per axis (P passes over the N "
+             "samples). Averaging times that fit use every start index (the fully overlapping "
+             "estimator); beyond the budget the short ones use every s-th (their EDF and "
+             "intervals say so). 0: no budget, always fully overlapping");
 DEFINE_double(max_tau_fraction,
               0.1,
               "Longest averaging time as a fraction of the record length, in (0, 0.5]");
@@ -71,6 +77,13 @@ AllanInputs ReadAllanInputs() {
   AllanOptions& options = in.options;
   options.taus_per_decade = FLAGS_taus_per_decade;
   options.max_tau_fraction = FLAGS_max_tau_fraction;
+  if (FLAGS_max_passes < 0) {
+    throw Error(
+        StringPrintf("--max-passes: expected 0 (no budget) or a positive number of passes, "
+                     "got %d",
+                     FLAGS_max_passes));
+  }
+  options.max_passes = FLAGS_max_passes;
   if (FLAGS_combine == "mean") {
     options.combine = CombineAxes::kMean;
   } else if (FLAGS_combine == "max") {
@@ -156,10 +169,9 @@ Command AllanCommand() {
       "IMU noise densities from a static recording (Allan deviation, Kalibr imu.yaml)";
   command.usage =
       "splinecal allan (--imu imu0/data.csv | --columns FILE --rate HZ [--sensor gyro|accel])\n"
-      "    [--taus-per-decade N] [--max-tau-fraction F] [--combine mean|max] [--gyro-scale S]\n"
-      "    [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g] [--start S] [--end "
-      "S]\n"
-      "    [--allow-motion] --out DIR";
+      "    [--taus-per-decade N] [--max-tau-fraction F] [--max-passes P] [--combine mean|max]\n"
+      "    [--gyro-scale S] [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g]\n"
+      "    [--start S] [--end S] [--allow-motion] --out DIR";
   command.description =
       "Computes the overlapping Allan deviation of every axis at log-spaced averaging times and "
       "decides each noise term from the measured curve: a term (quantization -1, white noise N "
@@ -168,9 +180,12 @@ Command AllanCommand() {
       "overlapping estimator) follow its slope over a stated range and rule out the neighbouring "
       "slopes; otherwise it is reported as an upper bound with the reason. The IEEE Std 952 "
       "model fit is a second opinion. A recording that moves is refused (--allow-motion: marked "
-      "unreliable); --start/--end cut a static stretch out of a longer log. Writes allan.csv "
-      "(tau_s, deviation and error per axis), imu.yaml (Kalibr "
-      "densities, not per-sample standard deviations), result.yaml (every term per axis) and "
+      "unreliable); --start/--end cut a static stretch out of a longer log. Beyond a work budget "
+      "(--max-passes) the short averaging times use every s-th start index, with intervals from "
+      "their own degrees of freedom, so that the time hardly grows with --taus-per-decade. "
+      "Writes allan.csv (tau_s, deviation and interval per axis, the stride and number of terms "
+      "of each averaging time), imu.yaml (Kalibr densities, not per-sample standard "
+      "deviations), result.yaml (every term per axis) and "
       "allan.svg (log-log plot). The recording must be static: the IMU at rest for its whole "
       "length (hours for the random walk). See docs/allan.md.";
   command.flags = {{"imu",
@@ -182,6 +197,7 @@ Command AllanCommand() {
                    {"out", ""},
                    {"taus_per_decade", ""},
                    {"max_tau_fraction", ""},
+                   {"max_passes", ""},
                    {"combine", ""},
                    {"start",
                     "Start of the stretch to analyse, seconds after the first sample (sample "

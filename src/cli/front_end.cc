@@ -14,6 +14,7 @@
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
+#include "splinecal/memory_reuse.h"
 #include "splinecal/string_printf.h"
 
 #ifndef SPLINECAL_VERSION
@@ -183,6 +184,7 @@ void Progress(const std::string& line) {
 }
 
 int Main(int argc, char** argv) {
+  KeepFreedMemoryForReuse();  // splinecal/memory_reuse.h: each page faulted once
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argc > 0 ? argv[0] : "splinecal");
   const std::vector<std::string> args(argv + (argc > 0 ? 1 : 0), argv + argc);

@@ -171,6 +171,29 @@ class ProgressCallback : public ceres::IterationCallback {
   std::function<void(const std::string&)> progress_;
 };
 
+// Ends the solve once kRejectedSteps consecutive steps below kRoundingStep were rejected: the
+// cost then sits at its rounding floor, and Levenberg-Marquardt would only shrink its trust
+// region, rejecting step after step at the same parameters, until the parameter tolerance ends
+// the solve there (the resampling of calibrate's initial guess: 2 useful iterations, then 6
+// rejected ones of 0.11 s each). Rejected steps leave the parameters as they are, so the result
+// is the one the tolerance would have ended on.
+class RoundingFloorStop : public ceres::IterationCallback {
+ public:
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    const bool stuck = summary.iteration > 0 && !summary.step_is_successful &&
+                       summary.step_norm < kRoundingStep;
+    rejected_ = stuck ? rejected_ + 1 : 0;
+    return rejected_ >= kRejectedSteps ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                                       : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  // A step of a micrometre (and microradian) over all control poses together.
+  static constexpr double kRoundingStep = 1e-6;
+  static constexpr int kRejectedSteps = 2;
+  int rejected_ = 0;
+};
+
 }  // namespace
 
 namespace internal {
@@ -298,6 +321,8 @@ PoseFitResult FitControlPoses(const std::vector<StampedPose>& poses,
   solver_options.gradient_tolerance = 1e-14;
   solver_options.parameter_tolerance = 1e-12;
   solver_options.logging_type = ceres::SILENT;
+  RoundingFloorStop rounding_floor_stop;
+  solver_options.callbacks.push_back(&rounding_floor_stop);
   std::unique_ptr<ProgressCallback> callback;
   if (options.progress) {
     callback = std::make_unique<ProgressCallback>(options.progress);
@@ -314,7 +339,9 @@ PoseFitResult FitControlPoses(const std::vector<StampedPose>& poses,
     result.control_poses[i] = PoseFromBlock(blocks[i].data());
   }
   result.iterations = static_cast<int>(summary.iterations.size());
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  // USER_SUCCESS: stopped at the rounding floor (RoundingFloorStop), converged as well.
+  result.converged = summary.termination_type == ceres::CONVERGENCE ||
+                     summary.termination_type == ceres::USER_SUCCESS;
   result.solver_report = summary.BriefReport();
   PoseFitErrors(result.MakeSpline(), poses, &result);
   return result;

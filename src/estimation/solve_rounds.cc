@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -63,6 +64,10 @@ const ceres::Solver::Summary& SolveRounds::Solve(
     round_options.callbacks.push_back(stop.get());
   }
   for (ceres::IterationCallback* callback : callbacks) round_options.callbacks.push_back(callback);
+  if (warm_start_rounds_ && rounds_ > 0 && !last_.iterations.empty()) {
+    round_options.initial_trust_region_radius =
+        std::min(last_.iterations.back().trust_region_radius, options_.max_trust_region_radius);
+  }
   const auto start = std::chrono::steady_clock::now();
   ceres::Solve(round_options, problem, &last_);
   solve_time_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -75,7 +80,8 @@ const ceres::Solver::Summary& SolveRounds::Solve(
 SolveRounds::SolveRounds(const SolverOptions& options, double jacobian_entries)
     : options_(ToCeresOptions(options, jacobian_entries, &linear_solver_)),
       progress_(options.progress),
-      stop_(options.stop) {}
+      stop_(options.stop),
+      warm_start_rounds_(options.warm_start_rounds) {}
 
 SolveSummary SolveRounds::Summary() const {
   SolveSummary summary;

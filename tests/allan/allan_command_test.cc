@@ -7,11 +7,16 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "splinecal/allan/allan_deviation.h"
+#include "splinecal/allan/work_budget.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/io/static_recording.h"
 #include "splinecal/units.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
@@ -54,6 +59,25 @@ std::string WriteStaticEuroc(const TempDir& dir,
   std::ostringstream text;
   WriteEurocImu(samples, &text);
   return dir.Write(name, text.str());
+}
+
+// allan.csv as named columns of numbers.
+std::map<std::string, std::vector<double>> ReadAllanCsv(const std::string& path) {
+  std::istringstream text(testing::ReadFileText(path));
+  std::string line;
+  std::getline(text, line);
+  std::vector<std::string> names;
+  std::istringstream header(line.substr(1));  // after '#'
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(text, line)) {
+    std::istringstream row(line);
+    std::string field;
+    for (size_t i = 0; std::getline(row, field, ','); ++i) {
+      columns[names.at(i)].push_back(std::stod(field));
+    }
+  }
+  return columns;
 }
 
 TEST(AllanCommand, WritesItsFourFiles) {
@@ -104,8 +128,10 @@ TEST(AllanCommand, PlainColumnsOfOneSensor) {
               1.0,
               0.05);
   EXPECT_FALSE(result["accelerometer"]);
-  EXPECT_THAT(testing::ReadFileText(dir.File("out/allan.csv")),
-              StartsWith("#tau_s,gyro_x,gyro_y,gyro_x_low,gyro_y_low,gyro_x_high,gyro_y_high\n"));
+  EXPECT_THAT(
+      testing::ReadFileText(dir.File("out/allan.csv")),
+      StartsWith("#tau_s,gyro_x,gyro_y,gyro_x_low,gyro_y_low,gyro_x_high,gyro_y_high,stride,"
+                 "terms\n"));
 }
 
 TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {
@@ -143,6 +169,7 @@ TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {
       {{"--columns", dir.Write("c.txt", "1\n2\n")}, "--rate"},
       {{"--imu", dir.File("nan.csv"), "--combine", "median"}, "--combine"},
       {{"--imu", dir.File("nan.csv"), "--max-tau-fraction", "0.7"}, "max tau fraction"},
+      {{"--imu", dir.File("nan.csv"), "--max-passes", "-1"}, "--max-passes"},
   };
   for (const Case& c : cases) {
     // --quiet: progress lines aside, the error is the one line on stderr.
@@ -154,6 +181,74 @@ TEST(AllanCommand, BadInputExitsTwoWithOneLineAndNoFiles) {
     EXPECT_EQ(CountLines(run.err), 1) << run.err;
     EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml")) << c.message;
   }
+}
+
+// 1000 averaging times per decade: within the default budget of 100 passes, the short ones
+// strided, allan.csv and result.yaml say which start indices each used.
+TEST(AllanCommand, ThousandTausPerDecadeStrideWithinTheBudget) {
+  TempDir dir;
+  constexpr int kRows = 200 * 600;
+  const std::string imu = WriteStaticEuroc(dir, "imu0.csv", kRows);
+  const testing::ToolResult run =
+      RunTool({"allan", "--imu", imu, "--out", dir.File("out"), "--taus-per-decade", "1000"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("use every s-th start index"));
+  const auto csv = ReadAllanCsv(dir.File("out/allan.csv"));
+  const std::vector<int64_t> sizes = AllanClusterSizes(kRows, 1000, 0.1);
+  ASSERT_EQ(csv.at("tau_s").size(), sizes.size());
+  double terms = 0.0;
+  int strided = 0;
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    const int64_t stride = static_cast<int64_t>(csv.at("stride")[i]);
+    EXPECT_EQ(csv.at("terms")[i], static_cast<double>(AllanTermCount(kRows, sizes[i], stride)))
+        << i;
+    terms += csv.at("terms")[i];
+    strided += stride > 1;
+    EXPECT_GT(csv.at("gyro_x")[i], 0.0);
+    EXPECT_LT(csv.at("gyro_x_low")[i], csv.at("gyro_x")[i]);
+  }
+  EXPECT_LE(terms, 100.0 * kRows);
+  EXPECT_GT(strided, 0);
+  const YAML::Node result = testing::LoadStrictYamlFile(dir.File("out/result.yaml"));
+  EXPECT_EQ(result["max_passes"].as<int>(), 100);
+  EXPECT_EQ(result["strided_averaging_times"].as<int>(), strided);
+  EXPECT_DOUBLE_EQ(result["passes_used"].as<double>(), terms / kRows);
+  // The white noise, read off the densest curve, still within the usual 5%.
+  EXPECT_NEAR(result["gyroscope_noise_density"].as<double>() / 1.6968e-4, 1.0, 0.05);
+}
+
+// --max-passes 0: no budget, the fully overlapping curve at every averaging time, bit for bit the
+// library's OverlappingAllanDeviation of the same samples.
+TEST(AllanCommand, MaxPassesZeroGivesTheExactCurve) {
+  TempDir dir;
+  constexpr int kRows = 200 * 600;
+  const std::string imu = WriteStaticEuroc(dir, "imu0.csv", kRows);
+  const testing::ToolResult run = RunTool({"allan",
+                                           "--imu",
+                                           imu,
+                                           "--out",
+                                           dir.File("out"),
+                                           "--taus-per-decade",
+                                           "1000",
+                                           "--max-passes",
+                                           "0",
+                                           "--quiet"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto csv = ReadAllanCsv(dir.File("out/allan.csv"));
+  const std::vector<int64_t> sizes = AllanClusterSizes(kRows, 1000, 0.1);
+  StaticRecording recording = ReadEurocStaticRecording(imu);
+  for (const AxisSeries& axis : recording.axes) {
+    const AllanCurve exact =
+        OverlappingAllanDeviation(axis.samples, recording.rate_hz, sizes, axis.name());
+    EXPECT_EQ(csv.at(axis.name()), exact.adev) << axis.name();
+  }
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    EXPECT_EQ(csv.at("stride")[i], 1.0);
+    EXPECT_EQ(csv.at("terms")[i], static_cast<double>(kRows - 2 * sizes[i] + 1));
+  }
+  const YAML::Node result = testing::LoadStrictYamlFile(dir.File("out/result.yaml"));
+  EXPECT_EQ(result["max_passes"].as<int>(), 0);
+  EXPECT_EQ(result["strided_averaging_times"].as<int>(), 0);
 }
 
 // Real recordings that move all the time: the EuRoC calibration sequence (waved in front of the

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "allan/static_series.h"
@@ -119,14 +120,18 @@ TEST(AllanOutputs, CsvAndYamlLayouts) {
   EXPECT_THAT(csv,
               StartsWith("#tau_s,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z,gyro_x_low,"
                          "gyro_y_low,gyro_z_low,accel_x_low,accel_y_low,accel_z_low,gyro_x_high,"
-                         "gyro_y_high,gyro_z_high,accel_x_high,accel_y_high,accel_z_high\n"
-                         "0.0050000000000000001,"));
+                         "gyro_y_high,gyro_z_high,accel_x_high,accel_y_high,accel_z_high,stride,"
+                         "terms\n0.0050000000000000001,"));
   int rows = 0;
   for (char c : csv) rows += c == '\n';
   EXPECT_EQ(rows, 1 + static_cast<int>(result.axes[0].curve.tau_s.size()));
 
   const YAML::Node yaml = testing::LoadStrictYaml(AllanResultYamlText(result));
   EXPECT_DOUBLE_EQ(yaml["update_rate"].as<double>(), 200.0);
+  EXPECT_EQ(yaml["max_passes"].as<int>(), kDefaultAllanMaxPasses);
+  EXPECT_EQ(yaml["strided_averaging_times"].as<int>(), 0);
+  EXPECT_DOUBLE_EQ(yaml["passes_used"].as<double>(), yaml["overlapping_passes"].as<double>());
+  EXPECT_FALSE(yaml["stride_range"]);
   EXPECT_DOUBLE_EQ(yaml["gyroscope_noise_density"].as<double>(),
                    result.gyroscope_noise_density.value);
   EXPECT_FALSE(yaml["accelerometer_random_walk_is_upper_bound"].as<bool>());
@@ -148,6 +153,49 @@ TEST(AllanOutputs, CsvAndYamlLayouts) {
   EXPECT_THAT(svg, HasSubstr("accelerometer z"));
   EXPECT_THAT(svg, Not(HasSubstr("nan")));
   EXPECT_EQ(svg, AllanSvgText(result));
+}
+
+// Beyond the work budget the short averaging times are strided; the files say which, and the
+// densities stay those of the exact curve within a percent (the white noise is read where the
+// strided points still have thousands of degrees of freedom: intervals of about 1%).
+TEST(AllanOutputs, WorkBudgetStridesTheShortAveragingTimes) {
+  AllanOptions exact_options;
+  exact_options.taus_per_decade = 100;
+  exact_options.max_passes = 0;
+  const AllanResult exact = ComputeAllan(SimulatedRecording(1200.0, 10), exact_options);
+  AllanOptions options = exact_options;
+  options.max_passes = 10;
+  std::vector<std::string> progress;
+  options.progress = [&](const std::string& line) { progress.push_back(line); };
+  const AllanResult result = ComputeAllan(SimulatedRecording(1200.0, 10), options);
+  ASSERT_FALSE(progress.empty());
+  EXPECT_THAT(progress.front(), HasSubstr("use every s-th start index, s = "));
+  const AllanCurve& curve = result.axes[0].curve;
+  ASSERT_EQ(curve.strides.size(), curve.adev.size());
+  EXPECT_GT(curve.strides.front(), 1);
+  int64_t terms = 0;
+  for (const int64_t t : curve.num_terms) terms += t;
+  EXPECT_LE(terms, 10 * result.num_samples);
+  const YAML::Node yaml = testing::LoadStrictYaml(AllanResultYamlText(result));
+  EXPECT_EQ(yaml["max_passes"].as<int>(), 10);
+  EXPECT_LE(yaml["passes_used"].as<double>(), 10.0);
+  EXPECT_GT(yaml["overlapping_passes"].as<double>(), 100.0);
+  EXPECT_GT(yaml["strided_averaging_times"].as<int>(), 0);
+  EXPECT_DOUBLE_EQ(yaml["strided_tau_range_s"][0].as<double>(), curve.tau_s.front());
+  EXPECT_EQ(yaml["stride_range"][1].as<int64_t>(), curve.strides.front());
+  for (const auto& [key, value] :
+       {std::make_pair(result.gyroscope_noise_density, exact.gyroscope_noise_density),
+        std::make_pair(result.accelerometer_noise_density, exact.accelerometer_noise_density)}) {
+    EXPECT_FALSE(key.upper_bound);
+    EXPECT_NEAR(key.value / value.value, 1.0, 0.01);
+  }
+  EXPECT_THROW(
+      [] {
+        AllanOptions negative;
+        negative.max_passes = -1;
+        ComputeAllan(SimulatedRecording(10.0, 11), negative);
+      }(),
+      Error);
 }
 
 // Two minutes of gyro only: the random walk has no +1/2 region; the key is an upper bound, and

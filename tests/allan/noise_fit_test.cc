@@ -111,6 +111,66 @@ TEST(FitNoise, ExactModelCurveGivesItsTerms) {
   EXPECT_NEAR(fit[NoiseTerm::kWhite].value / truth[NoiseTerm::kWhite], 1.0, 0.03);
 }
 
+// Strided points (allan/work_budget.h) get the intervals of their own EDF, min(overlapping,
+// terms): at N = 10^7 and stride 2^14, about 610 terms against the overlapping estimator's
+// millions, so their intervals are more than ten times wider; unstrided points keep theirs.
+TEST(FitNoise, StridedPointsGetTheirOwnIntervals) {
+  NoiseModel truth;
+  truth[NoiseTerm::kWhite] = 1e-4;
+  truth[NoiseTerm::kRandomWalk] = 1e-6;
+  const AllanCurve plain = ModelCurve(truth, 200.0, 10'000'000);
+  AllanCurve strided = plain;
+  strided.strides.assign(plain.adev.size(), 1);
+  for (int i = 0; i < 5; ++i) strided.strides[i] = 16384;
+  const AxisNoiseFit plain_fit = FitNoise(plain);
+  const AxisNoiseFit strided_fit = FitNoise(strided);
+  for (size_t i = 0; i < plain.adev.size(); ++i) {
+    const double plain_width = plain_fit.adev_high[i] - plain_fit.adev_low[i];
+    const double strided_width = strided_fit.adev_high[i] - strided_fit.adev_low[i];
+    if (i < 5) {
+      EXPECT_GT(strided_width, 10.0 * plain_width) << "tau " << plain.tau_s[i];
+    } else {
+      EXPECT_EQ(strided_width, plain_width) << "tau " << plain.tau_s[i];
+    }
+  }
+  ASSERT_TRUE(strided_fit[NoiseTerm::kWhite].identified) << strided_fit[NoiseTerm::kWhite].reason;
+  EXPECT_NEAR(strided_fit[NoiseTerm::kWhite].value / truth[NoiseTerm::kWhite], 1.0, 0.03);
+}
+
+// One table of relative intervals for every axis of a recording: the same fit, bit for bit, as
+// each axis computing its own.
+TEST(FitNoise, SharedIntervalsGiveTheSameFit) {
+  NoiseModel truth;
+  truth[NoiseTerm::kWhite] = 1e-4;
+  truth[NoiseTerm::kRandomWalk] = 1e-6;
+  AllanCurve curve = ModelCurve(truth, 200.0, 10'000'000);
+  curve.strides.assign(curve.adev.size(), 1);
+  for (int i = 0; i < 8; ++i) curve.strides[i] = 64;
+  const NoiseFitOptions options;
+  const FitIntervals shared(curve.num_samples, curve.cluster_sizes, curve.strides, options);
+  ASSERT_TRUE(shared.Fits(curve));
+  const AxisNoiseFit own = FitNoise(curve, options);
+  const AxisNoiseFit with_shared = FitNoise(curve, options, &shared);
+  EXPECT_EQ(with_shared.adev_low, own.adev_low);
+  EXPECT_EQ(with_shared.adev_high, own.adev_high);
+  for (int j = 0; j < kNumNoiseTerms; ++j) {
+    EXPECT_EQ(with_shared.terms[j].value, own.terms[j].value);
+    EXPECT_EQ(with_shared.terms[j].upper_bound, own.terms[j].upper_bound);
+  }
+  // Relative intervals times adev are AllanDeviationInterval's, bit for bit.
+  const double edf = StridedAllanEdf(PowerLawNoise::kWhiteFm, curve.num_samples, 1, 64);
+  const DeviationInterval direct = AllanDeviationInterval(curve.adev[0], edf, 0.9);
+  EXPECT_EQ(curve.adev[0] * shared.Relative(NoiseTerm::kWhite, false, 0).low, direct.low);
+  EXPECT_EQ(curve.adev[0] * shared.Relative(NoiseTerm::kWhite, false, 0).high, direct.high);
+
+  AllanCurve other = curve;
+  other.strides[0] = 32;
+  EXPECT_FALSE(shared.Fits(other));
+  NoiseFitOptions bad;
+  bad.bound_confidence = 1.0;
+  EXPECT_THROW(FitIntervals(100, {1, 2}, {}, bad), Error);
+}
+
 struct RoundTrip {
   AxisNoiseFit gyro;
   AxisNoiseFit accel;

@@ -28,6 +28,7 @@
 #include "splinecal/allan/allan_deviation.h"
 #include "splinecal/allan/motion.h"
 #include "splinecal/allan/noise_fit.h"
+#include "splinecal/allan/work_budget.h"
 #include "splinecal/imu/static_recording.h"
 
 namespace splinecal {
@@ -41,6 +42,10 @@ enum class MotionPolicy { kRefuse, kMarkUnreliable };
 struct AllanOptions {
   int taus_per_decade = 10;       // averaging times per decade (before de-duplication)
   double max_tau_fraction = 0.1;  // longest averaging time, as a fraction of the record
+  // Work budget: at most max_passes * N second differences per axis (allan/work_budget.h).
+  // Within it every averaging time uses every start index (the overlapping estimator); beyond
+  // it the short ones use every s-th. 0: no budget, always the overlapping estimator.
+  int max_passes = kDefaultAllanMaxPasses;
   CombineAxes combine = CombineAxes::kMean;
   NoiseFitOptions fit;
   // The stretch analysed, in seconds from the first sample (sample index / rate): [start_s,
@@ -81,6 +86,7 @@ struct AllanResult {
   int64_t num_samples = 0;
   int taus_per_decade = 0;
   double max_tau_fraction = 0.0;
+  int max_passes = 0;
   CombineAxes combine = CombineAxes::kMean;
   double start_s = 0.0;  // the stretch analysed, seconds from the recording's first sample
   double end_s = 0.0;
@@ -96,14 +102,15 @@ struct AllanResult {
 // Throws splinecal::Error (naming recording.source when set) for: no axes, axes of different
 // lengths, a rate that is not positive, a sample that is not finite, a constant axis, too few
 // samples for 3 averaging times (the message says how many are needed), an empty --start/--end
-// stretch, or motion under MotionPolicy::kRefuse.
+// stretch, a negative max_passes, or motion under MotionPolicy::kRefuse.
 AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& options = {});
 
 // The smallest number of samples that gives `count` averaging times with these options.
 int64_t MinimumSamplesForAveragingTimes(int count, int taus_per_decade, double max_tau_fraction);
 
 // allan.csv: "#tau_s", one Allan deviation column per axis, then the low and high ends of each
-// axis's confidence interval (gyro in rad/s, accel in m/s^2), 17 significant digits.
+// axis's confidence interval (gyro in rad/s, accel in m/s^2), 17 significant digits; then
+// "stride" and "terms": which start indices each averaging time used (the same for every axis).
 std::string AllanCsvText(const AllanResult& result);
 // result.yaml: Kalibr keys at the top, then gyroscope: {x: {...}, ...}, accelerometer: {...}.
 std::string AllanResultYamlText(const AllanResult& result);

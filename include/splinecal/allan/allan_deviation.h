@@ -20,6 +20,14 @@
 // independent clusters is 1 / sqrt(2 (K - 1)) [IEEE952, annex C], [ElSheimy08]; it is
 // conservative for the overlapping estimator, which uses more (correlated) differences.
 //
+// Under a work budget (allan/work_budget.h) an averaging time may use only every s-th start index
+// k = 0, s, 2s, ...: the same second differences, T = floor((N - 2m) / s) + 1 of them,
+//
+//     AVAR_s(tau) = 1 / (2 tau^2 T) * sum_{k = 0, s, 2s, ... <= N - 2m} d_k^2,
+//     d_k = theta_{k+2m} - 2 theta_{k+m} + theta_k,
+//
+// an unbiased estimate of the same Allan variance; its error bar uses K = min(N / m, T).
+//
 // References: [IEEE952] IEEE Std 952-1997, IEEE Standard Specification Format Guide and Test
 // Procedure for Single-Axis Interferometric Fiber Optic Gyros, annex C; [Riley08] W. J. Riley,
 // "Handbook of Frequency Stability Analysis", NIST SP 1065, 2008; [ElSheimy08] N. El-Sheimy,
@@ -42,6 +50,10 @@ struct AllanCurve {
   std::vector<double> tau_s;           // tau = m / f [s]
   std::vector<double> adev;            // overlapping Allan deviation [unit of y]
   std::vector<double> adev_error;      // 1-sigma error of adev [unit of y]
+  // Every strides[i]-th start index was used, num_terms[i] of them (allan/work_budget.h; stride 1:
+  // the overlapping estimator, num_terms = N - 2m + 1). Empty in a curve built by hand: stride 1.
+  std::vector<int64_t> strides;
+  std::vector<int64_t> num_terms;
 };
 
 // Log-spaced cluster sizes m = round(10^(j / taus_per_decade)), j = 0, 1, ..., de-duplicated, up
@@ -76,6 +88,17 @@ class IntegratedSignal {
   // not depend on num_threads).
   AllanCurve Deviation(const std::vector<int64_t>& cluster_sizes, int num_threads = 1) const;
 
+  // The curve with averaging time i taken at every strides[i]-th start index (see the file
+  // comment; allan/work_budget.h chooses them). All strides 1: the same bits as the overload
+  // above. Otherwise every stride must divide the largest (powers of two do); the strided sums
+  // read a window of a polyphase copy of the integrated signal (2 max(m) * 1.5 doubles: 24 MB at
+  // N = 10^7), kept in *scratch when given so that the next call reuses it (fresh memory is slow
+  // to write the first time on virtual machines: 4 ms per MB on this project's).
+  AllanCurve Deviation(const std::vector<int64_t>& cluster_sizes,
+                       const std::vector<int64_t>& strides,
+                       int num_threads = 1,
+                       std::vector<double>* scratch = nullptr) const;
+
  private:
   void CheckClusterSize(int64_t m) const;
   std::vector<double> Variances(const std::vector<int64_t>& cluster_sizes, int num_threads) const;
@@ -98,6 +121,10 @@ AllanCurve OverlappingAllanDeviation(const std::vector<double>& samples,
 // Relative 1-sigma error of an Allan deviation from num_samples / m independent clusters:
 // 1 / sqrt(2 (K - 1)) [ElSheimy08]. Requires 2 <= K.
 double AllanRelativeError(int64_t num_samples, int64_t m);
+
+// The same for every stride-th start index: K = min(num_samples / m, terms) (stride 1: the value
+// above). Infinite below K = 2.
+double AllanRelativeError(int64_t num_samples, int64_t m, int64_t stride);
 
 }  // namespace splinecal
 

@@ -16,8 +16,9 @@
 //
 // Each term is decided from the measured curve itself [IEEE952, annex C]: it is *identified* only
 // where the measured deviation, with its confidence interval from the equivalent degrees of
-// freedom of the overlapping estimator (allan/edf.h, [Riley08, section 5.3]), follows that term's
-// slope over a stated range of averaging times. Precisely, for a term of slope s:
+// freedom of the overlapping estimator (allan/edf.h, [Riley08, section 5.3]; of the strided one
+// where the curve says a point used every s-th start index, AllanCurve::strides), follows that
+// term's slope over a stated range of averaging times. Precisely, for a term of slope s:
 //  1. a line of slope s passes through the intervals (at `confidence`) of at least min_points
 //     consecutive averaging times, computed with the EDF of that term's noise type
 //     (allan/slope_lines.h);
@@ -155,9 +156,41 @@ struct AxisNoiseFit {
   double model_rms_log_error = 0.0;
 };
 
+// The confidence intervals FitNoise gives its points, relative to the deviation: for each noise
+// type a term uses and each of the two confidences, point i's interval of a deviation of 1
+// (allan/edf.h; times adev, the same bits as AllanDeviationInterval(adev, ...)). They depend on N,
+// m and the stride only, so the axes of one recording share one table: its chi-square quantiles
+// are nearly all of the fit's time at 1000 averaging times per decade (0.07 s per axis of 10^7
+// samples).
+class FitIntervals {
+ public:
+  // For curves of num_samples samples at these cluster sizes and strides (empty: all 1). Throws
+  // splinecal::Error when a confidence of the options is not in (0, 1).
+  FitIntervals(int64_t num_samples,
+               const std::vector<int64_t>& cluster_sizes,
+               const std::vector<int64_t>& strides,
+               const NoiseFitOptions& options);
+
+  // Whether a curve has the samples, sizes and strides of this table.
+  bool Fits(const AllanCurve& curve) const;
+  // Point i's interval for a deviation of 1, the noise type of `term`, at the options'
+  // confidence (bound = false) or bound_confidence.
+  const DeviationInterval& Relative(NoiseTerm term, bool bound, size_t i) const;
+
+ private:
+  int64_t num_samples_;
+  std::vector<int64_t> cluster_sizes_;
+  std::vector<int64_t> strides_;
+  // [bound][noise type][point]; only the types NoiseTermNoiseType gives are filled.
+  std::array<std::array<std::vector<DeviationInterval>, 5>, 2> relative_;
+};
+
 // Fits the noise terms of one axis. Throws splinecal::Error when the curve has fewer than 2
-// averaging times with a positive deviation.
-AxisNoiseFit FitNoise(const AllanCurve& curve, const NoiseFitOptions& options = {});
+// averaging times with a positive deviation. `intervals` (optional, made with the same options)
+// saves computing them again for each axis of a recording; it must fit the curve.
+AxisNoiseFit FitNoise(const AllanCurve& curve,
+                      const NoiseFitOptions& options = {},
+                      const FitIntervals* intervals = nullptr);
 
 // The IEEE 952 model alone (the second opinion inside FitNoise): fills model, model_terms and
 // model_rms_log_error from the points with a positive deviation.

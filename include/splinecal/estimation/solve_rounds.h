@@ -52,6 +52,13 @@ struct SolverOptions {
   double parameter_tolerance = 1e-10;
   // Levenberg-Marquardt's first trust region (Ceres' default 1e4).
   double initial_trust_region_radius = 1e4;
+  // Rounds after the first start their trust region where the previous round's ended. A round
+  // re-solves the same problem from the previous solution (re-weighted, re-windowed); restarted
+  // at 1e4, calibrate's rounds spent ~12 iterations each growing the radius 3x per accepted step
+  // (every step had a gain ratio ~1.000: the model was never the limit) before Gauss-Newton
+  // steps were allowed (docs/performance.md, issue 17). false: every round starts at
+  // initial_trust_region_radius.
+  bool warm_start_rounds = true;
   LinearSolver linear_solver = LinearSolver::kAuto;
   SparseLibrary sparse_library = SparseLibrary::kAuto;
   // kAuto switches to SPARSE_SCHUR above this many Jacobian entries (8e6: 64 MB, ~2.7 minutes
@@ -89,12 +96,17 @@ class SolveRounds {
  public:
   SolveRounds(ceres::Solver::Options options,
               std::function<void(const std::string&)> progress,
-              std::function<bool()> stop = {})
-      : options_(std::move(options)), progress_(std::move(progress)), stop_(std::move(stop)) {}
+              std::function<bool()> stop = {},
+              bool warm_start_rounds = true)
+      : options_(std::move(options)),
+        progress_(std::move(progress)),
+        stop_(std::move(stop)),
+        warm_start_rounds_(warm_start_rounds) {}
   // ToCeresOptions(options, jacobian_entries, ...) with options.progress and options.stop.
   SolveRounds(const SolverOptions& options, double jacobian_entries);
 
-  // Solves `problem` as the next round; progress lines start with `progress_prefix`;
+  // Solves `problem` as the next round (with warm_start_rounds, from the trust region the last
+  // round ended with); progress lines start with `progress_prefix`;
   // `callbacks` are added to this round's iteration callbacks. Returns the round's summary.
   const ceres::Solver::Summary& Solve(ceres::Problem* problem,
                                       const std::string& progress_prefix,
@@ -117,6 +129,7 @@ class SolveRounds {
   ceres::Solver::Options options_;
   std::function<void(const std::string&)> progress_;
   std::function<bool()> stop_;
+  bool warm_start_rounds_ = true;
   ceres::Solver::Summary last_;
   int rounds_ = 0;
   int iterations_ = 0;
