@@ -1,15 +1,20 @@
-// splinecal's coupled SE(3) spline side by side with a reference split spline (SO(3) x R^3, the
-// trajectory model of basalt-headers' Se3Spline, tests/spline/reference_split_spline.h) on the
-// same control poses and the same query times (issue 17). Run with interleaved repetitions so
-// that both sides see the same machine state:
+// splinecal's two trajectory models -- the coupled SE(3) spline and the split SO(3) x R^3 spline
+// (spline/trajectory_model.h) -- side by side with a reference split spline (the trajectory model
+// of basalt-headers' Se3Spline, tests/spline/reference_split_spline.h) on the same control poses
+// and the same query times (issue 17). Run with interleaved repetitions so that every side sees
+// the same machine state:
 //
-//   build-bench/bench/spline_vs_reference_bench --benchmark_repetitions=10 \
+//   build-bench/bench/spline_vs_reference_bench --benchmark_repetitions=10
 //       --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
+//       --benchmark_min_time=0.3
 //
-// Four operations, each for four implementations:
-//   Splinecal           SE3Spline<double> with its per-knot caches (what fit/calibrate use)
-//   SplinecalPerQuery   the knot deltas (Log + Jacobian caches) rebuilt from the four control
-//                       poses in every call (SegmentKnotData)
+// Four operations, each for five implementations:
+//   Splinecal           SE3Spline<double>, coupled SE(3) model, with its per-knot caches (what
+//                       fit/calibrate use by default)
+//   SplinecalSplit      the split SO(3) x R^3 model on the same per-knot caches, through the
+//                       model dispatch fit/calibrate use with --trajectory split
+//   SplinecalPerQuery   the coupled model with the knot deltas (Log + Jacobian caches) rebuilt
+//                       from the four control poses in every call (SegmentKnotData)
 //   ReferencePerQuery   the split spline computing its three Logs in every call, as
 //                       basalt-headers does
 //   ReferenceCached     the split spline with its knot deltas cached per knot
@@ -19,8 +24,10 @@
 //   GyroResidual    w_s + b_g - measured, with Jacobians w.r.t. 4 control poses and the bias
 //   AccelResidual   R^T (a_w - g_w) + b_a - measured, with Jacobians w.r.t. 4 control poses, the
 //                   bias and g_w
-// Jacobians are in each model's own tangent (splinecal: T Exp([rho; phi]); reference:
-// p + dp, R Exp(dphi)), 3x6 per control pose, without the lift to Ceres' 7-parameter blocks.
+// Jacobians are in each implementation's own tangent (splinecal, both models: T Exp([rho; phi]);
+// reference: p + dp, R Exp(dphi)), 3x6 per control pose, without the lift to Ceres' 7-parameter
+// blocks. splinecal's split model pays for that tangent: its position columns are
+// Bddot_k R_w_s^T R_k (three more 3x3 products) where the reference's are Bddot_k R_w_s^T.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
@@ -36,6 +43,7 @@
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 namespace {
@@ -95,7 +103,22 @@ struct ResidualOutput {
   Eigen::Matrix3d gravity;
 };
 
-enum class Side { kSplinecal, kSplinecalPerQuery, kReferencePerQuery, kReferenceCached };
+enum class Side {
+  kSplinecal,
+  kSplinecalSplit,
+  kSplinecalPerQuery,
+  kReferencePerQuery,
+  kReferenceCached
+};
+
+bool IsSplinecal(Side side) {
+  return side == Side::kSplinecal || side == Side::kSplinecalSplit ||
+         side == Side::kSplinecalPerQuery;
+}
+
+TrajectoryModel ModelOf(Side side) {
+  return side == Side::kSplinecalSplit ? TrajectoryModel::kSplitSO3R3 : TrajectoryModel::kSE3;
+}
 
 const reference::SplitSpline& Reference(const Fixture& f, Side side) {
   return side == Side::kReferenceCached ? *f.cached : *f.per_query;
@@ -120,14 +143,14 @@ void BM_Pose(benchmark::State& state, Side side) {
   const Fixture& f = GetFixture();
   int i = 0;
   for (auto _ : state) {
-    if (side == Side::kSplinecal || side == Side::kSplinecalPerQuery) {
+    if (IsSplinecal(side)) {
       SE3d T_w_s;
       WithSplinecalKnots(f,
                          i,
                          side == Side::kSplinecalPerQuery,
                          false,
                          [&](const SegmentKnots<double>& knots, const Segment<double>& seg) {
-                           EvaluateSegment(knots, seg, &T_w_s);
+                           EvaluateSegment(ModelOf(side), knots, seg, &T_w_s);
                          });
       benchmark::DoNotOptimize(T_w_s);
     } else {
@@ -147,13 +170,14 @@ void BM_ImuPrediction(benchmark::State& state, Side side) {
   Eigen::Vector3d gyro;
   Eigen::Vector3d accel;
   for (auto _ : state) {
-    if (side == Side::kSplinecal || side == Side::kSplinecalPerQuery) {
+    if (IsSplinecal(side)) {
       WithSplinecalKnots(f,
                          i,
                          side == Side::kSplinecalPerQuery,
                          false,
                          [&](const SegmentKnots<double>& knots, const Segment<double>& seg) {
-                           PredictImu(knots, seg, f.g_w, f.bias, f.bias, &gyro, &accel);
+                           PredictImu(
+                               ModelOf(side), knots, seg, f.g_w, f.bias, f.bias, &gyro, &accel);
                          });
     } else {
       Reference(f, side).PredictImu(f.queries[i], f.g_w, f.bias, f.bias, &gyro, &accel);
@@ -170,7 +194,8 @@ void BM_GyroResidual(benchmark::State& state, Side side) {
   ResidualOutput out;
   reference::ResidualJacobians J_ref;
   for (auto _ : state) {
-    if (side == Side::kSplinecal || side == Side::kSplinecalPerQuery) {
+    if (IsSplinecal(side)) {
+      // One gyro for both models (their rotations are the same).
       WithSplinecalKnots(f,
                          i,
                          side == Side::kSplinecalPerQuery,
@@ -197,18 +222,19 @@ void BM_AccelResidual(benchmark::State& state, Side side) {
   ResidualOutput out;
   reference::ResidualJacobians J_ref;
   for (auto _ : state) {
-    if (side == Side::kSplinecal || side == Side::kSplinecalPerQuery) {
-      WithSplinecalKnots(f,
-                         i,
-                         side == Side::kSplinecalPerQuery,
-                         true,
-                         [&](const SegmentKnots<double>& knots, const Segment<double>& seg) {
-                           Eigen::Vector3d accel;
-                           PredictAccelWithJacobian(
-                               knots, seg, f.g_w, f.bias, &accel, &out.control, &out.gravity);
-                           out.residual = accel - f.accel_measured;
-                           out.bias.setIdentity();
-                         });
+    if (IsSplinecal(side)) {
+      WithSplinecalKnots(
+          f,
+          i,
+          side == Side::kSplinecalPerQuery,
+          true,
+          [&](const SegmentKnots<double>& knots, const Segment<double>& seg) {
+            Eigen::Vector3d accel;
+            PredictAccelWithJacobian(
+                ModelOf(side), knots, seg, f.g_w, f.bias, &accel, &out.control, &out.gravity);
+            out.residual = accel - f.accel_measured;
+            out.bias.setIdentity();
+          });
       benchmark::DoNotOptimize(out);
     } else {
       Reference(f, side).AccelResidual(
@@ -221,18 +247,22 @@ void BM_AccelResidual(benchmark::State& state, Side side) {
 }
 
 BENCHMARK_CAPTURE(BM_Pose, Splinecal, Side::kSplinecal);
+BENCHMARK_CAPTURE(BM_Pose, SplinecalSplit, Side::kSplinecalSplit);
 BENCHMARK_CAPTURE(BM_Pose, SplinecalPerQuery, Side::kSplinecalPerQuery);
 BENCHMARK_CAPTURE(BM_Pose, ReferencePerQuery, Side::kReferencePerQuery);
 BENCHMARK_CAPTURE(BM_Pose, ReferenceCached, Side::kReferenceCached);
 BENCHMARK_CAPTURE(BM_ImuPrediction, Splinecal, Side::kSplinecal);
+BENCHMARK_CAPTURE(BM_ImuPrediction, SplinecalSplit, Side::kSplinecalSplit);
 BENCHMARK_CAPTURE(BM_ImuPrediction, SplinecalPerQuery, Side::kSplinecalPerQuery);
 BENCHMARK_CAPTURE(BM_ImuPrediction, ReferencePerQuery, Side::kReferencePerQuery);
 BENCHMARK_CAPTURE(BM_ImuPrediction, ReferenceCached, Side::kReferenceCached);
 BENCHMARK_CAPTURE(BM_GyroResidual, Splinecal, Side::kSplinecal);
+BENCHMARK_CAPTURE(BM_GyroResidual, SplinecalSplit, Side::kSplinecalSplit);
 BENCHMARK_CAPTURE(BM_GyroResidual, SplinecalPerQuery, Side::kSplinecalPerQuery);
 BENCHMARK_CAPTURE(BM_GyroResidual, ReferencePerQuery, Side::kReferencePerQuery);
 BENCHMARK_CAPTURE(BM_GyroResidual, ReferenceCached, Side::kReferenceCached);
 BENCHMARK_CAPTURE(BM_AccelResidual, Splinecal, Side::kSplinecal);
+BENCHMARK_CAPTURE(BM_AccelResidual, SplinecalSplit, Side::kSplinecalSplit);
 BENCHMARK_CAPTURE(BM_AccelResidual, SplinecalPerQuery, Side::kSplinecalPerQuery);
 BENCHMARK_CAPTURE(BM_AccelResidual, ReferencePerQuery, Side::kReferencePerQuery);
 BENCHMARK_CAPTURE(BM_AccelResidual, ReferenceCached, Side::kReferenceCached);

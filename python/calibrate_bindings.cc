@@ -27,6 +27,7 @@ py::dict CalibrateFunction(py::handle imu,
                            bool estimate_intrinsics,
                            bool no_time_offset,
                            double knot_spacing,
+                           const std::string& trajectory,
                            double pixel_sigma,
                            double huber,
                            int min_corners,
@@ -35,7 +36,7 @@ py::dict CalibrateFunction(py::handle imu,
                            const std::string& gyro_unit,
                            int threads) {
   const EstimateArguments arguments{
-      knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads};
+      knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads, trajectory};
   CalibrateOptions options;
   ApplyEstimateArguments(arguments, &options.model, &options.solver);
   options.rolling_shutter = rolling_shutter;
@@ -74,6 +75,7 @@ void BindCalibrate(py::module_& m) {
         py::arg("estimate_intrinsics") = false,
         py::arg("no_time_offset") = false,
         py::arg("knot_spacing") = 0.05,
+        py::arg("trajectory") = "se3",
         py::arg("pixel_sigma") = 0.0,
         py::arg("huber") = 2.0,
         py::arg("min_corners") = 8,

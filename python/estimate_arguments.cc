@@ -3,6 +3,7 @@
 #include "numpy_io.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
 
 namespace splinecal {
@@ -40,10 +41,19 @@ void ApplyEstimateArguments(const EstimateArguments& arguments,
     throw py::value_error("imu_noise: expected estimated, reweighted or given, got '" +
                           arguments.imu_noise + "'");
   }
+  model->trajectory = TrajectoryArgument(arguments.trajectory);
   if (arguments.threads < 1 || arguments.threads > 256) {
     throw py::value_error("threads: expected 1 to 256, got " + std::to_string(arguments.threads));
   }
   solver->num_threads = arguments.threads;
+}
+
+TrajectoryModel TrajectoryArgument(const std::string& name) {
+  TrajectoryModel model = TrajectoryModel::kSE3;
+  if (!ParseTrajectoryModel(name, &model)) {
+    throw py::value_error("trajectory: expected se3 or split, got '" + name + "'");
+  }
+  return model;
 }
 
 std::vector<ImuSample> ImuInUnits(py::handle imu, const EstimateArguments& arguments) {

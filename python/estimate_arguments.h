@@ -1,6 +1,6 @@
 // The keyword arguments fit() and calibrate() share, read as their command-line flags are
-// (src/cli/common_flags.cc): the spline model (knot_spacing, gravity, imu_yaml, imu_noise), the
-// IMU's units and the solver's threads.
+// (src/cli/common_flags.cc): the spline model (knot_spacing, gravity, imu_yaml, imu_noise,
+// trajectory), the IMU's units and the solver's threads.
 #ifndef SPLINECAL_PYTHON_ESTIMATE_ARGUMENTS_H_
 #define SPLINECAL_PYTHON_ESTIMATE_ARGUMENTS_H_
 
@@ -12,6 +12,7 @@
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/imu/imu_sample.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 namespace python {
@@ -24,12 +25,16 @@ struct EstimateArguments {
   std::string accel_unit = "m/s^2";
   std::string gyro_unit = "rad/s";
   int threads = 1;
+  std::string trajectory = "se3";  // se3 or split (spline/trajectory_model.h)
 };
 
 // Fills `model` and `solver` (threads) from the arguments; ValueError for a bad one.
 void ApplyEstimateArguments(const EstimateArguments& arguments,
                             SplineModelOptions* model,
                             SolverOptions* solver);
+
+// The trajectory model named `name` (se3 or split); ValueError for another name.
+TrajectoryModel TrajectoryArgument(const std::string& name);
 
 // The IMU samples of `imu` (a path or a dict, numpy_io.h) in rad/s and m/s^2.
 std::vector<ImuSample> ImuInUnits(pybind11::handle imu, const EstimateArguments& arguments);

@@ -31,6 +31,7 @@ py::dict FitFunction(py::handle imu,
                      py::object imu_yaml,
                      const std::string& imu_noise,
                      double knot_spacing,
+                     const std::string& trajectory,
                      double pose_sigma_m,
                      double pose_sigma_rad,
                      bool estimate_time_offset,
@@ -43,7 +44,7 @@ py::dict FitFunction(py::handle imu,
                      const std::string& gyro_unit,
                      int threads) {
   const EstimateArguments arguments{
-      knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads};
+      knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads, trajectory};
   FitOptions options;
   ApplyEstimateArguments(arguments, &options.model, &options.solver);
   options.pose_sigma_m = PositiveArgument(pose_sigma_m, "pose_sigma_m");
@@ -94,6 +95,7 @@ void BindFit(py::module_& m) {
         py::arg("imu_yaml") = py::none(),
         py::arg("imu_noise") = "estimated",
         py::arg("knot_spacing") = 0.0,
+        py::arg("trajectory") = "se3",
         py::arg("pose_sigma_m") = 1e-3,
         py::arg("pose_sigma_rad") = 1e-3,
         py::arg("estimate_time_offset") = false,

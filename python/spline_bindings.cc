@@ -7,12 +7,14 @@
 #include <fstream>
 
 #include "bindings.h"
+#include "estimate_arguments.h"
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/spline/se3_spline.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 namespace python {
@@ -82,22 +84,33 @@ void WriteCsv(const SE3Splined& spline, py::handle path_object) {
 }  // namespace
 
 void BindSpline(py::module_& m) {
-  py::class_<SE3Splined>(m, "SE3Spline", R"(A uniform cumulative cubic B-spline T_w_s(t) on SE(3).
+  py::class_<SE3Splined>(m, "SE3Spline", R"(A uniform cubic B-spline T_w_s(t) of SE(3) poses.
 
-Control poses T_i at knot times t0_ns + i * dt_ns; valid times [t_1, t_{n-2}]
+Control poses T_i at knot times t0_ns + i * dt_ns; valid times [t_1, t_{n-2}]; interpolated by
+the coupled cumulative SE(3) spline (trajectory "se3") or the split SO(3) x R^3 one ("split")
 (docs/conventions.md, "The spline").)")
-      .def(py::init([](py::handle control_poses, int64_t t0_ns, int64_t dt_ns) {
-             return SE3Splined(PosesFromArray(control_poses, "control_poses"), t0_ns, dt_ns);
+      .def(py::init([](py::handle control_poses,
+                       int64_t t0_ns,
+                       int64_t dt_ns,
+                       const std::string& trajectory) {
+             return SE3Splined(PosesFromArray(control_poses, "control_poses"),
+                               t0_ns,
+                               dt_ns,
+                               TrajectoryArgument(trajectory));
            }),
            py::arg("control_poses"),
            py::arg("t0_ns"),
            py::arg("dt_ns"),
-           "From control poses (n, 4, 4), n >= 4, the first knot time and the knot spacing [ns].")
+           py::kw_only(),
+           py::arg("trajectory") = "se3",
+           "From control poses (n, 4, 4), n >= 4, the first knot time and the knot spacing [ns];\n"
+           "trajectory: se3 or split.")
       .def_static(
           "read_csv",
           [](py::handle path) { return ReadSplineCsv(PathArgument(path, "path")); },
           py::arg("path"),
-          "Reads a spline.csv (#t_ns,px,py,pz,qw,qx,qy,qz), as `splinecal evaluate` does.")
+          "Reads a spline.csv (#t_ns,px,py,pz,qw,qx,qy,qz; its trajectory model from the\n"
+          "'# trajectory:' line, se3 without one), as `splinecal evaluate` does.")
       .def("write_csv", &WriteCsv, py::arg("path"), "Writes the control poses as spline.csv.")
       .def(
           "valid_range_ns",
@@ -106,6 +119,10 @@ Control poses T_i at knot times t0_ns + i * dt_ns; valid times [t_1, t_{n-2}]
       .def_property_readonly("t0_ns", &SE3Splined::t0_ns)
       .def_property_readonly("dt_ns", &SE3Splined::dt_ns)
       .def_property_readonly("num_control_poses", &SE3Splined::num_control_poses)
+      .def_property_readonly(
+          "trajectory",
+          [](const SE3Splined& s) { return std::string(TrajectoryModelName(s.model())); },
+          "The trajectory model: se3 or split.")
       .def_property_readonly(
           "control_poses",
           [](const SE3Splined& s) { return PoseArray(s.control_poses()); },
@@ -126,7 +143,8 @@ gyro = w_s + b_g [rad/s], accel = R_w_s^T (a_w - g_w) + b_a [m/s^2], g_w = (0, 0
       .def("__repr__", [](const SE3Splined& s) {
         return "SE3Spline(" + std::to_string(s.num_control_poses()) +
                " control poses, t0_ns=" + std::to_string(s.t0_ns()) +
-               ", dt_ns=" + std::to_string(s.dt_ns()) + ")";
+               ", dt_ns=" + std::to_string(s.dt_ns()) +
+               ", trajectory=" + TrajectoryModelName(s.model()) + ")";
       });
 }
 

@@ -5,7 +5,8 @@
 // Areas, from the bottom up: an area includes only areas listed before it, so no two areas
 // include each other (tests/architecture/layering_test.cc checks both).
 //   lie/         SO(3), SE(3), their Jacobians and Ceres manifolds
-//   spline/      the uniform cumulative cubic B-spline on SE(3), its knot layout and derivatives
+//   spline/      the uniform cubic B-spline of SE(3) poses (coupled SE(3) or split SO(3) x R^3),
+//                its knot layout and derivatives
 //   imu/         IMU samples, the measurement model, noise densities, dead reckoning
 //   camera/      camera models, camchains, targets, observations, PnP, rolling shutter
 //   io/          readers and writers of every file format (plain data types in, out)
@@ -42,6 +43,10 @@
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/split_segment.h"
+#include "splinecal/spline/split_segment_jacobians.h"
+#include "splinecal/spline/trajectory_evaluation.h"
+#include "splinecal/spline/trajectory_model.h"
 
 // imu/
 #include "splinecal/imu/ground_truth.h"

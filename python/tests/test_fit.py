@@ -1,5 +1,6 @@
 """fit against `splinecal fit` on the bundled EuRoC excerpt, and simulate -> fit."""
 import numpy as np
+import pytest
 
 import splinecal
 from conftest import (EUROC, assert_same, load_yaml, quaternion_to_matrix, read_csv_columns,
@@ -45,12 +46,15 @@ def ground_truth_dict(path):
     return {"t_ns": t_ns, "T_w_s": T}
 
 
-def test_simulate_then_fit_recovers_the_biases():
+@pytest.mark.parametrize("trajectory", ["se3", "split"])
+def test_simulate_then_fit_recovers_the_biases(trajectory):
     gyro_bias, accel_bias = [0.01, -0.02, 0.015], [0.1, -0.05, 0.08]
     sim = splinecal.simulate(trajectory="vio_course", duration=10, seed=5,
                              gyro_bias=gyro_bias, accel_bias=accel_bias)
     assert sim["imu"]["gyro"].shape == (len(sim["imu"]["t_ns"]), 3)
-    fit = splinecal.fit(sim["imu"], sim["ground_truth"], imu_yaml=None)
+    fit = splinecal.fit(sim["imu"], sim["ground_truth"], imu_yaml=None, trajectory=trajectory)
+    assert fit["trajectory"] == trajectory
+    assert fit["se3_spline"].trajectory == trajectory
     # 10 s of ADIS16448 noise: the accelerometer bias is weakly separated from gravity
     # (docs/fit.md); the tolerances are loose, the point is the pipeline.
     np.testing.assert_allclose(fit["gyro_bias"], gyro_bias, atol=2e-3)

@@ -62,3 +62,24 @@ def test_valid_range_ends_evaluate_and_outside_is_refused():
     with pytest.raises(splinecal.Error, match="outside the valid range"):
         spline.evaluate([start, end + 1])
     assert issubclass(splinecal.Error, ValueError)
+
+
+def test_split_trajectory_survives_the_csv_and_equals_the_command_line(tmp_path):
+    coupled = splinecal.SE3Spline.read_csv(SPLINE_CSV)
+    assert coupled.trajectory == "se3"  # a file without the key
+    split = splinecal.SE3Spline(coupled.control_poses, coupled.t0_ns, coupled.dt_ns,
+                                trajectory="split")
+    assert split.trajectory == "split"
+    split.write_csv(tmp_path / "split.csv")
+    again = splinecal.SE3Spline.read_csv(tmp_path / "split.csv")
+    assert again.trajectory == "split"
+    run_tool("evaluate", "--spline", tmp_path / "split.csv", "--every", 0.05, "--out",
+             tmp_path / "out")
+    t_ns, columns = read_csv_columns(tmp_path / "out/evaluation.csv")
+    e = again.evaluate(t_ns)
+    np.testing.assert_allclose(e["T_w_s"][:, :3, 3], columns[:, 0:3], rtol=0, atol=TOLERANCE)
+    np.testing.assert_allclose(e["a_w"], columns[:, 13:16], rtol=0, atol=TOLERANCE)
+    # The same orientation as the coupled spline, another position.
+    c = coupled.evaluate(t_ns)
+    np.testing.assert_allclose(e["T_w_s"][:, :3, :3], c["T_w_s"][:, :3, :3], rtol=0, atol=1e-14)
+    assert np.abs(e["T_w_s"][:, :3, 3] - c["T_w_s"][:, :3, 3]).max() > 1e-6

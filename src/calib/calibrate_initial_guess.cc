@@ -34,7 +34,8 @@ constexpr PoseSigma kPnpSigma = {0.003, 0.003};
 // User-supplied initial IMU poses (SLAM after alignment): loose, as they only start the solve.
 constexpr PoseSigma kInitialPoseSigma = {0.01, 0.01};
 
-// The fitted spline re-sampled onto `layout` (dt / 10 steps over its valid range).
+// The fitted spline re-sampled onto `layout` (dt / 10 steps over its valid range), in the
+// fitted spline's trajectory model.
 std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layout,
                                int num_threads) {
   std::vector<StampedPose> samples;
@@ -45,6 +46,7 @@ std::vector<SE3d> ResampleOnto(const SE3Splined& fitted, const KnotLayout& layou
   }
   PoseFitOptions options;
   options.num_threads = num_threads;
+  options.trajectory = fitted.model();
   return FitControlPoses(samples, layout, options).control_poses;
 }
 
@@ -61,6 +63,7 @@ CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
                                      std::vector<std::string>* warnings,
                                      FitResult* fit) {
   fit_options.model.knot_spacing_s = options.model.knot_spacing_s;
+  fit_options.model.trajectory = options.model.trajectory;
   fit_options.model.gravity_m_s2 = options.model.gravity_m_s2;
   fit_options.model.noise = options.model.noise;
   // A starting point: the given noise weights it, and the calibration measures the noise.

@@ -90,7 +90,9 @@ class CalibrationProblem {
     spline_ = std::make_unique<SplineProblem>(
         layout_,
         guess.control_poses,
-        BiasSpline(options.model.bias_model, layout_, options.model.bias_knot_spacing_s));
+        BiasSpline(options.model.bias_model, layout_, options.model.bias_knot_spacing_s),
+        ResidualOptions(),
+        options.model.trajectory);
     imu_rate_hz_ = ImuRateHz(imu_);
     imu_noise_ = std::make_unique<ImuNoiseEstimator>(
         options.model.noise, imu_rate_hz_, options.model.imu_noise);
@@ -162,6 +164,7 @@ class CalibrationProblem {
     ReprojectionSettings s;
     s.camera = &camchain_[cam].camera;
     s.layout = layout_;
+    s.model = spline_->trajectory_model();
     s.sigma_px = sigma;
     s.huber_px = huber;
     s.shared = spline_->evaluation_callback();

@@ -89,6 +89,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
 
 void CalibrationProblem::Collect(CalibrationResult* result) {
   result->layout = layout_;
+  result->trajectory = spline_->trajectory_model();
   // Solved in the target's frame; written in the gravity-aligned world (calibrate.h).
   result->gravity_target = spline_->gravity_w();
   result->T_w_target =

@@ -342,16 +342,14 @@ void FitProblem::Impl::Initialise(const std::vector<ImuSample>& all_imu,
   PoseFitOptions pose_fit_options;
   pose_fit_options.rotation_weight_m_per_rad = options.pose_sigma_m / options.pose_sigma_rad;
   pose_fit_options.num_threads = options.solver.num_threads;
+  pose_fit_options.trajectory = options.model.trajectory;
   const PoseFitResult initial = FitControlPoses(imu_poses, layout, pose_fit_options);
-  ResidualOptions residual_options;
-  residual_options.layout = options.residuals.layout;
-  residual_options.differentiation = options.residuals.differentiation;
-  residual_options.share_knot_caches = options.residuals.share_knot_caches;
   spline_problem = std::make_unique<SplineProblem>(
       layout,
       initial.control_poses,
       BiasSpline(options.model.bias_model, layout, options.model.bias_knot_spacing_s),
-      residual_options);
+      options.residuals,
+      options.model.trajectory);
   const SE3Splined spline = spline_problem->Spline();
 
   // Units: gyro against the poses' rotation rate; mean specific force against g.
@@ -446,6 +444,7 @@ void FitProblem::Impl::AddPoseResiduals() {
     data.sigma_m = options.pose_sigma_m;
     data.sigma_rad = options.pose_sigma_rad;
     data.shared = spline_problem->evaluation_callback();
+    data.model = options.model.trajectory;
     pose_segments.push_back(data.segment_index);
     const bool analytic = options.residuals.differentiation == Differentiation::kAnalytic;
     ceres::CostFunction* cost = analytic
@@ -538,6 +537,7 @@ FitResult FitProblem::Impl::Solve() {
 
   // Estimates.
   result.layout = layout;
+  result.trajectory = options.model.trajectory;
   result.knot_spacing_s = dt_s;
   result.knot_spacing_rule = knot_rule;
   result.control_poses = spline_problem->ControlPoses();

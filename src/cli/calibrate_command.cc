@@ -87,6 +87,7 @@ CalibrateInputs ReadCalibrateInputs() {
   options.model.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
   // 0: chosen from the IMU data (CalibrateOptions, estimation/knot_spacing.h).
   options.model.knot_spacing_s = KnotSpacingFlag(/*can_choose=*/true);
+  options.model.trajectory = TrajectoryModelFlag();
   options.rolling_shutter = FLAGS_rolling_shutter;
   options.estimate_time_offset = !FLAGS_no_time_offset;
   options.pixel_sigma_px = NonNegativeFlag("pixel-sigma", FLAGS_pixel_sigma);
@@ -197,12 +198,13 @@ Command CalibrateCommand() {
           "line delay",
           "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE]\n"
           "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset] [--hold-camera-chain] [--estimate-intrinsics]\n"
-          "    [--knot-spacing S] [--pixel-sigma PX] [--huber PX] [--min-corners N]\n"
-          "    [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s] [--threads N]\n"
+          "    [--knot-spacing S] [--trajectory se3|split] [--pixel-sigma PX] [--huber PX]\n"
+          "    [--min-corners N] [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s]\n"
+          "    [--threads N]\n"
           "    --out DIR",
           "Fits camera observations (a calibration target's corners and/or natural landmarks,\n"
           "one row per detected point in observations.csv) and IMU readings jointly on one\n"
-          "SE(3) spline: estimates T_cam_imu, timeshift_cam_imu (t_imu = t_cam + shift) and,\n"
+          "spline T_w_s(t): estimates T_cam_imu, timeshift_cam_imu (t_imu = t_cam + shift) and,\n"
           "with --rolling-shutter, the line delay (row r exposed at t_frame + r * line_delay),\n"
           "plus the trajectory, IMU biases and gravity. The camchain's intrinsics are kept; its\n"
           "T_cam_imu, time offset and line delay are the starting point. The target gives the\n"
@@ -229,6 +231,7 @@ Command CalibrateCommand() {
            {"estimate_intrinsics", ""},
            {"no_time_offset", ""},
            {"knot_spacing", "Spline knot spacing dt [s]; 0 chooses it from the IMU data", "0.05"},
+           {"trajectory", kTrajectoryModelHelp, "se3"},
            {"pixel_sigma", ""},
            {"huber", ""},
            {"min_corners", ""},

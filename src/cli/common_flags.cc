@@ -38,6 +38,11 @@ DEFINE_string(observations,
 DEFINE_double(huber, 2.0, "Huber threshold of the reprojection residuals [px]; 0 disables it");
 DEFINE_int32(min_corners, 8, "Frames with fewer target corners are not used");
 DEFINE_string(gyro_unit, "rad/s", "Unit of the gyroscope columns: rad/s or deg/s");
+// The one flag whose values differ by command (command.h): simulate's motion, or the trajectory
+// model fit and calibrate estimate; each command gives its own help text and default.
+DEFINE_string(trajectory,
+              "",
+              "The trajectory: simulate's motion, or the spline model of fit and calibrate");
 
 namespace splinecal {
 namespace cli {
@@ -103,6 +108,14 @@ Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text) {
   }
   if (i != 3) throw Error("--" + name + ": expected three numbers x,y,z, got '" + text + "'");
   return v;
+}
+
+TrajectoryModel TrajectoryModelFlag() {
+  TrajectoryModel model = TrajectoryModel::kSE3;
+  if (!ParseTrajectoryModel(FLAGS_trajectory, &model)) {
+    throw Error("--trajectory: expected se3 or split, got '" + FLAGS_trajectory + "'");
+  }
+  return model;
 }
 
 ImuNoiseMode ImuNoiseModeFlag() {

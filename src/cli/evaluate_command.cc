@@ -16,6 +16,7 @@
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/yaml_writer.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 
@@ -98,9 +99,10 @@ int RunEvaluate() {
   const int64_t end_ns = spline.end_time_ns();
   OutputDir output(FLAGS_out);
 
-  std::printf("spline: %d control poses, dt = %.6g s, valid %.6f s to %.6f s after t0\n",
+  std::printf("spline: %d control poses, dt = %.6g s, %s, valid %.6f s to %.6f s after t0\n",
               spline.num_control_poses(),
               spline.dt(),
+              TrajectoryModelName(spline.model()),
               spline.start_time(),
               spline.end_time());
   std::printf("%10s  %29s  %26s  %26s  %26s\n",
@@ -154,6 +156,7 @@ int RunEvaluate() {
   YamlWriter yaml;
   yaml.Scalar("spline", FLAGS_spline);
   yaml.Scalar("num_control_poses", spline.num_control_poses());
+  yaml.Scalar("trajectory", std::string(TrajectoryModelName(spline.model())));
   yaml.Scalar("knot_spacing_s", spline.dt());
   yaml.Scalar("start_time_ns", start_ns);
   yaml.Scalar("end_time_ns", end_ns);
@@ -173,11 +176,11 @@ Command EvaluateCommand() {
           "evaluate a spline.csv: pose, rates, IMU prediction",
           "splinecal evaluate --spline FILE --out DIR [--samples N] [--every S]\n"
           "    [--gravity M_S2] [--gyro-bias X,Y,Z] [--accel-bias X,Y,Z]",
-          "Reads the control poses of a spline (spline.csv) and evaluates the spline at N evenly\n"
-          "spaced times of its valid range [t_1, t_{n-2}]: pose T_w_s, body angular velocity,\n"
-          "world velocity and acceleration, and the IMU reading it predicts for the given biases\n"
-          "and gravity. Prints a table; writes samples.csv, result.yaml and, with --every,\n"
-          "evaluation.csv.",
+          "Reads the control poses of a spline (spline.csv) and evaluates the spline, in the\n"
+          "trajectory model the file names (se3 or split), at N evenly spaced times of its valid\n"
+          "range [t_1, t_{n-2}]: pose T_w_s, body angular velocity, world velocity and\n"
+          "acceleration, and the IMU reading it predicts for the given biases and gravity.\n"
+          "Prints a table; writes samples.csv, result.yaml and, with --every, evaluation.csv.",
           {{"spline", ""},
            {"out", ""},
            {"samples", ""},

@@ -54,6 +54,7 @@ FitInputs ReadFitInputs() {
   FitOptions& options = in.options;
   // Time spans through SpanFlagNs: bounded, so that the fit's int64 knot times cannot overflow.
   options.model.knot_spacing_s = KnotSpacingFlag(/*can_choose=*/true);
+  options.model.trajectory = TrajectoryModelFlag();
   options.model.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
   options.pose_sigma_m = PositiveFlag("pose-sigma-m", FLAGS_pose_sigma_m);
   options.pose_sigma_rad = PositiveFlag("pose-sigma-rad", FLAGS_pose_sigma_rad);
@@ -157,10 +158,10 @@ Command FitCommand() {
   return {"fit",
           "fit IMU biases, gravity, time offset and extrinsic to IMU data and poses",
           "splinecal fit --imu FILE --poses FILE --out DIR [--imu-yaml FILE] [--imu-noise MODE] [--knot-spacing S]\n"
-          "    [--pose-sigma-m M] [--pose-sigma-rad R] [--estimate-time-offset]\n"
-          "    [--max-time-offset S] [--estimate-extrinsic] [--bias-model constant|spline]\n"
-          "    [--bias-knot-spacing S] [--gravity M_S2] [--accel-unit m/s^2|g]\n"
-          "    [--gyro-unit rad/s|deg/s] [--threads N]",
+          "    [--trajectory se3|split] [--pose-sigma-m M] [--pose-sigma-rad R]\n"
+          "    [--estimate-time-offset] [--max-time-offset S] [--estimate-extrinsic]\n"
+          "    [--bias-model constant|spline] [--bias-knot-spacing S] [--gravity M_S2]\n"
+          "    [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s] [--threads N]",
           "Fits a continuous-time spline T_w_s(t) of the IMU to its readings and to a pose source\n"
           "(motion capture, EuRoC ground truth or a TUM trajectory), with the gyro and\n"
           "accelerometer biases, the gravity direction and optionally the time offset\n"
@@ -174,6 +175,7 @@ Command FitCommand() {
            {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; default ADIS16448"},
            {"imu_noise", ""},
            {"knot_spacing", "Spline knot spacing dt [s]; 0 chooses it from the IMU data", "0"},
+           {"trajectory", kTrajectoryModelHelp, "se3"},
            {"pose_sigma_m", ""},
            {"pose_sigma_rad", ""},
            {"estimate_time_offset", ""},

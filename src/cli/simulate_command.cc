@@ -30,10 +30,6 @@
 #include "splinecal/sim/simulation_trajectory.h"
 #include "splinecal/sim/trajectories.h"
 
-DEFINE_string(trajectory,
-              "vio_course",
-              "Trajectory: vio_course, figure8, random (seeded by --seed) or calibration (a lively "
-              "motion over --target for camera-IMU calibration; needs --camchain)");
 DEFINE_string(trajectory_file,
               "",
               "Recorded trajectory to simulate instead, TUM or EuRoC ground truth [path]; its "
@@ -275,7 +271,10 @@ Command SimulateCommand() {
       "at every IMU time), DIR/spline.csv (the control poses), DIR/imu.yaml (the noise, Kalibr\n"
       "keys) and DIR/result.yaml (with the fit's RMS). With --noise-free and zero biases the\n"
       "IMU file is exactly the spline's prediction. See docs/simulate.md.",
-      {{"trajectory", ""},
+      {{"trajectory",
+        "Trajectory: vio_course, figure8, random (seeded by --seed) or calibration (a lively "
+        "motion over --target for camera-IMU calibration; needs --camchain)",
+        "vio_course"},
        {"trajectory_file", ""},
        {"duration",
         "Duration [s] from the start; without the flag 20 s, or the whole --trajectory-file",

@@ -20,7 +20,7 @@ bool PoseCostFunction::Evaluate(double const* const* parameters,
 
   SE3d T_w_s;
   ControlPoseJacobian<6> J_T_ctrl;
-  EvaluatePoseJacobian(knots, segment, &T_w_s, pose_jacobians ? &J_T_ctrl : nullptr);
+  EvaluatePoseJacobian(data_.model, knots, segment, &T_w_s, pose_jacobians ? &J_T_ctrl : nullptr);
   const SE3d T_m_s = PoseFromBlock(parameters[5]);
   const SE3d T_pred = T_w_s * T_m_s.inverse();
   const Eigen::Vector3d dp = T_pred.translation() - data_.T_w_m.translation();
@@ -45,7 +45,7 @@ bool PoseCostFunction::Evaluate(double const* const* parameters,
     // d T_w_s / dt = T_w_s Hat(xi), xi = [v_s; w_s] (body twist).
     Eigen::Vector3d w_s;
     Eigen::Vector3d v_w;
-    EvaluateSegment(knots, segment, nullptr, &w_s, nullptr, &v_w, nullptr);
+    EvaluateSegment(data_.model, knots, segment, nullptr, &w_s, nullptr, &v_w, nullptr);
     Vector6d xi;
     xi.head<3>() = T_w_s.so3().inverse() * v_w;
     xi.tail<3>() = w_s;

@@ -14,6 +14,7 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/trajectory_evaluation.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 
@@ -27,8 +28,16 @@ using RowMajor6x7 = Eigen::Matrix<double, 6, 7, Eigen::RowMajor>;
 // [p(t) - p_m; w_R Log(R_m^T R(t))], over the segment's four control-pose blocks.
 class SegmentPoseCost : public ceres::CostFunction {
  public:
-  SegmentPoseCost(std::vector<double> u, std::vector<SE3d> measured, double dt_s, double w_rot)
-      : u_(std::move(u)), measured_(std::move(measured)), dt_s_(dt_s), w_rot_(w_rot) {
+  SegmentPoseCost(std::vector<double> u,
+                  std::vector<SE3d> measured,
+                  double dt_s,
+                  double w_rot,
+                  TrajectoryModel model)
+      : u_(std::move(u)),
+        measured_(std::move(measured)),
+        dt_s_(dt_s),
+        w_rot_(w_rot),
+        model_(model) {
     set_num_residuals(6 * static_cast<int>(u_.size()));
     for (int k = 0; k < kSplineOrder; ++k) mutable_parameter_block_sizes()->push_back(7);
   }
@@ -57,7 +66,7 @@ class SegmentPoseCost : public ceres::CostFunction {
       const Segment<double> segment = MakeSegment(1, u_[j], dt_s_);
       SE3d T_w_s;
       ControlPoseJacobian<6> J;
-      EvaluatePoseJacobian(data.knots(), segment, &T_w_s, want_jacobians ? &J : nullptr);
+      EvaluatePoseJacobian(model_, data.knots(), segment, &T_w_s, want_jacobians ? &J : nullptr);
       const Eigen::Vector3d phi = (measured_[j].so3().inverse() * T_w_s.so3()).Log();
       Eigen::Map<Vector6d> r(residuals + 6 * j);
       r.head<3>() = T_w_s.translation() - measured_[j].translation();
@@ -84,6 +93,7 @@ class SegmentPoseCost : public ceres::CostFunction {
   std::vector<SE3d> measured_;
   double dt_s_;
   double w_rot_;
+  TrajectoryModel model_;
   SE3Manifold manifold_;
 };
 
@@ -191,10 +201,12 @@ namespace internal {
 ceres::CostFunction* NewSegmentPoseCost(std::vector<double> u,
                                         std::vector<SE3d> measured,
                                         double dt_s,
-                                        double rotation_weight_m_per_rad) {
+                                        double rotation_weight_m_per_rad,
+                                        TrajectoryModel trajectory) {
   CHECK_EQ(u.size(), measured.size());
   CHECK(!u.empty());
-  return new SegmentPoseCost(std::move(u), std::move(measured), dt_s, rotation_weight_m_per_rad);
+  return new SegmentPoseCost(
+      std::move(u), std::move(measured), dt_s, rotation_weight_m_per_rad, trajectory);
 }
 
 ceres::CostFunction* NewSmoothnessPriorCost(double weight) {
@@ -280,7 +292,8 @@ PoseFitResult FitControlPoses(const std::vector<StampedPose>& poses,
     problem.AddResidualBlock(internal::NewSegmentPoseCost(std::move(segment_u[s]),
                                                           std::move(segment_poses[s]),
                                                           dt_s,
-                                                          options.rotation_weight_m_per_rad),
+                                                          options.rotation_weight_m_per_rad,
+                                                          options.trajectory),
                              nullptr,
                              blocks[s].data(),
                              blocks[s + 1].data(),
@@ -320,6 +333,7 @@ PoseFitResult FitControlPoses(const std::vector<StampedPose>& poses,
 
   PoseFitResult result;
   result.layout = layout;
+  result.trajectory = options.trajectory;
   result.control_poses.resize(layout.num_control_poses);
   for (int i = 0; i < layout.num_control_poses; ++i) {
     result.control_poses[i] = PoseFromBlock(blocks[i].data());

@@ -13,15 +13,18 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/trajectory_evaluation.h"
 
 namespace splinecal {
 
 namespace internal {
 
-BodyState EvaluateBodyState(const SegmentKnots<double>& knots, const Segment<double>& segment) {
+BodyState EvaluateBodyState(TrajectoryModel model,
+                            const SegmentKnots<double>& knots,
+                            const Segment<double>& segment) {
   BodyState state;
   EvaluateSegmentBody(
-      knots, segment, &state.T_w_s, nullptr, &state.w_s, nullptr, &state.v_s, nullptr);
+      model, knots, segment, &state.T_w_s, nullptr, &state.w_s, nullptr, &state.v_s, nullptr);
   return state;
 }
 
@@ -165,7 +168,7 @@ bool StateAt(const ReprojectionSettings& settings,
   state->segment_index = index;
   state->segment = MakeSegment(index, u, settings.layout.dt_s());
   state->knots = k;
-  state->body = EvaluateBodyState(*k, state->segment);
+  state->body = EvaluateBodyState(settings.model, *k, state->segment);
   if (memo != nullptr) {
     memo->valid = true;
     memo->t_s = t_s;
@@ -175,16 +178,17 @@ bool StateAt(const ReprojectionSettings& settings,
   return true;
 }
 
-// The control-pose Jacobian of the pose at `state` (spline/segment_jacobians.h), from the memo
-// when it holds that state's.
-const ControlPoseJacobian<6>& PoseJacobianAt(const ExposureState& state,
+// The control-pose Jacobian of the pose at `state` (spline/trajectory_evaluation.h), from the
+// memo when it holds that state's.
+const ControlPoseJacobian<6>& PoseJacobianAt(TrajectoryModel model,
+                                             const ExposureState& state,
                                              StateMemo* memo,
                                              ControlPoseJacobian<6>* storage) {
   const bool memo_state = memo->valid && memo->state.segment_index == state.segment_index &&
                           memo->state.segment.u == state.segment.u;
   if (memo_state && memo->has_pose_jacobian) return memo->J_pose;
   ControlPoseJacobian<6>* J = memo_state ? &memo->J_pose : storage;
-  EvaluatePoseJacobian(*state.knots, state.segment, nullptr, J);
+  EvaluatePoseJacobian(model, *state.knots, state.segment, nullptr, J);
   if (memo_state) memo->has_pose_jacobian = true;
   return *J;
 }
@@ -345,7 +349,8 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
     }
     // Control poses of the exposure segment.
     ControlPoseJacobian<6> J_pose_storage;
-    const ControlPoseJacobian<6>& J_pose = internal::PoseJacobianAt(state, &memo, &J_pose_storage);
+    const ControlPoseJacobian<6>& J_pose =
+        internal::PoseJacobianAt(settings_.model, state, &memo, &J_pose_storage);
     const Eigen::Matrix<double, 2, 6> F_J_e = F * projection.J_uv_e;
     for (int b = 0; b < kSplineOrder; ++b) {
       const int slot = J_pose.first_index + b - window_.first_index;
@@ -392,7 +397,7 @@ bool TargetFrameCostFunction::LinearizeGlobalShutter(double const* const* parame
   internal::WindowKnots knots(settings_, indices, parameters, /*with_jacobians=*/true);
   internal::ExposureState state;
   if (!internal::StateAt(settings_, &knots, t_frame_s_ + shift, &state)) return false;
-  EvaluatePoseJacobian(*state.knots, state.segment, nullptr, &out->J_pose);
+  EvaluatePoseJacobian(settings_.model, *state.knots, state.segment, nullptr, &out->J_pose);
   out->xi << state.body.v_s, state.body.w_s;
   const int m = num_residuals();
   const int target_columns = with_target_pose ? 6 : 0;
@@ -519,7 +524,7 @@ bool LandmarkCostFunction::Evaluate(double const* const* parameters,
   const Eigen::Matrix<double, 2, 3> F_J_xw = F * projection.J_uv_xw;
   // Observing segment.
   ControlPoseJacobian<6> J_pose;
-  EvaluatePoseJacobian(*state.knots, state.segment, nullptr, &J_pose);
+  EvaluatePoseJacobian(settings_.model, *state.knots, state.segment, nullptr, &J_pose);
   const Eigen::Matrix<double, 2, 6> F_J_e = F * projection.J_uv_e;
   for (int b = 0; b < kSplineOrder; ++b) {
     const int slot = knots.SlotOf(J_pose.first_index + b);
@@ -527,7 +532,7 @@ bool LandmarkCostFunction::Evaluate(double const* const* parameters,
   }
   // Reference segment.
   ControlPoseJacobian<6> J_reference;
-  EvaluatePoseJacobian(*reference.knots, reference.segment, nullptr, &J_reference);
+  EvaluatePoseJacobian(settings_.model, *reference.knots, reference.segment, nullptr, &J_reference);
   const Eigen::Matrix<double, 2, 6> F_J_er = F_J_xw * A_r;
   for (int b = 0; b < kSplineOrder; ++b) {
     const int slot = knots.SlotOf(J_reference.first_index + b);

@@ -16,8 +16,9 @@ namespace splinecal {
 SplineProblem::SplineProblem(const KnotLayout& layout,
                              const std::vector<SE3d>& control_poses,
                              const BiasSpline& bias,
-                             const ResidualOptions& options)
-    : layout_(layout), bias_(bias), options_(options) {
+                             const ResidualOptions& options,
+                             TrajectoryModel trajectory)
+    : layout_(layout), bias_(bias), options_(options), trajectory_(trajectory) {
   if (!layout_.valid()) {
     throw Error("SplineProblem: needs at least 4 control poses and a positive knot spacing");
   }
@@ -61,7 +62,7 @@ void SplineProblem::SetControlPoses(const std::vector<SE3d>& control_poses) {
 }
 
 SE3Splined SplineProblem::Spline() const {
-  return SE3Splined(ControlPoses(), layout_.t0_ns, layout_.dt_ns);
+  return SE3Splined(ControlPoses(), layout_.t0_ns, layout_.dt_ns, trajectory_);
 }
 
 void SplineProblem::SetBiases(const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias) {
@@ -123,6 +124,7 @@ void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
     gyro_segment.segment_index = index;
     gyro_segment.dt_s = dt_s;
     gyro_segment.sigma = sigma_gyro;
+    gyro_segment.model = trajectory_;
     gyro_segment.shared = callback_.get();
     ImuResidualSegment accel_segment = gyro_segment;
     accel_segment.sigma = sigma_accel;

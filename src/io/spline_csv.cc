@@ -2,19 +2,49 @@
 
 #include <cinttypes>
 #include <cstdlib>
+#include <string>
+#include <string_view>
 
 #include "splinecal/error.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/string_printf.h"
 
 namespace splinecal {
+
+namespace {
+
+constexpr std::string_view kTrajectoryKey = "trajectory:";
+
+// True for a "# trajectory: <model>" comment line (spaces around both parts allowed); *value is
+// then <model>.
+bool IsTrajectoryComment(std::string_view comment, std::string_view* value) {
+  comment = TrimLine(comment.substr(1));  // without the '#'
+  if (comment.substr(0, kTrajectoryKey.size()) != kTrajectoryKey) return false;
+  *value = TrimLine(comment.substr(kTrajectoryKey.size()));
+  return true;
+}
+
+}  // namespace
 
 SE3Splined ReadSplineCsv(const std::string& path) {
   static const char* const kNames[] = {"t_ns", "px", "py", "pz", "qw", "qx", "qy", "qz"};
   // A spacing written from a non-integer number of nanoseconds may round by one.
   constexpr int64_t kSpacingToleranceNs = 1;
   TextFileReader reader(path);
+  // Files without the key (written before it existed) are the coupled SE(3) spline.
+  TrajectoryModel model = TrajectoryModel::kSE3;
+  bool model_given = false;
+  reader.set_comment_visitor([&](std::string_view comment) {
+    std::string_view value;
+    if (!IsTrajectoryComment(comment, &value)) return;
+    if (model_given) reader.Fail("the trajectory model is given twice");
+    if (!ParseTrajectoryModel(value, &model)) {
+      reader.Fail("trajectory: expected se3 or split, got '" + std::string(value) + "'");
+    }
+    model_given = true;
+  });
   std::vector<std::string_view> fields;
   std::vector<SE3d> poses;
   int64_t t0_ns = 0;
@@ -57,10 +87,11 @@ SE3Splined ReadSplineCsv(const std::string& path) {
     throw Error(path, 0, "a spline needs at least 4 control poses, found " +
                              std::to_string(poses.size()));
   }
-  return SE3Splined(std::move(poses), t0_ns, dt_ns);
+  return SE3Splined(std::move(poses), t0_ns, dt_ns, model);
 }
 
 void WriteSplineCsv(const SE3Splined& spline, std::ostream* out) {
+  *out << "# trajectory: " << TrajectoryModelName(spline.model()) << "\n";
   *out << "#t_ns,px,py,pz,qw,qx,qy,qz\n";
   for (int i = 0; i < spline.num_control_poses(); ++i) {
     const SE3d& T = spline.control_pose(i);

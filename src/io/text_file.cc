@@ -99,7 +99,11 @@ bool TextFileReader::ReadRawLine() {
 bool TextFileReader::NextLine() {
   while (ReadRawLine()) {
     if (!line_.empty() && line_.back() == '\r') line_.remove_suffix(1);
-    if (!IsDataLine(line_)) continue;
+    if (!IsDataLine(line_)) {
+      const std::string_view content = TrimLine(line_);
+      if (comment_visitor_ && !content.empty()) comment_visitor_(content);
+      continue;
+    }
     ++data_lines_;
     // Only the first data line: a table whose first row is data or a header is never YAML, and
     // the check then costs nothing on files of 10^7 rows.

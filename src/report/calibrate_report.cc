@@ -11,6 +11,7 @@
 #include "splinecal/report/html_page.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/report/intrinsics_report.h"
 #include "splinecal/units.h"
@@ -209,7 +210,8 @@ std::string EstimatesTable(const CalibrationResult& r, const CalibrateOptions& o
               "%.4g",
               r.knot_spacing_s > 0.0 ? r.knot_spacing_s : NanosecondsToSeconds(r.layout.dt_ns))
        << " s, Huber " << StringPrintf("%g", options.huber_px) << " px"
-       << (options.rolling_shutter ? ", rolling shutter" : "") << "</td></tr>\n";
+       << (options.rolling_shutter ? ", rolling shutter" : "") << ", trajectory "
+       << TrajectoryModelName(r.trajectory) << "</td></tr>\n";
   html << "</table>\n";
   return html.str();
 }
@@ -249,6 +251,7 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("num_landmarks", r.num_landmarks);
   yaml.Scalar("knot_spacing_s", NanosecondsToSeconds(r.layout.dt_ns));
   yaml.Scalar("knot_spacing_rule", r.knot_spacing_rule);
+  yaml.Scalar("trajectory", TrajectoryModelName(r.trajectory));
   yaml.Scalar("bias_model", options.model.bias_model == BiasModel::kSpline ? "spline" : "constant");
   yaml.Scalar("rolling_shutter", options.rolling_shutter);
   yaml.Scalar("huber_px", options.huber_px);

@@ -8,6 +8,7 @@
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/html_page.h"
 #include "splinecal/report/report_inputs.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 
@@ -96,6 +97,7 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   yaml.Scalar("covariance_method", r.covariance_method);
   yaml.Scalar("knot_spacing_s", r.knot_spacing_s);
   yaml.Scalar("knot_spacing_rule", r.knot_spacing_rule);
+  yaml.Scalar("trajectory", TrajectoryModelName(r.trajectory));
   yaml.Scalar("num_control_poses", r.layout.num_control_poses);
   yaml.Scalar("spline_t0_ns", r.layout.t0_ns);
   yaml.Scalar("imu_rate_hz", r.imu_rate_hz);
@@ -282,6 +284,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
       Fixed(r.residual_rms.rotation_rad, 4),
       "noise " + Fixed(r.noise_std.rotation_rad, 4));
   row("knot spacing [s]", Fixed(r.knot_spacing_s, 6), r.knot_spacing_rule);
+  row("trajectory model", TrajectoryModelName(r.trajectory), "");
   row("solver",
       std::to_string(r.solve.iterations) + " iterations, " + Fixed(r.solve.solve_time_s, 3) + " s",
       r.solve.termination);

@@ -27,7 +27,8 @@ struct PointView {
     const double t = t_base_s + tau;
     if (!(t >= spline->start_time() && t <= spline->end_time())) return false;
     const Segment<double> segment = spline->SegmentAt(t);
-    const internal::BodyState state = internal::EvaluateBodyState(spline->Knots(segment), segment);
+    const internal::BodyState state =
+        internal::EvaluateBodyState(spline->model(), spline->Knots(segment), segment);
     internal::PointProjection projection;
     if (!internal::ProjectPoint(
             camera->camera, camera->T_cam_imu, state, p_w, 1.0, false, &projection)) {

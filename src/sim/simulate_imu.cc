@@ -8,6 +8,7 @@
 #include "splinecal/error.h"
 #include "splinecal/sim/noise_generator.h"
 #include "splinecal/spline/segment.h"
+#include "splinecal/spline/trajectory_evaluation.h"
 
 namespace splinecal {
 
@@ -79,7 +80,8 @@ void SimulateImu(const SE3Splined& spline,
     // One pass for the readings and the ground truth. The reading is formed exactly as
     // PredictImu forms it (imu/imu_model.h): gyro = w_s (+ b_g), accel = a_s - R^T g_w (+ b_a),
     // a_s = R^T a_w, so the noise-free zero-bias output is bit-identical to PredictImu.
-    internal::EvaluateSegmentBody(spline.Knots(segment),
+    internal::EvaluateSegmentBody(spline.model(),
+                                  spline.Knots(segment),
                                   segment,
                                   ground_truth != nullptr ? &T_w_s : nullptr,
                                   &R_w_s,

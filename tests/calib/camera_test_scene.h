@@ -15,6 +15,7 @@
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
 
 namespace splinecal {
@@ -36,6 +37,7 @@ inline Camera EurocCamera() {
 struct CameraTestScene {
   Camera camera = EurocCamera();
   std::vector<std::array<double, 7>> poses;  // control-pose blocks T_w_s
+  TrajectoryModel model = TrajectoryModel::kSE3;  // their interpolation
   std::array<double, 7> T_c_s{};
   double shift = 0.004;      // [s]
   double line_delay = 3e-5;  // [s/row]
@@ -69,7 +71,7 @@ struct CameraTestScene {
   SE3Splined Spline() const {
     std::vector<SE3d> control;
     for (const auto& block : poses) control.push_back(PoseFromBlock(block.data()));
-    return SE3Splined(control, t0_ns, static_cast<int64_t>(std::llround(dt_s * 1e9)));
+    return SE3Splined(control, t0_ns, static_cast<int64_t>(std::llround(dt_s * 1e9)), model);
   }
 };
 

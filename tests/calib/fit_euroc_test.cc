@@ -2,6 +2,8 @@
 // (../shared/data/euroc_v1_01_easy; skipped when absent).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -10,6 +12,7 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/poses.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
 #include "testing/rotations.h"
 #include "testing/shared_data.h"
@@ -78,6 +81,47 @@ TEST(FitEuroc, V101EasyBiasesMatchTheGroundTruth) {
   EXPECT_TRUE(warned);
   RecordProperty("gyro_bias_error", std::to_string((result.gyro_bias - gyro_bias).norm()));
   RecordProperty("accel_bias_error", std::to_string((result.accel_bias - accel_bias).norm()));
+}
+
+// The two trajectory models on the bundled 20 s excerpt of V1_01_easy (data/, always present):
+// the same data, so the estimates must agree within their reported standard deviations (they
+// differ only by how the spline bends between knots: the models share the orientation and the
+// knots, and the vibration both cannot follow is the same).
+TEST(FitEuroc, SplitAndSe3FitsOfTheBundledExcerptAgreeWithinTheirStds) {
+  const std::string dir = std::string(SPLINECAL_SOURCE_DIR) + "/data/euroc_v1_01_easy_20s/";
+  const std::vector<ImuSample> imu = ReadEurocImu(dir + "imu0.csv");
+  const std::vector<StampedPose> poses = ReadPoses(dir + "groundtruth.csv");
+  FitOptions options;
+  options.model.noise = ReadImuYaml(dir + "sensor.yaml");
+  options.model.knot_spacing_s = 0.05;
+  options.keep_samples = false;
+  const FitResult se3 = Fit(imu, poses, options);
+  options.model.trajectory = TrajectoryModel::kSplitSO3R3;
+  const FitResult split = Fit(imu, poses, options);
+  ASSERT_TRUE(se3.covariance_ok);
+  ASSERT_TRUE(split.covariance_ok);
+  EXPECT_EQ(split.trajectory, TrajectoryModel::kSplitSO3R3);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LE(std::abs(split.gyro_bias[a] - se3.gyro_bias[a]),
+              std::min(split.gyro_bias_std[a], se3.gyro_bias_std[a]))
+        << "axis " << a;
+    EXPECT_LE(std::abs(split.accel_bias[a] - se3.accel_bias[a]),
+              std::min(split.accel_bias_std[a], se3.accel_bias_std[a]))
+        << "axis " << a;
+  }
+  const double gravity_deg = testing::AngleDeg(split.gravity_w, se3.gravity_w);
+  EXPECT_LE(gravity_deg, std::min(split.gravity_direction_std_deg, se3.gravity_direction_std_deg));
+  std::printf(
+      "split - se3: gyro bias %.2e rad/s (std %.1e), accel bias %.2e m/s^2 (std %.1e), "
+      "gravity %.4f deg (std %.4f); accel RMS %.4f vs %.4f m/s^2\n",
+      (split.gyro_bias - se3.gyro_bias).cwiseAbs().maxCoeff(),
+      se3.gyro_bias_std.maxCoeff(),
+      (split.accel_bias - se3.accel_bias).cwiseAbs().maxCoeff(),
+      se3.accel_bias_std.maxCoeff(),
+      gravity_deg,
+      se3.gravity_direction_std_deg,
+      split.residual_rms.accel_m_s2,
+      se3.residual_rms.accel_m_s2);
 }
 
 }  // namespace

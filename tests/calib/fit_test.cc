@@ -10,8 +10,10 @@
 
 #include "calib/fit_test_data.h"
 #include "splinecal/error.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
 #include "testing/rotations.h"
+#include "testing/trajectory_models.h"
 
 namespace splinecal {
 namespace {
@@ -108,8 +110,13 @@ TEST(Fit, NoisyEstimatesLieWithinThreeReportedStandardDeviations) {
   EXPECT_THAT(result.warnings, ::testing::IsEmpty());
 }
 
-TEST(Fit, RecoversTimeOffsetAndExtrinsicWithinThreeStandardDeviations) {
+// Both trajectory models (FitOptions::model.trajectory), each on data simulated from a truth
+// spline of its own model.
+class FitOfModel : public ::testing::TestWithParam<TrajectoryModel> {};
+
+TEST_P(FitOfModel, RecoversTimeOffsetAndExtrinsicWithinThreeStandardDeviations) {
   FitScenario scenario;
+  scenario.truth_model = GetParam();
   scenario.duration_s = 30.0;
   scenario.imu_noise = true;
   scenario.pose_noise = true;
@@ -119,12 +126,16 @@ TEST(Fit, RecoversTimeOffsetAndExtrinsicWithinThreeStandardDeviations) {
   scenario.T_m_s = SE3d(SO3d::Exp(5.0 / kRadToDeg * axis),    // 5 degrees
                         Eigen::Vector3d(0.06, -0.05, 0.06));  // ~10 cm
   const FitData data = MakeFitData(scenario);
+  ASSERT_EQ(data.truth.model(), GetParam());
   FitOptions options = QuietOptions();
+  options.model.trajectory = GetParam();
   options.model.noise = scenario.noise;
   options.estimate_time_offset = true;
   options.estimate_extrinsic = true;
   const FitResult result = Fit(data.imu, data.poses, options);
   ASSERT_TRUE(result.covariance_ok);
+  EXPECT_EQ(result.trajectory, GetParam());
+  EXPECT_EQ(result.MakeSpline().model(), GetParam());
   EXPECT_LE(std::abs(result.time_offset_s - scenario.time_offset_s),
             kSigmaBound * result.time_offset_std_s);
   // Errors in the tangent of T_m_s (right perturbation): rho = R^T dt, phi = Log(R^T R').
@@ -140,8 +151,47 @@ TEST(Fit, RecoversTimeOffsetAndExtrinsicWithinThreeStandardDeviations) {
     EXPECT_LE(std::abs(result.accel_bias[a] - scenario.accel_bias[a]),
               kSigmaBound * result.accel_bias_std[a]);
   }
+  EXPECT_LE(AngleDeg(result.gravity_w, data.gravity_w),
+            kSigmaBound * result.gravity_direction_std_deg);
+  // The model matches the truth's: the accelerometer residuals are the simulated noise.
+  EXPECT_NEAR(result.residual_rms.accel_m_s2 / result.noise_std.accel_m_s2, 1.0, 0.05);
   // This motion excites both: no "not determined" warnings.
   EXPECT_THAT(result.warnings, ::testing::IsEmpty());
+}
+
+INSTANTIATE_TEST_SUITE_P(Models,
+                         FitOfModel,
+                         testing::BothTrajectoryModels(),
+                         testing::TrajectoryModelTestName);
+
+// The split SO(3) x R^3 model end to end (FitOptions::model.trajectory): noise-free data from a
+// split truth is fitted exactly from a perturbed start (the noisy case is FitOfModel above).
+TEST(Fit, SplitModelRecoversASplitSplineSimulationExactly) {
+  FitScenario scenario;
+  scenario.truth_model = TrajectoryModel::kSplitSO3R3;
+  scenario.R_world = SO3d::Exp(Eigen::Vector3d(0.2, -0.3, 0.5));
+  const FitData data = MakeFitData(scenario);
+  ASSERT_EQ(data.truth.model(), TrajectoryModel::kSplitSO3R3);
+  FitOptions options = QuietOptions();
+  options.model.trajectory = TrajectoryModel::kSplitSO3R3;
+  options.covariance.compute = false;
+  FitProblem problem(data.imu, data.poses, options);
+  problem.SetControlPoses(PerturbedControlPoses(data.truth, 0.02, 0.035, 17));
+  problem.SetBiases(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  problem.SetGravity(SO3d::Exp(Eigen::Vector3d(0.035, 0.0, 0.0)) * data.gravity_w);
+  const FitResult result = problem.Solve();
+  EXPECT_EQ(result.trajectory, TrajectoryModel::kSplitSO3R3);
+  EXPECT_EQ(result.MakeSpline().model(), TrajectoryModel::kSplitSO3R3);
+  EXPECT_LE(MaxControlPoseError(data.truth, result.control_poses), kNoiseFreeControlPoseTolerance);
+  EXPECT_LE((result.gyro_bias - scenario.gyro_bias).cwiseAbs().maxCoeff(), kNoiseFreeBiasTolerance);
+  EXPECT_LE((result.accel_bias - scenario.accel_bias).cwiseAbs().maxCoeff(),
+            kNoiseFreeBiasTolerance);
+  EXPECT_LE(AngleDeg(result.gravity_w, data.gravity_w), kNoiseFreeGravityToleranceDeg);
+  // The coupled model cannot represent this truth exactly: its IMU residuals stay above zero.
+  FitOptions coupled = options;
+  coupled.model.trajectory = TrajectoryModel::kSE3;
+  const FitResult other = Fit(data.imu, data.poses, coupled);
+  EXPECT_GT(other.residual_rms.accel_m_s2, 100.0 * result.residual_rms.accel_m_s2);
 }
 
 TEST(Fit, ReattachesPoseResidualsWhenTheTimeOffsetCrossesKnots) {

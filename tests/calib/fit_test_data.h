@@ -23,6 +23,7 @@
 #include "splinecal/sim/simulate_imu.h"
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/spline/se3_spline.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
 
 namespace splinecal {
@@ -37,6 +38,8 @@ struct FitScenario {
   bool closed_form = false;
   double duration_s = 20.0;
   int64_t knot_spacing_ns = 100'000'000;
+  // The truth spline's model (spline/trajectory_model.h): the IMU and the poses come from it.
+  TrajectoryModel truth_model = TrajectoryModel::kSE3;
   double pose_rate_hz = 10.0;
   // IMU: noise densities (random walks 0 unless set), constant biases.
   bool imu_noise = false;
@@ -120,10 +123,15 @@ inline FitData MakeFitData(const FitScenario& scenario) {
     data.poses = SamplePoseSource(trajectory, kStartNs, end_ns, source);
     return data;
   }
-  const SE3Splined spline =
-      FitAnalyticTrajectory(
-          ScenarioTrajectory(scenario), kStartNs, end_ns, scenario.knot_spacing_ns)
-          .MakeSpline();
+  PoseFitOptions truth_fit;
+  truth_fit.trajectory = scenario.truth_model;
+  const SE3Splined spline = FitAnalyticTrajectory(ScenarioTrajectory(scenario),
+                                                  kStartNs,
+                                                  end_ns,
+                                                  scenario.knot_spacing_ns,
+                                                  /*pose_step_ns=*/0,
+                                                  truth_fit)
+                                .MakeSpline();
   FitData data;
   const SimulationOptions simulation = ImuSimulationOptions(scenario);
   SimulateImu(spline, spline.start_time_ns(), spline.end_time_ns(), simulation, &data.imu, nullptr);
@@ -132,7 +140,7 @@ inline FitData MakeFitData(const FitScenario& scenario) {
   const SE3d T_world(scenario.R_world, Eigen::Vector3d::Zero());
   std::vector<SE3d> control = spline.control_poses();
   for (SE3d& T : control) T = T_world * T;
-  data.truth = SE3Splined(control, spline.t0_ns(), spline.dt_ns());
+  data.truth = SE3Splined(control, spline.t0_ns(), spline.dt_ns(), spline.model());
   data.gravity_w = scenario.R_world * Eigen::Vector3d(0.0, 0.0, -kDefaultGravity);
 
   std::mt19937_64 rng(scenario.noise_seed + 1000);

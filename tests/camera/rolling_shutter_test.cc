@@ -25,7 +25,8 @@ struct SplineRow {
 
   bool operator()(double tau, double* v, double* v_dot) const {
     const Segment<double> segment = spline->SegmentAt(t_base_s + tau);
-    const internal::BodyState state = internal::EvaluateBodyState(spline->Knots(segment), segment);
+    const internal::BodyState state =
+        internal::EvaluateBodyState(spline->model(), spline->Knots(segment), segment);
     internal::PointProjection projection;
     if (!internal::ProjectPoint(*camera, T_c_s, state, p_w, 1.0, false, &projection)) {
       return false;

@@ -94,5 +94,31 @@ TEST(EvaluateCommand, BadInputIsOneLineExitTwoAndNoOutput) {
   EXPECT_EQ(bias.exit_code, 2);
 }
 
+// The model line of spline.csv: evaluate follows it (result.yaml and the table say which) and
+// refuses an unknown model in one line, exit code 2, writing nothing.
+TEST(EvaluateCommand, FollowsTheTrajectoryLineAndRefusesAnUnknownModel) {
+  TempDir dir;
+  Vector6<double> xi;
+  xi << 1.0, 0.0, 0.0, 0.0, 0.0, 0.5;
+  std::string text = SubgroupSplineCsv(xi, 0.1);
+  ASSERT_EQ(text.rfind("# trajectory: se3\n", 0), 0u);
+  text = text.substr(text.find('\n') + 1);
+  const auto split = RunTool({"evaluate",
+                              "--spline",
+                              dir.Write("split.csv", "# trajectory: split\n" + text),
+                              "--out",
+                              dir.File("split")});
+  ASSERT_EQ(split.exit_code, 0) << split.err;
+  EXPECT_THAT(split.out, HasSubstr(", split, valid"));
+  EXPECT_THAT(ReadFileText(dir.File("split/result.yaml")), HasSubstr("trajectory: \"split\""));
+
+  const std::string bad = dir.Write("bad.csv", "# trajectory: kalibr\n" + text);
+  const auto result = RunTool({"evaluate", "--spline", bad, "--out", dir.File("out")});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(CountLines(result.err), 1) << result.err;
+  EXPECT_THAT(result.err, HasSubstr("bad.csv:1: trajectory: expected se3 or split, got 'kalibr'"));
+  EXPECT_FALSE(std::ifstream(dir.File("out/result.yaml")));
+}
+
 }  // namespace
 }  // namespace splinecal

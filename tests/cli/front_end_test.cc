@@ -6,6 +6,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
@@ -84,15 +85,22 @@ TEST(FrontEnd, UsageLineListsExactlyTheDocumentedFlags) {
   }
 }
 
+// The value of --`flag` (read by `value`) after `command` parsed no arguments, i.e. that
+// command's default; the flags are restored afterwards.
+template <typename Value>
+auto DefaultOf(const std::string& command, const char* flag, Value value) {
+  gflags::FlagSaver restore_flags_afterwards;
+  bool help = false;
+  std::string error;
+  EXPECT_TRUE(cli::ParseFlags(FindCommand(command), {}, &help, &error)) << error;
+  EXPECT_TRUE(gflags::GetCommandLineFlagInfoOrDie(flag).is_default) << flag;
+  return value();
+}
+
 // A shared flag keeps its meaning; only its default is the command's.
 TEST(FrontEnd, KnotSpacingDefaultIsPerCommand) {
   const auto parsed_knot_spacing = [](const std::string& command) {
-    gflags::FlagSaver restore_flags_afterwards;
-    bool help = false;
-    std::string error;
-    EXPECT_TRUE(cli::ParseFlags(FindCommand(command), {}, &help, &error)) << error;
-    EXPECT_TRUE(gflags::GetCommandLineFlagInfoOrDie("knot_spacing").is_default);
-    return FLAGS_knot_spacing;
+    return DefaultOf(command, "knot_spacing", [] { return FLAGS_knot_spacing; });
   };
   EXPECT_EQ(parsed_knot_spacing("fit"), 0.0);  // chosen from the IMU data
   EXPECT_EQ(parsed_knot_spacing("calibrate"), 0.05);
@@ -111,6 +119,44 @@ TEST(FrontEnd, SimulateRefusesKnotSpacingZero) {
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(CountLines(result.err), 1);
   EXPECT_THAT(result.err, HasSubstr("--knot-spacing: 0 (chosen from the IMU data) needs IMU data"));
+}
+
+// --trajectory is simulate's motion and fit's and calibrate's spline model: each command's own
+// default, and a model other than se3 or split is bad input (exit 2, one line naming the flag),
+// refused before any file is read.
+TEST(FrontEnd, TrajectoryIsPerCommandAndAnUnknownModelIsRefused) {
+  const auto parsed_trajectory = [](const std::string& command) {
+    return DefaultOf(command, "trajectory", [] { return FLAGS_trajectory; });
+  };
+  EXPECT_EQ(parsed_trajectory("fit"), "se3");
+  EXPECT_EQ(parsed_trajectory("calibrate"), "se3");
+  EXPECT_EQ(parsed_trajectory("simulate"), "vio_course");
+  EXPECT_EQ(parsed_trajectory("fit"), "se3");  // not left at simulate's default
+
+  TempDir dir;
+  const std::vector<std::vector<std::string>> commands = {
+      {"fit", "--imu", dir.File("imu.csv"), "--poses", dir.File("poses.csv")},
+      {"calibrate",
+       "--imu",
+       dir.File("imu.csv"),
+       "--observations",
+       dir.File("observations.csv"),
+       "--camchain",
+       dir.File("camchain.yaml"),
+       "--target",
+       dir.File("target.yaml")}};
+  for (std::vector<std::string> args : commands) {
+    for (const std::string flag : {"--trajectory", "--out"}) {
+      args.push_back(flag);
+      args.push_back(flag == "--out" ? dir.File("out") : "vio_course");
+    }
+    const auto result = RunTool(args);
+    EXPECT_EQ(result.exit_code, 2) << args[0];
+    EXPECT_EQ(CountLines(result.err), 1) << result.err;
+    EXPECT_THAT(result.err,
+                HasSubstr("splinecal " + args[0] +
+                          ": --trajectory: expected se3 or split, got 'vio_course'"));
+  }
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 namespace {
@@ -130,6 +131,25 @@ std::vector<const ceres::Manifold*> Manifolds(int bias_blocks,
   return manifolds;
 }
 
+// The residual segment `index` of the test spline (knot spacing kDtS) with noise std `sigma`.
+ImuResidualSegment TestSegment(int index,
+                               double sigma = 1.0,
+                               TrajectoryModel model = TrajectoryModel::kSE3) {
+  ImuResidualSegment segment;
+  segment.segment_index = index;
+  segment.dt_s = kDtS;
+  segment.sigma = sigma;
+  segment.model = model;
+  return segment;
+}
+
+// Cost<1> (constant bias) or Cost<4> (bias spline), as `bias_blocks` says, from `args`.
+template <template <int> class Cost, typename... Args>
+std::unique_ptr<ceres::CostFunction> MakeCost(int bias_blocks, const Args&... args) {
+  if (bias_blocks == 1) return std::make_unique<Cost<1>>(args...);
+  return std::make_unique<Cost<4>>(args...);
+}
+
 // The segment positions probed: both ends and the inside.
 const double kUs[] = {0.0, 0.23, 0.5, 0.81, 1.0};
 
@@ -137,16 +157,10 @@ TEST(GyroCostFunction, AnalyticMatchesAutoDiffForBothBiasModels) {
   for (int bias_blocks : {1, 4}) {
     for (double u : kUs) {
       Blocks blocks = MakeBlocks(3);
-      ImuResidualSegment segment;
-      segment.segment_index = 5;
-      segment.dt_s = kDtS;
+      const ImuResidualSegment segment = TestSegment(5);
       const ImuResidualSample sample = MakeSample(u, 9, bias_blocks == 4);
-      std::unique_ptr<ceres::CostFunction> analytic;
-      if (bias_blocks == 1) {
-        analytic = std::make_unique<GyroCostFunction<1>>(segment, sample);
-      } else {
-        analytic = std::make_unique<GyroCostFunction<4>>(segment, sample);
-      }
+      const std::unique_ptr<ceres::CostFunction> analytic =
+          MakeCost<GyroCostFunction>(bias_blocks, segment, sample);
       std::unique_ptr<ceres::CostFunction> autodiff(
           NewAutoDiffGyroCost(bias_blocks, segment, sample));
       const std::vector<double*> p = blocks.Pointers(bias_blocks, false);
@@ -159,16 +173,10 @@ TEST(AccelCostFunction, AnalyticMatchesAutoDiffForBothBiasModels) {
   for (int bias_blocks : {1, 4}) {
     for (double u : kUs) {
       Blocks blocks = MakeBlocks(4);
-      ImuResidualSegment segment;
-      segment.segment_index = 5;
-      segment.dt_s = kDtS;
+      const ImuResidualSegment segment = TestSegment(5);
       const ImuResidualSample sample = MakeSample(u, 10, bias_blocks == 4);
-      std::unique_ptr<ceres::CostFunction> analytic;
-      if (bias_blocks == 1) {
-        analytic = std::make_unique<AccelCostFunction<1>>(segment, sample);
-      } else {
-        analytic = std::make_unique<AccelCostFunction<4>>(segment, sample);
-      }
+      const std::unique_ptr<ceres::CostFunction> analytic =
+          MakeCost<AccelCostFunction>(bias_blocks, segment, sample);
       std::unique_ptr<ceres::CostFunction> autodiff(
           NewAutoDiffAccelCost(bias_blocks, segment, sample));
       const std::vector<double*> p = blocks.Pointers(bias_blocks, true);
@@ -235,20 +243,12 @@ TEST(ImuCostFunctions, PassCeresGradientCheckerThroughTheManifolds) {
   for (int bias_blocks : {1, 4}) {
     for (double u : {0.0, 0.4, 1.0}) {
       Blocks blocks = MakeBlocks(5);
-      ImuResidualSegment segment;
-      segment.segment_index = 2;
-      segment.dt_s = kDtS;
-      segment.sigma = 0.02;  // weighted, as in a fit
+      const ImuResidualSegment segment = TestSegment(2, 0.02);  // weighted, as in a fit
       const ImuResidualSample sample = MakeSample(u, 12, bias_blocks == 4);
-      std::unique_ptr<ceres::CostFunction> gyro;
-      std::unique_ptr<ceres::CostFunction> accel;
-      if (bias_blocks == 1) {
-        gyro = std::make_unique<GyroCostFunction<1>>(segment, sample);
-        accel = std::make_unique<AccelCostFunction<1>>(segment, sample);
-      } else {
-        gyro = std::make_unique<GyroCostFunction<4>>(segment, sample);
-        accel = std::make_unique<AccelCostFunction<4>>(segment, sample);
-      }
+      const std::unique_ptr<ceres::CostFunction> gyro =
+          MakeCost<GyroCostFunction>(bias_blocks, segment, sample);
+      const std::unique_ptr<ceres::CostFunction> accel =
+          MakeCost<AccelCostFunction>(bias_blocks, segment, sample);
       const std::vector<const ceres::Manifold*> gyro_manifolds =
           Manifolds(bias_blocks, false, &se3, &gravity);
       const std::vector<const ceres::Manifold*> accel_manifolds =
@@ -276,12 +276,54 @@ TEST(ImuCostFunctions, PassCeresGradientCheckerThroughTheManifolds) {
   }
 }
 
+// The split SO(3) x R^3 model's accelerometer residual (ImuResidualSegment::model): analytic
+// against its autodiff twin, through the manifolds, and stacked per segment; it is another
+// residual than the coupled model's on the same blocks.
+TEST(AccelCostFunction, SplitModelMatchesAutoDiffAndPassesGradientChecker) {
+  const SE3Manifold se3;
+  const GravityManifold gravity;
+  for (int bias_blocks : {1, 4}) {
+    for (double u : kUs) {
+      Blocks blocks = MakeBlocks(14);
+      // Unweighted: with these knot steps (~1 m per 0.1 s) a_w reaches ~100 m/s^2, and at
+      // sigma 0.02 the residual's ~1e4 gives central differences a rounding error of
+      // ~1e-16 |r| / 1e-6 ~ 1e-6 on blocks whose Jacobian is exactly zero (P_0 at u = 0).
+      const ImuResidualSegment segment = TestSegment(5, 1.0, TrajectoryModel::kSplitSO3R3);
+      const ImuResidualSample sample = MakeSample(u, 15, bias_blocks == 4);
+      ImuResidualSegment coupled_segment = segment;
+      coupled_segment.model = TrajectoryModel::kSE3;
+      const std::unique_ptr<ceres::CostFunction> analytic =
+          MakeCost<AccelCostFunction>(bias_blocks, segment, sample);
+      const std::unique_ptr<ceres::CostFunction> stacked = MakeCost<AccelSegmentCostFunction>(
+          bias_blocks, segment, std::vector<ImuResidualSample>{sample, sample});
+      const std::unique_ptr<ceres::CostFunction> coupled =
+          MakeCost<AccelCostFunction>(bias_blocks, coupled_segment, sample);
+      std::unique_ptr<ceres::CostFunction> autodiff(
+          NewAutoDiffAccelCost(bias_blocks, segment, sample));
+      const std::vector<double*> p = blocks.Pointers(bias_blocks, true);
+      const Evaluation split = Evaluate(*analytic, p);
+      ExpectSame(split, Evaluate(*autodiff, p), kAutoDiffTolerance);
+      EXPECT_GT(MaxRelativeDifference(split.residuals, Evaluate(*coupled, p).residuals), 1e-6);
+      const Evaluation rows = Evaluate(*stacked, p);
+      for (int r = 0; r < 3; ++r) {
+        EXPECT_EQ(rows.residuals[r], split.residuals[r]);
+        EXPECT_EQ(rows.residuals[3 + r], split.residuals[r]);
+      }
+      const std::vector<const ceres::Manifold*> manifolds =
+          Manifolds(bias_blocks, true, &se3, &gravity);
+      EXPECT_LE(MaxTangentJacobianError(*analytic, p, manifolds), kTangentJacobianTolerance);
+      if (u == 1.0) continue;  // exact zeros on P_0 (see above)
+      ceres::GradientChecker checker(analytic.get(), &manifolds, ceres::NumericDiffOptions());
+      ceres::GradientChecker::ProbeResults results;
+      EXPECT_TRUE(checker.Probe(p.data(), kGradientCheckerPrecision, &results))
+          << results.error_log;
+    }
+  }
+}
+
 TEST(ImuSegmentCostFunctions, StackTheSampleResidualsRowByRow) {
   Blocks blocks = MakeBlocks(6);
-  ImuResidualSegment segment;
-  segment.segment_index = 3;
-  segment.dt_s = kDtS;
-  segment.sigma = 0.05;
+  const ImuResidualSegment segment = TestSegment(3, 0.05);
   std::vector<ImuResidualSample> samples;
   for (int s = 0; s < 5; ++s) samples.push_back(MakeSample(kUs[s], 20 + s, true));
   const GyroSegmentCostFunction<4> gyro_stack(segment, samples);
@@ -347,9 +389,7 @@ TEST(ImuCostFunctions, SharedKnotCachesGiveTheLocalAnswerAndAreNotUsedWhenStale)
 
 TEST(ImuCostFunctions, ResidualsOnlyAndSkippedBlocksFollowTheCeresContract) {
   Blocks blocks = MakeBlocks(14);
-  ImuResidualSegment segment;
-  segment.segment_index = 1;
-  segment.dt_s = kDtS;
+  const ImuResidualSegment segment = TestSegment(1);
   const ImuResidualSample sample = MakeSample(0.3, 15, false);
   const AccelCostFunction<1> cost(segment, sample);
   const std::vector<double*> p = blocks.Pointers(1, true);

@@ -6,9 +6,13 @@
 #include <array>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "splinecal/lie/se3_manifold.h"
+#include "splinecal/spline/trajectory_evaluation.h"
+#include "splinecal/spline/trajectory_model.h"
+#include "testing/trajectory_models.h"
 
 namespace splinecal {
 namespace {
@@ -104,13 +108,17 @@ double MaxRelativeDifference(const double* a, const double* b, size_t n) {
 // into a neighbouring segment: the segment polynomial is evaluated at u outside [0, 1]).
 const double kTimes[] = {0.705, 0.7, 0.8, 0.77, 0.64, 0.86};
 
-TEST(PoseCostFunction, AnalyticMatchesAutoDiffAtLargeResiduals) {
+// Every test runs on both trajectory models (PoseResidualData::model).
+class PoseCostFunction : public ::testing::TestWithParam<TrajectoryModel> {};
+
+TEST_P(PoseCostFunction, AnalyticMatchesAutoDiffAtLargeResiduals) {
   for (double t_s : kTimes) {
     for (double residual_size : {0.0, 0.1, 1.0}) {
       for (double offset : {0.004, -0.08}) {
         PoseBlocks blocks = MakeBlocks(3, offset);
-        const PoseResidualData data = MakeData(t_s - offset, 4, residual_size);
-        const PoseCostFunction analytic(data);
+        PoseResidualData data = MakeData(t_s - offset, 4, residual_size);
+        data.model = GetParam();
+        const splinecal::PoseCostFunction analytic(data);
         std::unique_ptr<ceres::CostFunction> autodiff(NewAutoDiffPoseCost(data));
         const Evaluation a = Evaluate(analytic, &blocks);
         const Evaluation b = Evaluate(*autodiff, &blocks);
@@ -127,7 +135,7 @@ TEST(PoseCostFunction, AnalyticMatchesAutoDiffAtLargeResiduals) {
   }
 }
 
-TEST(PoseCostFunction, PassesCeresGradientChecker) {
+TEST_P(PoseCostFunction, PassesCeresGradientChecker) {
   const SE3Manifold se3;
   const std::vector<const ceres::Manifold*> manifolds = {&se3, &se3, &se3, &se3, nullptr, &se3};
   for (double t_s : kTimes) {
@@ -140,7 +148,9 @@ TEST(PoseCostFunction, PassesCeresGradientChecker) {
     PoseBlocks blocks = MakeBlocks(5, kOffset);
     // Stamped t_s - offset, so that the spline is evaluated at t_s (u in [-0.6, 1.6]; further
     // out, the extrapolated rotation can approach pi from the measurement, where Log jumps).
-    const PoseCostFunction cost(MakeData(t_s - kOffset, 6, 0.5));
+    PoseResidualData data = MakeData(t_s - kOffset, 6, 0.5);
+    data.model = GetParam();
+    const splinecal::PoseCostFunction cost(data);
     ceres::GradientChecker checker(&cost, &manifolds, ceres::NumericDiffOptions());
     ceres::GradientChecker::ProbeResults results;
     EXPECT_TRUE(checker.Probe(blocks.Pointers().data(), kGradientCheckerPrecision, &results))
@@ -148,9 +158,10 @@ TEST(PoseCostFunction, PassesCeresGradientChecker) {
   }
 }
 
-TEST(PoseCostFunction, IsZeroForAPoseTakenFromTheModel) {
+TEST_P(PoseCostFunction, IsZeroForAPoseTakenFromTheModel) {
   PoseBlocks blocks = MakeBlocks(7, 0.005);
   PoseResidualData data = MakeData(0.73, 8, 0.0);
+  data.model = GetParam();
   // The spline segment at t_s + offset, through the extrinsic.
   const SegmentKnotData<double> knots(PoseFromBlock(blocks.control[0].data()),
                                       PoseFromBlock(blocks.control[1].data()),
@@ -158,11 +169,16 @@ TEST(PoseCostFunction, IsZeroForAPoseTakenFromTheModel) {
                                       PoseFromBlock(blocks.control[3].data()));
   const double u = (data.t_s + blocks.time_offset[0]) / kDtS - data.segment_index;
   SE3d T_w_s;
-  EvaluateSegment(knots.knots(), MakeSegment(data.segment_index, u, kDtS), &T_w_s);
+  EvaluateSegment(data.model, knots.knots(), MakeSegment(data.segment_index, u, kDtS), &T_w_s);
   data.T_w_m = T_w_s * PoseFromBlock(blocks.T_m_s.data()).inverse();
-  const Evaluation e = Evaluate(PoseCostFunction(data), &blocks);
+  const Evaluation e = Evaluate(splinecal::PoseCostFunction(data), &blocks);
   for (double r : e.residuals) EXPECT_NEAR(r, 0.0, kZeroResidualTolerance);
 }
+
+INSTANTIATE_TEST_SUITE_P(Models,
+                         PoseCostFunction,
+                         testing::BothTrajectoryModels(),
+                         testing::TrajectoryModelTestName);
 
 }  // namespace
 }  // namespace splinecal

@@ -7,11 +7,14 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "splinecal/error.h"
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "splinecal/spline/trajectory_model.h"
+#include "testing/trajectory_models.h"
 
 namespace splinecal {
 namespace {
@@ -41,7 +44,11 @@ std::vector<StampedPose> SampleSpline(const SE3Splined& spline, int64_t step_ns)
   return poses;
 }
 
-SE3Splined RandomSmoothSpline(int n, int64_t t0_ns, int64_t dt_ns, uint64_t seed) {
+SE3Splined RandomSmoothSpline(int n,
+                              int64_t t0_ns,
+                              int64_t dt_ns,
+                              uint64_t seed,
+                              TrajectoryModel model = TrajectoryModel::kSE3) {
   std::mt19937 rng(static_cast<unsigned>(seed));
   std::normal_distribution<double> normal(0.0, 1.0);
   std::vector<SE3d> control(n);
@@ -52,7 +59,7 @@ SE3Splined RandomSmoothSpline(int n, int64_t t0_ns, int64_t dt_ns, uint64_t seed
     T = T * SE3d::Exp(xi);
     control[i] = T;
   }
-  return SE3Splined(control, t0_ns, dt_ns);
+  return SE3Splined(control, t0_ns, dt_ns, model);
 }
 
 TEST(KnotLayoutCovering, FirstValidKnotAtStartAndEndCovered) {
@@ -67,10 +74,13 @@ TEST(KnotLayoutCovering, FirstValidKnotAtStartAndEndCovered) {
   EXPECT_THROW(KnotLayoutCovering(10, 0, 5), Error);
 }
 
-TEST(SegmentPoseCost, AnalyticJacobiansMatchNumericThroughTheManifold) {
+// Both trajectory models (PoseFitOptions::trajectory).
+class SegmentPoseCost : public ::testing::TestWithParam<TrajectoryModel> {};
+
+TEST_P(SegmentPoseCost, AnalyticJacobiansMatchNumericThroughTheManifold) {
   // Residuals far from zero (measured poses up to ~0.5 rad and 0.5 m off), so that Jr^-1(r)
   // matters.
-  const SE3Splined spline = RandomSmoothSpline(4, 0, 100'000'000, 3);
+  const SE3Splined spline = RandomSmoothSpline(4, 0, 100'000'000, 3, GetParam());
   std::mt19937 rng(4);
   std::normal_distribution<double> normal(0.0, 0.3);
   std::vector<double> u = {0.0, 0.2, 0.55, 0.9, 1.0};
@@ -80,7 +90,8 @@ TEST(SegmentPoseCost, AnalyticJacobiansMatchNumericThroughTheManifold) {
     for (int k = 0; k < 6; ++k) offset[k] = normal(rng);
     measured.push_back(spline.Pose(0.1 * (1.0 + uj)) * SE3d::Exp(offset));
   }
-  std::unique_ptr<ceres::CostFunction> cost(internal::NewSegmentPoseCost(u, measured, 0.1, 2.0));
+  std::unique_ptr<ceres::CostFunction> cost(
+      internal::NewSegmentPoseCost(u, measured, 0.1, 2.0, GetParam()));
   std::vector<std::array<double, 7>> blocks(4);
   for (int k = 0; k < 4; ++k) PoseToBlock(spline.control_pose(k), blocks[k].data());
   const double* parameters[4] = {
@@ -150,8 +161,15 @@ TEST(SmoothnessPriorCost, AnalyticJacobiansMatchAutomaticDifferentiation) {
   }
 }
 
-TEST(FitControlPoses, RecoversTheSplineFromItsOwnSamples) {
-  const SE3Splined truth = RandomSmoothSpline(24, 1'000'000'000, 50'000'000, 7);
+INSTANTIATE_TEST_SUITE_P(Models,
+                         SegmentPoseCost,
+                         testing::BothTrajectoryModels(),
+                         testing::TrajectoryModelTestName);
+
+class FitControlPosesOfModel : public ::testing::TestWithParam<TrajectoryModel> {};
+
+TEST_P(FitControlPosesOfModel, RecoversTheSplineFromItsOwnSamples) {
+  const SE3Splined truth = RandomSmoothSpline(24, 1'000'000'000, 50'000'000, 7, GetParam());
   const std::vector<StampedPose> poses = SampleSpline(truth, 7'000'000);
   KnotLayout layout;
   layout.t0_ns = truth.t0_ns();
@@ -159,7 +177,9 @@ TEST(FitControlPoses, RecoversTheSplineFromItsOwnSamples) {
   layout.num_control_poses = truth.num_control_poses();
   PoseFitOptions options;
   options.smoothness_weight = 0.0;
+  options.trajectory = GetParam();
   const PoseFitResult fit = FitControlPoses(poses, layout, options);
+  EXPECT_EQ(fit.MakeSpline().model(), GetParam());
   EXPECT_TRUE(fit.converged) << fit.solver_report;
   EXPECT_EQ(fit.num_poses, static_cast<int64_t>(poses.size()));
   EXPECT_LT(fit.max_position_error_m, kSelfFitTolerance);
@@ -169,6 +189,11 @@ TEST(FitControlPoses, RecoversTheSplineFromItsOwnSamples) {
     EXPECT_LT(d.norm(), 1e-6) << "control pose " << i;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Models,
+                         FitControlPosesOfModel,
+                         testing::BothTrajectoryModels(),
+                         testing::TrajectoryModelTestName);
 
 TEST(FitControlPoses, RecoversVioCourseWellUnderAMillimetre) {
   const AnalyticTrajectory course = VioCourseTrajectory();

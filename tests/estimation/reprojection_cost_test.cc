@@ -339,35 +339,41 @@ void ExpectSameNormalEquations(const NormalEquations& got, const NormalEquations
 TEST_F(ReprojectionCostTest, CompactFrameHasTheRowsNormalEquations) {
   // estimation/compact_frame_cost.h: Ceres must take the same steps on the compact frame. Huber
   // active on part of the corners; the line delay held at 0 (no Jacobian), as in calibrate.
-  const double t_frame = 0.62;
-  scene_.line_delay = 0.0;
-  settings_.huber_px = 1.5;
-  ControlPoseWindow window;
-  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.02, &window));
-  auto rows =
-      std::make_unique<TargetFrameCostFunction>(settings_, window, t_frame, Corners(t_frame, 2.0));
-  const TargetFrameCostFunction* frame = rows.get();
-  ASSERT_TRUE(CompactFrameCostFunction::SavesRows(*frame));
-  const CompactFrameCostFunction compact(std::move(rows));
-  EXPECT_EQ(&CompactResidual::RowsOf(compact), frame);
-  EXPECT_EQ(compact.num_residuals(), 6 + 6 + kNumIntrinsics + 1);
-  const Blocks blocks = TargetBlocks(window);
-  const int n = window.num_poses;
-  // Control poses, T_cam_imu and the time offset free; then the target pose free too.
-  std::vector<bool> free(blocks.parameters.size(), true);
-  free[n + 2] = false;  // line delay
-  free[n + 3] = false;  // T_w_t
-  ExpectSameNormalEquations(NormalEquationsOf(compact, blocks, free),
-                            NormalEquationsOf(*frame, blocks, free));
-  free[n + 3] = true;
-  ExpectSameNormalEquations(NormalEquationsOf(compact, blocks, free),
-                            NormalEquationsOf(*frame, blocks, free));
-  // An estimated line delay cannot be compacted: the evaluation refuses.
-  std::vector<double*> jacobians(blocks.parameters.size(), nullptr);
-  std::vector<double> line_delay_jacobian(compact.num_residuals());
-  jacobians[n + 2] = line_delay_jacobian.data();
-  std::vector<double> residuals(compact.num_residuals());
-  EXPECT_FALSE(compact.Evaluate(blocks.parameters.data(), residuals.data(), jacobians.data()));
+  // Both trajectory models: the compact form takes the pose Jacobian of the model it is given.
+  for (TrajectoryModel model : {TrajectoryModel::kSE3, TrajectoryModel::kSplitSO3R3}) {
+    SCOPED_TRACE(TrajectoryModelName(model));
+    settings_.model = model;
+    scene_.model = model;
+    const double t_frame = 0.62;
+    scene_.line_delay = 0.0;
+    settings_.huber_px = 1.5;
+    ControlPoseWindow window;
+    ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.02, &window));
+    auto rows = std::make_unique<TargetFrameCostFunction>(
+        settings_, window, t_frame, Corners(t_frame, 2.0));
+    const TargetFrameCostFunction* frame = rows.get();
+    ASSERT_TRUE(CompactFrameCostFunction::SavesRows(*frame));
+    const CompactFrameCostFunction compact(std::move(rows));
+    EXPECT_EQ(&CompactResidual::RowsOf(compact), frame);
+    EXPECT_EQ(compact.num_residuals(), 6 + 6 + kNumIntrinsics + 1);
+    const Blocks blocks = TargetBlocks(window);
+    const int n = window.num_poses;
+    // Control poses, T_cam_imu and the time offset free; then the target pose free too.
+    std::vector<bool> free(blocks.parameters.size(), true);
+    free[n + 2] = false;  // line delay
+    free[n + 3] = false;  // T_w_t
+    ExpectSameNormalEquations(NormalEquationsOf(compact, blocks, free),
+                              NormalEquationsOf(*frame, blocks, free));
+    free[n + 3] = true;
+    ExpectSameNormalEquations(NormalEquationsOf(compact, blocks, free),
+                              NormalEquationsOf(*frame, blocks, free));
+    // An estimated line delay cannot be compacted: the evaluation refuses.
+    std::vector<double*> jacobians(blocks.parameters.size(), nullptr);
+    std::vector<double> line_delay_jacobian(compact.num_residuals());
+    jacobians[n + 2] = line_delay_jacobian.data();
+    std::vector<double> residuals(compact.num_residuals());
+    EXPECT_FALSE(compact.Evaluate(blocks.parameters.data(), residuals.data(), jacobians.data()));
+  }
 }
 
 TEST_F(ReprojectionCostTest, CompactFrameWithEstimatedIntrinsics) {
@@ -504,6 +510,51 @@ TEST_F(LandmarkCostTest, JacobiansGlobalShutter) {
   scene_.line_delay = 0.0;
   const LandmarkObservation o = Observe(0.35, Eigen::Vector2d(500, 50), 1.7, 0.55, -1.0, &rho);
   const std::vector<int> indices = Indices(0.35, 0.55);
+  const LandmarkCostFunction cost(settings_, indices, o);
+  ExpectJacobiansMatch(cost, LandmarkBlocks(indices, &rho));
+}
+
+// The split SO(3) x R^3 trajectory model (ReprojectionSettings::model): the forward model against
+// the independent reference pixel on the split spline, and every Jacobian block (target frame,
+// rolling shutter and Huber active; a landmark over two segments). The compact form:
+// CompactFrameHasTheRowsNormalEquations.
+TEST_F(ReprojectionCostTest, SplitModelTargetResidualsAndJacobians) {
+  settings_.model = TrajectoryModel::kSplitSO3R3;
+  scene_.model = TrajectoryModel::kSplitSO3R3;
+  const double t_frame = 0.45;
+  ControlPoseWindow window;
+  ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.07, &window));
+  const std::vector<TargetCornerObservation> exact = Corners(t_frame, 0.0);
+  const TargetFrameCostFunction zero(settings_, window, t_frame, exact);
+  Blocks blocks = TargetBlocks(window);
+  std::vector<double> residuals(zero.num_residuals());
+  ASSERT_TRUE(zero.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));
+  for (double r : residuals) EXPECT_LT(std::abs(r) * settings_.sigma_px, kModelTolerancePx);
+  // The coupled model sees the same pixels elsewhere: the setting is used.
+  ReprojectionSettings coupled = settings_;
+  coupled.model = TrajectoryModel::kSE3;
+  const TargetFrameCostFunction other(coupled, window, t_frame, exact);
+  ASSERT_TRUE(other.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));
+  EXPECT_GT(Eigen::Map<Eigen::VectorXd>(residuals.data(), residuals.size()).cwiseAbs().maxCoeff(),
+            1e-3);
+  settings_.huber_px = 1.5;
+  const TargetFrameCostFunction cost(settings_, window, t_frame, Corners(t_frame, 2.0));
+  ExpectJacobiansMatch(cost, TargetBlocks(window));
+}
+
+TEST_F(LandmarkCostTest, SplitModelResidualAndJacobians) {
+  settings_.model = TrajectoryModel::kSplitSO3R3;
+  scene_.model = TrajectoryModel::kSplitSO3R3;
+  double rho = 0.0;
+  const std::vector<int> indices = Indices(0.25, 0.8);
+  const LandmarkObservation exact = Observe(0.25, Eigen::Vector2d(150, 100), 1.2, 0.8, 0.0, &rho);
+  const LandmarkCostFunction zero(settings_, indices, exact);
+  double r[2];
+  ASSERT_TRUE(zero.Evaluate(LandmarkBlocks(indices, &rho).parameters.data(), r, nullptr));
+  EXPECT_LT(std::abs(r[0]) * settings_.sigma_px, kModelTolerancePx);
+  EXPECT_LT(std::abs(r[1]) * settings_.sigma_px, kModelTolerancePx);
+  settings_.huber_px = 1.0;
+  const LandmarkObservation o = Observe(0.25, Eigen::Vector2d(150, 100), 1.2, 0.8, 2.5, &rho);
   const LandmarkCostFunction cost(settings_, indices, o);
   ExpectJacobiansMatch(cost, LandmarkBlocks(indices, &rho));
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <string>
 #include <vector>
 
 #include "spline/spline_test_util.h"
@@ -13,8 +14,10 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
 #include "testing/numeric_diff.h"
+#include "testing/trajectory_models.h"
 
 namespace splinecal {
 namespace {
@@ -30,9 +33,11 @@ constexpr double kRoundingTolerance = 1e-12;
 
 constexpr int kNumPoses = 8;
 
-SE3Splined MakeRandomSpline(uint32_t seed) {
-  return SE3Splined(
-      testutil::RandomControlPoses(kNumPoses, seed), testutil::kEurocLikeT0Ns, testutil::kTestDtNs);
+SE3Splined MakeRandomSpline(uint32_t seed, TrajectoryModel model = TrajectoryModel::kSE3) {
+  return SE3Splined(testutil::RandomControlPoses(kNumPoses, seed),
+                    testutil::kEurocLikeT0Ns,
+                    testutil::kTestDtNs,
+                    model);
 }
 
 std::vector<double> InteriorTimes(const SE3Splined& spline) {
@@ -183,6 +188,7 @@ struct ImuResidualOnPerturbations {
   double dt_s;
   bool gyro;  // else accel
   Eigen::Vector3d measurement;
+  TrajectoryModel model;
 
   template <typename T>
   bool operator()(const T* d0, const T* d1, const T* d2, const T* d3, T* residual) const {
@@ -197,9 +203,11 @@ struct ImuResidualOnPerturbations {
     const Vector3<T> b_g = kGyroBias.cast<T>();
     const Vector3<T> b_a = kAccelBias.cast<T>();
     if (gyro) {
-      PredictImu<T>(data.knots(), segment, GravityWorld<T>(), b_g, b_a, &prediction, nullptr);
+      PredictImu<T>(
+          model, data.knots(), segment, GravityWorld<T>(), b_g, b_a, &prediction, nullptr);
     } else {
-      PredictImu<T>(data.knots(), segment, GravityWorld<T>(), b_g, b_a, nullptr, &prediction);
+      PredictImu<T>(
+          model, data.knots(), segment, GravityWorld<T>(), b_g, b_a, nullptr, &prediction);
     }
     Eigen::Map<Vector3<T>> r(residual);
     r = prediction - measurement.cast<T>();
@@ -215,6 +223,7 @@ struct ImuResidualOnPoseBlocks {
   double dt_s;
   bool gyro;
   Eigen::Vector3d measurement;
+  TrajectoryModel model;
 
   template <typename T>
   bool operator()(const T* p0, const T* p1, const T* p2, const T* p3, T* residual) const {
@@ -224,7 +233,8 @@ struct ImuResidualOnPoseBlocks {
     Vector3<T> prediction;
     const Vector3<T> b_g = kGyroBias.cast<T>();
     const Vector3<T> b_a = kAccelBias.cast<T>();
-    PredictImu<T>(data.knots(),
+    PredictImu<T>(model,
+                  data.knots(),
                   segment,
                   GravityWorld<T>(),
                   b_g,
@@ -237,8 +247,12 @@ struct ImuResidualOnPoseBlocks {
   }
 };
 
-TEST(PredictImu, AutoDiffThroughTemplatedSplineMatchesAnalyticJacobians) {
-  const SE3Splined spline = MakeRandomSpline(6);
+// Both trajectory models (spline/trajectory_model.h): the same autodiff oracle for each.
+class PredictImuAutoDiff : public ::testing::TestWithParam<TrajectoryModel> {};
+
+TEST_P(PredictImuAutoDiff, ThroughTemplatedSplineMatchesAnalyticJacobians) {
+  const TrajectoryModel model = GetParam();
+  const SE3Splined spline = MakeRandomSpline(6, model);
   for (double t : InteriorTimes(spline)) {
     const Segment<double> seg = spline.SegmentAt(t);
     const int f = seg.first_index();
@@ -251,7 +265,8 @@ TEST(PredictImu, AutoDiffThroughTemplatedSplineMatchesAnalyticJacobians) {
                                                      seg.u,
                                                      spline.dt(),
                                                      gyro,
-                                                     Eigen::Vector3d(0.1, 0.2, 0.3)};
+                                                     Eigen::Vector3d(0.1, 0.2, 0.3),
+                                                     model};
       ceres::AutoDiffCostFunction<ImuResidualOnPerturbations, 3, 6, 6, 6, 6> cost(functor);
       const double zeros[6] = {0, 0, 0, 0, 0, 0};
       const double* parameters[4] = {zeros, zeros, zeros, zeros};
@@ -279,8 +294,9 @@ TEST(PredictImu, AutoDiffThroughTemplatedSplineMatchesAnalyticJacobians) {
   }
 }
 
-TEST(PredictImu, AutoDiffOnPoseBlocksTimesPlusJacobianMatchesAnalytic) {
-  const SE3Splined spline = MakeRandomSpline(7);
+TEST_P(PredictImuAutoDiff, OnPoseBlocksTimesPlusJacobianMatchesAnalytic) {
+  const TrajectoryModel model = GetParam();
+  const SE3Splined spline = MakeRandomSpline(7, model);
   const SE3Manifold manifold;
   for (double t : InteriorTimes(spline)) {
     const Segment<double> seg = spline.SegmentAt(t);
@@ -290,7 +306,7 @@ TEST(PredictImu, AutoDiffOnPoseBlocksTimesPlusJacobianMatchesAnalytic) {
     for (bool gyro : {true, false}) {
       ceres::AutoDiffCostFunction<ImuResidualOnPoseBlocks, 3, 7, 7, 7, 7> cost(
           new ImuResidualOnPoseBlocks{
-              seg.index, seg.u, spline.dt(), gyro, Eigen::Vector3d::Zero()});
+              seg.index, seg.u, spline.dt(), gyro, Eigen::Vector3d::Zero(), model});
       const double* parameters[4] = {blocks[0], blocks[1], blocks[2], blocks[3]};
       double residual[3];
       Eigen::Matrix<double, 3, 7, Eigen::RowMajor> J_ambient[4];
@@ -313,6 +329,11 @@ TEST(PredictImu, AutoDiffOnPoseBlocksTimesPlusJacobianMatchesAnalytic) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Models,
+                         PredictImuAutoDiff,
+                         testing::BothTrajectoryModels(),
+                         testing::TrajectoryModelTestName);
 
 }  // namespace
 }  // namespace splinecal

@@ -125,6 +125,7 @@ TEST(CalibrateResultYaml, EveryKeyOnceAndCam0AtTheTop) {
                                "num_imu_samples",
                                "num_landmarks",
                                "knot_spacing_s",
+                               "trajectory",
                                "bias_model",
                                "rolling_shutter",
                                "huber_px",
@@ -143,6 +144,7 @@ TEST(CalibrateResultYaml, EveryKeyOnceAndCam0AtTheTop) {
   EXPECT_DOUBLE_EQ(yaml["timeshift_cam_imu"].as<double>(), 1e-3);
   EXPECT_DOUBLE_EQ(yaml["knot_spacing_s"].as<double>(), 0.1);
   EXPECT_EQ(yaml["bias_model"].as<std::string>(), "spline");
+  EXPECT_EQ(yaml["trajectory"].as<std::string>(), "se3");
   EXPECT_EQ(yaml["warnings"].size(), 2u);
   EXPECT_EQ(yaml["T_cam_imu"].size(), 4u);
 }
@@ -220,6 +222,7 @@ TEST(CalibrateReportHtml, ListsTheInputsAndTheNoiseModel) {
   EXPECT_THAT(html, HasSubstr("<td>gyroscope_noise_density</td><td>0.00016968</td>"));
   EXPECT_THAT(html, HasSubstr("<td>accelerometer_random_walk</td><td>0.003</td>"));
   EXPECT_THAT(html, HasSubstr("bias spline, knots every 0.1 s, Huber 2 px"));
+  EXPECT_THAT(html, HasSubstr(", trajectory se3</td>"));
 }
 
 TEST(CalibrateReportHtml, BiasesOverTimeWhenTheResultCarriesThem) {

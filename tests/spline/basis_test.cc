@@ -106,5 +106,28 @@ TEST(CumulativeBasis, JetCarriesDerivativeInU) {
   }
 }
 
+// The split model's position weights: the ordinary B-spline basis (Cox-de Boor), a partition of
+// unity, whose derivatives are the differences of the cumulative basis' derivatives.
+TEST(BasisFromCumulative, IsTheCoxDeBoorBasisAndItsDerivatives) {
+  const int segment = 5;
+  for (double u = 0.0; u < 1.0; u += 0.0625) {
+    const Eigen::Vector4d B = BasisFromCumulative<double>(CumulativeBasis<0>(u));
+    for (int m = 0; m < 4; ++m) {
+      EXPECT_NEAR(B[m], CoxDeBoor(segment - 1 + m, 3, segment + u), kPolynomialTolerance);
+    }
+    EXPECT_NEAR(B.sum(), 1.0, kPolynomialTolerance);
+    for (const Eigen::Vector4d& derivative : {BasisFromCumulative<double>(CumulativeBasis<1>(u)),
+                                              BasisFromCumulative<double>(CumulativeBasis<2>(u))}) {
+      EXPECT_NEAR(derivative.sum(), 0.0, kPolynomialTolerance);
+    }
+    const double h = 1e-5;
+    const Eigen::Vector4d numeric = (BasisFromCumulative<double>(CumulativeBasis<0>(u + h)) -
+                                     BasisFromCumulative<double>(CumulativeBasis<0>(u - h))) /
+                                    (2.0 * h);
+    EXPECT_TRUE((BasisFromCumulative<double>(CumulativeBasis<1>(u)) - numeric).norm() <
+                kCentralDifferenceTolerance);
+  }
+}
+
 }  // namespace
 }  // namespace splinecal

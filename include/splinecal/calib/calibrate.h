@@ -117,7 +117,8 @@ struct CalibrateOptions {
 // A starting point for the whole state (required without a target; optional otherwise).
 struct CalibrationInitialGuess {
   KnotLayout layout;
-  std::vector<SE3d> control_poses;  // T_w_s at the layout's knots
+  // T_w_s at the layout's knots, in CalibrateOptions::model.trajectory's model.
+  std::vector<SE3d> control_poses;
   Eigen::Vector3d gravity_w = Eigen::Vector3d(0.0, 0.0, -kDefaultGravity);
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
@@ -169,7 +170,10 @@ struct CalibrationResult {
   // GravityAlignedRotation), so the target's x axis, seen from above, is the world's x axis.
   // Without a target, "target" is the frame the problem was solved in (the initial guess's).
   std::vector<SE3d> control_poses;  // T_w_s (spline.csv)
-  SE3Splined MakeSpline() const { return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns); }
+  TrajectoryModel trajectory = TrajectoryModel::kSE3;  // their interpolation (the solve's)
+  SE3Splined MakeSpline() const {
+    return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns, trajectory);
+  }
   Eigen::Vector3d gravity_w = Eigen::Vector3d::Zero();       // (0, 0, -g)
   Eigen::Vector3d gravity_target = Eigen::Vector3d::Zero();  // the estimate, target frame
   SE3d T_w_target;                                           // target points into the world

@@ -143,10 +143,13 @@ struct FitPoseSample {
 };
 
 struct FitResult {
-  // The spline T_w_s(t), IMU clock.
+  // The spline T_w_s(t), IMU clock, in the trajectory model the fit used.
   KnotLayout layout;
+  TrajectoryModel trajectory = TrajectoryModel::kSE3;
   std::vector<SE3d> control_poses;
-  SE3Splined MakeSpline() const { return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns); }
+  SE3Splined MakeSpline() const {
+    return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns, trajectory);
+  }
   double knot_spacing_s = 0.0;
   std::string knot_spacing_rule;  // how dt was chosen, in words
 

@@ -10,6 +10,7 @@
 
 #include "splinecal/estimation/imu_noise_mode.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/spline/trajectory_model.h"
 
 DECLARE_string(out);
 DECLARE_bool(quiet);
@@ -31,6 +32,7 @@ DECLARE_string(accel_bias);
 DECLARE_string(observations);
 DECLARE_double(huber);
 DECLARE_int32(min_corners);
+DECLARE_string(trajectory);
 
 namespace splinecal {
 namespace cli {
@@ -60,6 +62,14 @@ ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml = false);
 
 // --imu-noise: estimated, reweighted or given (estimation/imu_noise_mode.h).
 ImuNoiseMode ImuNoiseModeFlag();
+
+// --trajectory in fit and calibrate: se3 or split (spline/trajectory_model.h).
+TrajectoryModel TrajectoryModelFlag();
+
+// The FlagDoc help of --trajectory in fit and calibrate.
+inline constexpr const char* kTrajectoryModelHelp =
+    "Trajectory model of the spline: se3 (the coupled SE(3) spline, default) or split "
+    "(SO(3) x R^3: positions as an ordinary cubic B-spline, Kalibr's and basalt's)";
 
 }  // namespace cli
 }  // namespace splinecal

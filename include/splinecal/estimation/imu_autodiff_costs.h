@@ -90,7 +90,7 @@ struct AccelResidual {
     const Vector3<T> bias = internal::WeightedBiasT<T, kBiasBlocks>(sample, blocks + 4);
     const Vector3<T> g_w = Eigen::Map<const Vector3<T>>(blocks[4 + kBiasBlocks]);
     Vector3<T> accel;
-    PredictImu<T>(data.knots(), seg, g_w, Vector3<T>::Zero(), bias, nullptr, &accel);
+    PredictImu<T>(segment.model, data.knots(), seg, g_w, Vector3<T>::Zero(), bias, nullptr, &accel);
     const T inv_sigma = T(1.0 / segment.sigma);
     for (int a = 0; a < 3; ++a) residual[a] = (accel[a] - T(sample.measured[a])) * inv_sigma;
     return true;

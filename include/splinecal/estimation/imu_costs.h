@@ -8,9 +8,11 @@
 //   gyro residual   r_g = (w_s(t) + b_g(t) - gyro_measured) / sigma_g
 //   accel residual  r_a = (R_w_s(t)^T (a_w(t) - g_w) + b_a(t) - accel_measured) / sigma_a
 //
-// sigma = noise density * sqrt(rate), the per-sample white-noise std ([Kalibr]). b(t) is the
-// constant bias (one block) or the bias spline of estimation/bias_costs.h (four blocks with weights
-// B_j(u_b)); either way b = sum_j weight_j * bias_block_j.
+// with w_s, R_w_s and a_w from the pose spline's trajectory model (ImuResidualSegment::model,
+// spline/trajectory_model.h: the gyro residual is the same in both models, the accelerometer's
+// differs) and sigma = noise density * sqrt(rate), the per-sample white-noise std ([Kalibr]).
+// b(t) is the constant bias (one block) or the bias spline of estimation/bias_costs.h (four
+// blocks with weights B_j(u_b)); either way b = sum_j weight_j * bias_block_j.
 //
 // Parameter blocks, in this order:
 //   gyro:   4 control poses {px, py, pz, qx, qy, qz, qw} (T_{i-1} .. T_{i+2}), then
@@ -55,6 +57,7 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 
@@ -72,6 +75,8 @@ struct ImuResidualSegment {
   int segment_index = 1;  // i: control poses i-1 .. i+2
   double dt_s = 0.0;      // pose knot spacing [s]
   double sigma = 1.0;     // per-sample noise std [rad/s or m/s^2]
+  // The pose spline's model; the accelerometer residual depends on it (the gyro's does not).
+  TrajectoryModel model = TrajectoryModel::kSE3;
   // Optional: the knot caches for this evaluation point (not owned; may be nullptr).
   const SplineEvaluationCallback* shared = nullptr;
 };
@@ -199,7 +204,8 @@ void AccelSampleRows(const SegmentEvaluation& evaluation,
   Eigen::Vector3d accel;
   ControlPoseJacobian<3> J_accel_ctrl;
   Eigen::Matrix3d J_accel_gw;
-  PredictAccelWithJacobian(evaluation.knots,
+  PredictAccelWithJacobian(segment.model,
+                           evaluation.knots,
                            seg,
                            g_w,
                            bias,

@@ -15,11 +15,17 @@
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/noise.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 
 // The continuous-time model of the IMU trajectory (estimation/spline_problem.h).
 struct SplineModelOptions {
+  // How the control poses are interpolated (spline/trajectory_model.h): the coupled SE(3) spline
+  // (the conventions' spline, default) or the split SO(3) x R^3 spline (Kalibr's and basalt's
+  // position spline; its accelerometer Jacobian costs less than half). Both share the control
+  // poses, their parameter blocks and the orientation; docs/conventions.md says when to use which.
+  TrajectoryModel trajectory = TrajectoryModel::kSE3;
   // Knot spacing dt [s] of the pose spline; 0 chooses it from the data (ChooseKnotSpacing,
   // estimation/knot_spacing.h) and says why.
   double knot_spacing_s = 0.0;

@@ -22,6 +22,10 @@
 // (smooth, exact for the parameters it depends on); `splinecal fit` re-attaches such residuals
 // and solves again (docs/fit.md, "Time offset").
 //
+// T_w_s(t) is the pose spline's trajectory model (PoseResidualData::model,
+// spline/trajectory_model.h); every formula below holds for both models, with J_T,k and xi the
+// model's own.
+//
 // Jacobians (RIGHT perturbations, lie/se3.h). With e the right-tangent change of T_pred:
 //   dr / de         = blockdiag(R_pred / sigma_m, Jr^-1(phi_r) / sigma_rad),
 //                     phi_r = Log(R_m^T R_pred)
@@ -45,6 +49,8 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/trajectory_evaluation.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 
@@ -57,6 +63,8 @@ struct PoseResidualData {
   SE3d T_w_m;               // measured pose
   double sigma_m = 1e-3;    // position std [m]
   double sigma_rad = 1e-3;  // rotation std [rad]
+  // The pose spline's model.
+  TrajectoryModel model = TrajectoryModel::kSE3;
   // Optional knot caches for this evaluation point (not owned).
   const SplineEvaluationCallback* shared = nullptr;
 };
@@ -96,7 +104,7 @@ struct PoseResidual {
     const T u = (T(data.t_s) + time_offset[0]) / T(data.dt_s) - T(double(data.segment_index));
     const Segment<T> segment = MakeSegment(data.segment_index, u, data.dt_s);
     SE3<T> T_w_s;
-    EvaluateSegment<T>(knots.knots(), segment, &T_w_s);
+    EvaluateSegment<T>(data.model, knots.knots(), segment, &T_w_s);
     const SE3<T> T_pred = T_w_s * PoseFromBlock(T_m_s_block).inverse();
     const SE3<T> T_meas = data.T_w_m.cast<T>();
     const Vector3<T> dp = T_pred.translation() - T_meas.translation();

@@ -16,8 +16,10 @@
 //
 // Solved with Ceres (Levenberg-Marquardt, sparse normal Cholesky; the problem is banded) on
 // pose blocks {px, py, pz, qx, qy, qz, qw} with SE3Manifold (lie/se3_manifold.h, RIGHT
-// perturbation). One residual block per spline segment holds every pose in that segment;
-// its Jacobians are analytic (spline/segment_jacobians.h EvaluatePoseJacobian):
+// perturbation). The spline is PoseFitOptions::trajectory's model (spline/trajectory_model.h;
+// the smoothness prior is the same for both). One residual block per spline segment holds every
+// pose in that segment; its Jacobians are analytic (spline/trajectory_evaluation.h
+// EvaluatePoseJacobian):
 //
 //     T(P_k Exp(d)) = T Exp(J_k d)                        (J_k = J.blocks[k], rows [rho; phi])
 //     d p / d d_k   = R J_k[rho rows]                      (T Exp(e) moves p by R rho)
@@ -40,10 +42,13 @@
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/knot_layout.h"
 #include "splinecal/spline/se3_spline.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 
 struct PoseFitOptions {
+  // The spline's model: the coupled SE(3) spline or the split SO(3) x R^3 one.
+  TrajectoryModel trajectory = TrajectoryModel::kSE3;
   double rotation_weight_m_per_rad = 1.0;  // w_R
   double smoothness_weight = 1e-3;         // w_s (0 disables the prior)
   int max_iterations = 50;
@@ -55,6 +60,7 @@ struct PoseFitOptions {
 struct PoseFitResult {
   std::vector<SE3d> control_poses;
   KnotLayout layout;
+  TrajectoryModel trajectory = TrajectoryModel::kSE3;
   // Residuals of the fitted spline at the input poses (inside the spline's valid range).
   int64_t num_poses = 0;
   double position_rms_m = 0.0;
@@ -65,7 +71,9 @@ struct PoseFitResult {
   bool converged = false;
   std::string solver_report;  // Ceres' BriefReport
 
-  SE3Splined MakeSpline() const { return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns); }
+  SE3Splined MakeSpline() const {
+    return SE3Splined(control_poses, layout.t0_ns, layout.dt_ns, trajectory);
+  }
 };
 
 // Fits the control poses of `layout` to `poses` (strictly increasing t_ns; poses outside the
@@ -85,12 +93,14 @@ void PoseFitErrors(const SE3Splined& spline,
 namespace internal {
 
 // The residual block of one segment (exposed for the Jacobian tests): poses at u[j] in the
-// segment (knot spacing dt_s), 6 rows each, over the four pose blocks {px, py, pz, qx, qy, qz,
-// qw} of the segment's control poses. Ambient Jacobians as described in the file comment.
+// segment (knot spacing dt_s) of a `trajectory` spline, 6 rows each, over the four pose blocks
+// {px, py, pz, qx, qy, qz, qw} of the segment's control poses. Ambient Jacobians as described in
+// the file comment.
 ceres::CostFunction* NewSegmentPoseCost(std::vector<double> u,
                                         std::vector<SE3d> measured,
                                         double dt_s,
-                                        double rotation_weight_m_per_rad);
+                                        double rotation_weight_m_per_rad,
+                                        TrajectoryModel trajectory = TrajectoryModel::kSE3);
 
 // The smoothness prior of control poses i-1, i, i+1 (6 rows over three pose blocks): w_s times
 // the second difference above, with analytic Jacobians (Jr^-1, Jl^-1 of SE(3)).

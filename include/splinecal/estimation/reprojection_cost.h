@@ -20,6 +20,9 @@
 // robustified per point inside the cost function by Huber's loss with threshold huber_px
 // (below).
 //
+// T_w_s(t) follows ReprojectionSettings::model (spline/trajectory_model.h): the pose, its
+// control-pose Jacobian J_T_k and the body twist xi are that model's; nothing else depends on it.
+//
 // Jacobians (RIGHT perturbation everywhere, lie/se3.h; tangent [rho; phi]). At fixed tau, with
 // J_pi = d uv / d x_c (2x3), R = R_w_s, x_s, w as above:
 //   T_w_s(t) -> T_w_s Exp(e):    d x_c / d e = R_c_s [-w I, [x_s]x]          (J_uv_e = J_pi that)
@@ -70,6 +73,7 @@
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/knot_layout.h"
 #include "splinecal/spline/segment.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 
@@ -77,6 +81,7 @@ namespace splinecal {
 struct ReprojectionSettings {
   const Camera* camera = nullptr;  // not owned
   KnotLayout layout;  // only dt and n matter: residual times are seconds since t0
+  TrajectoryModel model = TrajectoryModel::kSE3;  // the pose spline's
   double sigma_px = 1.0;  // pixel noise std [px]: residuals are divided by it
   double huber_px = 0.0;  // Huber threshold [px]; 0 = plain least squares
   ExposureSolveOptions exposure;
@@ -188,7 +193,9 @@ struct BodyState {
   Eigen::Vector3d v_s = Eigen::Vector3d::Zero();  // R_w_s^T dp_w_s/dt [m/s]
 };
 
-BodyState EvaluateBodyState(const SegmentKnots<double>& knots, const Segment<double>& segment);
+BodyState EvaluateBodyState(TrajectoryModel model,
+                            const SegmentKnots<double>& knots,
+                            const Segment<double>& segment);
 
 // The projection of X_w = (x_w, w) from the body state through T_c_s, with what the Jacobians
 // need (file comment).

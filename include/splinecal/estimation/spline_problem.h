@@ -1,6 +1,7 @@
 // SplineProblem: the estimation problem every continuous-time estimate of splinecal is built on
 // (`fit`, `calibrate`, and a user's own). It owns the parameter blocks of the IMU trajectory --
-// the control poses of T_w_s(t) (spline/se3_spline.h, SE3Manifold), the bias model's control
+// the control poses of T_w_s(t) (spline/se3_spline.h, SE3Manifold; interpolated by the coupled
+// SE(3) or the split SO(3) x R^3 model, spline/trajectory_model.h), the bias model's control
 // points (estimation/bias_spline.h) and gravity g_w (GravityManifold, |g_w| fixed) -- the
 // ceres::Problem over them, and the evaluation callback that refreshes the spline's knot caches
 // once per evaluation point (estimation/spline_evaluation_callback.h). It adds the IMU residuals
@@ -45,6 +46,7 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/knot_layout.h"
 #include "splinecal/spline/se3_spline.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 
@@ -96,13 +98,15 @@ struct ImuResidualStatistics {
 
 class SplineProblem {
  public:
-  // control_poses: the initial T_w_s at the layout's knots (layout.num_control_poses of them).
-  // Biases start at zero, gravity at (0, 0, -9.81). Throws splinecal::Error on a size mismatch
-  // or an invalid layout.
+  // control_poses: the initial T_w_s at the layout's knots (layout.num_control_poses of them),
+  // interpolated by `trajectory` (the accelerometer residuals and Spline() follow it; a caller's
+  // own residuals read it from trajectory_model()). Biases start at zero, gravity at
+  // (0, 0, -9.81). Throws splinecal::Error on a size mismatch or an invalid layout.
   SplineProblem(const KnotLayout& layout,
                 const std::vector<SE3d>& control_poses,
                 const BiasSpline& bias,
-                const ResidualOptions& options = {});
+                const ResidualOptions& options = {},
+                TrajectoryModel trajectory = TrajectoryModel::kSE3);
   ~SplineProblem();
   SplineProblem(const SplineProblem&) = delete;
   SplineProblem& operator=(const SplineProblem&) = delete;
@@ -110,6 +114,7 @@ class SplineProblem {
   const KnotLayout& layout() const { return layout_; }
   const BiasSpline& bias_spline() const { return bias_; }
   const ResidualOptions& residual_options() const { return options_; }
+  TrajectoryModel trajectory_model() const { return trajectory_; }
   int num_control_poses() const { return layout_.num_control_poses; }
 
   // Parameter blocks (stable addresses for the object's lifetime).
@@ -184,6 +189,7 @@ class SplineProblem {
   KnotLayout layout_;
   BiasSpline bias_;
   ResidualOptions options_;
+  TrajectoryModel trajectory_;
   std::vector<double> control_values_;  // 7 per control pose
   std::vector<double*> control_blocks_;
   std::vector<double> gyro_bias_values_;   // 3 per control point

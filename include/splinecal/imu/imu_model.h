@@ -16,6 +16,13 @@
 //     d gyro / d P_k   = d w_s / d P_k                    (translation columns zero)
 //     d accel / d P_k  = d a_s / d P_k - [R^T g_w]x d phi_T / d P_k,   a_s = R^T a_w
 //     d gyro / d b_g = I,   d accel / d b_a = I,   d accel / d g_w = -R_w_s^T.
+//
+// Trajectory model (spline/trajectory_model.h). The functions without a model are the coupled
+// SE(3) spline's; those with a TrajectoryModel first (and those on an SE3Spline, which carries
+// its model) follow it. The gyro is the same in both models. The split model's accelerometer
+// Jacobian has a trivial position part (spline/split_segment_jacobians.h, step 4):
+//     d accel / d rho_k = Bddot_k R_w_s^T R_k,   d accel / d phi_k = [R^T (a_w - g_w)]x
+//     dphi_T/dphi_k.
 #ifndef SPLINECAL_IMU_IMU_MODEL_H_
 #define SPLINECAL_IMU_IMU_MODEL_H_
 
@@ -25,6 +32,10 @@
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/split_segment.h"
+#include "splinecal/spline/split_segment_jacobians.h"
+#include "splinecal/spline/trajectory_evaluation.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 
@@ -37,10 +48,12 @@ Vector3<T> GravityWorld(double g = kDefaultGravity) {
   return Vector3<T>(T(0.0), T(0.0), T(-g));
 }
 
-// Predicted gyro and accelerometer readings at `segment` (either output may be nullptr).
-// Templated (double or ceres::Jet): usable inside automatic-differentiation cost functions.
+// Predicted gyro and accelerometer readings at `segment` under `model` (either output may be
+// nullptr). Templated (double or ceres::Jet): usable inside automatic-differentiation cost
+// functions.
 template <typename T>
-void PredictImu(const SegmentKnots<T>& knots,
+void PredictImu(TrajectoryModel model,
+                const SegmentKnots<T>& knots,
                 const Segment<T>& segment,
                 const Vector3<T>& g_w,
                 const Vector3<T>& b_g,
@@ -50,7 +63,8 @@ void PredictImu(const SegmentKnots<T>& knots,
   Vector3<T> w_s;
   Vector3<T> a_s;
   Matrix3<T> R_w_s;
-  internal::EvaluateSegmentBody(knots,
+  internal::EvaluateSegmentBody(model,
+                                knots,
                                 segment,
                                 nullptr,
                                 accel != nullptr ? &R_w_s : nullptr,
@@ -62,6 +76,18 @@ void PredictImu(const SegmentKnots<T>& knots,
   if (accel != nullptr) *accel = a_s - R_w_s.transpose() * g_w + b_a;
 }
 
+// The same on the coupled SE(3) spline.
+template <typename T>
+void PredictImu(const SegmentKnots<T>& knots,
+                const Segment<T>& segment,
+                const Vector3<T>& g_w,
+                const Vector3<T>& b_g,
+                const Vector3<T>& b_a,
+                internal::NonDeducedT<Vector3<T>>* gyro,
+                internal::NonDeducedT<Vector3<T>>* accel) {
+  PredictImu(TrajectoryModel::kSE3, knots, segment, g_w, b_g, b_a, gyro, accel);
+}
+
 template <typename T>
 void PredictImu(const SE3Spline<T>& spline,
                 const Segment<T>& segment,
@@ -70,7 +96,7 @@ void PredictImu(const SE3Spline<T>& spline,
                 const Vector3<T>& b_a,
                 internal::NonDeducedT<Vector3<T>>* gyro,
                 internal::NonDeducedT<Vector3<T>>* accel) {
-  PredictImu(spline.Knots(segment), segment, g_w, b_g, b_a, gyro, accel);
+  PredictImu(spline.model(), spline.Knots(segment), segment, g_w, b_g, b_a, gyro, accel);
 }
 
 // Gyro prediction w_s + b_g and its Jacobian w.r.t. the segment's control poses (3x6 blocks;
@@ -116,7 +142,42 @@ inline void PredictAccelWithJacobian(const SegmentKnots<double>& knots,
   internal::SpecificForceJacobian(knots, segment, trace, g_s, J_accel_ctrl);
 }
 
-// The same on an SE3Spline<double>.
+// The split SO(3) x R^3 spline's accelerometer prediction R_w_s^T (a_w - g_w) + b_a with the
+// Jacobians of PredictAccelWithJacobian (the same tangent and layout). Only the rotations go
+// through the forward pass; the control-pose Jacobian is the position weights times
+// R_w_s^T R_k and [f]x times the orientation's Jacobian (internal::SplitSpecificForce).
+inline void PredictSplitAccelWithJacobian(const SegmentKnots<double>& knots,
+                                          const Segment<double>& segment,
+                                          const Eigen::Vector3d& g_w,
+                                          const Eigen::Vector3d& b_a,
+                                          Eigen::Vector3d* accel,
+                                          ControlPoseJacobian<3>* J_accel_ctrl,
+                                          Eigen::Matrix3d* J_accel_gw = nullptr) {
+  internal::SegmentTrace<double> trace;
+  internal::SplitForwardPass(knots, segment, false, false, &trace);
+  Eigen::Vector3d f;
+  internal::SplitSpecificForce(knots, segment, trace, g_w, &f, J_accel_ctrl, J_accel_gw);
+  if (J_accel_gw != nullptr) *J_accel_gw = -*J_accel_gw;  // d accel / d g_w = -R_w_s^T
+  if (accel != nullptr) *accel = f + b_a;
+}
+
+// PredictAccelWithJacobian or PredictSplitAccelWithJacobian.
+inline void PredictAccelWithJacobian(TrajectoryModel model,
+                                     const SegmentKnots<double>& knots,
+                                     const Segment<double>& segment,
+                                     const Eigen::Vector3d& g_w,
+                                     const Eigen::Vector3d& b_a,
+                                     Eigen::Vector3d* accel,
+                                     ControlPoseJacobian<3>* J_accel_ctrl,
+                                     Eigen::Matrix3d* J_accel_gw = nullptr) {
+  if (model == TrajectoryModel::kSplitSO3R3) {
+    PredictSplitAccelWithJacobian(knots, segment, g_w, b_a, accel, J_accel_ctrl, J_accel_gw);
+    return;
+  }
+  PredictAccelWithJacobian(knots, segment, g_w, b_a, accel, J_accel_ctrl, J_accel_gw);
+}
+
+// The same on an SE3Spline<double> (the accelerometer follows spline.model()).
 inline void PredictGyroWithJacobian(const SE3Spline<double>& spline,
                                     const Segment<double>& segment,
                                     const Eigen::Vector3d& b_g,
@@ -133,7 +194,7 @@ inline void PredictAccelWithJacobian(const SE3Spline<double>& spline,
                                      ControlPoseJacobian<3>* J_accel_ctrl,
                                      Eigen::Matrix3d* J_accel_gw = nullptr) {
   PredictAccelWithJacobian(
-      spline.Knots(segment), segment, g_w, b_a, accel, J_accel_ctrl, J_accel_gw);
+      spline.model(), spline.Knots(segment), segment, g_w, b_a, accel, J_accel_ctrl, J_accel_gw);
 }
 
 }  // namespace splinecal

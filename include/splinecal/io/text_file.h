@@ -14,8 +14,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace splinecal {
@@ -38,6 +40,13 @@ class TextFileReader {
   // Appended to the error for a YAML file, to say where that YAML belongs (the CLI names the
   // flag that takes it, e.g. --imu-yaml).
   void set_yaml_hint(const std::string& hint) { yaml_hint_ = hint; }
+
+  // Called by NextLine with each '#' comment line it skips (trimmed, the '#' kept), for formats
+  // that keep metadata in comments (spline.csv's "# trajectory: split"); Fail() inside it
+  // reports that line.
+  void set_comment_visitor(std::function<void(std::string_view comment)> visitor) {
+    comment_visitor_ = std::move(visitor);
+  }
 
   std::string_view line() const { return line_; }
   int64_t line_number() const { return line_number_; }
@@ -63,6 +72,7 @@ class TextFileReader {
   int64_t line_number_ = 0;
   int64_t data_lines_ = 0;
   std::string yaml_hint_;
+  std::function<void(std::string_view)> comment_visitor_;
 };
 
 // The line and number primitives of every reader, shared with code that scans a file itself (the

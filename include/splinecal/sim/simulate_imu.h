@@ -1,4 +1,5 @@
-// IMU simulation from a spline T_w_s(t) (`splinecal simulate`).
+// IMU simulation from a spline T_w_s(t) (`splinecal simulate`), in the spline's own trajectory
+// model (SE3Spline::model(), spline/trajectory_model.h).
 //
 // At every IMU time t_k the spline gives the pose, body rate w_s, world velocity and the body
 // acceleration; the readings are the IMU model of imu/imu_model.h (docs/conventions.md, "IMU

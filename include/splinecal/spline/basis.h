@@ -98,6 +98,20 @@ Eigen::Matrix<T, kSplineOrder, 1> CumulativeBasis(const T& u) {
   return coefficients;
 }
 
+// The ordinary (non-cumulative) B-spline weights from cumulative ones, B_j = Bt_j - Bt_{j+1}
+// (Bt_4 = 0), since Bt_j = sum_{m>=j} B_m. The same difference holds for every derivative, so
+// `cumulative` may be Bt or any of its time derivatives. Blending positions with them,
+// sum_j B_j p_{i-1+j} = p_{i-1} + sum_{j>=1} Bt_j (p_{i-1+j} - p_{i-2+j}): the split model's
+// position (spline/split_segment.h).
+template <typename T>
+Eigen::Matrix<T, kSplineOrder, 1> BasisFromCumulative(
+    const Eigen::Matrix<T, kSplineOrder, 1>& cumulative) {
+  Eigen::Matrix<T, kSplineOrder, 1> weights;
+  for (int j = 0; j + 1 < kSplineOrder; ++j) weights[j] = cumulative[j] - cumulative[j + 1];
+  weights[kSplineOrder - 1] = cumulative[kSplineOrder - 1];
+  return weights;
+}
+
 }  // namespace splinecal
 
 #endif  // SPLINECAL_SPLINE_BASIS_H_

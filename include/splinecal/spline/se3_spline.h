@@ -1,11 +1,16 @@
-// SE3Spline<T>: the uniform cumulative cubic B-spline on SE(3) representing T_w_s(t)
-// ([CONVENTIONS "The spline"], [seed000 §3], [Lovegrove13]).
+// SE3Spline<T>: the trajectory T_w_s(t) of uniform control poses in SE(3), by default the
+// cumulative cubic B-spline on SE(3) ([CONVENTIONS "The spline"], [seed000 §3], [Lovegrove13]).
 //
 //   Control poses T_i, i = 0..n-1 (n >= 4), at knot times t_i = t0 + i dt (dt > 0). For t in
 //   [t_i, t_{i+1}), u = (t - t_i) / dt:
 //       T(t) = T_{i-1} prod_{j=1..3} Exp(Bt_j(u) Omega_{i+j-1}),   Omega_k = Log(T_{k-1}^-1 T_k),
 //   Bt from spline/basis.h. Valid times are [t_1, t_{n-2}]; the end t_{n-2} evaluates the last
 //   segment (i = n-3) at u = 1. Any other time throws splinecal::Error.
+//
+// Model. A spline constructed with TrajectoryModel::kSplitSO3R3 interpolates the same control
+// poses as the split SO(3) x R^3 spline instead (spline/trajectory_model.h,
+// spline/split_segment.h): the same orientation, the positions blended as an ordinary cubic
+// B-spline. Every evaluation and Jacobian below follows model(); the knot caches serve both.
 //
 // Time. Files carry int64 nanoseconds near 1.4e18, which a double cannot hold to the
 // nanosecond. The spline keeps t0 as int64 ns and dt as int64 ns; evaluation takes either an
@@ -64,6 +69,8 @@
 #include "splinecal/spline/knot_layout.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
+#include "splinecal/spline/trajectory_evaluation.h"
+#include "splinecal/spline/trajectory_model.h"
 
 namespace splinecal {
 
@@ -83,10 +90,14 @@ class SE3Spline {
  public:
   using Scalar = T;
 
-  // control_poses[i] = T_w_s at t_i = t0_ns + i * dt_ns. Throws splinecal::Error if there are
-  // fewer than 4 control poses, dt_ns <= 0, or the last knot time overflows int64.
-  SE3Spline(std::vector<SE3<T>> control_poses, int64_t t0_ns, int64_t dt_ns)
-      : control_poses_(std::move(control_poses)) {
+  // control_poses[i] = T_w_s at t_i = t0_ns + i * dt_ns, interpolated by `model`. Throws
+  // splinecal::Error if there are fewer than 4 control poses, dt_ns <= 0, or the last knot time
+  // overflows int64.
+  SE3Spline(std::vector<SE3<T>> control_poses,
+            int64_t t0_ns,
+            int64_t dt_ns,
+            TrajectoryModel model = TrajectoryModel::kSE3)
+      : control_poses_(std::move(control_poses)), model_(model) {
     if (control_poses_.size() < static_cast<size_t>(kSplineOrder)) {
       throw Error("SE3Spline: needs at least 4 control poses, got " +
                   std::to_string(control_poses_.size()));
@@ -116,6 +127,9 @@ class SE3Spline {
     if constexpr (std::is_same_v<T, double>) delta_jacobians_.resize(n - 1);
     for (int k = 1; k < n; ++k) UpdateDelta(k);
   }
+
+  // The interpolation of the control poses (spline/trajectory_model.h).
+  TrajectoryModel model() const { return model_; }
 
   // Knot times and the segment lookup (spline/knot_layout.h).
   const KnotLayout& layout() const { return layout_; }
@@ -207,16 +221,16 @@ class SE3Spline {
     return knots;
   }
 
-  // One-pass evaluation; every output optional (spline/segment.h, EvaluateSegment):
-  // pose T_w_s, body angular velocity w_s [rad/s], body angular acceleration w_dot_s [rad/s^2],
-  // world linear velocity v_w [m/s] and acceleration a_w [m/s^2].
+  // One-pass evaluation of model(); every output optional (spline/trajectory_evaluation.h,
+  // EvaluateSegment): pose T_w_s, body angular velocity w_s [rad/s], body angular acceleration
+  // w_dot_s [rad/s^2], world linear velocity v_w [m/s] and acceleration a_w [m/s^2].
   void Evaluate(const Segment<T>& segment,
                 SE3<T>* T_w_s,
                 Vector3<T>* w_s = nullptr,
                 Vector3<T>* w_dot_s = nullptr,
                 Vector3<T>* v_w = nullptr,
                 Vector3<T>* a_w = nullptr) const {
-    EvaluateSegment(Knots(segment), segment, T_w_s, w_s, w_dot_s, v_w, a_w);
+    EvaluateSegment(model_, Knots(segment), segment, T_w_s, w_s, w_dot_s, v_w, a_w);
   }
 
   // Named evaluations: one quantity of the segment (the same one-pass Evaluate).
@@ -260,13 +274,13 @@ class SE3Spline {
     return T_w_s;
   }
 
-  // Analytic Jacobians with respect to the segment's control poses (T = double only;
-  // spline/segment_jacobians.h). Value outputs may be nullptr.
+  // Analytic Jacobians of model() with respect to the segment's control poses (T = double only;
+  // spline/segment_jacobians.h, spline/split_segment_jacobians.h). Value outputs may be nullptr.
   void EvaluatePoseJacobian(const Segment<double>& segment,
                             SE3d* T_w_s,
                             ControlPoseJacobian<6>* J_pose_ctrl) const {
     static_assert(std::is_same_v<T, double>, "analytic Jacobians need SE3Spline<double>");
-    splinecal::EvaluatePoseJacobian(Knots(segment), segment, T_w_s, J_pose_ctrl);
+    splinecal::EvaluatePoseJacobian(model_, Knots(segment), segment, T_w_s, J_pose_ctrl);
   }
   void EvaluateAngularVelocityJacobian(const Segment<double>& segment,
                                        Eigen::Vector3d* w_s,
@@ -278,7 +292,7 @@ class SE3Spline {
                                           Eigen::Vector3d* a_w,
                                           ControlPoseJacobian<3>* J_aw_ctrl) const {
     static_assert(std::is_same_v<T, double>, "analytic Jacobians need SE3Spline<double>");
-    splinecal::EvaluateLinearAccelerationJacobian(Knots(segment), segment, a_w, J_aw_ctrl);
+    splinecal::EvaluateLinearAccelerationJacobian(model_, Knots(segment), segment, a_w, J_aw_ctrl);
   }
 
  private:
@@ -298,6 +312,7 @@ class SE3Spline {
   }
 
   std::vector<SE3<T>> control_poses_;
+  TrajectoryModel model_;
   std::vector<Matrix3<T>> rotations_;  // control pose rotation matrices
   KnotLayout layout_;
   std::vector<KnotDelta<T>> deltas_;                 // deltas_[k-1] = Omega_k, k = 1..n-1

@@ -112,7 +112,9 @@ Segment<T> MakeSegment(int index, const T& u, double dt_s) {
 }
 
 // Omega_k = Log(T_{k-1}^-1 T_k) = [rho; phi] and the invariants of its scaled exponentials.
-// Computed once per knot when control poses change.
+// Computed once per knot when control poses change. The same record serves the split SO(3) x R^3
+// model (spline/split_segment.h): its rotation steps are the same phi (the rotation of
+// Log(T_{k-1}^-1 T_k) is Log(R_{k-1}^T R_k)), its position steps are dp.
 template <typename T>
 struct KnotDelta {
   Vector3<T> rho;
@@ -120,6 +122,7 @@ struct KnotDelta {
   T theta_sq;                  // |phi|^2
   Vector3<T> phi_x_rho;        // phi x rho
   Vector3<T> phi_x_phi_x_rho;  // phi x (phi x rho)
+  Vector3<T> dp;               // p_k - p_{k-1}, world frame [m] (split model only)
 };
 
 template <typename T>
@@ -131,6 +134,7 @@ KnotDelta<T> MakeKnotDelta(const SE3<T>& T_prev, const SE3<T>& T_next) {
   delta.theta_sq = delta.phi.squaredNorm();
   delta.phi_x_rho = delta.phi.cross(delta.rho);
   delta.phi_x_phi_x_rho = delta.phi.cross(delta.phi_x_rho);
+  delta.dp = T_next.translation() - T_prev.translation();
   return delta;
 }
 
@@ -224,6 +228,26 @@ ExpCoefficients<T> ComputeExpCoefficients(const T& x_sq, bool with_q) {
   return k;
 }
 
+// s I + a Hat(phi) + d Hat(phi)^2 entry by entry, with Hat(phi)^2 = phi phi^T - |phi|^2 I
+// (theta_sq = |phi|^2): every SO(3) function of one rotation vector has this shape (Exp, the
+// Jacobians, their products with each other), so it costs a few multiplications, no 3x3 product.
+// Written in place (a returned matrix, copied by vector loads right after scalar stores, stalls
+// on store forwarding when the call is not inlined).
+template <typename T>
+void SetIdentityHatSquare(
+    const T& s, const T& a, const T& d, const Vector3<T>& phi, const T& theta_sq, Matrix3<T>* m) {
+  const T diag = s - d * theta_sq;
+  const T d01 = d * phi(0) * phi(1);
+  const T d02 = d * phi(0) * phi(2);
+  const T d12 = d * phi(1) * phi(2);
+  const Vector3<T> a_phi = a * phi;
+  // clang-format off
+  *m << diag + d * phi(0) * phi(0), d01 - a_phi(2),              d02 + a_phi(1),
+        d01 + a_phi(2),             diag + d * phi(1) * phi(1),  d12 - a_phi(0),
+        d02 - a_phi(1),             d12 + a_phi(0),              diag + d * phi(2) * phi(2);
+  // clang-format on
+}
+
 // A_j = Exp(b Omega_k) for one knot delta, with the pieces later steps reuse.
 template <typename T>
 struct ScaledExp {
@@ -240,19 +264,9 @@ void ComputeScaledExp(
   A->b = b;
   A->k = ComputeExpCoefficients(b * b * delta.theta_sq, with_q);
   const Vector3<T>& phi = delta.phi;
-  // R = I + a Hat(phi) + d Hat(phi)^2 with Hat(phi)^2 = phi phi^T - |phi|^2 I.
-  const T a = b * A->k.c1;
+  // R = I + b c1 Hat(phi) + b^2 c2 Hat(phi)^2.
   const T d = b * b * A->k.c2;
-  const T diag = T(1.0) - d * delta.theta_sq;
-  const T d01 = d * phi(0) * phi(1);
-  const T d02 = d * phi(0) * phi(2);
-  const T d12 = d * phi(1) * phi(2);
-  const Vector3<T> a_phi = a * phi;
-  // clang-format off
-  A->R << diag + d * phi(0) * phi(0), d01 - a_phi(2),              d02 + a_phi(1),
-          d01 + a_phi(2),             diag + d * phi(1) * phi(1),  d12 - a_phi(0),
-          d02 - a_phi(1),             d12 + a_phi(0),              diag + d * phi(2) * phi(2);
-  // clang-format on
+  SetIdentityHatSquare(T(1.0), b * A->k.c1, d, phi, delta.theta_sq, &A->R);
   const T bh = b * A->k.h;
   A->q = Eigen::Quaternion<T>(A->k.cos_half, bh * phi(0), bh * phi(1), bh * phi(2));
   if (with_translation) {
@@ -263,14 +277,16 @@ void ComputeScaledExp(
 }  // namespace internal
 
 // A read-only view of what one segment needs: its first control pose P_0 = T_{i-1} (pose and
-// rotation matrix) and the three knot deltas Omega_i, Omega_{i+1}, Omega_{i+2} (contiguous),
-// plus their Jacobian caches (double only, may be null). Views point into an SE3Spline or a
-// SegmentKnotData and are valid while that object is alive and unchanged.
+// rotation matrix), the rotation matrices of P_1..P_3 where the Jacobian caches exist (the split
+// model's position Jacobians read them: spline/split_segment_jacobians.h) and the three knot
+// deltas Omega_i, Omega_{i+1}, Omega_{i+2} (contiguous), plus their Jacobian caches (double only,
+// may be null). Views point into an SE3Spline or a SegmentKnotData and are valid while that
+// object is alive and unchanged.
 template <typename T>
 struct SegmentKnots {
   int first_index = 0;                            // index of P_0 in the spline
   const SE3<T>* T_first = nullptr;                // P_0
-  const Matrix3<T>* R_first = nullptr;            // rotation matrix of P_0
+  const Matrix3<T>* R_first = nullptr;            // [1], or [4] with the Jacobian caches
   const KnotDelta<T>* deltas = nullptr;           // [3]
   const KnotDeltaJacobians* jacobians = nullptr;  // [3] or nullptr
 };
@@ -280,7 +296,8 @@ KnotDeltaJacobians MakeKnotDeltaJacobians(const KnotDelta<T>& delta);
 
 // The knot data of one segment computed from its four control poses P_0..P_3 (for cost
 // functions that receive the four pose blocks, e.g. under automatic differentiation). The
-// Jacobian caches are filled only for T = double and with_jacobians.
+// Jacobian caches (and the rotation matrices of P_1..P_3) are filled only for T = double and
+// with_jacobians.
 template <typename T>
 class SegmentKnotData {
  public:
@@ -290,7 +307,8 @@ class SegmentKnotData {
                   const SE3<T>& P3,
                   bool with_jacobians = true,
                   int first_index = 0)
-      : first_index_(first_index), T_first_(P0), R_first_(P0.so3().matrix()) {
+      : first_index_(first_index), T_first_(P0) {
+    R_[0] = P0.so3().matrix();
     deltas_[0] = MakeKnotDelta(P0, P1);
     deltas_[1] = MakeKnotDelta(P1, P2);
     deltas_[2] = MakeKnotDelta(P2, P3);
@@ -298,6 +316,9 @@ class SegmentKnotData {
       has_jacobians_ = with_jacobians;
       if (with_jacobians) {
         for (int j = 0; j < 3; ++j) jacobians_[j] = MakeKnotDeltaJacobians(deltas_[j]);
+        R_[1] = P1.so3().matrix();
+        R_[2] = P2.so3().matrix();
+        R_[3] = P3.so3().matrix();
       }
     }
   }
@@ -306,7 +327,7 @@ class SegmentKnotData {
     SegmentKnots<T> view;
     view.first_index = first_index_;
     view.T_first = &T_first_;
-    view.R_first = &R_first_;
+    view.R_first = R_.data();
     view.deltas = deltas_.data();
     view.jacobians = has_jacobians_ ? jacobians_.data() : nullptr;
     return view;
@@ -315,7 +336,7 @@ class SegmentKnotData {
  private:
   int first_index_;
   SE3<T> T_first_;
-  Matrix3<T> R_first_;
+  std::array<Matrix3<T>, kSplineOrder> R_;  // rotation matrices of P_0 (P_1..P_3: see above)
   std::array<KnotDelta<T>, 3> deltas_;
   std::array<KnotDeltaJacobians, 3> jacobians_;
   bool has_jacobians_ = false;
@@ -412,11 +433,16 @@ Vector3<T> RotateToBody(const SegmentKnots<T>& knots,
   return trace.A[2].R.transpose() * x_2;
 }
 
+// q(R_w_s) = q(P_0) q(A_1) q(A_2) q(A_3): the orientation, the same in both trajectory models.
+template <typename T>
+Eigen::Quaternion<T> SegmentQuaternion(const SegmentKnots<T>& knots, const SegmentTrace<T>& trace) {
+  return knots.T_first->so3().quaternion() * trace.A[0].q * trace.A[1].q * trace.A[2].q;
+}
+
 // T_w_s = P_0 A_1 A_2 A_3 (quaternion product for the rotation; needs the translations).
 template <typename T>
 SE3<T> SegmentPose(const SegmentKnots<T>& knots, const SegmentTrace<T>& trace) {
-  const Eigen::Quaternion<T> q =
-      knots.T_first->so3().quaternion() * trace.A[0].q * trace.A[1].q * trace.A[2].q;
+  const Eigen::Quaternion<T> q = SegmentQuaternion(knots, trace);
   const Vector3<T> t_123 =
       trace.A[0].t + trace.A[0].R * (trace.A[1].t + trace.A[1].R * trace.A[2].t);
   return SE3<T>(SO3<T>(q), knots.T_first->translation() + (*knots.R_first) * t_123);
@@ -497,20 +523,8 @@ inline void ScaledRightJacobianSO3(const KnotDelta<double>& delta,
                                    const ScaledExp<double>& A,
                                    Eigen::Matrix3d* b_Jr) {
   const double b = A.b;
-  const Eigen::Vector3d& phi = delta.phi;
-  const double a = b * b * A.k.c2;
-  const double d = b * b * b * A.k.c3;
-  // b I - a Hat(phi) + d (phi phi^T - |phi|^2 I)
-  const double diag = b - d * delta.theta_sq;
-  const double d01 = d * phi(0) * phi(1);
-  const double d02 = d * phi(0) * phi(2);
-  const double d12 = d * phi(1) * phi(2);
-  const Eigen::Vector3d a_phi = a * phi;
-  // clang-format off
-  *b_Jr << diag + d * phi(0) * phi(0), d01 + a_phi(2),              d02 - a_phi(1),
-           d01 - a_phi(2),             diag + d * phi(1) * phi(1),  d12 + a_phi(0),
-           d02 + a_phi(1),             d12 - a_phi(0),              diag + d * phi(2) * phi(2);
-  // clang-format on
+  // b I - b^2 c2 Hat(phi) + b^3 c3 Hat(phi)^2.
+  SetIdentityHatSquare(b, -(b * b * A.k.c2), b * b * b * A.k.c3, delta.phi, delta.theta_sq, b_Jr);
 }
 
 inline Eigen::Matrix3d ScaledQRight(const KnotDelta<double>& delta,
