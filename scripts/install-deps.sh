@@ -2,7 +2,9 @@
 # Installs splinecal's build dependencies from Debian's packages, and nothing when all are there.
 set -euo pipefail
 
-packages=(build-essential cmake ninja-build libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
+packages=(build-essential cmake ninja-build
+          ccache  # compiled objects shared between build folders and clones (CMakeLists.txt)
+          libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
           libsuitesparse-dev  # Ceres' sparse Cholesky and Schur solvers (SuiteSparse)
           # scripts/allan_speed_bench.py: the numpy reference of the Allan speed target
