@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "testing/paths.h"
+
 namespace splinecal {
 namespace {
 
@@ -88,7 +90,7 @@ int LayerOf(const std::string& area) {
 
 TEST(Layering, SourceTreeHasIncludes) {
   // Guards the test itself: a wrong path or regex would find nothing and pass vacuously.
-  const std::vector<IncludeEdge> edges = CollectIncludes(SPLINECAL_SOURCE_DIR);
+  const std::vector<IncludeEdge> edges = CollectIncludes(testing::SourceDir());
   EXPECT_GT(edges.size(), 300u);
   std::set<std::string> areas;
   for (const IncludeEdge& e : edges) areas.insert(e.from_area);
@@ -96,7 +98,7 @@ TEST(Layering, SourceTreeHasIncludes) {
 }
 
 TEST(Layering, EveryAreaIsALayer) {
-  for (const IncludeEdge& e : CollectIncludes(SPLINECAL_SOURCE_DIR)) {
+  for (const IncludeEdge& e : CollectIncludes(testing::SourceDir())) {
     EXPECT_GE(LayerOf(e.from_area), 0) << e.file << ": area '" << e.from_area
                                        << "' is not in kLayers: place it there";
     EXPECT_GE(LayerOf(e.to_area), 0) << e.file << ":" << e.line << ": includes area '"
@@ -105,7 +107,7 @@ TEST(Layering, EveryAreaIsALayer) {
 }
 
 TEST(Layering, AreasIncludeOnlyLowerLayers) {
-  for (const IncludeEdge& e : CollectIncludes(SPLINECAL_SOURCE_DIR)) {
+  for (const IncludeEdge& e : CollectIncludes(testing::SourceDir())) {
     if (e.from_area == e.to_area) continue;
     EXPECT_LT(LayerOf(e.to_area), LayerOf(e.from_area))
         << e.file << ":" << e.line << ": area '" << e.from_area << "' includes '" << e.to_area
@@ -116,7 +118,7 @@ TEST(Layering, AreasIncludeOnlyLowerLayers) {
 // The umbrella header is the public API a user reads: every library header is in it, area by area
 // in layer order (cli/ is the front end, not the library).
 TEST(Layering, UmbrellaHeaderIncludesEveryLibraryHeaderInLayerOrder) {
-  const fs::path include_dir = fs::path(SPLINECAL_SOURCE_DIR) / "include" / "splinecal";
+  const fs::path include_dir = fs::path(testing::SourceDir()) / "include" / "splinecal";
   std::ifstream umbrella(include_dir / "splinecal.h");
   ASSERT_TRUE(umbrella.good());
   static const std::regex kInclude(R"re(^#include "splinecal/(([a-z_]+)/)?([a-z_0-9]+\.h)")re");
@@ -189,7 +191,7 @@ TEST(Layering, FindCycleFindsACircleAndOnlyACircle) {
 // real cycle are told apart.
 TEST(Layering, AreaGraphHasNoCycle) {
   AreaGraph graph;
-  for (const IncludeEdge& e : CollectIncludes(SPLINECAL_SOURCE_DIR)) {
+  for (const IncludeEdge& e : CollectIncludes(testing::SourceDir())) {
     if (e.from_area != e.to_area) graph[e.from_area].insert(e.to_area);
   }
   const std::vector<std::string> cycle = FindCycle(graph);

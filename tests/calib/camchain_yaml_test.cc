@@ -7,7 +7,7 @@
 
 #include "camera/camera_test_models.h"
 #include "splinecal/error.h"
-#include "testing/shared_data.h"
+#include "testing/paths.h"
 #include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
 
@@ -138,8 +138,8 @@ TEST(CamchainYamlText, SeveralCamerasGetTheTcnCnm1TheirTCamImuImply) {
 }
 
 TEST(CamchainYamlText, EurocStereoKeepsItsPublishedTcnCnm1) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/camchain_euroc.yaml");
-  const std::string path = testing::SharedDataPath("euroc_imu_april/camchain_euroc.yaml");
+  // The dataset's camchain as bundled (byte-identical to ../shared/data/euroc_imu_april/).
+  const std::string path = testing::BundledDataPath("euroc_april_frames/camchain_euroc.yaml");
   const Camchain camchain = ReadCamchainYaml(path);
   ASSERT_EQ(camchain.size(), 2u);
   const std::string published = testing::ReadFileText(path);

@@ -14,6 +14,7 @@
 #include "splinecal/io/poses.h"
 #include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
+#include "testing/paths.h"
 #include "testing/rotations.h"
 #include "testing/shared_data.h"
 #include "testing/static_phase.h"
@@ -28,7 +29,7 @@ constexpr double kGyroBiasTolerance = 0.002;  // [rad/s]
 constexpr double kAccelBiasTolerance = 0.05;  // [m/s^2]
 
 TEST(FitEuroc, V101EasyBiasesMatchTheGroundTruth) {
-  const std::string dir = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/";
+  const std::string dir = testing::SharedDataDir() + "/euroc_v1_01_easy/";
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");
   const std::vector<ImuSample> imu = ReadEurocImu(dir + "imu0.csv");
   const std::vector<StampedPose> poses = ReadPoses(dir + "groundtruth.csv");
@@ -88,7 +89,7 @@ TEST(FitEuroc, V101EasyBiasesMatchTheGroundTruth) {
 // differ only by how the spline bends between knots: the models share the orientation and the
 // knots, and the vibration both cannot follow is the same).
 TEST(FitEuroc, SplitAndSe3FitsOfTheBundledExcerptAgreeWithinTheirStds) {
-  const std::string dir = std::string(SPLINECAL_SOURCE_DIR) + "/data/euroc_v1_01_easy_20s/";
+  const std::string dir = testing::SourceDir() + "/data/euroc_v1_01_easy_20s/";
   const std::vector<ImuSample> imu = ReadEurocImu(dir + "imu0.csv");
   const std::vector<StampedPose> poses = ReadPoses(dir + "groundtruth.csv");
   FitOptions options;

@@ -20,7 +20,7 @@
 #include "camera/camera_test_models.h"
 #include "splinecal/camera/camera_model.h"
 #include "splinecal/io/camchain_yaml.h"
-#include "testing/shared_data.h"
+#include "testing/paths.h"
 
 namespace splinecal {
 namespace {
@@ -110,8 +110,10 @@ void ExpectMatchesOpenCv(const Camera& camera,
   }
 }
 
-Camera EurocCam0FromSharedData() {
-  return ReadCamchainYaml(testing::SharedDataPath("euroc_imu_april/camchain_euroc.yaml"))[0].camera;
+// The dataset's camchain, bundled in data/euroc_april_frames/ (byte-identical to
+// ../shared/data/euroc_imu_april/camchain_euroc.yaml), so that these checks run in every checkout.
+Camera EurocCam0() {
+  return ReadCamchainYaml(testing::BundledDataPath("euroc_april_frames/camchain_euroc.yaml"))[0].camera;
 }
 
 // A wide-angle radtan lens (~100 degree field) with OpenCV's 5th coefficient.
@@ -130,8 +132,7 @@ Camera WideRadTan() {
 }
 
 TEST(CameraOpenCvReference, RadTanFourCoefficientsOnEurocCam0) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/camchain_euroc.yaml");
-  const Camera camera = EurocCam0FromSharedData();
+  const Camera camera = EurocCam0();
   ASSERT_EQ(camera.distortion, DistortionModel::kRadTan);
   ASSERT_EQ(camera.distortion_coeffs(4), 0.0);
   const std::vector<Eigen::Vector3d> points = ReferencePoints(50.0);
@@ -139,8 +140,7 @@ TEST(CameraOpenCvReference, RadTanFourCoefficientsOnEurocCam0) {
 }
 
 TEST(CameraOpenCvReference, RadTanWithK3) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/camchain_euroc.yaml");
-  Camera camera = EurocCam0FromSharedData();
+  Camera camera = EurocCam0();
   camera.distortion_coeffs(4) = -0.0125;  // an OpenCV-style 5-coefficient calibration
   camera.radtan_k3 = true;
   const std::vector<Eigen::Vector3d> points = ReferencePoints(50.0);
@@ -154,10 +154,9 @@ TEST(CameraOpenCvReference, RadTanWithK3) {
 }
 
 TEST(CameraOpenCvReference, EquidistantMatchesOpenCvFisheye) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/camchain_euroc.yaml");
   // EuRoC cam0's focal lengths and principal point with Kannala-Brandt coefficients of a
   // similar lens (the dataset publishes radtan only).
-  Camera euroc = EurocCam0FromSharedData();
+  Camera euroc = EurocCam0();
   euroc.distortion = DistortionModel::kEquidistant;
   euroc.distortion_coeffs << -0.0045, 0.0196, -0.0218, 0.0076, 0.0;
   const std::vector<Eigen::Vector3d> points = ReferencePoints(50.0);
@@ -171,8 +170,7 @@ TEST(CameraOpenCvReference, EquidistantMatchesOpenCvFisheye) {
 TEST(CameraOpenCvReference, SwappedTangentialCoefficientsMoveThePixels) {
   // The premise of the radtan comparisons: had splinecal swapped p1 and p2, its pixels would
   // differ from OpenCV's by more than kMinSwapEffectPx at every off-axis point tested.
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/camchain_euroc.yaml");
-  for (const Camera& camera : {EurocCam0FromSharedData(), WideRadTan()}) {
+  for (const Camera& camera : {EurocCam0(), WideRadTan()}) {
     Camera swapped = camera;
     std::swap(swapped.distortion_coeffs(2), swapped.distortion_coeffs(3));
     const std::vector<Eigen::Vector3d> points = ReferencePoints(50.0);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "testing/paths.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -74,7 +75,7 @@ inline std::string ValidColumns() {
 
 // The bundled YAML files (data/): a camchain, an aprilgrid and EuRoC's sensor.yaml.
 inline std::string DataText(const std::string& relative_path) {
-  return ReadFileText(std::string(SPLINECAL_SOURCE_DIR) + "/data/" + relative_path);
+  return ReadFileText(testing::SourceDir() + "/data/" + relative_path);
 }
 inline std::string ValidCamchain() { return DataText("calibration/camchain_guess.yaml"); }
 inline std::string ValidTarget() { return DataText("calibration/aprilgrid.yaml"); }

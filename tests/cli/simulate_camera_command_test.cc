@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "splinecal/io/yaml_document.h"
+#include "testing/paths.h"
 #include "testing/run_tool.h"
 #include "testing/strict_yaml.h"
 
@@ -20,7 +21,7 @@ using testing::RunTool;
 using testing::TempDir;
 
 std::string DataFile(const std::string& name) {
-  return std::string(SPLINECAL_SOURCE_DIR) + "/data/calibration/" + name;
+  return testing::SourceDir() + "/data/calibration/" + name;
 }
 
 std::vector<std::string> SimulateArgs(const std::string& out, const std::string& seed) {

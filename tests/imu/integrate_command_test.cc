@@ -15,6 +15,7 @@
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/imu/integrate.h"
 #include "splinecal/io/euroc.h"
+#include "testing/paths.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
 #include "testing/strict_yaml.h"
@@ -167,7 +168,7 @@ TEST(IntegrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
 // significant digits, so the tolerance is a few ulp (1e-12 relative). A command that did not
 // move, or integrated from another start, would be off by metres.
 TEST(IntegrateCommand, EurocV101EasyFirstTenSecondsReportsTheLibrarysDrift) {
-  const std::string data = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy";
+  const std::string data = testing::SharedDataDir() + "/euroc_v1_01_easy";
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");
   TempDir dir;
   const auto result = RunTool({"integrate",

@@ -13,6 +13,7 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/units.h"
+#include "testing/paths.h"
 #include "testing/shared_data.h"
 #include "testing/static_phase.h"
 
@@ -396,7 +397,7 @@ TEST(ComputeDrift, ZeroOnTheTruthAndExactForAKnownOffset) {
 // put fails, and so does one that drops the accelerometer bias (0.084 m). The rotation bound is
 // 0.96 deg (1.4e-3 rad/s over 10 s, 0.18 deg), the errors 0.31-0.36 deg, the true rotation 75 deg.
 TEST(IntegrateImu, EurocV101EasyFirstTenSeconds) {
-  const std::string dir = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy";
+  const std::string dir = testing::SharedDataDir() + "/euroc_v1_01_easy";
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");
   const std::vector<ImuSample> imu = ReadEurocImu(dir + "/imu0.csv");
   const std::vector<GroundTruthState> truth = ReadEurocGroundTruth(dir + "/groundtruth.csv");

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "splinecal/error.h"
+#include "testing/paths.h"
 #include "testing/shared_data.h"
 #include "testing/temp_dir.h"
 
@@ -132,11 +133,11 @@ TEST(ReadEurocGroundTruth, NonUnitQuaternionIsRefused) {
 }
 
 TEST(ReadEurocGroundTruth, SharedRealDataReads) {
-  const std::string path = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/groundtruth.csv";
+  const std::string path = testing::SharedDataDir() + "/euroc_v1_01_easy/groundtruth.csv";
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/groundtruth.csv");
   const auto states = ReadEurocGroundTruth(path);
   EXPECT_EQ(states.size(), 2895u);
-  const auto imu = ReadEurocImu(std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/imu0.csv");
+  const auto imu = ReadEurocImu(testing::SharedDataDir() + "/euroc_v1_01_easy/imu0.csv");
   EXPECT_EQ(imu.size(), 29120u);
   EXPECT_EQ(imu.front().t_ns, states.front().t_ns);
 }

@@ -13,6 +13,7 @@
 #include "fuzz/readers.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/error.h"
+#include "testing/paths.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -27,7 +28,7 @@ struct CorpusFile {
 
 std::vector<CorpusFile> CorpusFiles() {
   std::vector<CorpusFile> files;
-  const fs::path root = fs::path(SPLINECAL_SOURCE_DIR) / "tests" / "fuzz";
+  const fs::path root = fs::path(testing::SourceDir()) / "tests" / "fuzz";
   for (const char* sub : {"corpus", "regressions"}) {
     if (!fs::exists(root / sub)) continue;
     for (const auto& entry : fs::recursive_directory_iterator(root / sub)) {

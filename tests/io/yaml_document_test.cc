@@ -5,6 +5,7 @@
 
 #include "splinecal/error.h"
 #include "splinecal/io/kalibr_yaml.h"
+#include "testing/paths.h"
 #include "testing/shared_data.h"
 #include "testing/temp_dir.h"
 
@@ -79,7 +80,7 @@ TEST(YamlDocument, NonFiniteImplausibleAndTyposNameTheLine) {
 
 TEST(ReadImuYaml, EurocSensorFileWithOpenCvHeader) {
   const std::string path =
-      std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/sensor.yaml";
+      testing::SharedDataDir() + "/euroc_v1_01_easy/sensor.yaml";
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/sensor.yaml");
   const ImuNoise noise = ReadImuYaml(path);
   EXPECT_DOUBLE_EQ(noise.gyroscope_noise_density, 1.6968e-4);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "testing/paths.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -33,10 +34,10 @@ inline std::string ShellQuote(const std::string& arg) {
   return quoted + "'";
 }
 
-// Runs `splinecal args...` (SPLINECAL_TOOL_PATH) with stdin from /dev/null.
+// Runs `splinecal args...` (testing/paths.h) with stdin from /dev/null.
 inline ToolResult RunTool(const std::vector<std::string>& args) {
   TempDir capture;
-  std::string command = ShellQuote(SPLINECAL_TOOL_PATH);
+  std::string command = ShellQuote(ToolPath());
   for (const std::string& arg : args) command += " " + ShellQuote(arg);
   command += " </dev/null >" + ShellQuote(capture.File("out")) + " 2>" +
              ShellQuote(capture.File("err"));

@@ -12,12 +12,14 @@
 #include <filesystem>
 #include <string>
 
+#include "testing/paths.h"
+
 namespace splinecal {
 namespace testing {
 
 // The path of `relative` below ../shared/data (e.g. "euroc_v1_01_easy/imu0.csv").
 inline std::string SharedDataPath(const std::string& relative) {
-  return std::string(SPLINECAL_SHARED_DATA_DIR) + "/" + relative;
+  return testing::SharedDataDir() + "/" + relative;
 }
 
 inline bool RunningUnderCi() {

@@ -26,6 +26,8 @@
 #include "splinecal/sim/trajectories.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
+#include "testing/chi_square.h"
+#include "testing/paths.h"
 #include "testing/rotations.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
@@ -274,7 +276,7 @@ TEST(Align, ThrowsWhenTooFewCameraPosesInsideImu) {
 // ground truth's): without it, its 0.07 m/s^2 tilt gravity by ~1 deg and, once the norm is
 // imposed, move the scale (docs/align.md, "Real data").
 TEST(Align, RealEurocGroundTruthAsCamera) {
-  const std::string dir = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_v1_01_easy/";
+  const std::string dir = testing::SharedDataDir() + "/euroc_v1_01_easy/";
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_v1_01_easy/imu0.csv");
   const std::vector<ImuSample> imu = ReadEurocImu(dir + "imu0.csv");
   const std::vector<GroundTruthState> truth = ReadEurocGroundTruth(dir + "groundtruth.csv");
@@ -328,21 +330,31 @@ TEST(Align, RealEurocGroundTruthAsCamera) {
 
 // A well-conditioned simulated case with the noise the weights assume (10 s figure eight, camera
 // 5 mm / 0.002 rad, EuRoC IMU noise): accepted, and the scale within 3 of its reported standard
-// deviations of the truth (equation (2) of align.h), for each of 20 noise draws.
-TEST(Align, NoisyWellConditionedScaleWithinReportedStd) {
+// deviations of the truth (equation (2) of align.h), for each noise draw. Both sides of the
+// reported standard deviation: the NEES (z = (scale - truth) / scale_std, z^2 summed over the
+// draws) must lie in the two-sided 95% interval of chi-square with one degree of freedom per
+// draw (testing/chi_square.h): a standard deviation 3 times too large passes the per-draw bound
+// but not the interval. kDraws = 120: with 20 draws a variance 1.5 times too large still passed
+// 81% of the time (P(chi2_20 / 1.5 > 9.59)); with 120, 13% (P(chi2_120 / 1.5 > 91.6)).
+TEST(Align, NoisyWellConditionedScaleNeesInsideItsInterval) {
+  constexpr int kDraws = 120;
   testdata::ScenarioOptions options = DefaultOptions();
   options.imu_noise = true;
   options.camera_translation_std_m = 0.005;
   options.camera_rotation_std_rad = 0.002;
-  for (uint64_t seed = 1; seed <= 20; ++seed) {
+  std::vector<testing::NeesGroup> groups = {{"scale", 0, 1}};
+  for (uint64_t seed = 1; seed <= kDraws; ++seed) {
     options.seed = seed;
     const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
     const AlignResult result =
         Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
     SCOPED_TRACE(seed);
     ASSERT_TRUE(result.success) << result.message;
-    EXPECT_LT(std::abs(result.scale - scenario.scale), 3.0 * result.scale_std);
+    const double z = (result.scale - scenario.scale) / result.scale_std;
+    EXPECT_LT(std::abs(z), 3.0);
+    groups[0].sum += z * z;
   }
+  testing::ExpectNeesSumsInsideInterval95(groups, kDraws);
 }
 
 // Real data: EuRoC imu_april (72 s), cam0's poses T_t_c from PnP on the AprilGrid with their
