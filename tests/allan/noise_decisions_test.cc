@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -98,6 +99,11 @@ TEST(NoiseDecisions, RandomWalkOverADecadeIsIdentified) {
     EXPECT_GE(std::log10(walk.tau_max_s / walk.tau_min_s), 0.5);
     EXPECT_NEAR(walk.measured_slope, 0.5, 0.15);
     EXPECT_LE(walk.value, walk.upper_bound);
+    // The bound from above: at the longest averaging time (720 s, 72 times tau_c) the random
+    // walk is the whole deviation, and the 99% interval top of that point's few clusters is
+    // about twice it: below 3 K. A bound 10 or 1000 times loose fails.
+    std::printf("%s: K bound %.3f K\n", axis.name.c_str(), walk.upper_bound / kK);
+    EXPECT_LT(walk.upper_bound, 3.0 * kK);
     EXPECT_LE(walk.value_low, walk.value);
     EXPECT_GE(walk.value_high, walk.value);
   }
@@ -136,6 +142,9 @@ TEST(NoiseDecisions, FilteredSensorDipIsSkipped) {
     // value's own error.
     EXPECT_GE(white.upper_bound, white.value);
     EXPECT_GT(white.upper_bound, 0.98 * kN);
+    // And above: the first point after the dip has thousands of clusters and lies on the
+    // white-noise line, so its interval top bounds N within a few percent.
+    EXPECT_LT(white.upper_bound, 1.1 * kN);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <complex>
 #include <random>
 #include <unsupported/Eigen/FFT>
@@ -262,6 +263,23 @@ TEST(FitNoise, ShortRecordLeavesGyroRandomWalkUnidentified) {
   EXPECT_FALSE(fit[NoiseTerm::kBiasInstability].identified);
   EXPECT_GT(fit[NoiseTerm::kRandomWalk].upper_bound, kGyroRandomWalk);
   EXPECT_GT(fit[NoiseTerm::kWhite].upper_bound, kGyroNoiseDensity);
+  // And from above: a bound must also be tight enough to mean something. The white-noise bound
+  // is at most the shortest averaging time's interval top times sqrt(tau); there the curve has
+  // 24,000 clusters, its interval top is within 2% of the true deviation N / sqrt(tau) (the
+  // random walk adds K^2 tau / 3, 1e-7 of it): below 1.1 N. The random walk's bound is at most
+  // the longest averaging time's interval top over sqrt(tau / 3); the true deviation there
+  // (tau_max ~ 12 s) gives 1.6 K, and the 99% interval top of a point of so few clusters is
+  // about twice the deviation (measured: 3.0 K): below 5 K. A bound 10 or 1000 times loose fails.
+  const double tau_max = curve.tau_s.back();
+  const double true_adev_at_tau_max =
+      std::sqrt(kGyroNoiseDensity * kGyroNoiseDensity / tau_max +
+                kGyroRandomWalk * kGyroRandomWalk * tau_max / 3.0);
+  std::printf("bounds: N %.3f N_true, K %.3f K_true (the true curve at tau_max %.1f s: %.3f K)\n",
+              fit[NoiseTerm::kWhite].upper_bound / kGyroNoiseDensity,
+              fit[NoiseTerm::kRandomWalk].upper_bound / kGyroRandomWalk, tau_max,
+              true_adev_at_tau_max / std::sqrt(tau_max / 3.0) / kGyroRandomWalk);
+  EXPECT_LT(fit[NoiseTerm::kWhite].upper_bound, 1.1 * kGyroNoiseDensity);
+  EXPECT_LT(fit[NoiseTerm::kRandomWalk].upper_bound, 5.0 * kGyroRandomWalk);
 }
 
 TEST(FitNoise, NeedsTwoPositivePoints) {

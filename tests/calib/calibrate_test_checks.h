@@ -15,6 +15,7 @@
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/units.h"
+#include "testing/chi_square.h"
 
 namespace splinecal {
 namespace testing {
@@ -96,6 +97,21 @@ inline void ExpectWithinTargetsAndStds(const CalibrationResult& r,
     EXPECT_LT(std::abs(e.line_delay_s), kMaxLineDelayRelativeError * kTrueLineDelay);
     EXPECT_LT(std::abs(e.line_delay_s), kStdFactor * c.line_delay_std_s);
   }
+  // The other side: standard deviations far too large pass every bound above. The diagonal NEES
+  // of the 7 (8 with the line delay) components has mean 7 (8) when they are honest; one run
+  // below chi-square's 0.1% quantile (Wilson-Hilferty: 0.51 for 7, 0.76 for 8 degrees of freedom)
+  // means they are several times too large (3 times: NEES ~ 0.8 on average; 10 times: 0.08).
+  double nees = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    nees += std::pow(e.rotation_deg[a] / c.rotation_std_deg[a], 2) +
+            std::pow(e.translation_m[a] / c.translation_std_m[a], 2);
+  }
+  nees += std::pow(e.time_offset_s / c.time_offset_std_s, 2);
+  if (line_delay) nees += std::pow(e.line_delay_s / c.line_delay_std_s, 2);
+  const int dof = line_delay ? 8 : 7;
+  constexpr double kNormalQuantile001 = -3.090232306167813;  // P(Z < z) = 0.001
+  EXPECT_GE(nees, ChiSquareQuantile(dof, kNormalQuantile001))
+      << "diagonal NEES " << nees << " of " << dof << " components: standard deviations too large";
 }
 
 inline CalibrateOptions FastOptions() {
