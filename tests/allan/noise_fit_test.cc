@@ -266,10 +266,11 @@ TEST(FitNoise, ShortRecordLeavesGyroRandomWalkUnidentified) {
   // And from above: a bound must also be tight enough to mean something. The white-noise bound
   // is at most the shortest averaging time's interval top times sqrt(tau); there the curve has
   // 24,000 clusters, its interval top is within 2% of the true deviation N / sqrt(tau) (the
-  // random walk adds K^2 tau / 3, 1e-7 of it): below 1.1 N. The random walk's bound is at most
-  // the longest averaging time's interval top over sqrt(tau / 3); the true deviation there
-  // (tau_max ~ 12 s) gives 1.6 K, and the 99% interval top of a point of so few clusters is
-  // about twice the deviation (measured: 3.0 K): below 5 K. A bound 10 or 1000 times loose fails.
+  // random walk adds K^2 tau / 3, 1e-7 of it): below 1.1 N (measured 1.016 N). The random walk's
+  // bound is at most the longest averaging time's interval top over sqrt(tau / 3); the true
+  // deviation there (tau_max = 10 s) gives 1.82 K, and the 99% interval top of a point of so few
+  // clusters is about twice the deviation (measured: 3.31 K): below 5 K. A bound 10 or 1000
+  // times loose fails.
   const double tau_max = curve.tau_s.back();
   const double true_adev_at_tau_max =
       std::sqrt(kGyroNoiseDensity * kGyroNoiseDensity / tau_max +

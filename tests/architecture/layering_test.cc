@@ -180,7 +180,7 @@ std::string Join(const std::vector<std::string>& areas) {
 }
 
 TEST(Layering, FindCycleFindsACircleAndOnlyACircle) {
-  EXPECT_THAT(FindCycle({{"io", {"imu"}}, {"allan", {"io", "imu"}}}), testing::IsEmpty());
+  EXPECT_THAT(FindCycle({{"io", {"imu"}}, {"allan", {"io", "imu"}}}), ::testing::IsEmpty());
   EXPECT_EQ(Join(FindCycle({{"io", {"allan"}}, {"allan", {"io"}}})), "allan -> io -> allan");
   EXPECT_EQ(Join(FindCycle({{"a", {"b"}}, {"b", {"c"}}, {"c", {"a"}}, {"d", {"a"}}})),
             "a -> b -> c -> a");
