@@ -12,6 +12,7 @@
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/allan_deviation.h"
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_rate.h"
 #include "splinecal/io/static_recording.h"
 #include "yaml_to_python.h"
 
@@ -64,6 +65,7 @@ StaticRecording RecordingFromArray(py::handle imu,
   StaticRecording recording;
   recording.source = "numpy array";  // result.yaml's `source`, the input's name
   recording.rate_hz = PositiveArgument(rate_hz, "rate_hz");
+  CheckImuRate(recording.rate_hz, "rate_hz", /*from_timestamps=*/false);
   for (int column = 0; column < 6; ++column) {
     AxisSeries axis;
     axis.sensor = column < 3 ? ImuSensor::kGyroscope : ImuSensor::kAccelerometer;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "splinecal/imu/imu_rate.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/string_printf.h"
 
@@ -196,6 +197,7 @@ std::vector<ImuSample> ImuSamples(py::handle imu, const ImuReadOptions& read) {
     samples[i].gyro = Eigen::Map<const Eigen::Vector3d>(gyro.data() + 3 * i);
     samples[i].accel = Eigen::Map<const Eigen::Vector3d>(accel.data() + 3 * i);
   }
+  CheckImuRate(ImuRateHz(samples), "imu['t_ns']");  // as the file readers do
   return samples;
 }
 

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "splinecal/camera/observation_gates.h"
+
 namespace splinecal {
 namespace calibrate_internal {
 namespace {
@@ -400,6 +402,7 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
                             const CalibrateOptions& given_options,
                             const CalibrationInitialGuess* guess) {
   CheckInputs(imu, all_observations, camchain, given_options);
+  CheckObservationInputs(all_observations, target, camchain);  // target layout, image sizes
   std::vector<std::string> warnings;
   const std::vector<Observation> observations =
       ObservationsInsideImu(imu, all_observations, camchain, &warnings);

@@ -13,6 +13,7 @@
 
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/camera/camchain.h"
+#include "splinecal/camera/observation_gates.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
@@ -106,6 +107,11 @@ CalibrateInputs ReadCalibrateInputs() {
   }
   in.observations = ReadObservationsCsv(observations_path);
   CheckCameraIds(in.observations, in.camchain, observations_path, camchain_path);
+  // The library checks again (Calibrate); here the message names the files.
+  CheckObservationInputs(in.observations,
+                         in.target.get(),
+                         in.camchain,
+                         {observations_path, FLAGS_target, camchain_path});
   const std::vector<int> selection =
       ParseCameraSelection(FLAGS_cameras, static_cast<int>(in.camchain.size()));
   if (FLAGS_hold_camera_chain) {

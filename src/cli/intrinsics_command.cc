@@ -9,6 +9,7 @@
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
+#include "splinecal/camera/observation_gates.h"
 #include "splinecal/error.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/io/camchain_yaml.h"
@@ -142,6 +143,16 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
                                models.size()));
     }
   }
+  // The library checks again (CalibrateIntrinsics); here the message names the files.
+  std::vector<Camera> cameras;
+  for (const IntrinsicsCameraSpec& spec : in.cameras) cameras.push_back(spec.camera);
+  CheckObservationInputs(
+      in.observations,
+      &in.target,
+      cameras,
+      {observations_path,
+       FLAGS_target,
+       FLAGS_resolution.empty() ? FLAGS_camchain : "--resolution " + FLAGS_resolution});
   return in;
 }
 

@@ -10,6 +10,7 @@
 #include <memory>
 #include <set>
 
+#include "splinecal/camera/observation_gates.h"
 #include "splinecal/camera/pnp.h"
 #include "splinecal/error.h"
 #include "splinecal/estimation/marginal_covariance.h"
@@ -485,6 +486,9 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
     throw Error("intrinsics: held extrinsics need one T_cn_c0 per camera");
   }
   CheckSolverOptions(options.solver);
+  std::vector<Camera> given_cameras;  // the target's layout and the image sizes
+  for (const IntrinsicsCameraSpec& spec : cameras) given_cameras.push_back(spec.camera);
+  CheckObservationInputs(observations, &target, given_cameras);
   int64_t unknown_ids = 0;
   std::vector<TargetView> views = MakeTargetViews(observations, target, &unknown_ids);
   IntrinsicsResult result;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_rate.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/string_printf.h"
@@ -52,6 +53,7 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
                                median));
     }
   }
+  CheckImuRate(ImuRateHz(samples), path);  // after the checks that name a line
   return samples;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_rate.h"
 #include "splinecal/io/parallel_euroc_imu.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
@@ -160,6 +161,7 @@ std::optional<StaticRecording> ReadEurocInParallel(const std::string& path,
   recording.axes = MakeAxes(true, true, 3);
   for (int a = 0; a < 6; ++a) recording.axes[a].samples = std::move(columns->values[a]);
   CheckAccelUnits(path, recording.axes, options);
+  CheckImuRate(recording.rate_hz, path);
   return recording;
 }
 
@@ -220,6 +222,7 @@ StaticRecording ReadEurocStaticRecording(const std::string& path,
                              mean_period_s));
   }
   CheckAccelUnits(path, recording.axes, options);
+  CheckImuRate(recording.rate_hz, path);
   return recording;
 }
 
@@ -232,6 +235,7 @@ StaticRecording ReadColumnStaticRecording(const std::string& path,
     throw Error("the sample rate of plain columns must be positive and finite, got " +
                 std::to_string(rate_hz) + " Hz (--rate)");
   }
+  CheckImuRate(rate_hz, "--rate", /*from_timestamps=*/false);
   TextFileReader reader(path);
   StaticRecording recording;
   recording.source = path;

@@ -50,7 +50,7 @@ TEST(ReadEurocImu, WriteThenReadIsBitExact) {
   TempDir dir;
   std::vector<ImuSample> samples(4);
   for (int i = 0; i < 4; ++i) {
-    samples[i].t_ns = 1000 + i;
+    samples[i].t_ns = 1000 + i * int64_t{5000000};  // 200 Hz (readers refuse other units)
     samples[i].gyro = Eigen::Vector3d(1.0 / 3.0, -2e-17, 123.456789) * (i + 1);
     samples[i].accel = Eigen::Vector3d(9.81, 0.1 + i, -std::acos(-1.0));
   }

@@ -85,7 +85,7 @@ TEST(ReadEurocStaticRecording, RefusesBadInputWithFileAndLine) {
       [&] {
         ReadEurocStaticRecording(dir.Write("g.csv",
                                            header + "1000,0,0,0,0,0,1.0\n"
-                                                    "2000,0,0,0,0,0,1.01\n"));
+                                                    "5001000,0,0,0,0,0,1.01\n"));
       },
       "units of g");
   StaticReadOptions in_g;
