@@ -11,6 +11,7 @@
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/detect/image_file.h"
+#include "splinecal/error.h"
 #include "splinecal/detect/target_detector.h"
 #include "splinecal/io/image_folder.h"
 #include "splinecal/io/target_yaml.h"
@@ -96,17 +97,18 @@ py::object Detect(py::handle images, py::handle target, const std::string& effor
     return std::move(frames);
   }
   if (py::isinstance<py::list>(images) || py::isinstance<py::tuple>(images)) {
-    py::list frames;
-    size_t i = 0;
+    // Every item checked before the first file is read.
+    std::vector<std::string> paths;
     for (py::handle item : images) {
       const std::optional<std::string> path = AsPath(item);
       if (!path) {
-        throw py::value_error("image[" + std::to_string(i) +
+        throw py::value_error("image[" + std::to_string(paths.size()) +
                               "]: expected a path (str or os.PathLike) in a list of files");
       }
-      frames.append(DetectFile(*path, &detector));
-      ++i;
+      paths.push_back(*path);
     }
+    py::list frames;
+    for (const std::string& path : paths) frames.append(DetectFile(path, &detector));
     return std::move(frames);
   }
   return DetectArray(images, &detector);
