@@ -129,8 +129,8 @@ image: a uint8 array (h, w) of pixels already decoded, or the path of a PNG/JPEG
 list of such paths, or a camera folder as `splinecal detect --images` reads it (EuRoC data.csv
 and data/, or <t_ns>.png files). Files are decoded by splinecal's own decoder, as the command
 line does, so the same file gives the same corners in both.
-effort: "default" (recall first), "thorough" (a second, upsampled search in every frame) or
-"fast" (one search, misses tags under about 25 px), as `splinecal detect --effort`.
+effort: "default" (recall first), "thorough" (the upsampled searches in every frame) or
+"fast" (one search, misses most tags under 25 px), as `splinecal detect --effort`.
 
 Returns, for an array or a file, a dict: point_id (k,) and uv (k, 2) [px] (pixel centres at
 integers, docs/conventions.md), tags_found, tags_rejected, corners_rejected (and path for a
