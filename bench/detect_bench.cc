@@ -1,10 +1,13 @@
-// Benchmarks of `splinecal detect` (issue 13 targets, docs/performance.md and docs/detect.md):
+// Benchmarks of `splinecal detect` (docs/performance.md and docs/detect.md):
 //   - BM_AprilGridFrame: the AprilGrid detector on the bundled EuRoC frame (752 x 480, 36 tags),
 //     image already decoded; BM_AprilGridFrameWithDecode adds reading the PNG.
+//   - BM_AprilGridSmallTags/effort/scale_percent: the same frame scaled down (area average) to
+//     35..100 %, tags of 14..40 px, at each --effort (0 fast, 1 default, 2 thorough); counter:
+//     corners found of 144.
 //   - BM_CheckerboardFrame: the checkerboard detector on OpenCV's left01.jpg (640 x 480, 9 x 6).
 //   - BM_DetectFolder/threads: the whole command's work (list, decode, detect, gather) on a
-//     folder of 96 frames, 2 threads: frames/s against the targets (AprilGrid 40 frames/s,
-//     checkerboard 50 frames/s on 2 cores).
+//     folder of 96 frames, 1 and 2 threads, the default effort: frames/s against the targets
+//     (AprilGrid 110 frames/s, checkerboard 50 frames/s on 2 cores).
 //   - BM_DetectorChoice/...: why libapriltag and not OpenCV's ArUco (docs/detect.md): each one
 //     on the EuRoC frame, with and without the 2 x 2 white growth that separates Kalibr's tags
 //     from their corner squares; counters: tags found of 36, and the homography RMS [px] of the
@@ -58,6 +61,29 @@ void BM_AprilGridFrameWithDecode(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_AprilGridFrameWithDecode)->Unit(benchmark::kMillisecond);
+
+void BM_AprilGridSmallTags(benchmark::State& state) {
+  const GrayImage frame = ReadGrayImage(kEurocFrame);
+  const double scale = state.range(1) / 100.0;
+  const cv::Mat pixels(frame.height, frame.width, CV_8UC1,
+                       const_cast<uint8_t*>(frame.pixels.data()));
+  cv::Mat scaled;
+  cv::resize(pixels, scaled, cv::Size(), scale, scale, cv::INTER_AREA);
+  const GrayImageView view{scaled.cols, scaled.rows, static_cast<std::ptrdiff_t>(scaled.step),
+                           scaled.data};
+  DetectorOptions options;
+  options.effort = static_cast<DetectEffort>(state.range(0));
+  TargetDetector detector(EurocGrid(), options);
+  size_t corners = 0;
+  for (auto _ : state) corners = detector.Detect(view).corners.size();
+  state.counters["corners"] = static_cast<double>(corners);
+  state.counters["frames_per_s"] =
+      benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_AprilGridSmallTags)
+    ->ArgNames({"effort", "scale_percent"})
+    ->ArgsProduct({{0, 1, 2}, {35, 42, 50, 100}})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_CheckerboardFrame(benchmark::State& state) {
   if (!std::filesystem::exists(kChessboard)) {

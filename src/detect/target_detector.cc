@@ -7,6 +7,13 @@
 
 namespace splinecal {
 
+DetectEffort ParseDetectEffort(const std::string& name) {
+  if (name == "fast") return DetectEffort::kFast;
+  if (name == "default") return DetectEffort::kDefault;
+  if (name == "thorough") return DetectEffort::kThorough;
+  throw Error("detect effort '" + name + "': expected fast, default or thorough");
+}
+
 struct TargetDetector::Impl {
   CalibrationTarget target;
   std::unique_ptr<AprilGridDetector> aprilgrid;

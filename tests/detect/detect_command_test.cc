@@ -109,6 +109,31 @@ TEST(DetectCommand, RefusesFoldersWithNothingUsable) {
   ExpectRefused({"detect", "--images", kBundled + "/cam0", "--target", kGrid, "--threads", "0",
                  "--out", out},
                 out, "--threads: expected 1 to 256");
+  ExpectRefused({"detect", "--images", kBundled + "/cam0", "--target", kGrid, "--effort", "slow",
+                 "--out", out},
+                out, "--effort: detect effort 'slow': expected fast, default or thorough");
+}
+
+// Each effort finds the whole grid of the EuRoC frame (36 tags of ~40 px, found by the first
+// search), at the same corners: the searches only add tags, the refinement is the same.
+TEST(DetectCommand, EveryEffortFindsTheEurocGridAtTheSameCorners) {
+  testing::TempDir dir;
+  std::vector<std::vector<Observation>> found;
+  for (const std::string effort : {"fast", "default", "thorough"}) {
+    const std::string out = dir.File(effort);
+    const testing::ToolResult r = testing::RunTool(
+        {"detect", "--images", kBundled + "/cam0", "--target", kGrid, "--effort", effort,
+         "--quiet", "--out", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    found.push_back(ReadObservationsCsv(out + "/observations.csv"));
+    ASSERT_EQ(found.back().size(), 144u) << effort;
+  }
+  for (size_t e = 1; e < found.size(); ++e) {
+    for (size_t i = 0; i < found[0].size(); ++i) {
+      EXPECT_EQ(found[e][i].point_id, found[0][i].point_id);
+      EXPECT_EQ(found[e][i].uv, found[0][i].uv);
+    }
+  }
 }
 
 TEST(DetectCommand, ABadFrameIsAWarningAndTheRestIsProcessed) {

@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -39,10 +40,34 @@ struct TargetDetection {
   int corners_rejected = 0;  // corners whose sub-pixel refinement failed
 };
 
+// How hard the AprilGrid detector looks for tags: recall against time (docs/detect.md, "Small and
+// oblique tags"). libapriltag decodes a tag from the pixels inside it, on an image whose white
+// was grown to cut the tags from their corner squares (separate_corner_squares); on tags under
+// ~25 px (or narrower than that when seen obliquely) that growth eats the code bits and the
+// search of the frame as it is misses most tags (14% of the corners of 15-20 px tags on the
+// resampled EuRoC frames of tests/detect/aprilgrid_recall_test.cc). Searching the frame
+// upsampled 2x, with the white grown by half a pixel and by one pixel of the frame and the code
+// bits sharpened, finds 87%.
+enum class DetectEffort {
+  kFast,      // one search of the frame as it is (quad_decimate below)
+  kDefault,   // that search, then the upsampled ones when it found no tag, or when tags of the
+              // grid that its found tags place wholly inside the image are missing
+  kThorough,  // every search in every frame
+};
+
+// "fast", "default", "thorough" (the command line's and Python's names); throws splinecal::Error
+// naming the accepted ones for anything else.
+DetectEffort ParseDetectEffort(const std::string& name);
+
 struct DetectorOptions {
-  // aprilgrid: libapriltag's quad_decimate (1 = full resolution; 2 finds Kalibr grids in VGA
-  // frames at a third of the time, docs/detect.md).
+  DetectEffort effort = DetectEffort::kDefault;
+  // aprilgrid: libapriltag's quad_decimate in the search of the frame as it is (1 = full
+  // resolution; 2 finds Kalibr grids in VGA frames at a third of the time, docs/detect.md).
   double quad_decimate = 2.0;
+  // aprilgrid: the scale of the upsampled searches (bilinear); their quads are found at
+  // quad_decimate = upsample, i.e. at the frame's own resolution, and decoded in the upsampled
+  // pixels. 1 or less: no upsampled search.
+  double upsample = 2.0;
   // aprilgrid: a tag is kept only when a tag within this many grid steps was found where its own
   // corners predict it; 0 keeps every decoded tag (not recommended).
   int neighbour_steps = 2;
