@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -225,11 +226,8 @@ void InitialiseCamera(int n,
       continue;
     }
     bool repeat = false;
-    for (size_t k : kept) {
-      if (IsRepeat(view.T_c_t, (*views)[k].T_c_t, options)) {
-        repeat = true;
-        break;
-      }
+    for (size_t i = 0; i < kept.size() && !options.keep_repeated_views && !repeat; ++i) {
+      repeat = IsRepeat(view.T_c_t, (*views)[kept[i]].T_c_t, options);
     }
     if (repeat) {
       (*records)[v].status = ViewStatus::kRepeat;
@@ -314,7 +312,8 @@ void PlaceRig(const std::vector<TargetView>& views,
 }
 
 // Step 5's outlier pass: per camera sigma = 1.4826 x the median absolute error component; corners
-// beyond outlier_sigmas sigma go, and views left with too few corners.
+// beyond outlier_sigmas sigma go (outlier_sigmas = 0: only corners the model cannot project),
+// and views left with too few corners.
 void RejectOutliers(const IntrinsicsOptions& options,
                     std::vector<TargetView>* views,
                     std::vector<ViewRecord>* records,
@@ -340,7 +339,9 @@ void RejectOutliers(const IntrinsicsOptions& options,
   for (size_t v = 0; v < views->size(); ++v) {
     if ((*records)[v].status != ViewStatus::kUsed) continue;
     TargetView& view = (*views)[v];
-    const double limit = options.outlier_sigmas * state->sigma_px[view.cam_id];
+    const double limit = options.outlier_sigmas > 0.0
+                             ? options.outlier_sigmas * state->sigma_px[view.cam_id]
+                             : std::numeric_limits<double>::infinity();
     TargetView kept = view;
     kept.corners.clear();
     kept.point_ids.clear();
