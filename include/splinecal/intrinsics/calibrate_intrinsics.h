@@ -31,10 +31,11 @@
 //      candidates near it); a camera that never shares a timestamp with a placed one is an
 //      error. T_c0_t(k) from camera 0's PnP, else from another camera's through the rig.
 //   5. Solve (Levenberg-Marquardt, Schur complement on the target poses) with Huber's loss at
-//      huber_px; then outlier rejection: the pixel noise sigma is estimated robustly (1.4826 x
-//      the median absolute error component) and corners with |error| > outlier_sigmas x sigma
-//      are removed (outlier_sigmas = 0: none), views left with fewer than min_corners corners
-//      are removed; then the
+//      huber_px; then outlier rejection: a corner goes when its error beyond its image cell's
+//      median error exceeds outlier_sigmas x the robust scale of its view and of its cell
+//      (intrinsics/corner_outliers.h: a model's misfit of a region is not an outlier;
+//      outlier_sigmas = 0: none goes), views left with fewer than min_corners corners are
+//      removed, a warning names a large share and where it sits; then the
 //      problem is solved again without the loss, residuals weighted by 1 / sigma.
 //   6. Standard deviations: the marginal covariance of the intrinsics and extrinsics
 //      (estimation/marginal_covariance.h), the larger of the noise model's and, where
@@ -131,6 +132,8 @@ struct IntrinsicsResult {
   std::vector<IntrinsicsCameraResult> cameras;
   std::vector<ViewRecord> views;              // every view offered, by (t_ns, cam_id)
   std::vector<ReprojectionSample> residuals;  // the used corners
+  // The corners the outlier pass removed, with their errors when they were removed.
+  std::vector<ReprojectionSample> removed_corners;
   // T_c0_t per used timestamp, for the report and tests.
   std::vector<std::pair<int64_t, SE3d>> target_poses;
   SolveSummary solve;
