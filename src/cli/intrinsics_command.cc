@@ -2,10 +2,12 @@
 // target observations (intrinsics/calibrate_intrinsics.h, docs/intrinsics.md).
 #include <gflags/gflags.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "camera_selection.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
@@ -28,6 +30,16 @@ DEFINE_string(resolution,
               "",
               "Image size WxH [px], one per camera or one for all (e.g. 752x480); or give "
               "--camchain");
+DEFINE_double(outlier_sigmas,
+              5.0,
+              "Corners whose error exceeds this many robust pixel sigmas are removed after the "
+              "first solve; 0: none is removed");
+DEFINE_bool(keep_repeated_views,
+            false,
+            "Keep views that repeat an earlier view of the same camera (by default set aside: a "
+            "camera held still would weigh its one view many times)");
+DECLARE_string(cameras);
+
 DEFINE_int32(max_views,
              0,
              "Views per camera at most, evenly thinned over the recording; 0: every view that "
@@ -84,6 +96,9 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
   in.options.max_views_per_camera = FLAGS_max_views;
   in.options.solver.num_threads = ThreadsFlag();
 
+  in.options.outlier_sigmas = NonNegativeFlag("outlier_sigmas", FLAGS_outlier_sigmas);
+  in.options.keep_repeated_views = FLAGS_keep_repeated_views;
+
   const std::vector<std::string> models = SplitList("models", FLAGS_models);
   for (const std::string& name : models) {
     IntrinsicsCameraSpec spec;
@@ -93,6 +108,31 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
                   "omni-radtan, eucm-none, ds-none)");
     }
     in.cameras.push_back(spec);
+  }
+  in.target = ReadTargetYaml(FLAGS_target);
+  in.observations = ReadObservationsCsv(observations_path);
+  // The cameras of the input: the camchain's, else those the observations name.
+  Camchain camchain;
+  if (!FLAGS_camchain.empty()) {
+    camchain = ReadCamchainYaml(FLAGS_camchain);
+  } else {
+    int num_input_cameras = FLAGS_cameras.empty() ? static_cast<int>(models.size()) : 0;
+    for (const Observation& o : in.observations) {
+      num_input_cameras = std::max(num_input_cameras, o.cam_id + 1);
+    }
+    camchain.resize(num_input_cameras);
+  }
+  if (!FLAGS_cameras.empty()) {
+    // --models names the selected cameras only; they become cam0, cam1, ... in this order.
+    const std::vector<int> selection =
+        ParseCameraSelection(FLAGS_cameras, static_cast<int>(camchain.size()));
+    SelectCameras(selection, &camchain, &in.observations);
+    if (selection.size() != models.size()) {
+      throw Error(StringPrintf("--cameras selects %zu camera(s) but --models names %zu: one "
+                               "model per selected camera",
+                               selection.size(),
+                               models.size()));
+    }
   }
   if (!FLAGS_resolution.empty()) {
     const std::vector<std::string> sizes = SplitList("resolution", FLAGS_resolution);
@@ -109,7 +149,6 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
       in.cameras[n].camera.height = size.y();
     }
   } else {
-    const Camchain camchain = ReadCamchainYaml(FLAGS_camchain);
     if (camchain.size() != models.size()) {
       throw Error(
           FLAGS_camchain,
@@ -130,14 +169,13 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
       }
     }
   }
-  in.target = ReadTargetYaml(FLAGS_target);
-  in.observations = ReadObservationsCsv(observations_path);
   for (const Observation& o : in.observations) {
     if (o.cam_id < 0 || o.cam_id >= static_cast<int>(models.size())) {
       throw Error(observations_path,
                   0,
                   StringPrintf("cam_id %d (frame t_ns %lld) but --models names %zu camera(s): "
-                               "one model per camera, cam0 first",
+                               "one model per camera, cam0 first (or select cameras with "
+                               "--cameras)",
                                o.cam_id,
                                static_cast<long long>(o.t_ns),
                                models.size()));
@@ -190,7 +228,8 @@ Command IntrinsicsCommand() {
   command.usage =
       "splinecal intrinsics --observations FILE --target FILE --models M0[,M1...] "
       "(--resolution WxH[,WxH...] | --camchain FILE) [--max-views N] [--min-corners N] "
-      "[--huber PX] [--threads N] --out DIR";
+      "[--cameras I,J] [--huber PX] [--outlier-sigmas N] [--keep-repeated-views] [--threads N] "
+      "--out DIR";
   command.description =
       "Calibrates every camera of observations.csv (from `splinecal detect`) with its model of "
       "--models (Kalibr's names), all cameras in one problem with the rig's camera-to-camera "
@@ -209,11 +248,17 @@ Command IntrinsicsCommand() {
                    {"camchain",
                     "Kalibr camchain.yaml giving each camera's image size (and a "
                     "starting point for a camera of the same model) [path]"},
+                   {"cameras",
+                    "Calibrate only these cameras of the observations (or of --camchain), "
+                    "comma-separated indices in increasing order; --models names one model per "
+                    "selected camera and the output numbers them cam0, cam1, ... Default: all"},
                    {"max_views", ""},
                    {"min_corners", "Views with fewer target corners are not used", "12"},
                    {"huber",
                     "Huber threshold [px] of the first solve, before outliers are "
                     "removed; 0 disables it"},
+                   {"outlier_sigmas", ""},
+                   {"keep_repeated_views", ""},
                    {"threads", "", "2"},
                    {"out", ""},
                    {"quiet", ""}};

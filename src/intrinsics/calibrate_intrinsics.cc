@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -14,6 +15,7 @@
 #include "splinecal/camera/pnp.h"
 #include "splinecal/error.h"
 #include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/intrinsics/corner_outliers.h"
 #include "splinecal/intrinsics/initial_intrinsics.h"
 #include "splinecal/intrinsics/intrinsics_observability.h"
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
@@ -226,11 +228,8 @@ void InitialiseCamera(int n,
       continue;
     }
     bool repeat = false;
-    for (size_t k : kept) {
-      if (IsRepeat(view.T_c_t, (*views)[k].T_c_t, options)) {
-        repeat = true;
-        break;
-      }
+    for (size_t i = 0; i < kept.size() && !options.keep_repeated_views && !repeat; ++i) {
+      repeat = IsRepeat(view.T_c_t, (*views)[kept[i]].T_c_t, options);
     }
     if (repeat) {
       (*records)[v].status = ViewStatus::kRepeat;
@@ -314,48 +313,55 @@ void PlaceRig(const std::vector<TargetView>& views,
   }
 }
 
-// Step 5's outlier pass: per camera sigma = 1.4826 x the median absolute error component; corners
-// beyond outlier_sigmas sigma go, and views left with too few corners.
+// Step 5's outlier pass (intrinsics/corner_outliers.h): per camera the corners far beyond the
+// robust scale of their view and of their image cell go, and views left with too few corners;
+// sigma_px is the camera-wide robust scale. The removed corners go to *removed (their errors at
+// the solution they were removed from), a warning when they are many.
 void RejectOutliers(const IntrinsicsOptions& options,
                     std::vector<TargetView>* views,
                     std::vector<ViewRecord>* records,
-                    RigState* state) {
+                    RigState* state,
+                    std::vector<ReprojectionSample>* removed,
+                    std::vector<std::string>* warnings) {
   const int num_cameras = static_cast<int>(state->cameras.size());
-  std::vector<std::vector<double>> components(num_cameras);
-  std::vector<std::vector<Eigen::Vector2d>> errors(views->size());
-  for (size_t v = 0; v < views->size(); ++v) {
-    if ((*records)[v].status != ViewStatus::kUsed) continue;
-    const TargetView& view = (*views)[v];
-    errors[v] =
-        RigViewErrors(CameraAt(*state, view.cam_id), TargetInCamera(*state, view), view.corners);
-    for (const Eigen::Vector2d& e : errors[v]) {
-      if (!e.allFinite()) continue;
-      components[view.cam_id].push_back(std::abs(e.x()));
-      components[view.cam_id].push_back(std::abs(e.y()));
-    }
-  }
   for (int n = 0; n < num_cameras; ++n) {
-    // A floor keeps noise-free simulations (sigma ~ 0) from rejecting round-off.
-    state->sigma_px[n] = std::max(1.4826 * Median(components[n]), 1e-6);
-  }
-  for (size_t v = 0; v < views->size(); ++v) {
-    if ((*records)[v].status != ViewStatus::kUsed) continue;
-    TargetView& view = (*views)[v];
-    const double limit = options.outlier_sigmas * state->sigma_px[view.cam_id];
-    TargetView kept = view;
-    kept.corners.clear();
-    kept.point_ids.clear();
-    for (size_t i = 0; i < view.corners.size(); ++i) {
-      if (errors[v][i].allFinite() && errors[v][i].norm() <= limit) {
-        kept.corners.push_back(view.corners[i]);
-        kept.point_ids.push_back(view.point_ids[i]);
-      } else {
-        ++(*records)[v].corners_rejected;
-      }
+    std::vector<size_t> indices;
+    std::vector<ViewErrors> errors;
+    for (size_t v = 0; v < views->size(); ++v) {
+      if ((*records)[v].status != ViewStatus::kUsed || (*views)[v].cam_id != n) continue;
+      const TargetView& view = (*views)[v];
+      indices.push_back(v);
+      ViewErrors& e = errors.emplace_back();
+      e.error = RigViewErrors(CameraAt(*state, n), TargetInCamera(*state, view), view.corners);
+      for (const TargetCornerObservation& c : view.corners) e.uv.push_back(c.uv);
     }
-    view = std::move(kept);
-    if (static_cast<int>(view.corners.size()) < options.min_corners) {
-      (*records)[v].status = ViewStatus::kOutlier;
+    const Camera& camera = state->cameras[n];
+    const CornerOutliers outliers =
+        FindCornerOutliers(errors, camera.width, camera.height, options.outlier_sigmas);
+    state->sigma_px[n] = outliers.sigma_px;
+    const std::string warning = CornerOutlierWarning(
+        StringPrintf("cam%d", n), CameraModelName(camera.projection, camera.distortion), outliers);
+    if (!warning.empty()) warnings->push_back(warning);
+    for (size_t k = 0; k < indices.size(); ++k) {
+      const size_t v = indices[k];
+      TargetView& view = (*views)[v];
+      TargetView kept = view;
+      kept.corners.clear();
+      kept.point_ids.clear();
+      for (size_t i = 0; i < view.corners.size(); ++i) {
+        if (!outliers.outlier[k][i]) {
+          kept.corners.push_back(view.corners[i]);
+          kept.point_ids.push_back(view.point_ids[i]);
+          continue;
+        }
+        ++(*records)[v].corners_rejected;
+        removed->push_back(
+            {view.t_ns, n, view.point_ids[i], view.corners[i].uv, errors[k].error[i]});
+      }
+      view = std::move(kept);
+      if (static_cast<int>(view.corners.size()) < options.min_corners) {
+        (*records)[v].status = ViewStatus::kOutlier;
+      }
     }
   }
 }
@@ -532,7 +538,7 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
   solver.Build(options.huber_px);
   rounds.Solve(solver.problem(), "intrinsics, robust: ");
   CheckSolve(rounds);
-  RejectOutliers(options, &views, &records, &state);
+  RejectOutliers(options, &views, &records, &state, &result.removed_corners, &result.warnings);
   solver.Build(0.0);
   rounds.Solve(solver.problem(), "intrinsics: ");
   CheckSolve(rounds);

@@ -244,6 +244,25 @@ std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
   if (!result.views.empty()) data.t0_ns = result.views.front().t_ns;  // sorted by time
   page.FigureSection("Reprojection errors", ReprojectionErrorFigure(data, max_points));
   ReprojectionImageFigure by_position = MakeReprojectionImageFigure(data, max_points);
+  // The corners the outlier pass removed, as squares on their camera's panel: whether they
+  // cluster where the model misfits (the border) or scatter like gross errors.
+  constexpr char kRemovedColor[] = "#d62728";
+  for (size_t n = 0; n < by_position.figure.panels.size(); ++n) {
+    plot::Series& removed = by_position.figure.panels[n].series.emplace_back();
+    removed.color = kRemovedColor;
+    removed.line = false;
+    removed.marker = plot::Marker::kSquare;
+    removed.marker_size = 2.0;
+    for (const ReprojectionSample& s : result.removed_corners) {
+      if (s.cam_id != static_cast<int>(n)) continue;
+      removed.x.push_back(s.uv.x());
+      removed.y.push_back(s.uv.y());
+    }
+  }
+  by_position.key_html += StringPrintf(
+      "<p><span style=\"color:%s\">&#9632;</span> corners removed as outliers (%zu).</p>\n",
+      kRemovedColor,
+      result.removed_corners.size());
   page.FigureSection("Errors and coverage by image position", std::move(by_position.figure));
   page.Append(by_position.key_html);
   page.FigureSection("Views", ViewRmsFigure(result));

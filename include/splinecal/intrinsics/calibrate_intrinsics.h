@@ -23,16 +23,19 @@
 //   3. Target poses by PnP with the initial camera; a view whose PnP fails is dropped (reason
 //      in ViewRecord). Views that repeat an earlier view of the same camera (rotation within
 //      duplicate_rotation_deg and position within duplicate_distance_ratio of its distance)
-//      are set aside: a camera held still adds copies of one view that would dominate the
-//      weights and the standard deviations would shrink with the number of copies.
+//      are set aside (unless keep_repeated_views): a camera held still adds copies of one view
+//      that would dominate the weights and the standard deviations would shrink with the number
+//      of copies.
 //   4. The rig: T_cn_c0 from the views where camera n and an already placed camera see the
 //      target at the same timestamp (the candidate closest to all others, then the mean of the
 //      candidates near it); a camera that never shares a timestamp with a placed one is an
 //      error. T_c0_t(k) from camera 0's PnP, else from another camera's through the rig.
 //   5. Solve (Levenberg-Marquardt, Schur complement on the target poses) with Huber's loss at
-//      huber_px; then outlier rejection: the pixel noise sigma is estimated robustly (1.4826 x
-//      the median absolute error component) and corners with |error| > outlier_sigmas x sigma
-//      are removed, views left with fewer than min_corners corners are removed; then the
+//      huber_px; then outlier rejection: a corner goes when its error beyond its image cell's
+//      median error exceeds outlier_sigmas x the robust scale of its view and of its cell
+//      (intrinsics/corner_outliers.h: a model's misfit of a region is not an outlier;
+//      outlier_sigmas = 0: none goes), views left with fewer than min_corners corners are
+//      removed, a warning names a large share and where it sits; then the
 //      problem is solved again without the loss, residuals weighted by 1 / sigma.
 //   6. Standard deviations: the marginal covariance of the intrinsics and extrinsics
 //      (estimation/marginal_covariance.h), the larger of the noise model's and, where
@@ -71,9 +74,13 @@ struct IntrinsicsCameraSpec {
 struct IntrinsicsOptions {
   int min_corners = 12;                     // a view needs at least this many corners
   double huber_px = 2.0;                    // first solve's Huber threshold [px] (0: none)
-  double outlier_sigmas = 5.0;              // corners beyond this many sigma are removed
+  double outlier_sigmas = 5.0;              // corners beyond this many sigma go (0: none)
   double duplicate_rotation_deg = 0.5;      // a view this close to an earlier one is a repeat...
   double duplicate_distance_ratio = 0.005;  // ...when its position is this close too
+  // true: repeats stay (step 3 is skipped). With outlier_sigmas = 0 and huber_px = 0 the result
+  // is then the exact least-squares solution over every offered view, the problem OpenCV's
+  // calibrateCamera solves (docs/intrinsics.md, "Exact least squares").
+  bool keep_repeated_views = false;
   int max_views_per_camera = 0;  // 0: every distinct view; else evenly thinned to this many
   // Camera-to-camera extrinsics: estimated (true) or held at the given T_cn_c0 (false).
   bool estimate_extrinsics = true;
@@ -125,6 +132,8 @@ struct IntrinsicsResult {
   std::vector<IntrinsicsCameraResult> cameras;
   std::vector<ViewRecord> views;              // every view offered, by (t_ns, cam_id)
   std::vector<ReprojectionSample> residuals;  // the used corners
+  // The corners the outlier pass removed, with their errors when they were removed.
+  std::vector<ReprojectionSample> removed_corners;
   // T_c0_t per used timestamp, for the report and tests.
   std::vector<std::pair<int64_t, SE3d>> target_poses;
   SolveSummary solve;

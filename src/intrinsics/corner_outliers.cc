@@ -1,0 +1,128 @@
+#include "splinecal/intrinsics/corner_outliers.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "splinecal/intrinsics/intrinsics_observability.h"
+#include "splinecal/median.h"
+#include "splinecal/string_printf.h"
+
+namespace splinecal {
+namespace {
+
+// 1.4826 x the median absolute value: the std of Gaussian noise, robustly. A floor keeps
+// noise-free simulations (scale ~ 0) from rejecting round-off.
+double RobustScale(const std::vector<double>& absolute_components) {
+  return std::max(1.4826 * Median(absolute_components), 1e-6);
+}
+
+int CellOf(const Eigen::Vector2d& uv, int width, int height) {
+  const int cu =
+      std::clamp(static_cast<int>(uv.x() / width * kCoverageCells), 0, kCoverageCells - 1);
+  const int cv =
+      std::clamp(static_cast<int>(uv.y() / height * kCoverageCells), 0, kCoverageCells - 1);
+  return cv * kCoverageCells + cu;
+}
+
+bool AtBorder(int cell) {
+  const int cu = cell % kCoverageCells;
+  const int cv = cell / kCoverageCells;
+  return cu == 0 || cv == 0 || cu == kCoverageCells - 1 || cv == kCoverageCells - 1;
+}
+
+}  // namespace
+
+CornerOutliers FindCornerOutliers(const std::vector<ViewErrors>& views,
+                                  int width,
+                                  int height,
+                                  double outlier_sigmas) {
+  constexpr int kCells = kCoverageCells * kCoverageCells;
+  CornerOutliers out;
+  out.outlier.resize(views.size());
+  // The cells' median misfit.
+  std::vector<std::vector<double>> ex(kCells), ey(kCells);
+  std::vector<double> all;
+  for (const ViewErrors& view : views) {
+    for (size_t i = 0; i < view.error.size(); ++i) {
+      if (!view.error[i].allFinite()) continue;
+      const int c = CellOf(view.uv[i], width, height);
+      ex[c].push_back(view.error[i].x());
+      ey[c].push_back(view.error[i].y());
+      all.push_back(std::abs(view.error[i].x()));
+      all.push_back(std::abs(view.error[i].y()));
+    }
+  }
+  out.sigma_px = RobustScale(all);
+  std::vector<Eigen::Vector2d> misfit(kCells, Eigen::Vector2d::Zero());
+  for (int c = 0; c < kCells; ++c) {
+    if (static_cast<int>(ex[c].size()) >= kMinCellCorners) {
+      misfit[c] = Eigen::Vector2d(Median(ex[c]), Median(ey[c]));
+    }
+  }
+  // The cells' and the views' scales of the errors beyond the misfit.
+  std::vector<std::vector<double>> cell_components(kCells);
+  std::vector<std::vector<Eigen::Vector2d>> beyond(views.size());
+  std::vector<double> view_scale(views.size(), 0.0);
+  for (size_t v = 0; v < views.size(); ++v) {
+    std::vector<double> components;
+    for (size_t i = 0; i < views[v].error.size(); ++i) {
+      const int c = CellOf(views[v].uv[i], width, height);
+      const Eigen::Vector2d d = views[v].error[i] - misfit[c];
+      beyond[v].push_back(d);
+      if (!d.allFinite()) continue;
+      for (double x : {std::abs(d.x()), std::abs(d.y())}) {
+        components.push_back(x);
+        cell_components[c].push_back(x);
+      }
+    }
+    view_scale[v] = RobustScale(components);
+  }
+  std::vector<double> cell_scale(kCells, out.sigma_px);
+  for (int c = 0; c < kCells; ++c) {
+    if (static_cast<int>(cell_components[c].size()) >= 2 * kMinCellCorners) {
+      cell_scale[c] = RobustScale(cell_components[c]);
+    }
+  }
+  for (size_t v = 0; v < views.size(); ++v) {
+    out.outlier[v].assign(views[v].error.size(), false);
+    for (size_t i = 0; i < views[v].error.size(); ++i) {
+      ++out.corners;
+      const int c = CellOf(views[v].uv[i], width, height);
+      const double limit = outlier_sigmas * std::max(cell_scale[c], view_scale[v]);
+      const bool outlier =
+          !beyond[v][i].allFinite() || (outlier_sigmas > 0.0 && beyond[v][i].norm() > limit);
+      if (!outlier) continue;
+      out.outlier[v][i] = true;
+      ++out.removed;
+      if (AtBorder(c)) ++out.removed_at_border;
+    }
+  }
+  return out;
+}
+
+std::string CornerOutlierWarning(const std::string& camera_name,
+                                 const std::string& model_name,
+                                 const CornerOutliers& outliers) {
+  if (outliers.corners == 0 || outliers.removed == 0) return "";
+  // The outer ring holds 28 of the 64 cells; a share well above it says where the errors are.
+  constexpr double kBorderCells = 4.0 * (kCoverageCells - 1) / (kCoverageCells * kCoverageCells);
+  const double at_border = static_cast<double>(outliers.removed_at_border) / outliers.removed;
+  const bool border = outliers.removed >= kMinBorderCorners && at_border > 1.5 * kBorderCells;
+  if (!border && outliers.removed <= kOutlierWarningShare * outliers.corners) return "";
+  std::string text = StringPrintf(
+      "%s: %d of %d corners (%.1f%%) removed as outliers, %.0f%% of them at the image border",
+      camera_name.c_str(),
+      outliers.removed,
+      outliers.corners,
+      100.0 * outliers.removed / outliers.corners,
+      100.0 * at_border);
+  if (border) {
+    text += StringPrintf(
+        ": %s likely misfits the border (try pinhole-equi or ds-none; --outlier-sigmas 0 keeps "
+        "every corner)",
+        model_name.c_str());
+  }
+  return text;
+}
+
+}  // namespace splinecal
