@@ -38,7 +38,7 @@ class TargetScaleCostTest : public ::testing::Test {
     std::vector<TargetCornerObservation> corners;
     int k = 0;
     for (const auto& [id, p_t] : scene_.target.points) {
-      corners.push_back({scale * p_t, Eigen::Vector2d(370.0 + 3.0 * (k % 7), 240.0 + 2.0 * k % 5)});
+      corners.push_back({scale * p_t, Eigen::Vector2d(370.0 + 3.0 * (k % 7), 240.0 + 2.0 * (k % 5))});
       ++k;
     }
     return corners;
