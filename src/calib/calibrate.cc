@@ -47,6 +47,21 @@ class StopWhen : public ceres::IterationCallback {
 // then it stays where the data put it, so that the rounds cannot alternate for ever.
 constexpr int kMaxLineDelayReleases = 2;
 
+// The refusal of a target whose scale the IMU contradicts (CalibrateOptions::target_scale).
+std::string TargetScaleRefusal(double s, double std_s, const CalibrateOptions& options) {
+  std::string fit;
+  if (options.target_tag_size_m > 0.0) {
+    fit = StringPrintf(" (tagSize %.4g m; %.3g m would fit)", options.target_tag_size_m,
+                       s * options.target_tag_size_m);
+  }
+  return StringPrintf(
+      "calibrate: the IMU says the target is %.3gx the size in %s%s: its scale is %.4f "
+      "(std %.4f), off from 1 by more than %.0f%% and %.0f std; check the target's size "
+      "(or the accelerometer's unit, --accel-unit)",
+      s, options.target_name.c_str(), fit.c_str(), s, std_s,
+      100.0 * options.max_target_scale_error, options.target_scale_sigmas);
+}
+
 }  // namespace
 
 
@@ -63,7 +78,7 @@ void CalibrationProblem::BuildProblem() {
     if (!HeldToReference(c)) {
       problem().AddParameterBlock(cam.extrinsic.data(), 7, spline_->se3_manifold());
     }
-    if (options_.estimate_intrinsics) {
+    if (EstimatesIntrinsics(c)) {
       // Only the entries the camera model uses vary (camera/camera_model.h).
       const std::vector<int> active = camchain_[c].camera.ActiveIntrinsics();
       std::vector<int> held;
@@ -100,6 +115,14 @@ void CalibrationProblem::BuildProblem() {
       problem().SetParameterBlockConstant(&cam.line_delay);
     }
   }
+  // The camchain's priors (calib/camchain_prior.h).
+  prior_blocks_.clear();
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    std::vector<double*> blocks;
+    std::unique_ptr<CamchainPriorCostFunction> prior = PriorCost(c, &blocks);
+    if (prior) prior_blocks_.insert(problem().AddResidualBlock(prior.release(), nullptr, blocks));
+  }
+  if (target_scale_free_) problem().AddParameterBlock(&target_scale_, 1);
   spline_->AddImuResiduals(imu_, imu_noise_->gyro_sigma(), imu_noise_->accel_sigma());
   spline_->AddBiasRandomWalkResiduals(imu_noise_->densities());
   frame_residuals_.clear();
@@ -119,6 +142,7 @@ void CalibrationProblem::BuildProblem() {
     } else {
       cost = std::move(rows);
     }
+    cost = ScaledFrameCost(std::move(cost), residual);
     problem().AddResidualBlock(cost.release(), nullptr, Blocks(residual));
     frame_residuals_.push_back(residual);
   }
@@ -173,6 +197,46 @@ std::unique_ptr<LandmarkCostFunction> CalibrationProblem::LandmarkCost(const Lan
       data);
 }
 
+std::unique_ptr<CamchainPriorCostFunction> CalibrationProblem::PriorCost(
+    size_t c, std::vector<double*>* blocks) {
+  if (c >= options_.camchain_covariances.size() || !options_.camchain_covariances[c]) return {};
+  const CameraCovariance& covariance = *options_.camchain_covariances[c];
+  const bool intrinsics = intrinsics_modes_[c] == ParameterMode::kPrior;
+  const bool chain = c > 0 && chain_mode_ == ParameterMode::kPrior && covariance.has_T_cn_cnm1;
+  if (!intrinsics && !chain) return {};
+  // The rows of the covariance in the prior: a Gaussian's marginal is its sub-block.
+  const int num_intrinsics = static_cast<int>(covariance.intrinsics.size());
+  std::vector<int> rows;
+  if (intrinsics) {
+    for (int j = 0; j < num_intrinsics; ++j) rows.push_back(j);
+  }
+  if (chain) {
+    for (int j = 0; j < kChainTangentSize; ++j) rows.push_back(num_intrinsics + j);
+  }
+  Eigen::MatrixXd sub(rows.size(), rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    for (size_t j = 0; j < rows.size(); ++j) sub(i, j) = covariance.matrix(rows[i], rows[j]);
+  }
+  std::optional<SE3d> T_cn_cnm1;
+  if (chain) {
+    T_cn_cnm1 = options_.camera_chain_T_cn_c0[c] * options_.camera_chain_T_cn_c0[c - 1].inverse();
+  }
+  blocks->clear();
+  if (intrinsics) blocks->push_back(cameras_[c].intrinsics.data());
+  if (chain) blocks->insert(blocks->end(), {ExtrinsicBlock(c), ExtrinsicBlock(c - 1)});
+  return std::make_unique<CamchainPriorCostFunction>(
+      intrinsics ? covariance.intrinsics : std::vector<int>(),
+      camchain_[c].camera.intrinsics(),
+      T_cn_cnm1,
+      sub);
+}
+
+std::unique_ptr<ceres::CostFunction> CalibrationProblem::ScaledFrameCost(
+    std::unique_ptr<ceres::CostFunction> cost, const FrameResidual& r) const {
+  if (!target_scale_free_) return cost;
+  return std::make_unique<TargetScaleCostFunction>(std::move(cost), r.window.num_poses);
+}
+
 std::vector<double*> CalibrationProblem::Blocks(const FrameResidual& r) {
   const int c = target_frames_[r.frame].cam;
   CameraState& cam = cameras_[c];
@@ -180,7 +244,8 @@ std::vector<double*> CalibrationProblem::Blocks(const FrameResidual& r) {
                               control_blocks().begin() + r.window.last_index() + 1);
   blocks.insert(blocks.end(),
                 {ExtrinsicBlock(c), &cam.time_offset_s, &cam.line_delay, T_w_t_.data()});
-  if (options_.estimate_intrinsics) blocks.push_back(cam.intrinsics.data());
+  if (EstimatesIntrinsics(c)) blocks.push_back(cam.intrinsics.data());
+  if (target_scale_free_) blocks.push_back(&target_scale_);
   return blocks;
 }
 
@@ -200,7 +265,7 @@ template <typename Residual>
 bool CalibrationProblem::PixelErrors(const Residual& r, std::vector<double>* errors) {
   std::unique_ptr<ceres::CostFunction> cost;
   if constexpr (std::is_same_v<Residual, FrameResidual>) {
-    cost = FrameCost(r, 1.0, 0.0);
+    cost = ScaledFrameCost(FrameCost(r, 1.0, 0.0), r);
   } else {
     cost = LandmarkCost(r, 1.0, 0.0);
   }
@@ -276,6 +341,57 @@ CalibrationResult CalibrationProblem::Run() {
   solver_options.update_state_every_iteration = true;  // for the StopWhen callbacks
   SolveRounds rounds(
       solver_options, options_.solver.progress, options_.solver.stop, solver.warm_start_rounds);
+  target_scale_free_ = has_target_ && options_.target_scale != TargetScaleMode::kHeld;
+  result.target_scale_mode = has_target_ ? options_.target_scale : TargetScaleMode::kHeld;
+  SolveUntilStable(&rounds, solver, &result);
+  if (target_scale_free_) {
+    // The check (calibrate.h): the scale with everything else free, then held at 1.
+    double std_s = std::numeric_limits<double>::quiet_NaN();
+    const bool have_std = TargetScaleStd(&std_s);
+    result.target_scale = target_scale_;
+    result.target_scale_std = std_s;
+    if (options_.target_scale == TargetScaleMode::kCheck) {
+      const double error = std::abs(target_scale_ - 1.0);
+      if (error > options_.max_target_scale_error &&
+          (!have_std || error > options_.target_scale_sigmas * std_s)) {
+        throw Error(TargetScaleRefusal(target_scale_, std_s, options_));
+      }
+      HoldTargetScale();
+      if (options_.solver.progress) {
+        options_.solver.progress(StringPrintf(
+            "calibrate: target scale %.4f (std %.4f) against the IMU: held at 1, solving again",
+            result.target_scale, std_s));
+      }
+      SolveUntilStable(&rounds, solver, &result);
+    } else {
+      result.target_scale_used = target_scale_;
+    }
+  }
+  // A line delay still held: free for the covariance (its std is that of the unconstrained
+  // model at the bound; a line delay at 0 within it is consistent with a global shutter).
+  for (CameraState& cam : cameras_) {
+    if (cam.line_delay_held) problem().SetParameterBlockVariable(&cam.line_delay);
+  }
+  result.solve = rounds.Summary();
+  if (!rounds.NoConvergenceWarning().empty()) {
+    result.warnings.push_back(rounds.NoConvergenceWarning());
+  }
+  result.pixel_sigma_px = sigma_px_;
+  result.imu_noise = imu_noise_->estimate();
+  Collect(&result);
+  if (options_.covariance.compute) {
+    const auto start = std::chrono::steady_clock::now();
+    ComputeCovariance(&result);
+    result.covariance_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return result;
+}
+
+void CalibrationProblem::SolveUntilStable(SolveRounds* solve_rounds,
+                                          const SolverOptions& solver,
+                                          CalibrationResult* result) {
+  SolveRounds& rounds = *solve_rounds;
   for (int round = 1; round <= solver.max_rounds; ++round) {
     BuildProblem();
     if (frame_residuals_.empty() && landmark_residuals_.empty()) {
@@ -297,7 +413,7 @@ CalibrationResult CalibrationProblem::Run() {
     }
     spline_->evaluation_callback()->Update();
     bool again = false;
-    if (result.pixel_sigma_estimated) {
+    if (result->pixel_sigma_estimated) {
       const double sigma = EstimatePixelSigma();
       if (std::abs(sigma / sigma_px_ - 1.0) > kSigmaChangeForNewRound) again = true;
       sigma_px_ = sigma;
@@ -337,25 +453,6 @@ CalibrationResult CalibrationProblem::Run() {
           (released ? "; line delay freed from its bound" : "") + ": solving again");
     }
   }
-  // A line delay still held: free for the covariance (its std is that of the unconstrained
-  // model at the bound; a line delay at 0 within it is consistent with a global shutter).
-  for (CameraState& cam : cameras_) {
-    if (cam.line_delay_held) problem().SetParameterBlockVariable(&cam.line_delay);
-  }
-  result.solve = rounds.Summary();
-  if (!rounds.NoConvergenceWarning().empty()) {
-    result.warnings.push_back(rounds.NoConvergenceWarning());
-  }
-  result.pixel_sigma_px = sigma_px_;
-  result.imu_noise = imu_noise_->estimate();
-  Collect(&result);
-  if (options_.covariance.compute) {
-    const auto start = std::chrono::steady_clock::now();
-    ComputeCovariance(&result);
-    result.covariance_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-  return result;
 }
 
 bool CalibrationProblem::HoldLineDelaysAtBounds() {
@@ -395,6 +492,89 @@ bool CalibrationProblem::ReleaseLineDelays() {
 
 using calibrate_internal::CalibrationProblem;
 
+const char* ParameterModeName(ParameterMode mode) {
+  switch (mode) {
+    case ParameterMode::kHeld:
+      return "held";
+    case ParameterMode::kPrior:
+      return "prior";
+    case ParameterMode::kFree:
+      return "free";
+  }
+  return "held";
+}
+
+const char* TargetScaleModeName(TargetScaleMode mode) {
+  switch (mode) {
+    case TargetScaleMode::kCheck:
+      return "check";
+    case TargetScaleMode::kFree:
+      return "free";
+    case TargetScaleMode::kHeld:
+      return "held";
+  }
+  return "check";
+}
+
+namespace {
+
+const CameraCovariance* CovarianceOf(const CalibrateOptions& options, size_t c) {
+  if (c >= options.camchain_covariances.size() || !options.camchain_covariances[c]) return nullptr;
+  return &*options.camchain_covariances[c];
+}
+
+// CalibrateOptions::intrinsics per camera (calibrate.h): the default kPrior where a covariance
+// is given, else kHeld.
+std::vector<ParameterMode> ResolveIntrinsicsModes(const CalibrateOptions& options,
+                                                  size_t num_cameras) {
+  std::vector<ParameterMode> modes(num_cameras, ParameterMode::kHeld);
+  for (size_t c = 0; c < num_cameras; ++c) {
+    if (options.intrinsics) {
+      modes[c] = *options.intrinsics;
+    } else if (options.estimate_intrinsics) {
+      modes[c] = ParameterMode::kFree;
+    } else {
+      modes[c] = CovarianceOf(options, c) != nullptr ? ParameterMode::kPrior : ParameterMode::kHeld;
+    }
+    if (modes[c] == ParameterMode::kPrior && CovarianceOf(options, c) == nullptr) {
+      throw Error("calibrate: an intrinsics prior needs the camchain's covariance, and cam" +
+                  std::to_string(c) +
+                  " has none (splinecal_covariance, written by `splinecal intrinsics`)");
+    }
+  }
+  return modes;
+}
+
+// CalibrateOptions::camera_chain (calibrate.h).
+ParameterMode ResolveCameraChainMode(const CalibrateOptions& options, size_t num_cameras) {
+  const bool chain_given = !options.camera_chain_T_cn_c0.empty();
+  bool chain_covariances = chain_given && num_cameras > 1;
+  for (size_t c = 1; c < num_cameras; ++c) {
+    const CameraCovariance* covariance = CovarianceOf(options, c);
+    if (covariance == nullptr || !covariance->has_T_cn_cnm1) chain_covariances = false;
+  }
+  ParameterMode mode = ParameterMode::kFree;
+  if (options.camera_chain) {
+    mode = *options.camera_chain;
+  } else if (chain_given) {
+    mode = chain_covariances ? ParameterMode::kPrior : ParameterMode::kHeld;
+  }
+  if (mode != ParameterMode::kFree && num_cameras > 1 &&
+      options.camera_chain_T_cn_c0.size() != num_cameras) {
+    throw Error("calibrate: a held or prior camera chain needs T_cn_c0 for each of the " +
+                std::to_string(num_cameras) + " cameras, got " +
+                std::to_string(options.camera_chain_T_cn_c0.size()));
+  }
+  if (mode == ParameterMode::kPrior && !chain_covariances && num_cameras > 1) {
+    throw Error("calibrate: a camera-chain prior needs every camera after cam0 to have a "
+                "covariance with T_cn_cnm1 rows (splinecal_covariance, written by `splinecal "
+                "intrinsics`)");
+  }
+  return mode;
+}
+
+}  // namespace
+
 CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
                             const std::vector<Observation>& all_observations,
                             const Camchain& camchain,
@@ -418,7 +598,10 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
     if (span_imu.size() < 2) throw Error("calibrate: fewer than 2 IMU samples during the frames");
     options.model.knot_spacing_s = ChooseKnotSpacing(span_imu, options.model.noise, &knot_rule);
   }
-  if (target != nullptr) CheckTargetSeen(observations, *target);
+  if (target != nullptr) {
+    CheckTargetSeen(observations, *target);
+    if (options.target_tag_size_m <= 0.0) options.target_tag_size_m = target->tag_size_m;
+  }
   CheckRotationExcitation(imu, options.min_rotation_rate_rad_s);
   const auto init_start = std::chrono::steady_clock::now();
   CalibrationInitialGuess initial;
@@ -436,7 +619,17 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
         "calibrate: without a target the calibration needs an initial trajectory "
         "(CalibrationInitialGuess; e.g. from `splinecal align` on SLAM poses)");
   }
-  CalibrationProblem problem(imu, camchain, options, initial, target != nullptr);
+  if (!options.camchain_covariances.empty() &&
+      options.camchain_covariances.size() != camchain.size()) {
+    throw Error("calibrate: " + std::to_string(options.camchain_covariances.size()) +
+                " camchain covariances for " + std::to_string(camchain.size()) + " cameras");
+  }
+  std::vector<ParameterMode> intrinsics_modes = ResolveIntrinsicsModes(options, camchain.size());
+  const ParameterMode chain_mode = ResolveCameraChainMode(options, camchain.size());
+  const bool any_intrinsics = std::any_of(intrinsics_modes.begin(), intrinsics_modes.end(),
+                                          [](ParameterMode m) { return m != ParameterMode::kHeld; });
+  CalibrationProblem problem(
+      imu, camchain, options, initial, target != nullptr, intrinsics_modes, chain_mode);
   problem.SetFramePeriods(FramePeriods(GroupIntoFrames(observations), camchain.size()));
   if (target != nullptr) {
     *problem.target_frames() =
@@ -451,9 +644,10 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
   }
   const double init_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - init_start).count();
-  if (options.estimate_intrinsics && (target == nullptr || !problem.landmarks()->empty())) {
-    throw Error("calibrate: --estimate-intrinsics needs target corners only (landmark residuals "
-                "take the intrinsics as given); the observations have " +
+  if (any_intrinsics && (target == nullptr || !problem.landmarks()->empty())) {
+    throw Error("calibrate: estimated intrinsics (--intrinsics prior or free) need target corners "
+                "only (landmark residuals take the intrinsics as given; --intrinsics held); the "
+                "observations have " +
                 std::to_string(problem.landmarks()->size()) + " landmark(s)");
   }
   CalibrationResult result = problem.Run();

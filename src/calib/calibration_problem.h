@@ -25,7 +25,9 @@
 
 #include "calibration_data.h"
 #include "calibration_warnings.h"
+#include "splinecal/calib/camchain_prior.h"
 #include "splinecal/calib/fit.h"
+#include "splinecal/calib/target_scale_cost.h"
 #include "splinecal/camera/pnp.h"
 #include "splinecal/error.h"
 #include "splinecal/estimation/compact_frame_cost.h"
@@ -79,12 +81,16 @@ class CalibrationProblem {
                      const Camchain& camchain,
                      const CalibrateOptions& options,
                      const CalibrationInitialGuess& guess,
-                     bool has_target)
+                     bool has_target,
+                     std::vector<ParameterMode> intrinsics_modes,
+                     ParameterMode chain_mode)
       : imu_(imu),
         camchain_(camchain),
         options_(options),
         layout_(guess.layout),
-        has_target_(has_target) {
+        has_target_(has_target),
+        intrinsics_modes_(std::move(intrinsics_modes)),
+        chain_mode_(chain_mode) {
     dt_s_ = layout_.dt_s();
     const int n = layout_.num_control_poses;
     spline_ = std::make_unique<SplineProblem>(
@@ -169,11 +175,24 @@ class CalibrationProblem {
     s.huber_px = huber;
     s.shared = spline_->evaluation_callback();
     if (HeldToReference(cam)) s.T_cam_cref = options_.camera_chain_T_cn_c0[cam];
-    s.estimate_intrinsics = options_.estimate_intrinsics;
+    s.estimate_intrinsics = EstimatesIntrinsics(cam);
     return s;
   }
   // With a held camera chain every camera after the first rides on camera 0's T_cam_imu block.
-  bool HeldToReference(size_t c) const { return c > 0 && !options_.camera_chain_T_cn_c0.empty(); }
+  bool HeldToReference(size_t c) const { return c > 0 && chain_mode_ == ParameterMode::kHeld; }
+  bool EstimatesIntrinsics(size_t c) const { return intrinsics_modes_[c] != ParameterMode::kHeld; }
+  // The prior residual of camera c (intrinsics and/or T_cn_cnm1; nullptr: none).
+  std::unique_ptr<CamchainPriorCostFunction> PriorCost(size_t c, std::vector<double*>* blocks);
+  // The frame's cost with the target scale's block when it is free (target_scale_cost.h).
+  std::unique_ptr<ceres::CostFunction> ScaledFrameCost(std::unique_ptr<ceres::CostFunction> cost,
+                                                       const FrameResidual& r) const;
+  // Solves in rounds until nothing changes between them (time windows, noise, line delays).
+  void SolveUntilStable(SolveRounds* rounds, const SolverOptions& solver, CalibrationResult* result);
+  // The target scale's estimate and std with the rest free (false: covariance singular).
+  bool TargetScaleStd(double* std_out);
+  // Holds the target scale at 1 after the check: the solution mapped to s = 1 (translations
+  // divided by s, target_scale_cost.h) as the start of the next solve.
+  void HoldTargetScale();
   double* ExtrinsicBlock(size_t c) { return cameras_[HeldToReference(c) ? 0 : c].extrinsic.data(); }
   SE3d CameraFromImu(size_t c) const {
     const SE3d block = PoseFromBlock(cameras_[HeldToReference(c) ? 0 : c].extrinsic.data());
@@ -228,6 +247,9 @@ class CalibrationProblem {
     return cam.line_delay <= 0.0 || cam.line_delay >= cam.max_line_delay;
   }
   void ComputeCovariance(CalibrationResult* result);
+  // Options for ComputeMarginalCovariance: the IMU noise's groups and time clusters, each
+  // camchain prior in a cluster of its own.
+  MarginalCovarianceOptions CovarianceOptionsForProblem();
   void Collect(CalibrationResult* result);
 
   std::vector<ImuSample> imu_;
@@ -235,6 +257,11 @@ class CalibrationProblem {
   const CalibrateOptions& options_;
   KnotLayout layout_;
   bool has_target_;
+  std::vector<ParameterMode> intrinsics_modes_;  // per camera, resolved (calibrate.h)
+  ParameterMode chain_mode_;
+  std::set<ceres::ResidualBlockId> prior_blocks_;  // the camchain priors' residuals
+  double target_scale_ = 1.0;  // p_t -> s p_t (a block while target_scale_free_)
+  bool target_scale_free_ = false;
   double dt_s_ = 0.0;
   double imu_rate_hz_ = 0.0;
   std::unique_ptr<ImuNoiseEstimator> imu_noise_;  // the densities weighting the IMU residuals

@@ -2,11 +2,56 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
+#include <set>
 #include <vector>
 
 namespace splinecal {
 namespace calibrate_internal {
+
+MarginalCovarianceOptions CalibrationProblem::CovarianceOptionsForProblem() {
+  MarginalCovarianceOptions covariance_options;
+  covariance_options.backend = CovarianceBackend::kSchur;
+  covariance_options.num_threads = options_.solver.num_threads;
+  imu_noise_->AddToCovarianceOptions(
+      spline_.get(), options_.covariance.robust_window_s, &covariance_options);
+  if (covariance_options.cluster_of && !prior_blocks_.empty()) {
+    // A prior is a measurement of its own, not part of the first time window (where the spline's
+    // TimeWindowOf would put a residual without a time): each gets a cluster of its own.
+    const auto by_time = covariance_options.cluster_of;
+    const std::set<ceres::ResidualBlockId> priors = prior_blocks_;
+    covariance_options.cluster_of = [by_time, priors](ceres::ResidualBlockId id) {
+      const auto it = priors.find(id);
+      if (it == priors.end()) return by_time(id);
+      return -1 - static_cast<int>(std::distance(priors.begin(), it));
+    };
+  }
+  return covariance_options;
+}
+
+bool CalibrationProblem::TargetScaleStd(double* std_out) {
+  MarginalCovarianceOptions covariance_options = CovarianceOptionsForProblem();
+  const MarginalCovariance marginal =
+      ComputeMarginalCovariance(&problem(), {&target_scale_}, covariance_options);
+  if (!marginal.ok) return false;
+  *std_out = std::sqrt(std::max(0.0, ReportedCovarianceOf(marginal).covariance(0, 0)));
+  return true;
+}
+
+void CalibrationProblem::HoldTargetScale() {
+  // r(s p_t; T) = r(p_t; T / s) (calib/target_scale_cost.h): the same pixels at s = 1.
+  const double s = target_scale_;
+  for (double* block : control_blocks()) {
+    for (int i = 0; i < 3; ++i) block[i] /= s;
+  }
+  for (CameraState& cam : cameras_) {
+    for (int i = 0; i < 3; ++i) cam.extrinsic[i] /= s;
+  }
+  for (Landmark& landmark : landmarks_) landmark.rho *= s;  // depths / s
+  target_scale_ = 1.0;
+  target_scale_free_ = false;
+}
 
 void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   // The marginal covariance of the calibration parameters (estimation/marginal_covariance.h),
@@ -19,7 +64,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   std::vector<const double*> wanted;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     if (!HeldToReference(c)) wanted.push_back(cameras_[c].extrinsic.data());
-    if (options_.estimate_intrinsics) wanted.push_back(cameras_[c].intrinsics.data());
+    if (EstimatesIntrinsics(c)) wanted.push_back(cameras_[c].intrinsics.data());
     if (options_.estimate_time_offset) wanted.push_back(&cameras_[c].time_offset_s);
     if (options_.rolling_shutter) wanted.push_back(&cameras_[c].line_delay);
   }
@@ -29,18 +74,19 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     offset[block] = num_camera;
     num_camera += problem().ParameterBlockTangentSize(block);
   }
+  if (target_scale_free_) {
+    offset[&target_scale_] = num_camera;
+    wanted.push_back(&target_scale_);
+    ++num_camera;
+  }
   const int num_bias_points = spline_->bias_spline().num_points();
   for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->gyro_bias(m));
   for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->accel_bias(m));
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(num_camera + 6, num_camera + 6 * num_bias_points);
   A.topLeftCorner(num_camera, num_camera).setIdentity();
   A.bottomRightCorner(6, 6 * num_bias_points) = spline_->MeanBiasMap(imu_);
-  MarginalCovarianceOptions covariance_options;
-  covariance_options.backend = CovarianceBackend::kSchur;
-  covariance_options.num_threads = options_.solver.num_threads;
+  MarginalCovarianceOptions covariance_options = CovarianceOptionsForProblem();
   covariance_options.reported_map = A;
-  imu_noise_->AddToCovarianceOptions(
-      spline_.get(), options_.covariance.robust_window_s, &covariance_options);
   const MarginalCovariance marginal =
       ComputeMarginalCovariance(&problem(), wanted, covariance_options);
   if (!marginal.ok) {
@@ -67,7 +113,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     estimate.translation_std_m = cov_t.diagonal().cwiseMax(0.0).cwiseSqrt();
     estimate.rotation_std_deg =
         cov6.bottomRightCorner<3, 3>().diagonal().cwiseMax(0.0).cwiseSqrt() * kRadToDeg;
-    if (options_.estimate_intrinsics) {
+    if (EstimatesIntrinsics(c)) {
       const std::vector<int> active = camchain_[c].camera.ActiveIntrinsics();
       const Eigen::MatrixXd cov_k = block(cam.intrinsics.data(), static_cast<int>(active.size()));
       for (size_t j = 0; j < active.size(); ++j) {
@@ -80,6 +126,9 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     if (options_.rolling_shutter) {
       estimate.line_delay_std_s = std::sqrt(std::max(0.0, block(&cam.line_delay, 1)(0, 0)));
     }
+  }
+  if (target_scale_free_) {
+    result->target_scale_std = std::sqrt(std::max(0.0, block(&target_scale_, 1)(0, 0)));
   }
   const Eigen::VectorXd bias_std = cov.diagonal().tail(6).cwiseMax(0.0).cwiseSqrt();
   result->gyro_bias_std = bias_std.head<3>();
@@ -102,11 +151,21 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   }
   result->camchain = camchain_;
   result->cameras.resize(cameras_.size());
+  result->camera_chain = chain_mode_;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     CameraCalibration& out = result->camchain[c];
     out.T_cam_imu = CameraFromImu(c);
-    if (options_.estimate_intrinsics) out.camera.set_intrinsics(cameras_[c].intrinsics);
-    result->cameras[c].intrinsics_estimated = options_.estimate_intrinsics;
+    CameraEstimate& estimate = result->cameras[c];
+    estimate.intrinsics_before = camchain_[c].camera.intrinsics();
+    estimate.intrinsics_mode = intrinsics_modes_[c];
+    if (EstimatesIntrinsics(c)) out.camera.set_intrinsics(cameras_[c].intrinsics);
+    estimate.intrinsics_estimated = EstimatesIntrinsics(c);
+    if (intrinsics_modes_[c] == ParameterMode::kPrior) {
+      const CameraCovariance& prior = *options_.camchain_covariances[c];
+      for (size_t j = 0; j < prior.intrinsics.size(); ++j) {
+        estimate.intrinsics_prior_std(prior.intrinsics[j]) = std::sqrt(prior.matrix(j, j));
+      }
+    }
     out.time_offset_s = cameras_[c].time_offset_s;
     out.line_delay_s = cameras_[c].line_delay;
     result->cameras[c].calibration = out;

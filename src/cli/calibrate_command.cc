@@ -5,8 +5,10 @@
 // reprojection_errors.csv (report/calibrate_report.h). See docs/calibrate.md.
 #include <gflags/gflags.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,9 +17,11 @@
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/observation_gates.h"
 #include "splinecal/cli/command.h"
+#include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
 #include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/observations_csv.h"
@@ -44,14 +48,31 @@ DEFINE_double(pixel_sigma,
               0.0,
               "Pixel noise std [px] weighting the reprojection residuals; 0 estimates it from the "
               "residuals (robustly) and solves again");
+DEFINE_string(intrinsics,
+              "",
+              "held | prior | free: the cameras' intrinsics held at the camchain's, estimated "
+              "with the camchain's covariance as a prior, or estimated freely (prior and free "
+              "need --target and no natural landmarks). Default: prior for a camera whose "
+              "camchain entry has a splinecal_covariance (`splinecal intrinsics` writes it), "
+              "else held");
+DEFINE_string(camera_chain,
+              "",
+              "held | prior | free: the cameras' relative poses T_cn_cnm1 held at the "
+              "camchain's (one T_cam_imu for the rig), estimated with the covariance's "
+              "T_cn_cnm1 rows as a prior, or free (each T_cam_imu on its own). Default: prior "
+              "when every camera after cam0 has those rows, else free");
+DEFINE_string(target_scale,
+              "check",
+              "check | free | held: the target's scale against the IMU (the accelerometer "
+              "fixes metric scale). check: estimated, the calibration refused when it is off "
+              "from 1 by more than 5% and 3 std, then held at 1; free: estimated and kept; "
+              "held: 1, unchecked");
 DEFINE_bool(estimate_intrinsics,
             false,
-            "Refine every camera's intrinsics (its model's entries) jointly with the camera-IMU "
-            "calibration; needs --target and no natural landmarks");
+            "Deprecated: the same as --intrinsics free");
 DEFINE_bool(hold_camera_chain,
             false,
-            "Hold the cameras' relative poses at the camchain's T_cn_cnm1 (from `splinecal "
-            "intrinsics`): one T_cam_imu is estimated for the whole rig");
+            "Deprecated: the same as --camera-chain held");
 DEFINE_string(initial_poses,
               "",
               "Initial IMU trajectory T_w_s in the IMU clock, EuRoC ground-truth or TUM format "
@@ -61,6 +82,74 @@ DEFINE_string(initial_poses,
 namespace splinecal {
 namespace cli {
 namespace {
+
+// --intrinsics / --camera-chain: nullopt when empty (the default rule of CalibrateOptions).
+std::optional<ParameterMode> ParameterModeFlag(const char* name, const std::string& value) {
+  if (value.empty()) return std::nullopt;
+  for (ParameterMode mode : {ParameterMode::kHeld, ParameterMode::kPrior, ParameterMode::kFree}) {
+    if (value == ParameterModeName(mode)) return mode;
+  }
+  throw Error(std::string("--") + name + ": expected held, prior or free, got '" + value + "'");
+}
+
+TargetScaleMode TargetScaleModeFlag() {
+  for (TargetScaleMode mode :
+       {TargetScaleMode::kCheck, TargetScaleMode::kFree, TargetScaleMode::kHeld}) {
+    if (FLAGS_target_scale == TargetScaleModeName(mode)) return mode;
+  }
+  throw Error("--target-scale: expected check, free or held, got '" + FLAGS_target_scale + "'");
+}
+
+// `splinecal calibrate` and every flag given, as typed (for result.yaml and report.html).
+std::string CommandLineText() {
+  std::string text = "splinecal calibrate";
+  for (const FlagDoc& flag : CalibrateCommand().flags) {
+    gflags::CommandLineFlagInfo info;
+    if (!gflags::GetCommandLineFlagInfo(flag.name.c_str(), &info) || info.is_default) continue;
+    std::string name = flag.name;
+    std::replace(name.begin(), name.end(), '_', '-');
+    if (info.type == "bool") {
+      text += " --" + name + (info.current_value == "true" ? "" : "=false");
+    } else {
+      text += " --" + name + " " + info.current_value;
+    }
+  }
+  return text;
+}
+
+// A deprecated switch and its new flag must not contradict each other.
+std::optional<ParameterMode> WithAlias(std::optional<ParameterMode> mode,
+                                       bool alias,
+                                       ParameterMode alias_mode,
+                                       const char* alias_name,
+                                       const char* flag_name) {
+  if (!alias) return mode;
+  if (mode && *mode != alias_mode) {
+    throw Error(std::string("--") + alias_name + " contradicts --" + flag_name + " " +
+                ParameterModeName(*mode));
+  }
+  return alias_mode;
+}
+
+// The covariances of the selected cameras, renumbered like the camchain: a camera whose
+// predecessor in the selection is not its predecessor in the file loses its T_cn_cnm1 rows
+// (they are of the file's T_cn_cnm1).
+std::vector<std::optional<CameraCovariance>> SelectCovariances(
+    const std::vector<std::optional<CameraCovariance>>& all, const std::vector<int>& selection) {
+  if (selection.empty()) return all;
+  std::vector<std::optional<CameraCovariance>> chosen;
+  for (size_t k = 0; k < selection.size(); ++k) {
+    std::optional<CameraCovariance> covariance = all[selection[k]];
+    const bool consecutive = k > 0 && selection[k - 1] == selection[k] - 1;
+    if (covariance && covariance->has_T_cn_cnm1 && !consecutive) {
+      const int n = static_cast<int>(covariance->intrinsics.size());
+      covariance->matrix = Eigen::MatrixXd(covariance->matrix.topLeftCorner(n, n));
+      covariance->has_T_cn_cnm1 = false;
+    }
+    chosen.push_back(covariance);
+  }
+  return chosen;
+}
 
 // What calibrate reads and checks before the initial guess and the solve
 // (Command::read_inputs); Calibrate() checks the rest (time ranges, motion) before it allocates.
@@ -93,7 +182,15 @@ CalibrateInputs ReadCalibrateInputs() {
   options.estimate_time_offset = !FLAGS_no_time_offset;
   options.pixel_sigma_px = NonNegativeFlag("pixel-sigma", FLAGS_pixel_sigma);
   options.huber_px = NonNegativeFlag("huber", FLAGS_huber);
-  options.estimate_intrinsics = FLAGS_estimate_intrinsics;
+  options.intrinsics = WithAlias(ParameterModeFlag("intrinsics", FLAGS_intrinsics),
+                                 FLAGS_estimate_intrinsics, ParameterMode::kFree,
+                                 "estimate-intrinsics", "intrinsics");
+  options.camera_chain = WithAlias(ParameterModeFlag("camera-chain", FLAGS_camera_chain),
+                                   FLAGS_hold_camera_chain, ParameterMode::kHeld,
+                                   "hold-camera-chain", "camera-chain");
+  options.target_scale = TargetScaleModeFlag();
+  options.command_line = CommandLineText();
+  if (!FLAGS_target.empty()) options.target_name = FLAGS_target;
   if (FLAGS_min_corners < 4) throw Error("--min-corners: must be at least 4");
   options.min_corners_per_frame = FLAGS_min_corners;
   options.solver.num_threads = ThreadsFlag();
@@ -102,6 +199,8 @@ CalibrateInputs ReadCalibrateInputs() {
   options.model.imu_noise = ImuNoiseModeFlag();
 
   in.camchain = ReadCamchainYaml(camchain_path);
+  const std::vector<std::optional<CameraCovariance>> covariances =
+      ReadCamchainCovariances(camchain_path, in.camchain);
   if (!FLAGS_target.empty()) {
     in.target = std::make_unique<CalibrationTarget>(ReadTargetYaml(FLAGS_target));
   }
@@ -114,20 +213,32 @@ CalibrateInputs ReadCalibrateInputs() {
                          {observations_path, FLAGS_target, camchain_path});
   const std::vector<int> selection =
       ParseCameraSelection(FLAGS_cameras, static_cast<int>(in.camchain.size()));
-  if (FLAGS_hold_camera_chain) {
+  options.camchain_covariances = SelectCovariances(covariances, selection);
+  std::vector<int> chosen = selection;
+  if (chosen.empty()) {
+    for (size_t n = 0; n < in.camchain.size(); ++n) chosen.push_back(static_cast<int>(n));
+  }
+  // The default chain mode is a prior when every camera after the first has T_cn_cnm1 rows.
+  bool chain_rows = chosen.size() > 1;
+  for (size_t k = 1; k < chosen.size(); ++k) {
+    const std::optional<CameraCovariance>& covariance = options.camchain_covariances[k];
+    if (!covariance || !covariance->has_T_cn_cnm1) chain_rows = false;
+  }
+  const bool wants_chain = options.camera_chain ? *options.camera_chain != ParameterMode::kFree
+                                                : chain_rows;
+  if (wants_chain) {
     // T_cn_c0 of every camera from the T_cn_cnm1 chain, then relative to the first selected.
     std::vector<SE3d> T_n_0 = {SE3d()};
     for (size_t n = 1; n < in.camchain.size(); ++n) {
       if (!in.camchain[n].T_cn_cnm1) {
         throw Error(camchain_path, 0,
-                    "--hold-camera-chain: cam" + std::to_string(n) +
+                    "--camera-chain " +
+                        std::string(options.camera_chain ? ParameterModeName(*options.camera_chain)
+                                                         : "prior") +
+                        ": cam" + std::to_string(n) +
                         " has no T_cn_cnm1 (the camera chain `splinecal intrinsics` writes)");
       }
       T_n_0.push_back(*in.camchain[n].T_cn_cnm1 * T_n_0.back());
-    }
-    std::vector<int> chosen = selection;
-    if (chosen.empty()) {
-      for (size_t n = 0; n < in.camchain.size(); ++n) chosen.push_back(static_cast<int>(n));
     }
     for (int n : chosen) {
       options.camera_chain_T_cn_c0.push_back(T_n_0[n] * T_n_0[chosen.front()].inverse());
@@ -203,7 +314,9 @@ Command CalibrateCommand() {
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
           "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE]\n"
-          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset] [--hold-camera-chain] [--estimate-intrinsics]\n"
+          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
+          "    [--intrinsics held|prior|free] [--camera-chain held|prior|free] [--target-scale check|free|held]\n"
+          "    [--hold-camera-chain] [--estimate-intrinsics]\n"
           "    [--knot-spacing S] [--trajectory se3|split] [--pixel-sigma PX] [--huber PX]\n"
           "    [--min-corners N] [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s]\n"
           "    [--threads N]\n"
@@ -212,8 +325,9 @@ Command CalibrateCommand() {
           "one row per detected point in observations.csv) and IMU readings jointly on one\n"
           "spline T_w_s(t): estimates T_cam_imu, timeshift_cam_imu (t_imu = t_cam + shift) and,\n"
           "with --rolling-shutter, the line delay (row r exposed at t_frame + r * line_delay),\n"
-          "plus the trajectory, IMU biases and gravity. The camchain's intrinsics are kept; its\n"
-          "T_cam_imu, time offset and line delay are the starting point. The target gives the\n"
+          "plus the trajectory, IMU biases and gravity. The camchain's intrinsics are held, or\n"
+          "estimated with its covariance as a prior (--intrinsics); its T_cam_imu, time offset\n"
+          "and line delay are the starting point. The target's scale is checked against the IMU. The target gives the\n"
           "initial guess (PnP per frame, then the fit of `splinecal fit`); without a target,\n"
           "--initial-poses does (e.g. `splinecal align` on SLAM poses). Writes\n"
           "camchain-imucam.yaml (Kalibr's keys), result.yaml with standard deviations and\n"
@@ -233,6 +347,9 @@ Command CalibrateCommand() {
             "(default: ADIS16448)"},
            {"imu_noise", ""},
            {"rolling_shutter", ""},
+           {"intrinsics", ""},
+           {"camera_chain", ""},
+           {"target_scale", ""},
            {"hold_camera_chain", ""},
            {"estimate_intrinsics", ""},
            {"no_time_offset", ""},

@@ -41,7 +41,8 @@ const std::vector<std::string> kCameraKeys = {"camera_model",
                                               "line_delay",
                                               "rostopic",
                                               "T_cn_cnm1",
-                                              "cam_overlaps"};
+                                              "cam_overlaps",
+                                              "splinecal_covariance"};
 
 // A camera model's intrinsics in Kalibr's order: the projection's parameters first, then
 // fu fv pu pv (camera/camera_model.h's layout takes m0 m1 and fu fv pu pv from them).

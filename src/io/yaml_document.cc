@@ -207,6 +207,21 @@ std::string YamlDocument::String(const std::string& key_path) const {
   return node.Scalar();
 }
 
+std::vector<std::string> YamlDocument::Strings(const std::string& key_path) const {
+  const YAML::Node node = impl_->Find(key_path, true);
+  if (!node.IsSequence()) {
+    throw Error(impl_->path, impl_->LineOf(node), "'" + key_path + "' must be a list of names");
+  }
+  std::vector<std::string> values;
+  for (const YAML::Node& item : node) {
+    if (!item.IsScalar()) {
+      throw Error(impl_->path, impl_->LineOf(item), "'" + key_path + "': each entry must be a name");
+    }
+    values.push_back(item.Scalar());
+  }
+  return values;
+}
+
 std::vector<double> YamlDocument::Numbers(const std::string& key_path) const {
   return BoundedNumbers(key_path, std::numeric_limits<double>::max(), "");
 }

@@ -1,6 +1,7 @@
 #include "splinecal/report/calibrate_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "splinecal/report/reprojection_figures.h"
 #include "splinecal/spline/trajectory_model.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/intrinsics/intrinsics_observability.h"
 #include "splinecal/report/intrinsics_report.h"
 #include "splinecal/units.h"
 
@@ -41,23 +43,28 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
   } else {
     yaml->Scalar("line_delay_std", "fixed");
   }
+  // The intrinsics used: how (held / prior / free), before (the camchain's) and after, the
+  // prior's std and the estimate's, in Kalibr's order as camchain-imucam.yaml and `splinecal
+  // intrinsics` write them.
+  yaml->Scalar("intrinsics_mode", ParameterModeName(c.intrinsics_mode));
   yaml->Scalar("intrinsics_estimated", c.intrinsics_estimated);
-  if (c.intrinsics_estimated) {
-    // Kalibr's order, as camchain-imucam.yaml and `splinecal intrinsics` write them.
-    const Camera& camera = c.calibration.camera;
-    const IntrinsicsVector values = camera.intrinsics();
-    for (const auto& [key, order] :
-         {std::pair<const char*, std::vector<int>>{"intrinsics", KalibrIntrinsicsOrder(camera)},
-          std::pair<const char*, std::vector<int>>{"distortion_coeffs",
-                                                   KalibrDistortionOrder(camera)}}) {
-      Eigen::VectorXd value(order.size()), std(order.size());
-      for (size_t i = 0; i < order.size(); ++i) {
-        value(i) = values(order[i]);
-        std(i) = c.intrinsics_std(order[i]);
-      }
-      yaml->Vector(key, value);
-      yaml->Vector(std::string(key) + "_std", std);
+  const Camera& camera = c.calibration.camera;
+  const IntrinsicsVector values = camera.intrinsics();
+  for (const auto& [key, order] :
+       {std::pair<std::string, std::vector<int>>{"intrinsics", KalibrIntrinsicsOrder(camera)},
+        std::pair<std::string, std::vector<int>>{"distortion_coeffs",
+                                                 KalibrDistortionOrder(camera)}}) {
+    auto pick = [&order = order](const IntrinsicsVector& v) {
+      Eigen::VectorXd picked(order.size());
+      for (size_t i = 0; i < order.size(); ++i) picked(i) = v(order[i]);
+      return picked;
+    };
+    yaml->Vector(key, pick(values));
+    yaml->Vector(key + "_before", pick(c.intrinsics_before));
+    if (c.intrinsics_mode == ParameterMode::kPrior) {
+      yaml->Vector(key + "_prior_std", pick(c.intrinsics_prior_std));
     }
+    if (c.intrinsics_estimated) yaml->Vector(key + "_std", pick(c.intrinsics_std));
   }
   yaml->Scalar("reprojection_rms_px", c.reprojection_rms_px);
   yaml->Scalar("num_frames", c.num_frames);
@@ -172,6 +179,66 @@ plot::Figure TrajectoryFigure(const CalibrationResult& r) {
   return figure;
 }
 
+// How the calibration ran: the command line and what it did with the camchain and the target.
+std::string RunHtml(const CalibrationResult& r, const CalibrateOptions& options) {
+  std::ostringstream html;
+  html << "<h2>Run</h2>\n";
+  if (!options.command_line.empty()) {
+    html << "<p><code>" << plot::EscapeXml(options.command_line) << "</code></p>\n";
+  }
+  html << "<table>\n<tr><th>camera chain (T_cn_cnm1)</th><td>" << ParameterModeName(r.camera_chain)
+       << "</td></tr>\n<tr><th>intrinsics</th><td>";
+  for (size_t c = 0; c < r.cameras.size(); ++c) {
+    html << (c > 0 ? ", " : "") << "cam" << c << " " << ParameterModeName(r.cameras[c].intrinsics_mode);
+  }
+  html << "</td></tr>\n<tr><th>target scale</th><td>" << TargetScaleModeName(r.target_scale_mode);
+  if (std::isfinite(r.target_scale)) {
+    html << StringPrintf(": %.4f (std %.4f) against the IMU", r.target_scale, r.target_scale_std)
+         << (r.target_scale_mode == TargetScaleMode::kCheck ? ", then held at 1" : "");
+  }
+  html << "</td></tr>\n</table>\n";
+  return html.str();
+}
+
+// The intrinsics used per camera: before (the camchain's) -> after with std, and the prior's std.
+std::string IntrinsicsTable(const CalibrationResult& r) {
+  std::ostringstream html;
+  html << "<h2>Intrinsics</h2>\n<table>\n";
+  for (size_t c = 0; c < r.cameras.size(); ++c) {
+    const CameraEstimate& e = r.cameras[c];
+    const Camera& camera = e.calibration.camera;
+    html << "<tr><th colspan=4>cam" << c << " " << camera.model_name() << ": "
+         << ParameterModeName(e.intrinsics_mode) << "</th></tr>\n"
+         << "<tr><th>parameter</th><th>camchain (prior std)</th><th>used (std)</th><th>change"
+            " [prior std]</th></tr>\n";
+    std::vector<int> order = KalibrIntrinsicsOrder(camera);
+    for (int i : KalibrDistortionOrder(camera)) order.push_back(i);
+    const IntrinsicsVector after = camera.intrinsics();
+    for (int i : order) {
+      const char* format = i < kDistortionCoeffsIndex ? "%.4f" : "%.6g";
+      html << "<tr><th>" << IntrinsicName(camera, i) << "</th><td>"
+           << StringPrintf(format, e.intrinsics_before(i));
+      if (std::isfinite(e.intrinsics_prior_std(i))) {
+        html << " (" << StringPrintf("%.3g", e.intrinsics_prior_std(i)) << ")";
+      }
+      html << "</td><td>" << StringPrintf(format, after(i));
+      if (std::isfinite(e.intrinsics_std(i))) {
+        html << " (" << StringPrintf("%.3g", e.intrinsics_std(i)) << ")";
+      }
+      html << "</td><td>";
+      if (std::isfinite(e.intrinsics_prior_std(i))) {
+        html << StringPrintf("%+.2f", (after(i) - e.intrinsics_before(i)) / e.intrinsics_prior_std(i));
+      } else {
+        html << (e.intrinsics_estimated ? StringPrintf("%+.3g", after(i) - e.intrinsics_before(i))
+                                        : std::string("held"));
+      }
+      html << "</td></tr>\n";
+    }
+  }
+  html << "</table>\n";
+  return html.str();
+}
+
 // The estimates: one block of rows per camera, then the IMU, the pixel noise and the model.
 std::string EstimatesTable(const CalibrationResult& r, const CalibrateOptions& options) {
   std::ostringstream html;
@@ -262,6 +329,14 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("covariance_time_s", r.covariance_time_s);
   yaml.Scalar("covariance_ok", r.covariance_ok);
   yaml.Scalar("termination", r.solve.termination);
+  // How the camchain and the target were used (docs/calibrate.md, "Intrinsics and camera chain",
+  // "The target's scale").
+  yaml.Scalar("camera_chain", ParameterModeName(r.camera_chain));
+  yaml.Scalar("target_scale_mode", TargetScaleModeName(r.target_scale_mode));
+  yaml.Scalar("target_scale", r.target_scale);
+  yaml.Scalar("target_scale_std", r.target_scale_std);
+  yaml.Scalar("target_scale_used", r.target_scale_used);
+  if (!options.command_line.empty()) yaml.Scalar("command_line", options.command_line);
   if (r.cameras.size() > 1) {
     yaml.BeginMap("cameras");
     for (size_t c = 0; c < r.cameras.size(); ++c) {
@@ -299,7 +374,9 @@ std::string CalibrateReportHtml(const CalibrationResult& r,
                               {"target", inputs.target_path},
                               {"initial poses", inputs.initial_poses_path}}));
   page.Append(ImuNoiseTableHtml(r.imu_noise, inputs.imu_yaml_path));
+  page.Append(RunHtml(r, options));
   page.Append(EstimatesTable(r, options));
+  page.Append(IntrinsicsTable(r));
   page.ListSection("Warnings", r.warnings);
   page.FigureSection("Reprojection", ReprojectionErrorFigure(ReprojectionDataOf(r), max_points));
   ReprojectionImageFigure by_position = MakeReprojectionImageFigure(ReprojectionDataOf(r), max_points);
@@ -338,6 +415,7 @@ std::string CalibrateSummaryText(const CalibrationResult& result) {
             StdText(e.time_offset_estimated, 1e3 * e.time_offset_std_s, "ms") + "\n";
     text += StringPrintf("  line_delay %.4f us/row ", 1e6 * e.calibration.line_delay_s) +
             StdText(e.line_delay_estimated, 1e6 * e.line_delay_std_s, "us") + "\n";
+    text += std::string("  intrinsics ") + ParameterModeName(e.intrinsics_mode) + "\n";
     text += StringPrintf("  reprojection RMS %.3f px over %d points in %d frames\n",
                          e.reprojection_rms_px,
                          e.num_observations,
@@ -348,6 +426,12 @@ std::string CalibrateSummaryText(const CalibrationResult& result) {
                        result.accel_rms,
                        result.pixel_sigma_px,
                        result.pixel_sigma_estimated ? " (estimated)" : "");
+  if (std::isfinite(result.target_scale)) {
+    text += StringPrintf("target scale against the IMU %.4f (std %.4f)%s\n",
+                         result.target_scale,
+                         result.target_scale_std,
+                         result.target_scale_mode == TargetScaleMode::kCheck ? ", held at 1" : "");
+  }
   for (const std::string& w : result.warnings) text += "warning: " + w + "\n";
   return text;
 }

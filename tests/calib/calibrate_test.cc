@@ -282,3 +282,89 @@ TEST_F(CalibrateRefuses, ATargetOfTheWrongSizeIsNotAConfidentAnswer) {
 
 }  // namespace
 }  // namespace splinecal
+
+namespace splinecal {
+namespace {
+
+// A rig calibrated with a target of the wrong size: the accelerometer fixes the metric scale,
+// so the target's scale s against it comes out at the true size over the given one, and the
+// calibration is refused (CalibrateOptions::target_scale, kCheck). The right target passes with
+// s within 3 std of 1, and its result is then held at s = 1.
+TEST(Calibrate, TargetScaleAgainstTheImu) {
+  testing::ScenarioOptions o;
+  o.duration_s = 8.0;
+  o.line_delay_s = 0.0;
+  const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
+  CalibrateOptions options = FastOptions();
+  options.target_scale = TargetScaleMode::kCheck;
+  options.target_name = "aprilgrid.yaml";
+  const CalibrationResult r = Calibrate(s.imu, s.observations, s.start, &s.target, options);
+  EXPECT_EQ(r.target_scale_mode, TargetScaleMode::kCheck);
+  ASSERT_TRUE(std::isfinite(r.target_scale_std));
+  EXPECT_LT(r.target_scale_std, 0.01);  // measured 8 s of ADIS16448: a few 1e-3
+  EXPECT_LT(std::abs(r.target_scale - 1.0), 3.0 * r.target_scale_std);
+  EXPECT_EQ(r.target_scale_used, 1.0);
+  const Errors e = ErrorsOf(r.cameras[0].calibration, s.truth[0]);
+  ExpectWithinTargetsAndStds(r, e, false);
+
+  // tagSize 0.06 m for the 0.088 m grid: the IMU says 0.088 / 0.06 = 1.47x.
+  const CalibrationTarget small = MakeAprilGrid(6, 6, 0.06, 0.3);
+  try {
+    Calibrate(s.imu, s.observations, s.start, &small, options);
+    ADD_FAILURE() << "a target 0.68x its true size was accepted";
+  } catch (const Error& error) {
+    // Measured: 1.4675 (std 0.0011), so "0.0881 m would fit".
+    EXPECT_THAT(error.message(), HasSubstr("the IMU says the target is 1.47x the size in "
+                                           "aprilgrid.yaml (tagSize 0.06 m; 0.088"));
+  }
+  // Unchecked, the same data go through.
+  options.target_scale = TargetScaleMode::kHeld;
+  EXPECT_NO_THROW(Calibrate(s.imu, s.observations, s.start, &small, options));
+}
+
+// The intrinsics' uncertainty carried into the calibration (CalibrateOptions::intrinsics,
+// kPrior): the same data with the intrinsics held, with a prior of 1.5 px on the focal lengths
+// and principal point, and free. The prior's result has stds between the held and the free ones
+// for T_cam_imu, a posterior std of fu below the prior's (the images add information), and every
+// intrinsic within 3 std of the truth.
+TEST(Calibrate, IntrinsicsPriorBetweenHeldAndFree) {
+  testing::ScenarioOptions o;
+  o.duration_s = 8.0;
+  o.line_delay_s = 0.0;
+  const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
+  CalibrateOptions options = FastOptions();
+  CameraCovariance prior;
+  prior.intrinsics = {0, 1, 2, 3, 6, 7, 8, 9};
+  Eigen::VectorXd std(8);
+  std << 1.5, 1.5, 1.5, 1.5, 2e-3, 2e-3, 2e-4, 2e-4;
+  prior.matrix = std.cwiseAbs2().asDiagonal();
+  options.camchain_covariances = {prior};
+  const CalibrationResult with_prior = Calibrate(s.imu, s.observations, s.start, &s.target, options);
+  options.intrinsics = ParameterMode::kHeld;
+  const CalibrationResult held = Calibrate(s.imu, s.observations, s.start, &s.target, options);
+  options.intrinsics = ParameterMode::kFree;
+  const CalibrationResult free = Calibrate(s.imu, s.observations, s.start, &s.target, options);
+  EXPECT_EQ(with_prior.cameras[0].intrinsics_mode, ParameterMode::kPrior);
+  EXPECT_EQ(held.cameras[0].intrinsics_mode, ParameterMode::kHeld);
+  EXPECT_EQ(free.cameras[0].intrinsics_mode, ParameterMode::kFree);
+  const CameraEstimate& p = with_prior.cameras[0];
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_GE(p.rotation_std_deg(a), held.cameras[0].rotation_std_deg(a) * (1.0 - 1e-6));
+    EXPECT_LE(p.rotation_std_deg(a), free.cameras[0].rotation_std_deg(a) * (1.0 + 1e-6));
+  }
+  EXPECT_EQ(p.intrinsics_prior_std(0), 1.5);
+  EXPECT_LT(p.intrinsics_std(0), 1.5);
+  EXPECT_LE(p.intrinsics_std(0), free.cameras[0].intrinsics_std(0) * (1.0 + 1e-6));
+  const IntrinsicsVector truth = s.truth[0].camera.intrinsics();
+  for (int i : prior.intrinsics) {
+    EXPECT_LT(std::abs(p.calibration.camera.intrinsics()(i) - truth(i)), 3.0 * p.intrinsics_std(i))
+        << "intrinsic " << i;
+  }
+  // A prior without a covariance is refused.
+  options.intrinsics = ParameterMode::kPrior;
+  options.camchain_covariances.clear();
+  EXPECT_THROW(Calibrate(s.imu, s.observations, s.start, &s.target, options), Error);
+}
+
+}  // namespace
+}  // namespace splinecal

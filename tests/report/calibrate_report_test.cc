@@ -311,3 +311,75 @@ TEST(MakeReprojectionImageFigure, NoiseAloneGivesShortVectors) {
 
 }  // namespace
 }  // namespace splinecal
+
+namespace splinecal {
+namespace {
+
+// cam0's intrinsics estimated with a prior (fu moved by 2 px), cam1's held; the target scale
+// checked; the command line given.
+CalibrationResult WithIntrinsicsAndScale(CalibrateOptions* options) {
+  CalibrationResult r = SmallResult(2);
+  CameraEstimate& e = r.cameras[0];
+  e.calibration.camera.fu = 460.0;
+  e.calibration.camera.fv = 455.0;
+  e.intrinsics_before = e.calibration.camera.intrinsics();
+  e.intrinsics_before(0) = 458.0;
+  e.intrinsics_mode = ParameterMode::kPrior;
+  e.intrinsics_estimated = true;
+  for (int i = 0; i < 4; ++i) {
+    e.intrinsics_prior_std(i) = 1.0 + i;
+    e.intrinsics_std(i) = 0.5 + i;
+  }
+  r.cameras[1].intrinsics_before = r.cameras[1].calibration.camera.intrinsics();
+  r.camera_chain = ParameterMode::kPrior;
+  r.target_scale_mode = TargetScaleMode::kCheck;
+  r.target_scale = 1.0042;
+  r.target_scale_std = 0.0031;
+  options->command_line = "splinecal calibrate --imu <imu>.csv --intrinsics prior";
+  return r;
+}
+
+TEST(CalibrateResultYaml, IntrinsicsBeforeAfterPriorAndRun) {
+  CalibrateOptions options;
+  const CalibrationResult r = WithIntrinsicsAndScale(&options);
+  const std::string text = CalibrateResultYaml(r, options);
+  EXPECT_THAT(testing::DuplicateYamlKeys(text), ::testing::IsEmpty()) << text;
+  const YAML::Node yaml = testing::LoadStrictYaml(text);
+  EXPECT_EQ(yaml["intrinsics_mode"].as<std::string>(), "prior");
+  EXPECT_EQ(yaml["intrinsics"][0].as<double>(), 460.0);
+  EXPECT_EQ(yaml["intrinsics_before"][0].as<double>(), 458.0);
+  EXPECT_EQ(yaml["intrinsics_prior_std"][1].as<double>(), 2.0);
+  EXPECT_EQ(yaml["intrinsics_std"][3].as<double>(), 3.5);
+  EXPECT_EQ(yaml["cameras"]["cam1"]["intrinsics_mode"].as<std::string>(), "held");
+  EXPECT_FALSE(yaml["cameras"]["cam1"]["intrinsics_std"]);  // held: no std
+  EXPECT_FALSE(yaml["cameras"]["cam1"]["intrinsics_prior_std"]);
+  EXPECT_EQ(yaml["camera_chain"].as<std::string>(), "prior");
+  EXPECT_EQ(yaml["target_scale_mode"].as<std::string>(), "check");
+  EXPECT_EQ(yaml["target_scale"].as<double>(), 1.0042);
+  EXPECT_EQ(yaml["target_scale_std"].as<double>(), 0.0031);
+  EXPECT_EQ(yaml["target_scale_used"].as<double>(), 1.0);
+  EXPECT_EQ(yaml["command_line"].as<std::string>(),
+            "splinecal calibrate --imu <imu>.csv --intrinsics prior");
+}
+
+TEST(CalibrateReportHtml, RunAndIntrinsicsSections) {
+  CalibrateOptions options;
+  const CalibrationResult r = WithIntrinsicsAndScale(&options);
+  const std::string html = CalibrateReportHtml(r, options, kInputs);
+  EXPECT_THAT(html, HasSubstr("<h2>Run</h2>\n<p><code>splinecal calibrate --imu &lt;imu&gt;.csv "
+                              "--intrinsics prior</code></p>"));
+  EXPECT_THAT(html, HasSubstr("<tr><th>intrinsics</th><td>cam0 prior, cam1 held</td></tr>"));
+  EXPECT_THAT(html, HasSubstr("<tr><th>camera chain (T_cn_cnm1)</th><td>prior</td></tr>"));
+  EXPECT_THAT(html, HasSubstr("check: 1.0042 (std 0.0031) against the IMU, then held at 1"));
+  EXPECT_THAT(html, HasSubstr("<h2>Intrinsics</h2>"));
+  // fu: 458 (prior std 1) -> 460 (std 0.5): +2.00 prior stds; cam1's entries are held.
+  EXPECT_THAT(html, HasSubstr("<tr><th>fu</th><td>458.0000 (1)</td><td>460.0000 (0.5)</td>"
+                              "<td>+2.00</td></tr>"));
+  EXPECT_THAT(html, HasSubstr("<td>held</td></tr>"));
+  EXPECT_THAT(CalibrateSummaryText(r), HasSubstr("target scale against the IMU 1.0042 (std "
+                                                 "0.0031), held at 1\n"));
+  EXPECT_THAT(CalibrateSummaryText(r), HasSubstr("  intrinsics prior\n"));
+}
+
+}  // namespace
+}  // namespace splinecal

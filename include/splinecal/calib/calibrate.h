@@ -67,11 +67,27 @@
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
+#include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/se3_spline.h"
 
 namespace splinecal {
+
+// How calibrate treats a quantity the camchain gives (the intrinsics, the camera chain):
+//   kHeld   fixed at the camchain's value, treated as exact;
+//   kPrior  estimated, with a Gaussian prior at the camchain's value: the residual
+//           L^-1 (theta - theta_0), Sigma = L L^T the camchain's covariance, joins the problem,
+//           so the standard deviations of everything else include its uncertainty;
+//   kFree   estimated from this recording alone, starting at the camchain's value.
+enum class ParameterMode { kHeld, kPrior, kFree };
+const char* ParameterModeName(ParameterMode mode);  // "held", "prior", "free"
+// The target's scale s (p_t -> s p_t) against the IMU (CalibrateOptions::target_scale):
+//   kCheck  estimated, refused beyond the thresholds, then held at 1 (the default);
+//   kFree   estimated and kept in the result (metric scale from the accelerometer);
+//   kHeld   held at 1, not checked.
+enum class TargetScaleMode { kCheck, kFree, kHeld };
+const char* TargetScaleModeName(TargetScaleMode mode);  // "check", "free", "held"
 
 struct CalibrateOptions {
   // Knots every 0.05 s (0: chosen from the data), gravity magnitude, IMU noise, bias spline.
@@ -88,14 +104,44 @@ struct CalibrateOptions {
   double huber_px = 2.0;                  // Huber threshold [px]; 0 = plain least squares
   int min_corners_per_frame = 8;          // frames with fewer target corners are not used
   double min_rotation_rate_rad_s = 0.05;  // refuse data rotating less about its weakest axis
-  // A rig whose cameras' relative poses are known (`splinecal intrinsics`' T_cn_cnm1): one
-  // T_cam_imu is estimated, cam0's, and camera n's is T_cn_c0 * T_c0_imu with
-  // camera_chain_T_cn_c0[n] held (camera 0's entry is the identity). Empty: every camera's
-  // T_cam_imu is estimated on its own.
+  // A rig whose cameras' relative poses are known (`splinecal intrinsics`' T_cn_cnm1), camera
+  // 0's entry the identity. Empty: every camera's T_cam_imu is estimated on its own (kFree).
+  // camera_chain says how it is used (below).
   std::vector<SE3d> camera_chain_T_cn_c0;
-  // Refine every camera's intrinsics (the entries its model uses) jointly with the rest; needs
-  // target corners only (no natural landmarks). Else they are held at the camchain's.
+  // The camchain's covariances (io/camchain_yaml_covariance.h), one entry per camera (nullopt:
+  // none; an empty vector: none at all). They make the priors of kPrior below.
+  std::vector<std::optional<CameraCovariance>> camchain_covariances;
+  // The cameras' intrinsics (the entries each model uses; ParameterMode). nullopt, the default:
+  // kPrior for a camera whose covariance is given, else kHeld (a camchain without a covariance,
+  // e.g. Kalibr's published one, is treated as exact: it comes from a dedicated recording).
+  // Estimated intrinsics need target corners only (no natural landmarks: a landmark's reference
+  // ray is taken at the given intrinsics).
+  std::optional<ParameterMode> intrinsics;
+  // Deprecated alias of intrinsics = kFree (the --estimate-intrinsics of earlier versions);
+  // ignored when `intrinsics` is set.
   bool estimate_intrinsics = false;
+  // The cameras' relative poses T_cn_cnm1 (needs camera_chain_T_cn_c0 for kHeld and kPrior):
+  //   kHeld   one T_cam_imu is estimated, cam0's; camera n's is T_cn_c0 * T_c0_imu;
+  //   kPrior  every T_cam_imu estimated, with a prior on each T_cn_cnm1 = T_cn_imu T_cnm1_imu^-1
+  //           (the covariance's T_cn_cnm1 rows, the right tangent T_cn_cnm1 Exp([rho; phi]));
+  //   kFree   every T_cam_imu estimated on its own.
+  // nullopt, the default: kPrior when the chain is given and every camera n > 0 has a
+  // covariance with T_cn_cnm1 rows, kHeld when the chain is given without them, else kFree.
+  std::optional<ParameterMode> camera_chain;
+  // The target's scale against the IMU (TargetScaleMode). The accelerometer fixes metric scale:
+  // the problem is solved with the target's points scaled by a free s (p_t -> s p_t), and with
+  // kCheck the calibration is refused when |s - 1| exceeds both target_scale_sigmas standard
+  // deviations and max_target_scale_error; then s is held at 1 and the problem solved again,
+  // so that the target's printed size, not the accelerometer's scale, sets the metric scale of
+  // the result (a consumer accelerometer's own scale error can reach a few percent; there is no
+  // IMU scale model: max_target_scale_error covers it).
+  TargetScaleMode target_scale = TargetScaleMode::kCheck;
+  double target_scale_sigmas = 3.0;
+  double max_target_scale_error = 0.05;
+  // For the refusal's message: the target's name (its file) and an AprilGrid's tagSize [m] (0:
+  // not an AprilGrid), so that it can say which size would fit.
+  std::string target_name = "the target's description";
+  double target_tag_size_m = 0.0;
   // Levenberg-Marquardt with SPARSE_NORMAL_CHOLESKY, up to 6 rounds (time windows rebuilt and
   // the pixel noise re-estimated between them).
   SolverOptions solver = [] {
@@ -112,6 +158,9 @@ struct CalibrateOptions {
   double warn_time_offset_std_s = 0.001;
   double warn_line_delay_relative_std = 0.05;
   bool keep_residuals = true;  // per-observation and per-IMU-sample residuals in the result
+  // For the reports only: the command line these options came from (empty: the library's
+  // caller did not say).
+  std::string command_line;
 };
 
 // A starting point for the whole state (required without a target; optional otherwise).
@@ -134,10 +183,15 @@ struct CameraEstimate {
   Eigen::Vector3d translation_std_m =
       Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   double time_offset_std_s = std::numeric_limits<double>::quiet_NaN();
-  // With CalibrateOptions::estimate_intrinsics: the std of each intrinsics entry (layout of
-  // camera/camera_model.h; NaN where held).
+  // The intrinsics: how they were treated, the camchain's values (before; `calibration` has
+  // after), the prior's std (kPrior) and the estimate's std (layout of camera/camera_model.h; NaN
+  // where held or not in the prior).
+  ParameterMode intrinsics_mode = ParameterMode::kHeld;
+  IntrinsicsVector intrinsics_before = IntrinsicsVector::Zero();
+  IntrinsicsVector intrinsics_prior_std =
+      IntrinsicsVector::Constant(std::numeric_limits<double>::quiet_NaN());
   IntrinsicsVector intrinsics_std = IntrinsicsVector::Constant(std::numeric_limits<double>::quiet_NaN());
-  bool intrinsics_estimated = false;
+  bool intrinsics_estimated = false;  // intrinsics_mode != kHeld
   double line_delay_std_s = std::numeric_limits<double>::quiet_NaN();
   bool time_offset_estimated = false;
   bool line_delay_estimated = false;
@@ -195,6 +249,15 @@ struct CalibrationResult {
   double accel_rms = 0.0;            // [m/s^2]
   int num_landmarks = 0;
   int num_imu_samples = 0;
+
+  // How the camera chain was used (CalibrateOptions::camera_chain, resolved).
+  ParameterMode camera_chain = ParameterMode::kFree;
+  // The target's scale against the IMU: the estimate with all else free and its std (NaN when
+  // not estimated: kHeld, or no target), and the scale the result is in (1 unless kFree).
+  TargetScaleMode target_scale_mode = TargetScaleMode::kHeld;
+  double target_scale = std::numeric_limits<double>::quiet_NaN();
+  double target_scale_std = std::numeric_limits<double>::quiet_NaN();
+  double target_scale_used = 1.0;
 
   SolveSummary solve;  // rounds: the time windows were rebuilt or the pixel noise re-estimated
   // The largest factor by which a reported std exceeds the noise model's (the cluster-robust

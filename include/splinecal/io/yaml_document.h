@@ -31,6 +31,7 @@ class YamlDocument {
   int64_t Integer(const std::string& key_path) const;
   std::string String(const std::string& key_path) const;
   std::vector<double> Numbers(const std::string& key_path) const;  // a flat sequence
+  std::vector<std::string> Strings(const std::string& key_path) const;  // a flat sequence
   std::vector<double> BoundedNumbers(const std::string& key_path,
                                      double max_abs,
                                      const char* unit) const;
