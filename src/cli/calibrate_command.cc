@@ -7,11 +7,12 @@
 
 #include <cstdio>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "splinecal/calib/calibrate.h"
+#include "splinecal/calib/calibrate_run.h"
+#include "splinecal/calib/camera_selection.h"
 #include "splinecal/camera/camchain.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
@@ -22,10 +23,9 @@
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/poses.h"
-#include "splinecal/io/spline_csv.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/report/calibrate_report.h"
-#include "camera_selection.h"
+#include "splinecal/report/command_outputs.h"
 
 DEFINE_string(cameras,
               "",
@@ -105,30 +105,13 @@ CalibrateInputs ReadCalibrateInputs() {
     in.target = std::make_unique<CalibrationTarget>(ReadTargetYaml(FLAGS_target));
   }
   in.observations = ReadObservationsCsv(observations_path);
-  CheckCameraIds(in.observations, in.camchain, observations_path, camchain_path);
-  const std::vector<int> selection =
-      ParseCameraSelection(FLAGS_cameras, static_cast<int>(in.camchain.size()));
-  if (FLAGS_hold_camera_chain) {
-    // T_cn_c0 of every camera from the T_cn_cnm1 chain, then relative to the first selected.
-    std::vector<SE3d> T_n_0 = {SE3d()};
-    for (size_t n = 1; n < in.camchain.size(); ++n) {
-      if (!in.camchain[n].T_cn_cnm1) {
-        throw Error(camchain_path, 0,
-                    "--hold-camera-chain: cam" + std::to_string(n) +
-                        " has no T_cn_cnm1 (the camera chain `splinecal intrinsics` writes)");
-      }
-      T_n_0.push_back(*in.camchain[n].T_cn_cnm1 * T_n_0.back());
-    }
-    std::vector<int> chosen = selection;
-    if (chosen.empty()) {
-      for (size_t n = 0; n < in.camchain.size(); ++n) chosen.push_back(static_cast<int>(n));
-    }
-    for (int n : chosen) {
-      options.camera_chain_T_cn_c0.push_back(T_n_0[n] * T_n_0[chosen.front()].inverse());
-    }
-  }
-  SelectCameras(selection, &in.camchain, &in.observations);
-  CheckEveryCameraObserved(in.observations, in.camchain, selection, observations_path);
+  SelectCalibrationCameras(FLAGS_cameras,
+                           FLAGS_hold_camera_chain,
+                           camchain_path,
+                           observations_path,
+                           &in.camchain,
+                           &in.observations,
+                           &options);
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
   if (!FLAGS_initial_poses.empty()) in.initial_poses = ReadPoses(FLAGS_initial_poses);
   return in;
@@ -148,17 +131,14 @@ int RunCalibrate() {
   Progress("calibrate: " + std::to_string(observations.size()) + " observations, " +
            std::to_string(imu.size()) + " IMU samples, " + std::to_string(camchain.size()) +
            " camera(s)");
-  std::vector<std::string> guess_warnings;
-  std::unique_ptr<CalibrationInitialGuess> guess;
   CalibrationResult result;
   try {
     if (!in.initial_poses.empty()) {
       Progress("calibrate: initial guess from " + std::to_string(in.initial_poses.size()) +
                " initial poses");
-      guess = std::make_unique<CalibrationInitialGuess>(InitialGuessFromImuPoses(
-          imu, in.initial_poses, observations, camchain, options, &guess_warnings));
     }
-    result = Calibrate(imu, observations, camchain, in.target.get(), options, guess.get());
+    result = CalibrateWithInitialPoses(
+        imu, observations, camchain, in.target.get(), in.initial_poses, options);
   } catch (const Error& e) {
     // The library's messages start with "calibrate: "; the front end names the command already.
     const std::string prefix = "calibrate: ";
@@ -167,14 +147,7 @@ int RunCalibrate() {
     }
     throw;
   }
-  result.warnings.insert(result.warnings.begin(), guess_warnings.begin(), guess_warnings.end());
 
-  output.WriteFile("camchain-imucam.yaml", CamchainYamlText(result.camchain));
-  output.WriteFile("result.yaml", CalibrateResultYaml(result, options));
-  output.WriteFile("reprojection_errors.csv", CalibrateReprojectionCsv(result));
-  std::ostringstream spline_csv;
-  WriteSplineCsv(result.MakeSpline(), &spline_csv);
-  output.WriteFile("spline.csv", spline_csv.str());
   // In CalibrateReportInputs' order: IMU, observations, camchain, target, initial poses, imu.yaml.
   const CalibrateReportInputs report_inputs = {FLAGS_imu,
                                                FLAGS_observations,
@@ -182,7 +155,7 @@ int RunCalibrate() {
                                                FLAGS_target,
                                                FLAGS_initial_poses,
                                                FLAGS_imu_yaml};
-  output.WriteFile("report.html", CalibrateReportHtml(result, options, report_inputs));
+  output.WriteFiles(CalibrateOutputFiles(result, options, report_inputs));
   output.Commit();
 
   std::fputs(CalibrateSummaryText(result).c_str(), stdout);

@@ -1,4 +1,4 @@
-#include "camera_selection.h"
+#include "splinecal/calib/camera_selection.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -7,7 +7,6 @@
 #include "splinecal/error.h"
 
 namespace splinecal {
-namespace cli {
 
 std::vector<int> ParseCameraSelection(const std::string& text, int num_cameras) {
   std::vector<int> selection;
@@ -75,5 +74,44 @@ void CheckEveryCameraObserved(const std::vector<Observation>& observations,
   throw Error(message);
 }
 
-}  // namespace cli
+std::vector<SE3d> HeldCameraChain(const Camchain& camchain,
+                                  const std::vector<int>& selection,
+                                  const std::string& camchain_path) {
+  // T_cn_c0 of every camera from the T_cn_cnm1 chain, then relative to the first selected.
+  std::vector<SE3d> T_n_0 = {SE3d()};
+  for (size_t n = 1; n < camchain.size(); ++n) {
+    if (!camchain[n].T_cn_cnm1) {
+      throw Error(camchain_path,
+                  0,
+                  "--hold-camera-chain: cam" + std::to_string(n) +
+                      " has no T_cn_cnm1 (the camera chain `splinecal intrinsics` writes)");
+    }
+    T_n_0.push_back(*camchain[n].T_cn_cnm1 * T_n_0.back());
+  }
+  std::vector<int> chosen = selection;
+  if (chosen.empty()) {
+    for (size_t n = 0; n < camchain.size(); ++n) chosen.push_back(static_cast<int>(n));
+  }
+  std::vector<SE3d> T_cn_c0;
+  for (int n : chosen) T_cn_c0.push_back(T_n_0[n] * T_n_0[chosen.front()].inverse());
+  return T_cn_c0;
+}
+
+void SelectCalibrationCameras(const std::string& cameras,
+                              bool hold_camera_chain,
+                              const std::string& camchain_path,
+                              const std::string& observations_path,
+                              Camchain* camchain,
+                              std::vector<Observation>* observations,
+                              CalibrateOptions* options) {
+  CheckCameraIds(*observations, *camchain, observations_path, camchain_path);
+  const std::vector<int> selection =
+      ParseCameraSelection(cameras, static_cast<int>(camchain->size()));
+  if (hold_camera_chain) {
+    options->camera_chain_T_cn_c0 = HeldCameraChain(*camchain, selection, camchain_path);
+  }
+  SelectCameras(selection, camchain, observations);
+  CheckEveryCameraObserved(*observations, *camchain, selection, observations_path);
+}
+
 }  // namespace splinecal
