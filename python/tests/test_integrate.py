@@ -32,8 +32,10 @@ def test_integrate_of_simulated_arrays():
     sim = splinecal.simulate(trajectory="vio_course", duration=5, noise_free=True, seed=3)
     result = splinecal.integrate(sim["imu"], sim["ground_truth"], method=["midpoint", "rk4"])
     assert set(result) & {"euler", "midpoint", "rk4"} == {"midpoint", "rk4"}
-    # Noise-free readings of the spline at 200 Hz: the drift is the integrator's alone.
-    # Measured: see the assertion message; the bound is ~10x it.
+    # Noise-free readings of the spline at 200 Hz: the drift is the integrator's alone. Measured
+    # after 5 s: midpoint 1.07e-4 m, rk4 7.7e-5 m; the bound is ~10x. Dead reckoning of the
+    # EuRoC excerpt's real readings drifts 0.76 m in 5 s (docs/python.md), so a wrong state,
+    # unit or frame would fail by orders of magnitude.
     for method in ("midpoint", "rk4"):
         error = result[method]["final_position_error_m"]
-        assert error < 0.05, f"{method}: {error} m after 5 s"
+        assert error < 1e-3, f"{method}: {error} m after 5 s"
