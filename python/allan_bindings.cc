@@ -5,16 +5,20 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
 
 #include "bindings.h"
+#include "command_outputs.h"
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/allan_deviation.h"
 #include "splinecal/error.h"
-#include "splinecal/imu/imu_rate.h"
+#include "splinecal/io/imu_units.h"
 #include "splinecal/io/static_recording.h"
-#include "yaml_to_python.h"
+#include "splinecal/report/command_outputs.h"
 
 namespace splinecal {
 namespace python {
@@ -56,41 +60,51 @@ py::tuple AllanDeviation(py::handle x_object,
   return py::make_tuple(tau, adev);
 }
 
-// Gyro xyz [rad/s] then accel xyz [m/s^2] at rate_hz, as `splinecal allan --columns` reads them.
-StaticRecording RecordingFromArray(py::handle imu,
-                                   double rate_hz,
-                                   double gyro_scale,
-                                   double accel_scale) {
-  const py::array_t<double> samples = DoubleArray(imu, "imu", {-1, 6});
-  StaticRecording recording;
-  recording.source = "numpy array";  // result.yaml's `source`, the input's name
-  recording.rate_hz = PositiveArgument(rate_hz, "rate_hz");
-  CheckImuRate(recording.rate_hz, "rate_hz", /*from_timestamps=*/false);
-  for (int column = 0; column < 6; ++column) {
-    AxisSeries axis;
-    axis.sensor = column < 3 ? ImuSensor::kGyroscope : ImuSensor::kAccelerometer;
-    axis.axis = column % 3;
-    const double scale = column < 3 ? gyro_scale : accel_scale;
-    axis.samples.resize(samples.shape(0));
-    for (py::ssize_t i = 0; i < samples.shape(0); ++i) {
-      axis.samples[i] = scale * samples.data()[i * 6 + column];
-    }
-    recording.axes.push_back(std::move(axis));
+// The columns of an array (n, k) or (n,): 6 (gyro xyz, accel xyz) or 1 to 3 of one sensor, as
+// `splinecal allan --columns` reads a file's (io/static_recording.h checks them).
+std::vector<std::vector<double>> ArrayColumns(py::handle imu) {
+  const py::array any = py::array::ensure(imu);
+  const bool one_column = any && any.ndim() == 1;
+  const py::array_t<double> samples = DoubleArray(
+      imu, "imu", one_column ? std::vector<py::ssize_t>{-1} : std::vector<py::ssize_t>{-1, -1});
+  const py::ssize_t n = samples.shape(0);
+  const py::ssize_t k = one_column ? 1 : samples.shape(1);
+  std::vector<std::vector<double>> columns(k, std::vector<double>(n));
+  for (py::ssize_t i = 0; i < n; ++i) {
+    for (py::ssize_t j = 0; j < k; ++j) columns[j][i] = samples.data()[i * k + j];
   }
-  return recording;
+  return columns;
+}
+
+std::optional<ImuSensor> SensorArgument(py::handle sensor) {
+  if (sensor.is_none()) return std::nullopt;
+  const std::string name = py::str(sensor);
+  if (name == "gyro") return ImuSensor::kGyroscope;
+  if (name == "accel") return ImuSensor::kAccelerometer;
+  throw py::value_error("sensor: expected gyro or accel, got '" + name + "'");
 }
 
 py::dict Allan(py::handle imu,
-               py::object rate_hz,
+               py::handle rate,
+               py::handle columns,
+               py::handle sensor,
                int taus_per_decade,
                double max_tau_fraction,
                int max_passes,
                const std::string& combine,
                double start,
-               py::object end,
+               double end,
                bool allow_motion,
                double gyro_scale,
-               double accel_scale) {
+               double accel_scale,
+               const std::string& gyro_unit,
+               const std::string& accel_unit,
+               py::handle out) {
+  if (imu.is_none() == columns.is_none()) {
+    throw py::value_error(
+        "imu, columns: give the static recording as imu (a EuRoC imu0/data.csv path or an "
+        "array) or as columns (a plain-columns path) with rate, not both");
+  }
   AllanOptions options;
   options.taus_per_decade = taus_per_decade;
   options.max_tau_fraction = max_tau_fraction;
@@ -104,29 +118,45 @@ py::dict Allan(py::handle imu,
     throw py::value_error("combine: expected mean or max, got '" + combine + "'");
   }
   options.start_s = start;
-  if (!end.is_none()) options.end_s = end.cast<double>();
+  if (end != 0.0) options.end_s = end;  // 0: the end, as --end
   if (!(options.start_s >= 0.0) || !(options.end_s > options.start_s)) {
     throw py::value_error("start, end: expected 0 <= start < end (seconds)");
   }
   options.motion_policy = allow_motion ? MotionPolicy::kMarkUnreliable : MotionPolicy::kRefuse;
-  PositiveArgument(gyro_scale, "gyro_scale");
-  PositiveArgument(accel_scale, "accel_scale");
+  AllanClusterSizes(1, options.taus_per_decade, options.max_tau_fraction);
+  // The units as the command combines them: --gyro-unit / --accel-unit times the scales.
+  const ImuReadOptions units = ImuUnitReadOptions(accel_unit, gyro_unit);
+  StaticReadOptions read;
+  read.gyro_scale = units.gyro_scale * PositiveArgument(gyro_scale, "gyro_scale");
+  read.accel_scale = units.accel_scale * PositiveArgument(accel_scale, "accel_scale");
+  read.check_accel_units = units.check_accel_units;
+  const std::optional<ImuSensor> axes_of = SensorArgument(sensor);
+  const std::unique_ptr<OutputDir> output = OutputArgument(out);
+
   StaticRecording recording;
   if (const std::optional<std::string> path = AsPath(imu)) {
-    if (!rate_hz.is_none()) {
-      throw py::value_error("rate_hz: is for arrays; EuRoC files carry timestamps");
+    if (!rate.is_none() || axes_of) {
+      throw py::value_error("rate, sensor: are for arrays and columns; EuRoC files carry "
+                            "timestamps");
     }
-    StaticReadOptions read;
-    read.gyro_scale = gyro_scale;
-    read.accel_scale = accel_scale;
     recording = RunWithoutGil([&] { return ReadEurocStaticRecording(*path, read); });
+  } else if (!columns.is_none()) {
+    if (rate.is_none()) throw py::value_error("rate: required with columns");
+    const double rate_hz = PositiveArgument(rate.cast<double>(), "rate");
+    const std::string path = PathArgument(columns, "columns");
+    recording = RunWithoutGil(
+        [&] { return ReadColumnStaticRecording(path, rate_hz, axes_of, read); });
   } else {
-    if (rate_hz.is_none()) throw py::value_error("rate_hz: required with an array");
-    recording = RecordingFromArray(imu, rate_hz.cast<double>(), gyro_scale, accel_scale);
+    if (rate.is_none()) throw py::value_error("rate: required with an array");
+    const double rate_hz = PositiveArgument(rate.cast<double>(), "rate");
+    const std::vector<std::vector<double>> values = ArrayColumns(imu);
+    // Errors name the argument; result.yaml's `source` says what it was.
+    recording = StaticRecordingFromColumns(values, rate_hz, axes_of, "imu", read);
+    recording.source = "numpy array";
   }
-  const std::string yaml = RunWithoutGil(
-      [&] { return AllanResultYamlText(ComputeAllan(std::move(recording), options)); });
-  return YamlTextToDict(yaml);
+  const std::vector<OutputFile> files = RunWithoutGil(
+      [&] { return AllanOutputFiles(ComputeAllan(std::move(recording), options)); });
+  return FinishOutputs(output.get(), files);
 }
 
 }  // namespace
@@ -144,22 +174,31 @@ void BindAllan(py::module_& m) {
 overlapping at every one (no work budget).)");
   m.def("allan",
         &Allan,
-        py::arg("imu"),
-        py::arg("rate_hz") = py::none(),
+        py::arg("imu") = py::none(),
+        py::arg("rate") = py::none(),
         py::kw_only(),
+        py::arg("columns") = py::none(),
+        py::arg("sensor") = py::none(),
         py::arg("taus_per_decade") = 10,
         py::arg("max_tau_fraction") = 0.1,
         py::arg("max_passes") = kDefaultAllanMaxPasses,
         py::arg("combine") = "mean",
         py::arg("start") = 0.0,
-        py::arg("end") = py::none(),
+        py::arg("end") = 0.0,
         py::arg("allow_motion") = false,
         py::arg("gyro_scale") = 1.0,
         py::arg("accel_scale") = 1.0,
-        R"(IMU noise from a static recording, as `splinecal allan`: imu is an array (n, 6) of
-gyro xyz [rad/s] and accel xyz [m/s^2] at rate_hz, or the path of a EuRoC imu0/data.csv.
-max_passes is the work budget of `--max-passes` (0: always fully overlapping). Returns
-result.yaml's content as a dict (Kalibr densities, every term per axis).)");
+        py::arg("gyro_unit") = "rad/s",
+        py::arg("accel_unit") = "m/s^2",
+        py::arg("out") = py::none(),
+        R"(IMU noise from a static recording, as `splinecal allan` with its flags as keywords.
+imu: the path of a EuRoC imu0/data.csv, or an array (n, 6) of gyro xyz [rad/s] and accel xyz
+[m/s^2] (or (n, 1..3) of one sensor, with sensor="gyro" or "accel") sampled at rate [Hz];
+columns: the path of a plain-columns file at rate (instead of imu). Arrays are checked as the
+command checks a file: an accelerometer in g is refused (accel_unit="g" or accel_scale=9.80665
+reads it). max_passes is the work budget (0: always fully overlapping); end 0: the end. out: a
+folder to write allan.csv, imu.yaml, result.yaml and allan.svg to. Returns result.yaml's content
+as a dict (Kalibr densities, every term per axis).)");
 }
 
 }  // namespace python

@@ -14,6 +14,10 @@ void BindSimulate(pybind11::module_& m);   // simulate (simulate_bindings.cc)
 void BindFit(pybind11::module_& m);        // fit (fit_bindings.cc)
 void BindCalibrate(pybind11::module_& m);  // calibrate (calibrate_bindings.cc)
 void BindDetect(pybind11::module_& m);     // detect (detect_bindings.cc)
+void BindIntrinsics(pybind11::module_& m);  // intrinsics (intrinsics_bindings.cc)
+void BindEvaluate(pybind11::module_& m);    // evaluate (evaluate_bindings.cc)
+void BindIntegrate(pybind11::module_& m);   // integrate (integrate_bindings.cc)
+void BindAlign(pybind11::module_& m);       // align (align_bindings.cc)
 
 }  // namespace python
 }  // namespace splinecal

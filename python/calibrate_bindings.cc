@@ -1,16 +1,21 @@
-// splinecal.calibrate: `splinecal calibrate` (calib/calibrate.h) with a target, returning its
-// result.yaml (report/calibrate_report.h) as a dict plus the estimated spline.
+// splinecal.calibrate: `splinecal calibrate` (calib/calibrate_run.h) with every flag as a
+// keyword, returning its result.yaml (report/command_outputs.h) as a dict plus the estimated
+// spline; the cameras are chosen as the command chooses them (calib/camera_selection.h).
 #include <pybind11/pybind11.h>
 
+#include <memory>
+
 #include "bindings.h"
+#include "command_outputs.h"
 #include "estimate_arguments.h"
 #include "interruptible.h"
 #include "numpy_io.h"
-#include "splinecal/calib/calibrate.h"
+#include "splinecal/calib/calibrate_run.h"
+#include "splinecal/calib/camera_selection.h"
 #include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/target_yaml.h"
-#include "splinecal/report/calibrate_report.h"
-#include "yaml_to_python.h"
+#include "splinecal/report/command_outputs.h"
 
 namespace splinecal {
 namespace python {
@@ -21,9 +26,15 @@ py::dict CalibrateFunction(py::handle imu,
                            py::handle observations,
                            py::handle camchain,
                            py::handle target,
+                           py::handle cameras,
+                           py::handle initial_poses,
                            py::object imu_yaml,
                            const std::string& imu_noise,
                            bool rolling_shutter,
+                           const std::string& intrinsics,
+                           const std::string& camera_chain,
+                           const std::string& target_scale,
+                           bool hold_camera_chain,
                            bool estimate_intrinsics,
                            bool no_time_offset,
                            double knot_spacing,
@@ -34,27 +45,62 @@ py::dict CalibrateFunction(py::handle imu,
                            double gravity,
                            const std::string& accel_unit,
                            const std::string& gyro_unit,
-                           int threads) {
+                           int threads,
+                           py::handle out) {
   const EstimateArguments arguments{
       knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads, trajectory};
   CalibrateOptions options;
   ApplyEstimateArguments(arguments, &options.model, &options.solver);
   options.rolling_shutter = rolling_shutter;
   options.estimate_time_offset = !no_time_offset;
-  options.estimate_intrinsics = estimate_intrinsics;
+  options.intrinsics = ParseParameterMode(
+      "intrinsics", intrinsics, estimate_intrinsics, ParameterMode::kFree, "estimate_intrinsics");
+  options.camera_chain = ParseParameterMode(
+      "camera_chain", camera_chain, hold_camera_chain, ParameterMode::kHeld, "hold_camera_chain");
+  options.target_scale = ParseTargetScaleMode("target_scale", target_scale);
+  options.command_line = "splinecal.calibrate (Python)";
   options.pixel_sigma_px = NonNegativeArgument(pixel_sigma, "pixel_sigma");
   options.huber_px = NonNegativeArgument(huber, "huber");
   if (min_corners < 4) throw py::value_error("min_corners: must be at least 4");
   options.min_corners_per_frame = min_corners;
+  if (target.is_none() && initial_poses.is_none()) {
+    throw py::value_error(
+        "target, initial_poses: without a target, initial_poses is needed (the IMU trajectory, "
+        "e.g. splinecal.align on SLAM poses)");
+  }
 
-  const Camchain rig = ReadCamchainYaml(PathArgument(camchain, "camchain"));
-  const CalibrationTarget board = ReadTargetYaml(PathArgument(target, "target"));
-  const std::vector<Observation> points = Observations(observations);
+  CalibrateReportInputs inputs;
+  inputs.imu_path = AsPath(imu).value_or("");
+  inputs.observations_path = AsPath(observations).value_or("");
+  inputs.camchain_path = PathArgument(camchain, "camchain");
+  inputs.target_path = target.is_none() ? "" : PathArgument(target, "target");
+  inputs.initial_poses_path = AsPath(initial_poses).value_or("");
+  inputs.imu_yaml_path = ImuYamlPath(arguments);
+  const std::unique_ptr<OutputDir> output = OutputArgument(out);
+
+  Camchain rig = ReadCamchainYaml(inputs.camchain_path);
+  std::unique_ptr<CalibrationTarget> board;
+  if (!target.is_none()) {
+    board = std::make_unique<CalibrationTarget>(ReadTargetYaml(inputs.target_path));
+  }
+  std::vector<Observation> points = Observations(observations);
+  if (!target.is_none()) options.target_name = inputs.target_path;
+  SelectCalibrationCameras(CommaListArgument(cameras, "cameras"),
+                           inputs.camchain_path,
+                           inputs.observations_path.empty() ? "observations"
+                                                            : inputs.observations_path,
+                           ReadCamchainCovariances(inputs.camchain_path, rig),
+                           &rig,
+                           &points,
+                           &options);
   const std::vector<ImuSample> samples = ImuInUnits(imu, arguments);
+  std::vector<StampedPose> initial;
+  if (!initial_poses.is_none()) initial = StampedPoses(initial_poses, "initial_poses");
 
-  const CalibrationResult result = RunInterruptible(
-      &options.solver, [&] { return Calibrate(samples, points, rig, &board, options); });
-  py::dict dict = YamlTextToDict(CalibrateResultYaml(result, options));
+  const CalibrationResult result = RunInterruptible(&options.solver, [&] {
+    return CalibrateWithInitialPoses(samples, points, rig, board.get(), initial, options);
+  });
+  py::dict dict = FinishOutputs(output.get(), CalibrateOutputFiles(result, options, inputs));
   dict["se3_spline"] = py::cast(result.MakeSpline());
   return dict;
 }
@@ -67,11 +113,17 @@ void BindCalibrate(py::module_& m) {
         py::arg("imu"),
         py::arg("observations"),
         py::arg("camchain"),
-        py::arg("target"),
+        py::arg("target") = py::none(),
         py::kw_only(),
+        py::arg("cameras") = "",
+        py::arg("initial_poses") = py::none(),
         py::arg("imu_yaml") = py::none(),
         py::arg("imu_noise") = "estimated",
         py::arg("rolling_shutter") = false,
+        py::arg("intrinsics") = "",
+        py::arg("camera_chain") = "",
+        py::arg("target_scale") = "check",
+        py::arg("hold_camera_chain") = false,
         py::arg("estimate_intrinsics") = false,
         py::arg("no_time_offset") = false,
         py::arg("knot_spacing") = 0.05,
@@ -83,10 +135,16 @@ void BindCalibrate(py::module_& m) {
         py::arg("accel_unit") = "m/s^2",
         py::arg("gyro_unit") = "rad/s",
         py::arg("threads") = 1,
+        py::arg("out") = py::none(),
         R"(Camera-IMU calibration as `splinecal calibrate`, with its flags as keywords. imu: a
 EuRoC imu0/data.csv path or {t_ns, gyro, accel}; observations: an observations.csv path or
-{t_ns, cam_id, point_id, uv}; camchain and target: Kalibr YAML paths. Returns result.yaml's
-keys plus se3_spline (SE3Spline). Ctrl-C stops the solve (KeyboardInterrupt).)");
+{t_ns, cam_id, point_id, uv}; camchain and target: Kalibr YAML paths (target None: natural
+landmarks only, which needs initial_poses: a EuRoC ground truth / TUM path or {t_ns, T_w_s});
+cameras: "0,2" or [0, 2] (default: all); intrinsics, camera_chain: "held", "prior" or "free"
+("": the camchain decides, docs/calibrate.md); target_scale: "check", "free" or "held". out: a folder to write the command's files to
+(camchain-imucam.yaml, result.yaml, reprojection_errors.csv, spline.csv, report.html).
+Returns result.yaml's keys plus se3_spline (SE3Spline). Ctrl-C stops the solve
+(KeyboardInterrupt).)");
 }
 
 }  // namespace python

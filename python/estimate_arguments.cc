@@ -2,19 +2,12 @@
 
 #include "numpy_io.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/io/imu_units.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/spline/trajectory_model.h"
-#include "splinecal/units.h"
 
 namespace splinecal {
 namespace python {
-
-namespace {
-
-// The g of "units of g" [m/s^2], as `--accel-unit g`.
-constexpr double kStandardGravity = 9.80665;
-
-}  // namespace
 
 void ApplyEstimateArguments(const EstimateArguments& arguments,
                             SplineModelOptions* model,
@@ -57,20 +50,15 @@ TrajectoryModel TrajectoryArgument(const std::string& name) {
 }
 
 std::vector<ImuSample> ImuInUnits(py::handle imu, const EstimateArguments& arguments) {
-  ImuReadOptions read;
+  return ImuInUnits(imu, arguments.accel_unit, arguments.gyro_unit);
+}
+
+std::vector<ImuSample> ImuInUnits(py::handle imu,
+                                  const std::string& accel_unit,
+                                  const std::string& gyro_unit) {
+  ImuReadOptions read = ImuUnitReadOptions(accel_unit, gyro_unit);
   read.yaml_hint =
       "IMU noise densities (Kalibr's imu.yaml) go to imu_yaml; imu takes the IMU samples";
-  if (arguments.accel_unit == "g") {
-    read.accel_scale = kStandardGravity;
-    read.check_accel_units = false;
-  } else if (arguments.accel_unit != "m/s^2") {
-    throw py::value_error("accel_unit: expected m/s^2 or g, got '" + arguments.accel_unit + "'");
-  }
-  if (arguments.gyro_unit == "deg/s") {
-    read.gyro_scale = kDegToRad;
-  } else if (arguments.gyro_unit != "rad/s") {
-    throw py::value_error("gyro_unit: expected rad/s or deg/s, got '" + arguments.gyro_unit + "'");
-  }
   const bool from_file = AsPath(imu).has_value();
   std::vector<ImuSample> samples = ImuSamples(imu, read);
   if (!from_file) {  // the reader scales what it reads; arrays are scaled here

@@ -38,6 +38,10 @@ TrajectoryModel TrajectoryArgument(const std::string& name);
 
 // The IMU samples of `imu` (a path or a dict, numpy_io.h) in rad/s and m/s^2.
 std::vector<ImuSample> ImuInUnits(pybind11::handle imu, const EstimateArguments& arguments);
+// The same for the units named as --accel-unit and --gyro-unit name them (io/imu_units.h).
+std::vector<ImuSample> ImuInUnits(pybind11::handle imu,
+                                  const std::string& accel_unit,
+                                  const std::string& gyro_unit);
 
 // The path of imu_yaml for the report inputs ("" for None).
 std::string ImuYamlPath(const EstimateArguments& arguments);

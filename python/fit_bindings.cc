@@ -1,15 +1,18 @@
-// splinecal.fit: `splinecal fit` (calib/fit.h) returning its result.yaml (report/fit_report.h)
-// as a dict, plus the fitted spline and the IMU residuals as arrays.
+// splinecal.fit: `splinecal fit` (calib/fit.h) returning its result.yaml
+// (report/command_outputs.h) as a dict, plus the fitted spline and the IMU residuals as arrays.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <memory>
+
 #include "bindings.h"
+#include "command_outputs.h"
 #include "estimate_arguments.h"
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/calib/fit.h"
+#include "splinecal/report/command_outputs.h"
 #include "splinecal/report/fit_report.h"
-#include "yaml_to_python.h"
 
 namespace splinecal {
 namespace python {
@@ -42,7 +45,8 @@ py::dict FitFunction(py::handle imu,
                      double gravity,
                      const std::string& accel_unit,
                      const std::string& gyro_unit,
-                     int threads) {
+                     int threads,
+                     py::handle out) {
   const EstimateArguments arguments{
       knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads, trajectory};
   FitOptions options;
@@ -73,12 +77,13 @@ py::dict FitFunction(py::handle imu,
   inputs.imu_path = AsPath(imu).value_or("");
   inputs.poses_path = AsPath(poses).value_or("");
   inputs.imu_yaml_path = ImuYamlPath(arguments);
+  const std::unique_ptr<OutputDir> output = OutputArgument(out);
   const std::vector<ImuSample> samples = ImuInUnits(imu, arguments);
   const std::vector<StampedPose> stamped = StampedPoses(poses, "poses");
 
   const FitResult result =
       RunInterruptible(&options.solver, [&] { return Fit(samples, stamped, options); });
-  py::dict dict = YamlTextToDict(FitResultYaml(result, inputs));
+  py::dict dict = FinishOutputs(output.get(), FitOutputFiles(result, inputs));
   dict["se3_spline"] = py::cast(result.MakeSpline());
   dict["imu_residuals"] = ImuResidualsDict(result.imu_samples);
   return dict;
@@ -107,11 +112,13 @@ void BindFit(py::module_& m) {
         py::arg("accel_unit") = "m/s^2",
         py::arg("gyro_unit") = "rad/s",
         py::arg("threads") = 1,
+        py::arg("out") = py::none(),
         R"(The continuous-time fit of `splinecal fit`, with its flags as keywords. imu: a EuRoC
 imu0/data.csv path or {t_ns, gyro, accel}; poses: a EuRoC ground truth / TUM path or
-{t_ns, T_w_s (n, 4, 4)}. Returns result.yaml's keys plus se3_spline (SE3Spline) and
-imu_residuals {t_ns, gyro_measured, gyro_fitted, accel_measured, accel_fitted}.
-Ctrl-C stops the solve (KeyboardInterrupt).)");
+{t_ns, T_w_s (n, 4, 4)}. out: a folder to write the command's files to (result.yaml,
+spline.csv, residuals.csv, pose_residuals.csv, report.html). Returns result.yaml's keys plus
+se3_spline (SE3Spline) and imu_residuals {t_ns, gyro_measured, gyro_fitted, accel_measured,
+accel_fitted}. Ctrl-C stops the solve (KeyboardInterrupt).)");
 }
 
 }  // namespace python

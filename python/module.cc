@@ -16,4 +16,8 @@ PYBIND11_MODULE(_splinecal, m) {
   splinecal::python::BindFit(m);
   splinecal::python::BindCalibrate(m);
   splinecal::python::BindDetect(m);
+  splinecal::python::BindIntrinsics(m);
+  splinecal::python::BindEvaluate(m);
+  splinecal::python::BindIntegrate(m);
+  splinecal::python::BindAlign(m);
 }

@@ -66,6 +66,21 @@ std::string PathArgument(py::handle object, const std::string& name) {
   return *path;
 }
 
+std::string CommaListArgument(py::handle object, const std::string& name) {
+  if (py::isinstance<py::str>(object)) return object.cast<std::string>();
+  if (!py::isinstance<py::sequence>(object)) {
+    throw py::type_error(name + ": expected a str (comma-separated) or a list");
+  }
+  std::string text;
+  for (py::handle item : object) {
+    if (!py::isinstance<py::str>(item) && !py::isinstance<py::int_>(item)) {
+      throw py::type_error(name + ": expected a list of str or int");
+    }
+    text += (text.empty() ? "" : ",") + py::str(item).cast<std::string>();
+  }
+  return text;
+}
+
 double PositiveArgument(double value, const std::string& name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw py::value_error(name + ": must be a positive number, got " + std::to_string(value));
@@ -296,6 +311,52 @@ py::array_t<double> PoseArray(const std::vector<SE3d>& poses) {
     Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(data + 16 * i) = poses[i].matrix();
   }
   return array;
+}
+
+py::dict GroundTruthDict(const std::vector<GroundTruthState>& truth) {
+  std::vector<SE3d> T_w_s;
+  for (const GroundTruthState& s : truth) {
+    T_w_s.emplace_back(SO3d::FromQuaternion(s.q_w_s), s.p_w_s);
+  }
+  py::dict dict;
+  dict["t_ns"] = TimeColumn(truth);
+  dict["T_w_s"] = PoseArray(T_w_s);
+  dict["v_w"] = Vector3Column(truth, [](const auto& s) { return s.v_w; });
+  dict["gyro_bias"] = Vector3Column(truth, [](const auto& s) { return s.gyro_bias; });
+  dict["accel_bias"] = Vector3Column(truth, [](const auto& s) { return s.accel_bias; });
+  return dict;
+}
+
+std::vector<GroundTruthState> GroundTruthStates(py::handle truth, const std::string& name) {
+  if (const std::optional<std::string> path = AsPath(truth)) return ReadEurocGroundTruth(*path);
+  const std::string keys = "t_ns, T_w_s, v_w, gyro_bias, accel_bias";
+  const std::vector<int64_t> t_ns =
+      TimesNs(RequiredItem(truth, name, "t_ns", keys), name + "['t_ns']", /*increasing=*/true);
+  const auto n = static_cast<py::ssize_t>(t_ns.size());
+  const std::vector<SE3d> T_w_s =
+      PosesFromArray(RequiredItem(truth, name, "T_w_s", keys), name + "['T_w_s']");
+  if (static_cast<py::ssize_t>(T_w_s.size()) != n) {
+    throw py::value_error(name + "['T_w_s']: expected " + std::to_string(n) +
+                          " poses to match " + name + "['t_ns'], got " +
+                          std::to_string(T_w_s.size()));
+  }
+  std::vector<GroundTruthState> states(t_ns.size());
+  const char* const columns[] = {"v_w", "gyro_bias", "accel_bias"};
+  Eigen::Vector3d GroundTruthState::*fields[] = {
+      &GroundTruthState::v_w, &GroundTruthState::gyro_bias, &GroundTruthState::accel_bias};
+  for (int c = 0; c < 3; ++c) {
+    const auto values = DoubleArray(
+        RequiredItem(truth, name, columns[c], keys), name + "['" + columns[c] + "']", {n, 3});
+    for (py::ssize_t i = 0; i < n; ++i) {
+      states[i].*fields[c] = Eigen::Map<const Eigen::Vector3d>(values.data() + 3 * i);
+    }
+  }
+  for (py::ssize_t i = 0; i < n; ++i) {
+    states[i].t_ns = t_ns[i];
+    states[i].p_w_s = T_w_s[i].translation();
+    states[i].q_w_s = T_w_s[i].so3().quaternion();
+  }
+  return states;
 }
 
 }  // namespace python

@@ -35,6 +35,10 @@ std::string PathArgument(py::handle object, const std::string& name);
 double PositiveArgument(double value, const std::string& name);
 double NonNegativeArgument(double value, const std::string& name);
 
+// A list argument as the command's comma-separated flag takes it ("0,2", "euler,rk4"): a str is
+// passed on as it is, a sequence of str or int is joined with commas; TypeError otherwise.
+std::string CommaListArgument(py::handle object, const std::string& name);
+
 // A 3-vector argument (any sequence of three finite numbers).
 Eigen::Vector3d Vector3Argument(py::handle object, const std::string& name);
 
@@ -72,6 +76,12 @@ std::vector<StampedPose> StampedPoses(py::handle poses, const std::string& name)
 // (n,), "point_id": int (n,), "uv": (n, 2) [px]} (t_ns: frame times, any order).
 std::vector<Observation> Observations(py::handle observations);
 py::dict ObservationsDict(const std::vector<Observation>& observations);
+
+// Ground truth states: a path (EuRoC state_groundtruth_estimate0/data.csv) or a dict
+// {"t_ns", "T_w_s" (n, 4, 4), "v_w", "gyro_bias", "accel_bias" (n, 3)}, as GroundTruthDict
+// returns them (the ground truth of splinecal.simulate and splinecal.align go straight in).
+std::vector<GroundTruthState> GroundTruthStates(py::handle truth, const std::string& name);
+py::dict GroundTruthDict(const std::vector<GroundTruthState>& truth);
 
 // Output arrays.
 py::array_t<int64_t> TimesArray(const std::vector<int64_t>& t_ns);

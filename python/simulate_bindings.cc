@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "bindings.h"
+#include "command_outputs.h"
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/error.h"
@@ -15,9 +16,9 @@
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/target_yaml.h"
+#include "splinecal/report/command_outputs.h"
 #include "splinecal/sim/simulation_result.h"
 #include "splinecal/sim/trajectories.h"
-#include "yaml_to_python.h"
 
 namespace splinecal {
 namespace python {
@@ -26,20 +27,6 @@ namespace {
 
 // `splinecal simulate`'s limit: 2e7 samples is 27 hours at 200 Hz (~200 bytes each in memory).
 constexpr double kMaxSamples = 2e7;
-
-py::dict GroundTruthDict(const std::vector<GroundTruthState>& truth) {
-  std::vector<SE3d> T_w_s;
-  for (const GroundTruthState& s : truth) {
-    T_w_s.emplace_back(SO3d::FromQuaternion(s.q_w_s), s.p_w_s);
-  }
-  py::dict dict;
-  dict["t_ns"] = TimeColumn(truth);
-  dict["T_w_s"] = PoseArray(T_w_s);
-  dict["v_w"] = Vector3Column(truth, [](const auto& s) { return s.v_w; });
-  dict["gyro_bias"] = Vector3Column(truth, [](const auto& s) { return s.gyro_bias; });
-  dict["accel_bias"] = Vector3Column(truth, [](const auto& s) { return s.accel_bias; });
-  return dict;
-}
 
 py::dict ImuDict(const std::vector<ImuSample>& imu) {
   py::dict dict;
@@ -68,7 +55,8 @@ py::dict Simulate(const std::string& trajectory_name,
                   double camera_rate,
                   double pixel_noise,
                   py::handle gyro_bias,
-                  py::handle accel_bias) {
+                  py::handle accel_bias,
+                  py::handle out) {
   SimulationRun run;
   SimulationOptions& options = run.options;
   options.imu_rate_hz = PositiveArgument(imu_rate, "imu_rate");
@@ -152,11 +140,12 @@ py::dict Simulate(const std::string& trajectory_name,
     throw py::value_error("duration: more than 2e7 IMU samples: shorten it");
   }
 
+  const std::unique_ptr<OutputDir> output = OutputArgument(out);
   RunWithoutGil([&] {
     RunSimulation(trajectory, PoseFitOptions(), &run);
     return 0;
   });
-  py::dict result = YamlTextToDict(SimulationResultYaml(run));
+  py::dict result = FinishOutputs(output.get(), SimulationOutputFiles(run));
   result["imu"] = ImuDict(run.imu);
   result["ground_truth"] = GroundTruthDict(run.truth);
   result["se3_spline"] = py::cast(run.spline.fit.MakeSpline());
@@ -191,11 +180,12 @@ void BindSimulate(py::module_& m) {
         py::arg("pixel_noise") = 0.5,
         py::arg("gyro_bias") = std::vector<double>{0.0, 0.0, 0.0},
         py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
+        py::arg("out") = py::none(),
         R"(Simulated IMU data (and camera observations with camchain), as `splinecal simulate`
 with the same keyword names as its flags (duration None: 20 s, or the whole trajectory_file).
 Returns result.yaml's keys plus imu {t_ns, gyro, accel}, ground_truth {t_ns, T_w_s, v_w,
 gyro_bias, accel_bias}, se3_spline (SE3Spline) and with camchain observations {t_ns, cam_id,
-point_id, uv}.)");
+point_id, uv}. out: a folder to write the command's files to (mav0/imu0/data.csv, ...).)");
 }
 
 }  // namespace python

@@ -72,6 +72,7 @@
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/image_folder.h"
+#include "splinecal/io/imu_units.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/number_parser.h"
 #include "splinecal/io/number_parser_avx2.h"
@@ -148,10 +149,13 @@
 
 // calib/
 #include "splinecal/calib/calibrate.h"
+#include "splinecal/calib/calibrate_run.h"
+#include "splinecal/calib/camera_selection.h"
 #include "splinecal/calib/fit.h"
 
 // intrinsics/
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
+#include "splinecal/intrinsics/camera_specs.h"
 #include "splinecal/intrinsics/initial_intrinsics.h"
 #include "splinecal/intrinsics/intrinsics_observability.h"
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
@@ -161,8 +165,11 @@
 // report/
 #include "splinecal/report/align_report.h"
 #include "splinecal/report/calibrate_report.h"
+#include "splinecal/report/command_outputs.h"
+#include "splinecal/report/evaluate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"
+#include "splinecal/report/integrate_report.h"
 #include "splinecal/report/intrinsics_report.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"

@@ -101,3 +101,11 @@ def quaternion_to_matrix(q_wxyz):
         np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
         np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1),
     ], -2)
+
+
+def assert_same_files(actual_dir, expected_dir, names):
+    """Each file of `names` has the same bytes in both folders (Python's out= and the command's
+    --out: one library function formats both)."""
+    for name in names:
+        actual = (pathlib.Path(actual_dir) / name).read_bytes()
+        assert actual == (pathlib.Path(expected_dir) / name).read_bytes(), name

@@ -1,8 +1,9 @@
 """allan_deviation against a numpy overlapping Allan deviation; allan against `splinecal allan`."""
 import numpy as np
+import pytest
 
 import splinecal
-from conftest import assert_same, load_yaml, run_tool
+from conftest import assert_same, assert_same_files, load_yaml, run_tool, tool_error
 
 RATE_HZ = 100.0
 
@@ -70,3 +71,47 @@ def test_allan_work_budget():
     exact = splinecal.allan(imu, RATE_HZ, taus_per_decade=1000, max_passes=0)
     assert exact["strided_averaging_times"] == 0
     assert exact["passes_used"] == exact["overlapping_passes"]
+
+
+def static_in_g(n=20000, seed=5):
+    """A static IMU whose accelerometer columns are in g (gravity reads 1): the command refuses
+    it unless told the unit."""
+    rng = np.random.default_rng(seed)
+    return np.hstack([rng.normal(0.0, 1.7e-3, (n, 3)),
+                      rng.normal(0.0, 2e-4, (n, 3)) + [0.0, 0.0, 1.0]])
+
+
+def test_an_array_in_g_is_refused_as_the_command_refuses_the_file(tmp_path):
+    imu = static_in_g()
+    columns = tmp_path / "static_g.txt"
+    np.savetxt(columns, imu, fmt="%.17g")
+    message = tool_error("allan", "--columns", columns, "--rate", RATE_HZ, "--out", tmp_path / "o")
+    with pytest.raises(splinecal.Error) as array_error:
+        splinecal.allan(imu, RATE_HZ)
+    # The same check: the command's line after its file name is the array's after its name.
+    assert "looks like units of g" in str(array_error.value)
+    assert message.split(f"{columns}:", 1)[1] == str(array_error.value).split("imu:", 1)[1]
+    with pytest.raises(splinecal.Error, match="looks like units of g"):
+        splinecal.allan(columns=columns, rate=RATE_HZ)
+    # Told the unit, both read it.
+    in_g = splinecal.allan(imu, RATE_HZ, accel_unit="g")
+    assert in_g["accelerometer_noise_density"] > 0
+
+
+def test_one_sensor_array_needs_the_sensor():
+    gyro = static_in_g()[:, :3]
+    with pytest.raises(splinecal.Error, match="say which sensor"):
+        splinecal.allan(gyro, RATE_HZ)
+    result = splinecal.allan(gyro, RATE_HZ, sensor="gyro")
+    assert "gyroscope_noise_density" in result
+
+
+def test_allan_out_writes_the_command_s_files(tmp_path):
+    imu = static_in_g(seed=6)
+    imu[:, 3:] *= 9.80665
+    columns = tmp_path / "static.txt"
+    np.savetxt(columns, imu, fmt="%.17g")
+    run_tool("allan", "--columns", columns, "--rate", RATE_HZ, "--out", tmp_path / "cli")
+    splinecal.allan(columns=columns, rate=RATE_HZ, out=tmp_path / "py")
+    assert_same_files(tmp_path / "py", tmp_path / "cli",
+                      ("allan.csv", "imu.yaml", "result.yaml", "allan.svg"))

@@ -36,7 +36,7 @@ def poses_dict(n=100):
     (lambda: splinecal.allan_deviation(np.zeros(1000), -1.0), "rate_hz"),
     (lambda: splinecal.allan(np.zeros((1000, 5)), 100.0), "imu"),
     (lambda: splinecal.allan(np.zeros((1000, 6)), 100.0, combine="median"), "combine"),
-    (lambda: splinecal.allan(np.zeros((1000, 6))), "rate_hz"),
+    (lambda: splinecal.allan(np.zeros((1000, 6))), "rate"),
     (lambda: splinecal.detect(np.zeros((10, 10), dtype=np.float32),
                               DATA / "calibration/aprilgrid.yaml"), "image"),
     (lambda: splinecal.detect(np.zeros((10, 10, 3), dtype=np.uint8),

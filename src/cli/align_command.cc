@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,6 +18,7 @@
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/report/align_report.h"
+#include "splinecal/report/command_outputs.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/vio/align.h"
 
@@ -97,10 +97,7 @@ int RunAlign() {
       result.iterations,
       result.condition_number));
 
-  output.WriteFile("result.yaml", AlignResultYaml(result, options));
-  std::ostringstream csv;
-  WriteEurocGroundTruth(result.states_w, &csv);
-  output.WriteFile("aligned_poses.csv", csv.str());
+  output.WriteFiles(AlignOutputFiles(result, options));
   output.Commit();
 
   const Eigen::Vector3d g_w = result.R_w_c0 * result.gravity_c0;

@@ -15,6 +15,7 @@
 #include "splinecal/error.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/static_recording.h"
+#include "splinecal/report/command_outputs.h"
 #include "splinecal/string_printf.h"
 
 DEFINE_int32(taus_per_decade, 10, "Averaging times per decade (before de-duplication)");
@@ -145,10 +146,7 @@ int RunAllan() {
                         recording.axes.front().samples.size() / recording.rate_hz));
 
   const AllanResult result = ComputeAllan(std::move(recording), in.options);
-  output.WriteFile("allan.csv", AllanCsvText(result));
-  output.WriteFile("imu.yaml", AllanImuYamlText(result));
-  output.WriteFile("result.yaml", AllanResultYamlText(result));
-  output.WriteFile("allan.svg", AllanSvgText(result));
+  output.WriteFiles(AllanOutputFiles(result));
   output.Commit();
 
   const std::string summary =

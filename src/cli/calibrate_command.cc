@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "splinecal/calib/calibrate.h"
+#include "splinecal/calib/calibrate_run.h"
+#include "splinecal/calib/camera_selection.h"
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/observation_gates.h"
 #include "splinecal/cli/command.h"
@@ -27,10 +29,9 @@
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/poses.h"
-#include "splinecal/io/spline_csv.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/report/calibrate_report.h"
-#include "camera_selection.h"
+#include "splinecal/report/command_outputs.h"
 
 DEFINE_string(cameras,
               "",
@@ -83,23 +84,6 @@ namespace splinecal {
 namespace cli {
 namespace {
 
-// --intrinsics / --camera-chain: nullopt when empty (the default rule of CalibrateOptions).
-std::optional<ParameterMode> ParameterModeFlag(const char* name, const std::string& value) {
-  if (value.empty()) return std::nullopt;
-  for (ParameterMode mode : {ParameterMode::kHeld, ParameterMode::kPrior, ParameterMode::kFree}) {
-    if (value == ParameterModeName(mode)) return mode;
-  }
-  throw Error(std::string("--") + name + ": expected held, prior or free, got '" + value + "'");
-}
-
-TargetScaleMode TargetScaleModeFlag() {
-  for (TargetScaleMode mode :
-       {TargetScaleMode::kCheck, TargetScaleMode::kFree, TargetScaleMode::kHeld}) {
-    if (FLAGS_target_scale == TargetScaleModeName(mode)) return mode;
-  }
-  throw Error("--target-scale: expected check, free or held, got '" + FLAGS_target_scale + "'");
-}
-
 // `splinecal calibrate` and every flag given, as typed (for result.yaml and report.html).
 std::string CommandLineText() {
   std::string text = "splinecal calibrate";
@@ -115,40 +99,6 @@ std::string CommandLineText() {
     }
   }
   return text;
-}
-
-// A deprecated switch and its new flag must not contradict each other.
-std::optional<ParameterMode> WithAlias(std::optional<ParameterMode> mode,
-                                       bool alias,
-                                       ParameterMode alias_mode,
-                                       const char* alias_name,
-                                       const char* flag_name) {
-  if (!alias) return mode;
-  if (mode && *mode != alias_mode) {
-    throw Error(std::string("--") + alias_name + " contradicts --" + flag_name + " " +
-                ParameterModeName(*mode));
-  }
-  return alias_mode;
-}
-
-// The covariances of the selected cameras, renumbered like the camchain: a camera whose
-// predecessor in the selection is not its predecessor in the file loses its T_cn_cnm1 rows
-// (they are of the file's T_cn_cnm1).
-std::vector<std::optional<CameraCovariance>> SelectCovariances(
-    const std::vector<std::optional<CameraCovariance>>& all, const std::vector<int>& selection) {
-  if (selection.empty()) return all;
-  std::vector<std::optional<CameraCovariance>> chosen;
-  for (size_t k = 0; k < selection.size(); ++k) {
-    std::optional<CameraCovariance> covariance = all[selection[k]];
-    const bool consecutive = k > 0 && selection[k - 1] == selection[k] - 1;
-    if (covariance && covariance->has_T_cn_cnm1 && !consecutive) {
-      const int n = static_cast<int>(covariance->intrinsics.size());
-      covariance->matrix = Eigen::MatrixXd(covariance->matrix.topLeftCorner(n, n));
-      covariance->has_T_cn_cnm1 = false;
-    }
-    chosen.push_back(covariance);
-  }
-  return chosen;
 }
 
 // What calibrate reads and checks before the initial guess and the solve
@@ -182,13 +132,13 @@ CalibrateInputs ReadCalibrateInputs() {
   options.estimate_time_offset = !FLAGS_no_time_offset;
   options.pixel_sigma_px = NonNegativeFlag("pixel-sigma", FLAGS_pixel_sigma);
   options.huber_px = NonNegativeFlag("huber", FLAGS_huber);
-  options.intrinsics = WithAlias(ParameterModeFlag("intrinsics", FLAGS_intrinsics),
-                                 FLAGS_estimate_intrinsics, ParameterMode::kFree,
-                                 "estimate-intrinsics", "intrinsics");
-  options.camera_chain = WithAlias(ParameterModeFlag("camera-chain", FLAGS_camera_chain),
-                                   FLAGS_hold_camera_chain, ParameterMode::kHeld,
-                                   "hold-camera-chain", "camera-chain");
-  options.target_scale = TargetScaleModeFlag();
+  options.intrinsics = ParseParameterMode("--intrinsics", FLAGS_intrinsics,
+                                          FLAGS_estimate_intrinsics, ParameterMode::kFree,
+                                          "--estimate-intrinsics");
+  options.camera_chain = ParseParameterMode("--camera-chain", FLAGS_camera_chain,
+                                            FLAGS_hold_camera_chain, ParameterMode::kHeld,
+                                            "--hold-camera-chain");
+  options.target_scale = ParseTargetScaleMode("--target-scale", FLAGS_target_scale);
   options.command_line = CommandLineText();
   if (!FLAGS_target.empty()) options.target_name = FLAGS_target;
   if (FLAGS_min_corners < 4) throw Error("--min-corners: must be at least 4");
@@ -205,47 +155,18 @@ CalibrateInputs ReadCalibrateInputs() {
     in.target = std::make_unique<CalibrationTarget>(ReadTargetYaml(FLAGS_target));
   }
   in.observations = ReadObservationsCsv(observations_path);
-  CheckCameraIds(in.observations, in.camchain, observations_path, camchain_path);
   // The library checks again (Calibrate); here the message names the files.
   CheckObservationInputs(in.observations,
                          in.target.get(),
                          in.camchain,
                          {observations_path, FLAGS_target, camchain_path});
-  const std::vector<int> selection =
-      ParseCameraSelection(FLAGS_cameras, static_cast<int>(in.camchain.size()));
-  options.camchain_covariances = SelectCovariances(covariances, selection);
-  std::vector<int> chosen = selection;
-  if (chosen.empty()) {
-    for (size_t n = 0; n < in.camchain.size(); ++n) chosen.push_back(static_cast<int>(n));
-  }
-  // The default chain mode is a prior when every camera after the first has T_cn_cnm1 rows.
-  bool chain_rows = chosen.size() > 1;
-  for (size_t k = 1; k < chosen.size(); ++k) {
-    const std::optional<CameraCovariance>& covariance = options.camchain_covariances[k];
-    if (!covariance || !covariance->has_T_cn_cnm1) chain_rows = false;
-  }
-  const bool wants_chain = options.camera_chain ? *options.camera_chain != ParameterMode::kFree
-                                                : chain_rows;
-  if (wants_chain) {
-    // T_cn_c0 of every camera from the T_cn_cnm1 chain, then relative to the first selected.
-    std::vector<SE3d> T_n_0 = {SE3d()};
-    for (size_t n = 1; n < in.camchain.size(); ++n) {
-      if (!in.camchain[n].T_cn_cnm1) {
-        throw Error(camchain_path, 0,
-                    "--camera-chain " +
-                        std::string(options.camera_chain ? ParameterModeName(*options.camera_chain)
-                                                         : "prior") +
-                        ": cam" + std::to_string(n) +
-                        " has no T_cn_cnm1 (the camera chain `splinecal intrinsics` writes)");
-      }
-      T_n_0.push_back(*in.camchain[n].T_cn_cnm1 * T_n_0.back());
-    }
-    for (int n : chosen) {
-      options.camera_chain_T_cn_c0.push_back(T_n_0[n] * T_n_0[chosen.front()].inverse());
-    }
-  }
-  SelectCameras(selection, &in.camchain, &in.observations);
-  CheckEveryCameraObserved(in.observations, in.camchain, selection, observations_path);
+  SelectCalibrationCameras(FLAGS_cameras,
+                           camchain_path,
+                           observations_path,
+                           covariances,
+                           &in.camchain,
+                           &in.observations,
+                           &options);
   in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
   if (!FLAGS_initial_poses.empty()) in.initial_poses = ReadPoses(FLAGS_initial_poses);
   return in;
@@ -265,17 +186,14 @@ int RunCalibrate() {
   Progress("calibrate: " + std::to_string(observations.size()) + " observations, " +
            std::to_string(imu.size()) + " IMU samples, " + std::to_string(camchain.size()) +
            " camera(s)");
-  std::vector<std::string> guess_warnings;
-  std::unique_ptr<CalibrationInitialGuess> guess;
   CalibrationResult result;
   try {
     if (!in.initial_poses.empty()) {
       Progress("calibrate: initial guess from " + std::to_string(in.initial_poses.size()) +
                " initial poses");
-      guess = std::make_unique<CalibrationInitialGuess>(InitialGuessFromImuPoses(
-          imu, in.initial_poses, observations, camchain, options, &guess_warnings));
     }
-    result = Calibrate(imu, observations, camchain, in.target.get(), options, guess.get());
+    result = CalibrateWithInitialPoses(
+        imu, observations, camchain, in.target.get(), in.initial_poses, options);
   } catch (const Error& e) {
     // The library's messages start with "calibrate: "; the front end names the command already.
     const std::string prefix = "calibrate: ";
@@ -284,14 +202,7 @@ int RunCalibrate() {
     }
     throw;
   }
-  result.warnings.insert(result.warnings.begin(), guess_warnings.begin(), guess_warnings.end());
 
-  output.WriteFile("camchain-imucam.yaml", CamchainYamlText(result.camchain));
-  output.WriteFile("result.yaml", CalibrateResultYaml(result, options));
-  output.WriteFile("reprojection_errors.csv", CalibrateReprojectionCsv(result));
-  std::ostringstream spline_csv;
-  WriteSplineCsv(result.MakeSpline(), &spline_csv);
-  output.WriteFile("spline.csv", spline_csv.str());
   // In CalibrateReportInputs' order: IMU, observations, camchain, target, initial poses, imu.yaml.
   const CalibrateReportInputs report_inputs = {FLAGS_imu,
                                                FLAGS_observations,
@@ -299,7 +210,7 @@ int RunCalibrate() {
                                                FLAGS_target,
                                                FLAGS_initial_poses,
                                                FLAGS_imu_yaml};
-  output.WriteFile("report.html", CalibrateReportHtml(result, options, report_inputs));
+  output.WriteFiles(CalibrateOutputFiles(result, options, report_inputs));
   output.Commit();
 
   std::fputs(CalibrateSummaryText(result).c_str(), stdout);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "splinecal/error.h"
+#include "splinecal/io/imu_units.h"
 #include "splinecal/units.h"
 
 DEFINE_string(out,
@@ -128,23 +129,11 @@ ImuNoiseMode ImuNoiseModeFlag() {
 }
 
 ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml) {
-  constexpr double kStandardGravity = 9.80665;  // the g of "units of g" [m/s^2]
-  ImuReadOptions options;
+  ImuReadOptions options = ImuUnitReadOptions(FLAGS_accel_unit, FLAGS_gyro_unit);
   if (takes_imu_yaml) {
     options.yaml_hint =
         "IMU noise densities (Kalibr's imu.yaml) go to --imu-yaml; --imu takes the IMU samples, "
         "EuRoC imu0/data.csv";
-  }
-  if (FLAGS_accel_unit == "g") {
-    options.accel_scale = kStandardGravity;
-    options.check_accel_units = false;
-  } else if (FLAGS_accel_unit != "m/s^2") {
-    throw Error("--accel-unit: expected m/s^2 or g, got '" + FLAGS_accel_unit + "'");
-  }
-  if (FLAGS_gyro_unit == "deg/s") {
-    options.gyro_scale = kDegToRad;
-  } else if (FLAGS_gyro_unit != "rad/s") {
-    throw Error("--gyro-unit: expected rad/s or deg/s, got '" + FLAGS_gyro_unit + "'");
   }
   return options;
 }

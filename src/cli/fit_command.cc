@@ -5,7 +5,6 @@
 #include <gflags/gflags.h>
 
 #include <cstdio>
-#include <sstream>
 #include <string>
 
 #include "splinecal/calib/fit.h"
@@ -17,7 +16,7 @@
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/poses.h"
-#include "splinecal/io/spline_csv.h"
+#include "splinecal/report/command_outputs.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/units.h"
 
@@ -92,13 +91,7 @@ int RunFit() {
   inputs.imu_path = FLAGS_imu;
   inputs.poses_path = FLAGS_poses;
   inputs.imu_yaml_path = FLAGS_imu_yaml;
-  output.WriteFile("result.yaml", FitResultYaml(result, inputs));
-  std::ostringstream spline_csv;
-  WriteSplineCsv(result.MakeSpline(), &spline_csv);
-  output.WriteFile("spline.csv", spline_csv.str());
-  output.WriteFile("residuals.csv", FitResidualsCsv(result));
-  output.WriteFile("pose_residuals.csv", FitPoseResidualsCsv(result));
-  output.WriteFile("report.html", FitReportHtml(result, inputs));
+  output.WriteFiles(FitOutputFiles(result, inputs));
   output.Commit();
 
   std::printf("gyro_bias   [%.6f %.6f %.6f] rad/s   std [%.2g %.2g %.2g]\n",

@@ -7,17 +7,18 @@
 #include <string>
 #include <vector>
 
-#include "camera_selection.h"
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/camera/observation_gates.h"
 #include "splinecal/error.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
+#include "splinecal/intrinsics/camera_specs.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/target_yaml.h"
+#include "splinecal/report/command_outputs.h"
 #include "splinecal/report/intrinsics_report.h"
 #include "splinecal/string_printf.h"
 
@@ -56,38 +57,11 @@ struct IntrinsicsInputs {
   IntrinsicsOptions options;
 };
 
-// Splits at every comma; an empty field is an error naming the flag.
-std::vector<std::string> SplitList(const std::string& flag, const std::string& value) {
-  std::vector<std::string> items;
-  size_t begin = 0;
-  while (true) {
-    const size_t comma = value.find(',', begin);
-    items.push_back(value.substr(begin, comma - begin));
-    if (items.back().empty()) throw Error("--" + flag + ": empty entry in '" + value + "'");
-    if (comma == std::string::npos) break;
-    begin = comma + 1;
-  }
-  return items;
-}
-
-Eigen::Vector2i ParseResolution(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 ||
-      h <= 0 || w > 100000 || h > 100000) {
-    throw Error("--resolution: '" + text + "' is not WIDTHxHEIGHT in pixels (e.g. 752x480)");
-  }
-  return Eigen::Vector2i(w, h);
-}
-
 IntrinsicsInputs ReadIntrinsicsInputs() {
   const std::string& observations_path = RequiredFlag("observations", FLAGS_observations);
   RequiredFlag("target", FLAGS_target);
   RequiredFlag("models", FLAGS_models);
   RequiredFlag("out", FLAGS_out);
-  if (FLAGS_resolution.empty() == FLAGS_camchain.empty()) {
-    throw Error("intrinsics needs the image size: give --resolution or --camchain (one of them)");
-  }
   IntrinsicsInputs in;
   in.options.huber_px = NonNegativeFlag("huber", FLAGS_huber);
   if (FLAGS_min_corners < 6) throw Error("--min-corners: must be at least 6 for a target pose");
@@ -99,88 +73,11 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
   in.options.outlier_sigmas = NonNegativeFlag("outlier_sigmas", FLAGS_outlier_sigmas);
   in.options.keep_repeated_views = FLAGS_keep_repeated_views;
 
-  const std::vector<std::string> models = SplitList("models", FLAGS_models);
-  for (const std::string& name : models) {
-    IntrinsicsCameraSpec spec;
-    if (!ParseCameraModelName(name, &spec.camera.projection, &spec.camera.distortion)) {
-      throw Error("--models: unknown camera model '" + name +
-                  "' (pinhole-none, pinhole-radtan, pinhole-equi, pinhole-fov, omni-none, "
-                  "omni-radtan, eucm-none, ds-none)");
-    }
-    in.cameras.push_back(spec);
-  }
   in.target = ReadTargetYaml(FLAGS_target);
   in.observations = ReadObservationsCsv(observations_path);
-  // The cameras of the input: the camchain's, else those the observations name.
-  Camchain camchain;
-  if (!FLAGS_camchain.empty()) {
-    camchain = ReadCamchainYaml(FLAGS_camchain);
-  } else {
-    int num_input_cameras = FLAGS_cameras.empty() ? static_cast<int>(models.size()) : 0;
-    for (const Observation& o : in.observations) {
-      num_input_cameras = std::max(num_input_cameras, o.cam_id + 1);
-    }
-    camchain.resize(num_input_cameras);
-  }
-  if (!FLAGS_cameras.empty()) {
-    // --models names the selected cameras only; they become cam0, cam1, ... in this order.
-    const std::vector<int> selection =
-        ParseCameraSelection(FLAGS_cameras, static_cast<int>(camchain.size()));
-    SelectCameras(selection, &camchain, &in.observations);
-    if (selection.size() != models.size()) {
-      throw Error(StringPrintf("--cameras selects %zu camera(s) but --models names %zu: one "
-                               "model per selected camera",
-                               selection.size(),
-                               models.size()));
-    }
-  }
-  if (!FLAGS_resolution.empty()) {
-    const std::vector<std::string> sizes = SplitList("resolution", FLAGS_resolution);
-    if (sizes.size() != 1 && sizes.size() != models.size()) {
-      throw Error(
-          StringPrintf("--resolution: %zu sizes for %zu models (give one, or one per "
-                       "model)",
-                       sizes.size(),
-                       models.size()));
-    }
-    for (size_t n = 0; n < models.size(); ++n) {
-      const Eigen::Vector2i size = ParseResolution(sizes.size() == 1 ? sizes[0] : sizes[n]);
-      in.cameras[n].camera.width = size.x();
-      in.cameras[n].camera.height = size.y();
-    }
-  } else {
-    if (camchain.size() != models.size()) {
-      throw Error(
-          FLAGS_camchain,
-          0,
-          StringPrintf(
-              "describes %zu camera(s) but --models names %zu", camchain.size(), models.size()));
-    }
-    for (size_t n = 0; n < models.size(); ++n) {
-      const Camera& given = camchain[n].camera;
-      IntrinsicsCameraSpec& spec = in.cameras[n];
-      spec.camera.width = given.width;
-      spec.camera.height = given.height;
-      // The same model: its values are a starting point; another model: only its size is.
-      if (given.projection == spec.camera.projection &&
-          given.distortion == spec.camera.distortion) {
-        spec.camera = given;
-        spec.initial_values = true;
-      }
-    }
-  }
-  for (const Observation& o : in.observations) {
-    if (o.cam_id < 0 || o.cam_id >= static_cast<int>(models.size())) {
-      throw Error(observations_path,
-                  0,
-                  StringPrintf("cam_id %d (frame t_ns %lld) but --models names %zu camera(s): "
-                               "one model per camera, cam0 first (or select cameras with "
-                               "--cameras)",
-                               o.cam_id,
-                               static_cast<long long>(o.t_ns),
-                               models.size()));
-    }
-  }
+  in.cameras = IntrinsicsCameraSpecs(
+      FLAGS_models, FLAGS_resolution, FLAGS_camchain, FLAGS_cameras, &in.observations);
+  CheckIntrinsicsCameraIds(in.observations, in.cameras.size(), observations_path);
   // The library checks again (CalibrateIntrinsics); here the message names the files.
   std::vector<Camera> cameras;
   for (const IntrinsicsCameraSpec& spec : in.cameras) cameras.push_back(spec.camera);
@@ -202,18 +99,8 @@ int RunIntrinsics() {
   in.options.solver.progress = [](const std::string& line) { Progress(line); };
   const IntrinsicsResult result =
       CalibrateIntrinsics(in.observations, in.target, in.cameras, in.options);
-
-  Camchain camchain;
-  for (size_t n = 0; n < result.cameras.size(); ++n) {
-    CameraCalibration calibration;
-    calibration.camera = result.cameras[n].camera;
-    if (n > 0) calibration.T_cn_cnm1 = result.cameras[n].T_cn_cnm1;
-    camchain.push_back(calibration);
-  }
-  output.WriteFile("camchain.yaml", CamchainYamlText(camchain, CamchainKeys::kCamerasOnly));
-  output.WriteFile("result.yaml", IntrinsicsResultYaml(result));
-  IntrinsicsReportInputs inputs{FLAGS_observations, FLAGS_target, FLAGS_camchain};
-  output.WriteFile("report.html", IntrinsicsReportHtml(result, inputs, 3000));
+  const IntrinsicsReportInputs inputs{FLAGS_observations, FLAGS_target, FLAGS_camchain};
+  output.WriteFiles(IntrinsicsOutputFiles(result, inputs));
   output.Commit();
   if (!Quiet()) std::fputs(IntrinsicsSummaryText(result).c_str(), stderr);
   return 0;

@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,8 +21,8 @@
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/poses.h"
-#include "splinecal/io/spline_csv.h"
 #include "splinecal/io/target_yaml.h"
+#include "splinecal/report/command_outputs.h"
 #include "splinecal/sim/simulate_camera.h"
 #include "splinecal/sim/simulate_imu.h"
 #include "splinecal/sim/simulation_result.h"
@@ -208,7 +207,6 @@ int RunSimulate() {
   run.camera_options = camera_options;
   RunSimulation(trajectory, fit_options, &run);
   const PoseFitResult& fit = run.spline.fit;
-  const SE3Splined spline = fit.MakeSpline();
   const std::vector<ImuSample>& imu = run.imu;
   const CameraSimulationResult& cameras = run.cameras;
   if (!camchain.empty()) {
@@ -217,22 +215,7 @@ int RunSimulate() {
              std::to_string(cameras.num_landmark_observations) + " landmark observations");
   }
 
-  if (!camchain.empty()) {
-    std::ostringstream observations_csv;
-    WriteObservationsCsv(cameras.observations, &observations_csv);
-    output.WriteFile("observations.csv", observations_csv.str());
-    output.WriteFile("camchain.yaml", CamchainYamlText(camchain));
-  }
-  std::ostringstream imu_csv, truth_csv, spline_csv;
-  WriteEurocImu(imu, &imu_csv);
-  WriteEurocGroundTruth(run.truth, &truth_csv);
-  WriteSplineCsv(spline, &spline_csv);
-  output.WriteFile("mav0/imu0/data.csv", imu_csv.str());
-  output.WriteFile("mav0/state_groundtruth_estimate0/data.csv", truth_csv.str());
-  output.WriteFile("spline.csv", spline_csv.str());
-  output.WriteFile("imu.yaml", ImuYamlText(options.noise));
-
-  output.WriteFile("result.yaml", SimulationResultYaml(run));
+  output.WriteFiles(SimulationOutputFiles(run));
   output.Commit();
 
   std::printf(

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "splinecal/error.h"
 
@@ -24,6 +25,14 @@ void CheckRelativePath(const std::string& dir, const std::string& relative_path)
 }
 
 }  // namespace
+
+const std::string& OutputFileContents(const std::vector<OutputFile>& files,
+                                      const std::string& path) {
+  for (const OutputFile& file : files) {
+    if (file.path == path) return file.contents;
+  }
+  throw std::logic_error("no output file " + path);
+}
 
 OutputDir::OutputDir(const std::string& dir) : dir_(dir) {
   if (dir.empty()) throw Error("--out is required: the folder for the results");
@@ -62,6 +71,10 @@ void OutputDir::WriteFile(const std::string& relative_path, const std::string& c
   out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
   out.close();
   if (!out) throw Error(path, 0, "cannot write (disk full or no permission?)");
+}
+
+void OutputDir::WriteFiles(const std::vector<OutputFile>& files) {
+  for (const OutputFile& file : files) WriteFile(file.path, file.contents);
 }
 
 void OutputDir::Commit() {

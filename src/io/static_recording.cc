@@ -133,6 +133,15 @@ void CheckAccelUnits(const std::string& path,
   }
 }
 
+// The rate plain columns are read at (they carry no timestamps).
+void CheckColumnRate(double rate_hz) {
+  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
+    throw Error("the sample rate of plain columns must be positive and finite, got " +
+                std::to_string(rate_hz) + " Hz (--rate)");
+  }
+  CheckImuRate(rate_hz, "--rate", /*from_timestamps=*/false);
+}
+
 void CheckEnoughRows(const std::string& path, const std::vector<AxisSeries>& axes) {
   const size_t rows = axes.empty() ? 0 : axes.front().samples.size();
   if (rows < 2) throw Error(path, 0, "needs at least 2 data rows, found " + std::to_string(rows));
@@ -231,11 +240,7 @@ StaticRecording ReadColumnStaticRecording(const std::string& path,
                                           std::optional<ImuSensor> sensor,
                                           const StaticReadOptions& options) {
   CheckScales(options);
-  if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
-    throw Error("the sample rate of plain columns must be positive and finite, got " +
-                std::to_string(rate_hz) + " Hz (--rate)");
-  }
-  CheckImuRate(rate_hz, "--rate", /*from_timestamps=*/false);
+  CheckColumnRate(rate_hz);
   TextFileReader reader(path);
   StaticRecording recording;
   recording.source = path;
@@ -281,6 +286,60 @@ StaticRecording ReadColumnStaticRecording(const std::string& path,
   }
   CheckEnoughRows(path, recording.axes);
   CheckAccelUnits(path, recording.axes, options);
+  return recording;
+}
+
+StaticRecording StaticRecordingFromColumns(const std::vector<std::vector<double>>& columns,
+                                           double rate_hz,
+                                           std::optional<ImuSensor> sensor,
+                                           const std::string& source,
+                                           const StaticReadOptions& options) {
+  CheckScales(options);
+  CheckColumnRate(rate_hz);
+  StaticRecording recording;
+  recording.source = source;
+  recording.rate_hz = rate_hz;
+  if (columns.size() == 6) {
+    if (sensor.has_value()) {
+      throw Error(source + ": 6 columns are gyro xyz then accel xyz; a sensor is for 1 to 3 "
+                           "columns of one sensor");
+    }
+    recording.axes = MakeAxes(true, true, 3);
+  } else if (columns.size() >= 1 && columns.size() <= 3) {
+    if (!sensor.has_value()) {
+      throw Error(source + ": " + std::to_string(columns.size()) +
+                  " column(s) of one sensor: say which sensor, gyro or accel");
+    }
+    recording.axes = MakeAxes(*sensor == ImuSensor::kGyroscope,
+                              *sensor == ImuSensor::kAccelerometer,
+                              static_cast<int>(columns.size()));
+  } else {
+    throw Error(source + ": expected 1, 2, 3 (one sensor) or 6 (gyro xyz, accel xyz) columns, "
+                         "found " + std::to_string(columns.size()));
+  }
+  const std::vector<std::string> names = FieldNames(recording.axes);
+  for (size_t a = 0; a < columns.size(); ++a) {
+    AxisSeries& axis = recording.axes[a];
+    const double scale = ScaleOf(axis, options);
+    const bool gyro = axis.sensor == ImuSensor::kGyroscope;
+    const double limit = gyro ? kMaxAngularRate : kMaxAcceleration;  // after scaling
+    axis.samples.reserve(columns[a].size());
+    for (size_t i = 0; i < columns[a].size(); ++i) {
+      const double value = scale * columns[a][i];
+      if (!(std::abs(value) <= limit)) {
+        throw Error(StringPrintf("%s: %s at row %zu is %g %s, beyond the plausible %g",
+                                 source.c_str(),
+                                 names[a].c_str(),
+                                 i,
+                                 value,
+                                 gyro ? "rad/s" : "m/s^2",
+                                 limit));
+      }
+      axis.samples.push_back(value);
+    }
+  }
+  CheckEnoughRows(source, recording.axes);
+  CheckAccelUnits(source, recording.axes, options);
   return recording;
 }
 

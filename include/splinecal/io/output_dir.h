@@ -13,6 +13,18 @@
 
 namespace splinecal {
 
+// One file of a command's results: its path relative to the output folder, and its contents.
+// The report functions return a command's files as a list (report/command_outputs.h), so that
+// the command line and the Python module write the same files.
+struct OutputFile {
+  std::string path;
+  std::string contents;
+};
+
+// The contents of `path` in `files`; throws std::logic_error when it is not there (a bug).
+const std::string& OutputFileContents(const std::vector<OutputFile>& files,
+                                      const std::string& path);
+
 class OutputDir {
  public:
   // Creates `dir` (and its parents) if missing; throws Error when it cannot (a file in the way,
@@ -26,6 +38,8 @@ class OutputDir {
 
   // Stages `contents` as dir/relative_path (subfolders such as "mav0/imu0" are created).
   void WriteFile(const std::string& relative_path, const std::string& contents);
+  // Stages every file of `files` (WriteFile).
+  void WriteFiles(const std::vector<OutputFile>& files);
   // The staged path of relative_path (its folder created), for code that writes a file itself.
   std::string StagedPath(const std::string& relative_path);
 

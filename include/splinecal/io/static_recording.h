@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "splinecal/imu/static_recording.h"
 #include "splinecal/io/euroc.h"
@@ -46,6 +47,17 @@ StaticRecording ReadColumnStaticRecording(const std::string& path,
                                           double rate_hz,
                                           std::optional<ImuSensor> sensor,
                                           const StaticReadOptions& options = {});
+
+// Plain columns already in memory (the Python module's arrays), checked as
+// ReadColumnStaticRecording checks a file's: columns[c][i] is sample i of column c, 6 columns
+// (gyro xyz, accel xyz, no sensor) or 1 to 3 of `sensor`; every reading scaled, finite and within
+// the input layer's plausibility limits; rate_hz positive and finite; at least 2 samples; an
+// accelerometer in g refused. `source` names the data in errors and in the result.
+StaticRecording StaticRecordingFromColumns(const std::vector<std::vector<double>>& columns,
+                                           double rate_hz,
+                                           std::optional<ImuSensor> sensor,
+                                           const std::string& source,
+                                           const StaticReadOptions& options = {});
 
 }  // namespace splinecal
 

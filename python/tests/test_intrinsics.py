@@ -1,0 +1,55 @@
+"""intrinsics against `splinecal intrinsics` on a short simulated AprilGrid recording."""
+import pytest
+import yaml
+
+import splinecal
+from conftest import DATA, assert_same, load_yaml, run_tool, tool_error
+
+CALIBRATION = DATA / "calibration"
+
+
+def simulated_observations(tmp_path):
+    sim = splinecal.simulate(trajectory="calibration", duration=5, seed=2,
+                             camchain=CALIBRATION / "camchain_truth.yaml",
+                             target=CALIBRATION / "aprilgrid.yaml", out=tmp_path / "sim")
+    return tmp_path / "sim" / "observations.csv", sim["observations"]
+
+
+def without_wall_times(result, expected):
+    """result with the command's wall time (the one value that differs between two runs)."""
+    result["solver"]["solve_time_s"] = expected["solver"]["solve_time_s"]
+    return result
+
+
+def test_intrinsics_equals_the_command_line(tmp_path):
+    observations, arrays = simulated_observations(tmp_path)
+    flags = dict(target=CALIBRATION / "aprilgrid.yaml", models="pinhole-radtan",
+                 camchain=CALIBRATION / "camchain_guess.yaml", threads=1)
+    run_tool("intrinsics", "--observations", observations,
+             *[f"--{k}={v}" for k, v in flags.items()], "--out", tmp_path / "cli")
+    expected = load_yaml(tmp_path / "cli" / "result.yaml")
+    result = splinecal.intrinsics(observations, **flags, out=tmp_path / "py")
+    camchain = result.pop("camchain_yaml")
+    assert camchain == (tmp_path / "cli" / "camchain.yaml").read_text()
+    assert (tmp_path / "py" / "camchain.yaml").read_text() == camchain
+    assert (tmp_path / "py" / "report.html").exists()
+    # The same C++ solve on the same files, one thread: only wall times may differ.
+    assert_same(without_wall_times(result, expected), expected, tol=1e-9)
+    assert yaml.safe_load(camchain)["cam0"]["camera_model"] == "pinhole"
+
+    # The observations as arrays (simulate's) and the models as a list: the same calibration.
+    from_arrays = splinecal.intrinsics(arrays, flags["target"], ["pinhole-radtan"],
+                                       camchain=flags["camchain"], threads=1)
+    from_arrays.pop("camchain_yaml")
+    assert_same(without_wall_times(from_arrays, expected), expected, tol=1e-9)
+
+
+def test_intrinsics_refuses_an_unknown_model_as_the_command_does(tmp_path):
+    observations, _ = simulated_observations(tmp_path)
+    message = tool_error("intrinsics", "--observations", observations, "--target",
+                         CALIBRATION / "aprilgrid.yaml", "--models", "pinhole-radtann",
+                         "--resolution", "752x480", "--out", tmp_path / "o")
+    with pytest.raises(splinecal.Error) as error:
+        splinecal.intrinsics(observations, CALIBRATION / "aprilgrid.yaml", "pinhole-radtann",
+                             resolution="752x480")
+    assert message == "splinecal intrinsics: " + str(error.value)

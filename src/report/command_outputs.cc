@@ -1,0 +1,96 @@
+#include "splinecal/report/command_outputs.h"
+
+#include <sstream>
+#include <string>
+
+#include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/euroc.h"
+#include "splinecal/io/kalibr_yaml.h"
+#include "splinecal/io/observations_csv.h"
+#include "splinecal/io/spline_csv.h"
+#include "splinecal/report/align_report.h"
+
+namespace splinecal {
+
+namespace {
+
+// At most this many points per series in intrinsics' report.html (the command's choice).
+constexpr int kIntrinsicsReportMaxPoints = 3000;
+
+std::string SplineCsvText(const SE3Splined& spline) {
+  std::ostringstream csv;
+  WriteSplineCsv(spline, &csv);
+  return csv.str();
+}
+
+std::string GroundTruthCsvText(const std::vector<GroundTruthState>& states) {
+  std::ostringstream csv;
+  WriteEurocGroundTruth(states, &csv);
+  return csv.str();
+}
+
+}  // namespace
+
+std::vector<OutputFile> AllanOutputFiles(const AllanResult& result) {
+  return {{"allan.csv", AllanCsvText(result)},
+          {"imu.yaml", AllanImuYamlText(result)},
+          {"result.yaml", AllanResultYamlText(result)},
+          {"allan.svg", AllanSvgText(result)}};
+}
+
+std::vector<OutputFile> SimulationOutputFiles(const SimulationRun& run) {
+  std::vector<OutputFile> files;
+  if (!run.camchain.empty()) {
+    std::ostringstream observations_csv;
+    WriteObservationsCsv(run.cameras.observations, &observations_csv);
+    files.push_back({"observations.csv", observations_csv.str()});
+    files.push_back({"camchain.yaml", CamchainYamlText(run.camchain)});
+  }
+  std::ostringstream imu_csv;
+  WriteEurocImu(run.imu, &imu_csv);
+  files.push_back({"mav0/imu0/data.csv", imu_csv.str()});
+  files.push_back({"mav0/state_groundtruth_estimate0/data.csv", GroundTruthCsvText(run.truth)});
+  files.push_back({"spline.csv", SplineCsvText(run.spline.fit.MakeSpline())});
+  files.push_back({"imu.yaml", ImuYamlText(run.options.noise)});
+  files.push_back({"result.yaml", SimulationResultYaml(run)});
+  return files;
+}
+
+std::vector<OutputFile> FitOutputFiles(const FitResult& result, const FitReportInputs& inputs) {
+  return {{"result.yaml", FitResultYaml(result, inputs)},
+          {"spline.csv", SplineCsvText(result.MakeSpline())},
+          {"residuals.csv", FitResidualsCsv(result)},
+          {"pose_residuals.csv", FitPoseResidualsCsv(result)},
+          {"report.html", FitReportHtml(result, inputs)}};
+}
+
+std::vector<OutputFile> CalibrateOutputFiles(const CalibrationResult& result,
+                                             const CalibrateOptions& options,
+                                             const CalibrateReportInputs& inputs) {
+  return {{"camchain-imucam.yaml", CamchainYamlText(result.camchain)},
+          {"result.yaml", CalibrateResultYaml(result, options)},
+          {"reprojection_errors.csv", CalibrateReprojectionCsv(result)},
+          {"spline.csv", SplineCsvText(result.MakeSpline())},
+          {"report.html", CalibrateReportHtml(result, options, inputs)}};
+}
+
+std::vector<OutputFile> AlignOutputFiles(const AlignResult& result, const AlignOptions& options) {
+  return {{"result.yaml", AlignResultYaml(result, options)},
+          {"aligned_poses.csv", GroundTruthCsvText(result.states_w)}};
+}
+
+std::vector<OutputFile> IntrinsicsOutputFiles(const IntrinsicsResult& result,
+                                              const IntrinsicsReportInputs& inputs) {
+  Camchain camchain;
+  for (size_t n = 0; n < result.cameras.size(); ++n) {
+    CameraCalibration calibration;
+    calibration.camera = result.cameras[n].camera;
+    if (n > 0) calibration.T_cn_cnm1 = result.cameras[n].T_cn_cnm1;
+    camchain.push_back(calibration);
+  }
+  return {{"camchain.yaml", CamchainYamlText(camchain, CamchainKeys::kCamerasOnly)},
+          {"result.yaml", IntrinsicsResultYaml(result)},
+          {"report.html", IntrinsicsReportHtml(result, inputs, kIntrinsicsReportMaxPoints)}};
+}
+
+}  // namespace splinecal
