@@ -41,13 +41,13 @@ struct TargetDetection {
 };
 
 // How hard the AprilGrid detector looks for tags: recall against time (docs/detect.md, "Small and
-// oblique tags"). libapriltag decodes a tag from the pixels inside it, on an image whose white
-// was grown to cut the tags from their corner squares (separate_corner_squares); on tags under
-// ~25 px (or narrower than that when seen obliquely) that growth eats the code bits and the
-// search of the frame as it is misses most tags (14% of the corners of 15-20 px tags on the
-// resampled EuRoC frames of tests/detect/aprilgrid_recall_test.cc). Searching the frame
-// upsampled 2x, with the white grown by half a pixel and by one pixel of the frame and the code
-// bits sharpened, finds 87%.
+// oblique tags"; the checkerboard detector ignores it). libapriltag decodes a tag from the pixels
+// inside it, on an image whose white was grown to cut the tags from their corner squares
+// (separate_corner_squares); on tags under ~25 px (or narrower than that when seen obliquely)
+// that growth eats the code bits and the search of the frame as it is misses most tags (14% of
+// the corners of 15-20 px tags on the resampled EuRoC frames of
+// tests/detect/aprilgrid_recall_test.cc). Searching the frame upsampled 2x, with the white grown
+// by half a pixel and by one pixel of the frame and the code bits sharpened, finds 87%.
 enum class DetectEffort {
   kFast,      // one search of the frame as it is (quad_decimate below)
   kDefault,   // that search, then the upsampled ones when it found no tag, or when tags of the
