@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "splinecal/imu/imu_rate.h"
+#include "splinecal/io/imu_units.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/string_printf.h"
 
@@ -212,6 +213,9 @@ std::vector<ImuSample> ImuSamples(py::handle imu, const ImuReadOptions& read) {
     samples[i].gyro = Eigen::Map<const Eigen::Vector3d>(gyro.data() + 3 * i);
     samples[i].accel = Eigen::Map<const Eigen::Vector3d>(accel.data() + 3 * i);
   }
+  // As ReadEurocImu checks a file (the scales are applied by the caller: accel_unit="g" turns
+  // the check off).
+  if (read.check_accel_units) CheckAccelNotInG(samples, "imu");
   CheckImuRate(ImuRateHz(samples), "imu['t_ns']");  // as the file readers do
   return samples;
 }

@@ -4,7 +4,7 @@ import pytest
 
 import splinecal
 from conftest import (EUROC, assert_same, load_yaml, quaternion_to_matrix, read_csv_columns,
-                      run_tool)
+                      run_tool, tool_error)
 
 # The same C++ solve on the same inputs: only thread scheduling could differ (one thread here).
 TOLERANCE = 1e-9
@@ -72,3 +72,17 @@ def test_simulate_equals_the_command_line(tmp_path):
     for key in ("imu", "ground_truth", "se3_spline"):
         sim.pop(key)
     assert_same(sim, expected, tol=1e-12)
+
+
+def test_an_imu_dict_in_g_is_refused_as_the_command_refuses_the_file(tmp_path):
+    t_ns, imu = read_csv_columns(EUROC / "imu0.csv")
+    imu[:, 3:] /= 9.80665
+    path = tmp_path / "imu_in_g.csv"
+    np.savetxt(path, np.column_stack([t_ns.astype(object), imu]), fmt="%s", delimiter=",")
+    message = tool_error("fit", "--imu", path, "--poses", EUROC / "groundtruth.csv",
+                         "--out", tmp_path / "o")
+    with pytest.raises(splinecal.Error) as error:
+        splinecal.fit({"t_ns": t_ns, "gyro": imu[:, :3], "accel": imu[:, 3:]},
+                      EUROC / "groundtruth.csv")
+    assert "looks like units of g" in str(error.value)
+    assert message.split(f"{path}:", 1)[1] == str(error.value).split("imu:", 1)[1]

@@ -6,6 +6,7 @@
 
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_rate.h"
+#include "splinecal/io/imu_units.h"
 #include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/string_printf.h"
@@ -40,21 +41,24 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
     throw Error(path, 0, "needs at least 2 IMU samples, found " + std::to_string(samples.size()));
   }
   timestamps.CheckGaps(options.max_gap_periods);
-  if (options.check_accel_units) {
-    std::vector<double> norms(samples.size());
-    for (size_t i = 0; i < samples.size(); ++i) norms[i] = samples[i].accel.norm();
-    std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
-    const double median = norms[norms.size() / 2];
-    if (median > 0.5 && median < 1.5) {
-      throw Error(path,
-                  0,
-                  StringPrintf("accelerometer magnitude is about %.2f: the data looks like units "
-                               "of g, expected m/s^2 (pass --accel-unit g)",
-                               median));
-    }
-  }
+  if (options.check_accel_units) CheckAccelNotInG(samples, path);
   CheckImuRate(ImuRateHz(samples), path);  // after the checks that name a line
   return samples;
+}
+
+void CheckAccelNotInG(const std::vector<ImuSample>& samples, const std::string& source) {
+  if (samples.empty()) return;
+  std::vector<double> norms(samples.size());
+  for (size_t i = 0; i < samples.size(); ++i) norms[i] = samples[i].accel.norm();
+  std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
+  const double median = norms[norms.size() / 2];
+  if (median > 0.5 && median < 1.5) {
+    throw Error(source,
+                0,
+                StringPrintf("accelerometer magnitude is about %.2f: the data looks like units "
+                             "of g, expected m/s^2 (pass --accel-unit g)",
+                             median));
+  }
 }
 
 void WriteEurocImu(const std::vector<ImuSample>& samples, std::ostream* out) {

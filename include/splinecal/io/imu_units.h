@@ -1,11 +1,13 @@
 // The IMU columns' units as the commands name them (--accel-unit m/s^2|g, --gyro-unit
-// rad/s|deg/s): the reader's scales (io/euroc.h). The command line and the Python module both
-// read the names through ImuUnitReadOptions.
+// rad/s|deg/s): the reader's scales (io/euroc.h), and the check that an accelerometer is not in
+// g. The command line and the Python module both read the names through ImuUnitReadOptions.
 #ifndef SPLINECAL_IO_IMU_UNITS_H_
 #define SPLINECAL_IO_IMU_UNITS_H_
 
 #include <string>
+#include <vector>
 
+#include "splinecal/imu/imu_sample.h"
 #include "splinecal/io/euroc.h"
 
 namespace splinecal {
@@ -17,6 +19,11 @@ inline constexpr double kStandardGravity = 9.80665;
 // is off, the data is known to be in g). Throws splinecal::Error naming --accel-unit or
 // --gyro-unit for another name.
 ImuReadOptions ImuUnitReadOptions(const std::string& accel_unit, const std::string& gyro_unit);
+
+// ReadEurocImu's units check (io/euroc.cc), for samples from elsewhere (the Python module's
+// arrays): throws splinecal::Error naming `source` when the median accelerometer magnitude is
+// near 1 (units of g, not m/s^2).
+void CheckAccelNotInG(const std::vector<ImuSample>& samples, const std::string& source);
 
 }  // namespace splinecal
 
