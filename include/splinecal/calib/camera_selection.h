@@ -78,5 +78,6 @@ void SelectCalibrationCameras(const std::string& cameras,
                               Camchain* camchain,
                               std::vector<Observation>* observations,
                               CalibrateOptions* options);
+}  // namespace splinecal
 
 #endif  // SPLINECAL_CALIB_CAMERA_SELECTION_H_
