@@ -30,10 +30,13 @@ constexpr int kMinSamples = 32;
 // row shears the lattice, and a sheared lattice predicts itself perfectly except where its rows
 // wrap around the board's edge, where predictions miss by whole cells. Measured on EuRoC
 // imu_april and on synthetic views (tests/camera/target_layout_check_test.cc): right numbering,
-// median 0.019 and no gross prediction; wrong ones, docs/reliability.md.
-constexpr double kMaxResidual = 0.1;
+// median 0.019 and no gross prediction; wrong ones, docs/reliability.md. The simulated
+// wide-angle views of tests/intrinsics/calibrate_intrinsics_test.cc (small cells near the
+// border of strongly distorting models) reach a median of 0.08 and 7% gross with the right
+// numbering: hence the margins.
+constexpr double kMaxResidual = 0.2;
 constexpr double kGrossResidual = 0.5;
-constexpr double kMaxGrossFraction = 0.05;
+constexpr double kMaxGrossFraction = 0.2;
 // The spacing measured towards the right and upwards must agree this well [tag sides] (a
 // numbering with twice the columns puts real rows 2 apart into one cell: the upward "spacing"
 // then differs by a whole tag plus a gap).
