@@ -199,7 +199,12 @@ int RunIntrinsics() {
     if (n > 0) calibration.T_cn_cnm1 = result.cameras[n].T_cn_cnm1;
     camchain.push_back(calibration);
   }
-  output.WriteFile("camchain.yaml", CamchainYamlText(camchain, CamchainKeys::kCamerasOnly));
+  std::vector<ParameterCovariance> covariances;
+  for (const IntrinsicsCameraResult& camera : result.cameras) {
+    covariances.push_back(camera.covariance);
+  }
+  output.WriteFile("camchain.yaml",
+                   CamchainYamlText(camchain, CamchainKeys::kCamerasOnly, covariances));
   output.WriteFile("result.yaml", IntrinsicsResultYaml(result));
   IntrinsicsReportInputs inputs{FLAGS_observations, FLAGS_target, FLAGS_camchain};
   output.WriteFile("report.html", IntrinsicsReportHtml(result, inputs, 3000));
