@@ -12,6 +12,7 @@
 #include <set>
 
 #include "splinecal/camera/observation_gates.h"
+#include "splinecal/camera/camchain.h"
 #include "splinecal/camera/pnp.h"
 #include "splinecal/error.h"
 #include "splinecal/estimation/marginal_covariance.h"
@@ -21,6 +22,7 @@
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"
+#include "splinecal/intrinsics/time_blocks.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/median.h"
 #include "splinecal/string_printf.h"
@@ -77,7 +79,7 @@ class IntrinsicsSolver {
   // Builds the problem over the used views with Huber at huber_px (0: none).
   void Build(double huber_px) {
     problem_ = std::make_unique<ceres::Problem>();
-    cluster_.clear();
+    view_of_.clear();
     const int num_cameras = static_cast<int>(state_.cameras.size());
     for (int n = 0; n < num_cameras; ++n) {
       problem_->AddParameterBlock(state_.intrinsics[n].data(), kNumIntrinsics);
@@ -98,7 +100,6 @@ class IntrinsicsSolver {
           problem_->SetParameterBlockConstant(state_.T_cn_c0[n].data());
       }
     }
-    std::map<int64_t, int> cluster_of_time;
     for (size_t v = 0; v < views_.size(); ++v) {
       if (records_[v].status != ViewStatus::kUsed) continue;
       const TargetView& view = views_[v];
@@ -116,14 +117,13 @@ class IntrinsicsSolver {
       std::vector<double*> blocks = {pose, state_.intrinsics[n].data()};
       if (n > 0) blocks.push_back(state_.T_cn_c0[n].data());
       const ceres::ResidualBlockId id = problem_->AddResidualBlock(cost, nullptr, blocks);
-      const auto inserted =
-          cluster_of_time.emplace(view.t_ns, static_cast<int>(cluster_of_time.size()));
-      cluster_[id] = inserted.first->second;
+      view_of_[id] = &view;
     }
   }
 
   ceres::Problem* problem() { return problem_.get(); }
-  int ClusterOf(ceres::ResidualBlockId id) const { return cluster_.at(id); }
+  // The view a residual block holds.
+  const TargetView& ViewOf(ceres::ResidualBlockId id) const { return *view_of_.at(id); }
 
  private:
   std::vector<TargetView>& views_;
@@ -131,7 +131,7 @@ class IntrinsicsSolver {
   RigState& state_;
   const IntrinsicsOptions& options_;
   std::unique_ptr<ceres::Problem> problem_;
-  std::map<ceres::ResidualBlockId, int> cluster_;
+  std::map<ceres::ResidualBlockId, const TargetView*> view_of_;
 };
 
 SE3d PoseOf(const PoseBlock& block) { return PoseFromBlock(block.data()); }
@@ -412,6 +412,43 @@ void CheckSolve(const SolveRounds& rounds) {
   }
 }
 
+// Each timestamp's score on the active intrinsics, J^T r of its views' weighted residuals
+// (time_blocks.h), for the autocorrelation that chooses the covariance's time blocks.
+void TimestampScores(IntrinsicsSolver* solver,
+                     const RigState& state,
+                     const std::vector<int>& offset,
+                     int size,
+                     std::vector<double>* t_s,
+                     std::vector<Eigen::VectorXd>* scores) {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  ceres::Problem* problem = solver->problem();
+  std::vector<ceres::ResidualBlockId> ids;
+  problem->GetResidualBlocks(&ids);
+  std::map<int64_t, Eigen::VectorXd> by_time;
+  for (ceres::ResidualBlockId id : ids) {
+    const ceres::CostFunction* cost = problem->GetCostFunctionForResidualBlock(id);
+    std::vector<double*> blocks;
+    problem->GetParameterBlocksForResidualBlock(id, &blocks);
+    const int rows = cost->num_residuals();
+    Eigen::VectorXd r(rows);
+    RowMajor J(rows, kNumIntrinsics);
+    std::vector<double*> jacobians(blocks.size(), nullptr);
+    jacobians[1] = J.data();  // (target pose, intrinsics[, extrinsic])
+    if (!cost->Evaluate(blocks.data(), r.data(), jacobians.data())) continue;
+    const TargetView& view = solver->ViewOf(id);
+    Eigen::VectorXd& score =
+        by_time.try_emplace(view.t_ns, Eigen::VectorXd::Zero(size)).first->second;
+    const std::vector<int>& active = state.active[view.cam_id];
+    for (size_t j = 0; j < active.size(); ++j) {
+      score(offset[view.cam_id] + static_cast<int>(j)) += J.col(active[j]).dot(r);
+    }
+  }
+  for (const auto& [t, score] : by_time) {
+    t_s->push_back(NanosecondsToSeconds(t - by_time.begin()->first));
+    scores->push_back(score);
+  }
+}
+
 // Steps 6 (covariance) and the per-camera results.
 void FillCameraResults(IntrinsicsSolver* solver,
                        const IntrinsicsOptions& options,
@@ -433,20 +470,33 @@ void FillCameraResults(IntrinsicsSolver* solver,
     }
   }
   Eigen::MatrixXd covariance;
+  Eigen::Array<bool, Eigen::Dynamic, 1> from_blocks;  // per coordinate: the time blocks' std
   if (options.covariance.compute) {
     MarginalCovarianceOptions cov_options;
     cov_options.backend = options.covariance.backend;
     cov_options.max_ceres_covariance_entries = options.covariance.max_ceres_covariance_entries;
     cov_options.num_threads = options.solver.num_threads;
     if (options.covariance.robust_window_s > 0.0) {
-      cov_options.cluster_of = [solver](ceres::ResidualBlockId id) {
-        return solver->ClusterOf(id);
-      };
+      std::vector<double> t_s;
+      std::vector<Eigen::VectorXd> scores;
+      TimestampScores(solver, *state, offset_intrinsics, size, &t_s, &scores);
+      result->time_blocks = ChooseTimeBlocks(t_s, scores);
+      const int64_t t0_ns = state->T_c0_t.begin()->first;
+      const double block_s = result->time_blocks.block_s;
+      if (block_s > 0.0) {
+        cov_options.cluster_of = [solver, t0_ns, block_s](ceres::ResidualBlockId id) {
+          return static_cast<int>(NanosecondsToSeconds(solver->ViewOf(id).t_ns - t0_ns) /
+                                  block_s);
+        };
+      }
     }
     const MarginalCovariance marginal =
         ComputeMarginalCovariance(solver->problem(), blocks, cov_options);
     if (marginal.ok) {
-      covariance = ReportedCovarianceOf(marginal).covariance;
+      const ReportedCovariance reported = ReportedCovarianceOf(marginal);
+      covariance = reported.covariance;
+      result->time_blocks_count = marginal.num_clusters;
+      from_blocks = reported.inflation.array() > 1.0 + 1e-9;
     } else {
       result->warnings.push_back(
           "the intrinsics are not all determined (singular information): no standard deviations");
@@ -467,14 +517,38 @@ void FillCameraResults(IntrinsicsSolver* solver,
     for (int j = 0; j < k; ++j) {
       camera.intrinsics_std(camera.active[j]) = std::sqrt(camera.intrinsics_covariance(j, j));
     }
-    if (n > 0 && offset_extrinsic[n] >= 0) {
+    // The full covariance for camchain.yaml: the active intrinsics in Kalibr's order, then
+    // T_cn_cnm1's right tangent [rho; phi], as rows D of the solved coordinates.
+    std::vector<int> rows;
+    for (const std::vector<int>& order :
+         {KalibrIntrinsicsOrder(camera.camera), KalibrDistortionOrder(camera.camera)}) {
+      for (int index : order) {
+        const auto found = std::find(camera.active.begin(), camera.active.end(), index);
+        if (found == camera.active.end()) continue;
+        rows.push_back(offset_intrinsics[n] + static_cast<int>(found - camera.active.begin()));
+        camera.covariance.parameters.push_back(IntrinsicName(camera.camera, index));
+        camera.std_from_time_blocks.push_back(from_blocks.size() > 0 && from_blocks(rows.back()));
+      }
+    }
+    const bool with_extrinsic = n > 0 && offset_extrinsic[n] >= 0;
+    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(rows.size() + (with_extrinsic ? 6 : 0), size);
+    for (size_t r = 0; r < rows.size(); ++r) D(r, rows[r]) = 1.0;
+    if (with_extrinsic) {
       // T_cn_c0 Exp(a), T_cnm1_c0 Exp(b): T_cn_cnm1 Exp(Ad(T_cnm1_c0) (a - b)) to first order.
-      Eigen::MatrixXd D = Eigen::MatrixXd::Zero(6, size);
-      D.block<6, 6>(0, offset_extrinsic[n]).setIdentity();
+      Eigen::MatrixXd E = Eigen::MatrixXd::Zero(6, size);
+      E.block<6, 6>(0, offset_extrinsic[n]).setIdentity();
       if (n > 1)
-        D.block<6, 6>(0, offset_extrinsic[n - 1]) = -Eigen::Matrix<double, 6, 6>::Identity();
-      const Eigen::MatrixXd A = PoseOf(state->T_cn_c0[n - 1]).Adj() * D;
-      camera.T_cn_cnm1_std = (A * covariance * A.transpose()).diagonal().cwiseSqrt();
+        E.block<6, 6>(0, offset_extrinsic[n - 1]) = -Eigen::Matrix<double, 6, 6>::Identity();
+      D.bottomRows(6) = PoseOf(state->T_cn_c0[n - 1]).Adj() * E;
+      for (const char* axis : {"rho_x", "rho_y", "rho_z", "phi_x", "phi_y", "phi_z"}) {
+        camera.covariance.parameters.push_back(std::string("T_cn_cnm1_") + axis);
+      }
+    }
+    camera.covariance.matrix = D * covariance * D.transpose();
+    camera.covariance.block_seconds = result->time_blocks.block_s;
+    if (with_extrinsic) {
+      camera.T_cn_cnm1_std =
+          camera.covariance.matrix.bottomRightCorner(6, 6).diagonal().cwiseSqrt();
     }
   }
 }

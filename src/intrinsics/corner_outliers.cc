@@ -117,10 +117,16 @@ std::string CornerOutlierWarning(const std::string& camera_name,
       100.0 * outliers.removed / outliers.corners,
       100.0 * at_border);
   if (border) {
+    // Wide-angle models that describe a lens's border where radtan's polynomial cannot.
+    std::string others;
+    for (const char* other : {"pinhole-equi", "ds-none", "eucm-none"}) {
+      if (model_name == other || std::count(others.begin(), others.end(), ' ') >= 2) continue;
+      others += (others.empty() ? "" : " or ") + std::string(other);
+    }
     text += StringPrintf(
-        ": %s likely misfits the border (try pinhole-equi or ds-none; --outlier-sigmas 0 keeps "
-        "every corner)",
-        model_name.c_str());
+        ": %s likely misfits the border (try %s; --outlier-sigmas 0 keeps every corner)",
+        model_name.c_str(),
+        others.c_str());
   }
   return text;
 }

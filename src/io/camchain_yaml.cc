@@ -288,7 +288,17 @@ Eigen::VectorXd Pick(const Camera& camera, const std::vector<int>& order) {
 
 }  // namespace
 
-std::string CamchainYamlText(const Camchain& camchain, CamchainKeys keys) {
+void WriteParameterCovariance(const ParameterCovariance& covariance, YamlWriter* yaml) {
+  yaml->BeginMap("splinecal_covariance");
+  yaml->StringList("parameters", covariance.parameters);
+  yaml->Matrix("matrix", covariance.matrix);
+  yaml->Scalar("block_seconds", covariance.block_seconds);
+  yaml->EndMap();
+}
+
+std::string CamchainYamlText(const Camchain& camchain,
+                             CamchainKeys keys,
+                             const std::vector<ParameterCovariance>& covariances) {
   const bool with_imu = keys == CamchainKeys::kWithImu;
   YamlWriter yaml;
   for (size_t i = 0; i < camchain.size(); ++i) {
@@ -313,6 +323,9 @@ std::string CamchainYamlText(const Camchain& camchain, CamchainKeys keys) {
       yaml.Scalar("line_delay", c.line_delay_s);
     }
     if (!c.rostopic.empty()) yaml.Scalar("rostopic", c.rostopic);
+    if (i < covariances.size() && covariances[i].matrix.size() > 0) {
+      WriteParameterCovariance(covariances[i], &yaml);
+    }
     yaml.EndMap();
   }
   return yaml.str();

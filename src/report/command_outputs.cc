@@ -88,7 +88,13 @@ std::vector<OutputFile> IntrinsicsOutputFiles(const IntrinsicsResult& result,
     if (n > 0) calibration.T_cn_cnm1 = result.cameras[n].T_cn_cnm1;
     camchain.push_back(calibration);
   }
-  return {{"camchain.yaml", CamchainYamlText(camchain, CamchainKeys::kCamerasOnly)},
+  // Each camera's covariance (splinecal_covariance) rides along, for calibrate's priors.
+  std::vector<ParameterCovariance> covariances;
+  for (const IntrinsicsCameraResult& camera : result.cameras) {
+    covariances.push_back(camera.covariance);
+  }
+  return {{"camchain.yaml",
+           CamchainYamlText(camchain, CamchainKeys::kCamerasOnly, covariances)},
           {"result.yaml", IntrinsicsResultYaml(result)},
           {"report.html", IntrinsicsReportHtml(result, inputs, kIntrinsicsReportMaxPoints)}};
 }

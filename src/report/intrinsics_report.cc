@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/html_page.h"
@@ -207,9 +208,25 @@ std::string IntrinsicsResultYaml(const IntrinsicsResult& result) {
       yaml.Scalar("extrinsic_estimated", c.extrinsic_estimated);
     }
     yaml.Scalar("initialisation", c.initialisation);
+    if (c.covariance.matrix.size() > 0) {
+      std::vector<std::string> from;
+      for (bool blocks : c.std_from_time_blocks) from.push_back(blocks ? "time blocks" : "noise");
+      yaml.StringList("std_from", from);  // per intrinsic of splinecal_covariance.parameters
+      WriteParameterCovariance(c.covariance, &yaml);
+    }
     yaml.EndListItem();
   }
   yaml.EndList();
+  yaml.BeginMap("covariance");
+  yaml.Comment(
+      "each std is the larger of the noise model's and, where significantly larger, the "
+      "cluster-robust one over time blocks of block_seconds (2 correlation lengths of the "
+      "residuals' scores, at most 1/20 of the recording)");
+  yaml.Scalar("block_seconds", result.time_blocks.block_s);
+  yaml.Scalar("correlation_length_s", result.time_blocks.correlation_length_s);
+  yaml.Scalar("blocks", result.time_blocks_count);
+  yaml.Scalar("limited_by_min_blocks", result.time_blocks.limited_by_min_blocks);
+  yaml.EndMap();
   yaml.BeginMap("solver");
   yaml.Scalar("rounds", result.solve.rounds);
   yaml.Scalar("iterations", result.solve.iterations);

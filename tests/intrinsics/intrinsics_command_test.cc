@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -81,6 +83,27 @@ TEST(IntrinsicsCommand, StereoChessboardsGiveEveryOutput) {
   EXPECT_EQ(camchain[0].camera.fu, result["cameras"][0]["intrinsics"][0].as<double>());
   EXPECT_EQ(camchain[1].camera.pv, result["cameras"][1]["intrinsics"][3].as<double>());
   EXPECT_EQ(camchain[0].camera.width, 640);
+  // splinecal_covariance (docs/intrinsics.md): the active intrinsics in Kalibr's order, then for
+  // cam1 T_cn_cnm1's tangent; a symmetric matrix whose diagonal gives result.yaml's stds.
+  const YAML::Node chain = testing::LoadStrictYamlFile(out + "/camchain.yaml");
+  const std::vector<std::string> names = {"fu", "fv", "pu", "pv", "k1", "k2", "p1", "p2"};
+  for (int n = 0; n < 2; ++n) {
+    const YAML::Node cov = chain["cam" + std::to_string(n)]["splinecal_covariance"];
+    ASSERT_TRUE(cov.IsMap()) << "cam" << n;
+    const auto parameters = cov["parameters"].as<std::vector<std::string>>();
+    ASSERT_EQ(parameters.size(), n == 0 ? 8u : 14u);
+    for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(parameters[i], names[i]);
+    if (n == 1) EXPECT_EQ(parameters[13], "T_cn_cnm1_phi_z");
+    const auto matrix = cov["matrix"].as<std::vector<std::vector<double>>>();
+    ASSERT_EQ(matrix.size(), parameters.size());
+    for (size_t i = 0; i < matrix.size(); ++i) {
+      ASSERT_EQ(matrix[i].size(), parameters.size());
+      for (size_t j = 0; j < i; ++j) EXPECT_NEAR(matrix[i][j], matrix[j][i], 1e-12 * matrix[i][i]);
+    }
+    const double std_fu = result["cameras"][n]["intrinsics_std"][0].as<double>();
+    EXPECT_NEAR(std::sqrt(matrix[0][0]), std_fu, 1e-9 * std_fu);
+    EXPECT_GT(cov["block_seconds"].as<double>(), 0.0);
+  }
 
   const std::string report = testing::ReadFileText(out + "/report.html");
   EXPECT_THAT(report, HasSubstr("Errors and coverage by image position"));

@@ -39,7 +39,8 @@
 //      problem is solved again without the loss, residuals weighted by 1 / sigma.
 //   6. Standard deviations: the marginal covariance of the intrinsics and extrinsics
 //      (estimation/marginal_covariance.h), the larger of the noise model's and, where
-//      significant, the cluster-robust one over views (ReportedCovarianceOf).
+//      significant, the cluster-robust one over time blocks whose length the residuals'
+//      autocorrelation chooses (intrinsics/time_blocks.h; ReportedCovarianceOf).
 //   7. Observability: the information matrix of each camera's intrinsics with the target poses
 //      marginalised; parameters with a standard deviation above their threshold (focal lengths
 //      and principal point: kUndeterminedPixelRatio of the image width; shape and distortion
@@ -56,10 +57,12 @@
 
 #include "splinecal/camera/camera_model.h"
 #include "splinecal/camera/observations.h"
+#include "splinecal/camera/parameter_covariance.h"
 #include "splinecal/camera/reprojection_sample.h"
 #include "splinecal/camera/target.h"
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/intrinsics/time_blocks.h"
 #include "splinecal/lie/se3.h"
 
 namespace splinecal {
@@ -126,6 +129,11 @@ struct IntrinsicsCameraResult {
       Eigen::Matrix<double, 6, 1>::Constant(std::numeric_limits<double>::quiet_NaN());
   bool extrinsic_estimated = false;
   std::string initialisation;  // how the start was found, in words
+  // The covariance of the active intrinsics (Kalibr's order) and, for n > 0 with an estimated
+  // extrinsic, T_cn_cnm1's right tangent (camera/parameter_covariance.h), for camchain.yaml; and per
+  // intrinsic of it whether its std is the time blocks' cluster-robust one (else the noise's).
+  ParameterCovariance covariance;
+  std::vector<bool> std_from_time_blocks;
 };
 
 struct IntrinsicsResult {
@@ -137,6 +145,10 @@ struct IntrinsicsResult {
   // T_c0_t per used timestamp, for the report and tests.
   std::vector<std::pair<int64_t, SE3d>> target_poses;
   SolveSummary solve;
+  // The time blocks of the cluster-robust covariance (intrinsics/time_blocks.h) and how many
+  // the recording held.
+  TimeBlocks time_blocks;
+  int time_blocks_count = 0;
   std::vector<std::string> warnings;
 };
 

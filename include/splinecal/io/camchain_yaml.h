@@ -18,6 +18,9 @@
 //   timeshift_cam_imu  [s] (optional: 0), CameraCalibration::time_offset_s
 //   line_delay         [s] per image row (optional: 0, a global shutter)
 //   rostopic           (optional, kept)
+//   splinecal_covariance  (written when CamchainYamlText is given one with a matrix; not read,
+//                      and Kalibr's readers ignore it) parameters: [names], matrix: rows,
+//                      block_seconds (camera/parameter_covariance.h)
 //   T_cn_cnm1          cam1 onwards: camera n-1 into camera n, 4x4. Read into
 //                      CameraCalibration::T_cn_cnm1 (calibrate holds a rig at it on request;
 //                      otherwise T_cam_imu is
@@ -29,8 +32,10 @@
 #define SPLINECAL_IO_CAMCHAIN_YAML_H_
 
 #include <string>
+#include <vector>
 
 #include "splinecal/camera/camchain.h"
+#include "splinecal/camera/parameter_covariance.h"
 
 namespace splinecal {
 
@@ -53,8 +58,14 @@ CameraCalibration ReadCam0Extrinsics(const std::string& path);
 // camera keys and T_cn_cnm1 from CameraCalibration::T_cn_cnm1 (required from cam1 on), no
 // T_cam_imu, timeshift_cam_imu or line_delay.
 enum class CamchainKeys { kWithImu, kCamerasOnly };
+// covariances: empty, or one per camera (an empty matrix: none written).
 std::string CamchainYamlText(const Camchain& camchain,
-                             CamchainKeys keys = CamchainKeys::kWithImu);
+                             CamchainKeys keys = CamchainKeys::kWithImu,
+                             const std::vector<ParameterCovariance>& covariances = {});
+
+// The splinecal_covariance map of one camera (also under each camera of intrinsics' result.yaml).
+class YamlWriter;
+void WriteParameterCovariance(const ParameterCovariance& covariance, YamlWriter* yaml);
 
 }  // namespace splinecal
 
