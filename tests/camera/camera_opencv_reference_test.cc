@@ -113,7 +113,8 @@ void ExpectMatchesOpenCv(const Camera& camera,
 // The dataset's camchain, bundled in data/euroc_april_frames/ (byte-identical to
 // ../shared/data/euroc_imu_april/camchain_euroc.yaml), so that these checks run in every checkout.
 Camera EurocCam0() {
-  return ReadCamchainYaml(testing::BundledDataPath("euroc_april_frames/camchain_euroc.yaml"))[0].camera;
+  const std::string path = testing::BundledDataPath("euroc_april_frames/camchain_euroc.yaml");
+  return ReadCamchainYaml(path)[0].camera;
 }
 
 // A wide-angle radtan lens (~100 degree field) with OpenCV's 5th coefficient.
