@@ -61,15 +61,20 @@
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/camera_model.h"
 #include "splinecal/camera/distortion.h"
+#include "splinecal/camera/image_bounds_check.h"
+#include "splinecal/camera/observation_gates.h"
 #include "splinecal/camera/observations.h"
+#include "splinecal/camera/parameter_covariance.h"
 #include "splinecal/camera/pnp.h"
 #include "splinecal/camera/projection.h"
 #include "splinecal/camera/reprojection_sample.h"
 #include "splinecal/camera/rolling_shutter.h"
 #include "splinecal/camera/target.h"
+#include "splinecal/camera/target_layout_check.h"
 
 // io/
 #include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/image_folder.h"
 #include "splinecal/io/imu_units.h"
@@ -150,17 +155,21 @@
 // calib/
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/calib/calibrate_run.h"
+#include "splinecal/calib/camchain_prior.h"
 #include "splinecal/calib/camera_selection.h"
 #include "splinecal/calib/fit.h"
+#include "splinecal/calib/target_scale_cost.h"
 
 // intrinsics/
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/intrinsics/camera_specs.h"
+#include "splinecal/intrinsics/corner_outliers.h"
 #include "splinecal/intrinsics/initial_intrinsics.h"
 #include "splinecal/intrinsics/intrinsics_observability.h"
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"
+#include "splinecal/intrinsics/time_blocks.h"
 
 // report/
 #include "splinecal/report/align_report.h"

@@ -30,7 +30,9 @@ def test_intrinsics_equals_the_command_line(tmp_path):
     expected = load_yaml(tmp_path / "cli" / "result.yaml")
     result = splinecal.intrinsics(observations, **flags, out=tmp_path / "py")
     camchain = result.pop("camchain_yaml")
-    assert camchain == (tmp_path / "cli" / "camchain.yaml").read_text()
+    # The covariance's last digits depend on summation order (the block sums): values to 1e-9.
+    assert_same(yaml.safe_load(camchain),
+                load_yaml(tmp_path / "cli" / "camchain.yaml"), tol=1e-9)
     assert (tmp_path / "py" / "camchain.yaml").read_text() == camchain
     assert (tmp_path / "py" / "report.html").exists()
     # The same C++ solve on the same files, one thread: only wall times may differ.

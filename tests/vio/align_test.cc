@@ -650,8 +650,10 @@ TEST(AlignCommand, FailedCheckExitsTwoWithoutOutput) {
 
 TEST(AlignCommand, BadInputNamesTheFile) {
   testing::TempDir dir;
-  dir.Write("imu.csv", "#t,gx,gy,gz,ax,ay,az\n1000,0,0,0,0,0,9.81\n2000,0,0,0,0,0,9.81\n");
-  dir.Write("poses.txt", "0.000001 0 0 0 0 0 0 1\n0.000002 0 0 zero 0 0 0 1\n");
+  // A 200 Hz IMU (the rate check refuses a 1 MHz one before the poses are read).
+  dir.Write("imu.csv",
+            "#t,gx,gy,gz,ax,ay,az\n5000000,0,0,0,0,0,9.81\n10000000,0,0,0,0,0,9.81\n");
+  dir.Write("poses.txt", "0.005 0 0 0 0 0 0 1\n0.010 0 0 zero 0 0 0 1\n");
   const testing::ToolResult run = testing::RunTool({"align",
                                                     "--imu",
                                                     dir.File("imu.csv"),
