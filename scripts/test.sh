@@ -3,7 +3,8 @@
 # benchmarks are not built here: scripts/bench.sh builds and runs them).
 #   scripts/test.sh              Release build in build/, every test (slow Monte-Carlo included)
 #   scripts/test.sh --sanitize   ASan + UBSan build in build-sanitize/: the library and the C++
-#                                tests, slow tests, Python module and consumer test left out
+#                                tests; slow and arithmetic tests, Python module and consumer
+#                                test left out
 #   scripts/test.sh --fast       leaves out the tests labelled slow
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,11 +20,12 @@ for arg in "$@"; do
       # speed (at -O1 they ran 40 times slower than Release), and debug info only costs time.
       # The sanitizers check the library and the C++ tests that drive it. Left out: the Python
       # module (pybind11 bindings, the slowest units to compile; its tests run in the Release
-      # build) and the downstream-project test (it checks installation and packaging, which the
-      # sanitizers do not see).
+      # build), the downstream-project test (it checks installation and packaging, which the
+      # sanitizers do not see) and the tests labelled arithmetic (Jet and autodiff checks of
+      # template math, tests/CMakeLists.txt: the costliest compiles, no memory to check).
       cmake_args=(-DCMAKE_BUILD_TYPE=Sanitize "-DCMAKE_CXX_FLAGS_SANITIZE=-O2 -g0"
                   -DSPLINECAL_SANITIZE=ON -DSPLINECAL_SLOW_TESTS=OFF -DSPLINECAL_PYTHON=OFF
-                  -DSPLINECAL_CONSUMER_TEST=OFF)
+                  -DSPLINECAL_CONSUMER_TEST=OFF -DSPLINECAL_ARITHMETIC_TESTS=OFF)
       ctest_args+=(-LE slow)
       export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
       export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
