@@ -3,15 +3,16 @@
 # other core around them. Without it a fresh build folder (every CI clone) has no
 # Testing/Temporary/CTestCostData.txt and ctest starts tests in file order, which can leave the
 # longest real-data calibration for the end, alone on one core. After one run ctest's own
-# measured costs take over. The figures are seconds measured one test at a time on the shared
-# machine (docs/reliability.md, "Where the time goes"): a ranking, not a budget. Names absent
-# from a build (the sanitizer build has no slow tests) are ignored by ctest.
+# measured costs take over. The figures are wall seconds measured on the loaded shared machine
+# (docs/reliability.md, "Where the time goes" and "CI time in CPU seconds"): a ranking, not a
+# budget. Names absent from a build (the sanitizer build has no slow tests) are ignored by ctest.
 set_tests_properties(
   CalibrateEuroc.WholeRecordingAgreesWithThePublishedCalibrationsFromAPerturbedStart
   PROPERTIES COST 192)
 set_tests_properties(CalibrateEuroc.HalvesAgreeWithinTheirReportedStandardDeviations
   PROPERTIES COST 55)
-set_tests_properties(Calibrate.WideAngleDoubleSphereRoundTrip PROPERTIES COST 49)
+set_tests_properties(Calibrate.WideAngleDoubleSphereRoundTrip
+  Fit.BiasSplineFollowsADriftingBias PROPERTIES COST 26)
 set_tests_properties(
   IntrinsicsExactLeastSquares.RadTanCam0NoWorseThanOpenCvCalibrateCamera
   IntrinsicsExactLeastSquares.RadTanCam1NoWorseThanOpenCvCalibrateCamera
