@@ -1,5 +1,12 @@
 #include "splinecal/detect/detect_report.h"
 
+#include <memory>
+#include <mutex>
+#include <sstream>
+
+#include "splinecal/detect/image_file.h"
+#include "splinecal/error.h"
+#include "splinecal/io/observations_csv.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/string_printf.h"
 
@@ -61,6 +68,47 @@ std::string DetectSummaryText(const DetectFoldersResult& result) {
                            : StringPrintf(", %zu warnings (result.yaml lists them)",
                                           result.warnings.size()).c_str());
   return text;
+}
+
+std::vector<OutputFile> DetectOutputFiles(const DetectFoldersResult& result,
+                                          const CalibrationTarget& target,
+                                          const std::string& target_path) {
+  if (result.observations.empty()) {
+    int64_t read = 0;
+    for (const CameraDetectionSummary& camera : result.cameras) read += camera.images_read;
+    const std::string hint = target.type == "aprilgrid"
+                                 ? "do tagCols and tagRows match the printed grid?"
+                                 : "do targetCols and targetRows count the inner corners?";
+    throw Error(target_path, 0,
+                "this " + target.type + " was found in none of the " + std::to_string(read) +
+                    " images read; nothing was written (" + hint + ")");
+  }
+  std::ostringstream csv;
+  WriteObservationsCsv(result.observations, &csv);
+  return {{"observations.csv", csv.str()},
+          {"result.yaml", DetectResultYamlText(result, target, target_path)}};
+}
+
+std::function<void(int, const ImageFrame&, const GrayImage&, const TargetDetection&)>
+OverlayWriter(OutputDir* output) {
+  auto staging = std::make_shared<std::mutex>();
+  return [output, staging](int cam_id, const ImageFrame& frame, const GrayImage& image,
+                           const TargetDetection& detection) {
+    if (detection.corners.empty()) return;
+    std::vector<OverlayCorner> corners;
+    for (const CornerDetection& c : detection.corners) corners.push_back({c.point_id, c.uv});
+    const std::string relative =
+        "overlays/cam" + std::to_string(cam_id) + "/" + std::to_string(frame.t_ns) + ".png";
+    std::string path;
+    {
+      std::lock_guard<std::mutex> lock(*staging);
+      path = output->StagedPath(relative);
+    }
+    WriteOverlayPng(image.view(), corners,
+                    StringPrintf("cam%d %lld: %zu corners", cam_id,
+                                 static_cast<long long>(frame.t_ns), corners.size()),
+                    path);
+  };
 }
 
 }  // namespace splinecal
