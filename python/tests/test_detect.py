@@ -207,3 +207,16 @@ def test_errors_of_the_command_are_errors_in_python(tmp_path, target):
         splinecal.detect(APRIL / "cam0", april, images=[APRIL / "cam0"])
     with pytest.raises(ValueError, match="threads"):
         splinecal.detect(images=[APRIL / "cam0"], target=april, threads=0)
+
+
+def test_a_target_file_that_contradicts_the_board_is_the_commands_error(tmp_path):
+    grid = tmp_path / "grid7.yaml"
+    grid.write_text("target_type: aprilgrid\ntagCols: 7\ntagRows: 7\ntagSize: 0.088\n"
+                    "tagSpacing: 0.3\n")
+    message = tool_error("detect", "--images", APRIL / "cam0", "--target", grid,
+                         "--out", tmp_path / "cli")
+    assert "lie on an aprilgrid of 6 tag columns, not the 7 of this file" in message
+    with pytest.raises(splinecal.Error) as raised:
+        splinecal.detect(images=[APRIL / "cam0"], target=grid, out=tmp_path / "py")
+    assert str(raised.value) in message
+    assert not (tmp_path / "py" / "observations.csv").exists()

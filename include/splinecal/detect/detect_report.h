@@ -23,7 +23,8 @@ std::string DetectResultYamlText(const DetectFoldersResult& result,
 // The files `splinecal detect --out` writes, as the command line and Python's detect(images=...,
 // out=...) both write them: observations.csv (io/observations_csv.h) and result.yaml. Throws
 // splinecal::Error naming `target_path` when no frame showed the target (nothing is written:
-// a wrong target file, not an empty result).
+// a wrong target file, not an empty result), and CheckTargetLayout's error
+// (camera/target_layout_check.h) when the corners contradict the target's columns or spacing.
 std::vector<OutputFile> DetectOutputFiles(const DetectFoldersResult& result,
                                           const CalibrationTarget& target,
                                           const std::string& target_path);
