@@ -5,9 +5,10 @@
 //     35..100 %, tags of 14..40 px, at each --effort (0 fast, 1 default, 2 thorough); counter:
 //     corners found of 144.
 //   - BM_CheckerboardFrame: the checkerboard detector on OpenCV's left01.jpg (640 x 480, 9 x 6).
-//   - BM_DetectFolder/threads: the whole command's work (list, decode, detect, gather) on a
+//   - BM_DetectFolder*/threads: the whole command's work (list, decode, detect, gather) on a
 //     folder of 96 frames, 1 and 2 threads, the default effort: frames/s against the targets
-//     (AprilGrid 110 frames/s, checkerboard 50 frames/s on 2 cores).
+//     (AprilGrid 110 frames/s, checkerboard 50 frames/s on 2 cores), and the CPU time per frame
+//     of all threads; BM_DetectFolderSmallTags on resampled copies with tags of 12-25 px.
 //   - BM_DetectorChoice/...: why libapriltag and not OpenCV's ArUco (docs/detect.md): each one
 //     on the EuRoC frame, with and without the 2 x 2 white growth that separates Kalibr's tags
 //     from their corner squares; counters: tags found of 36, and the homography RMS [px] of the
@@ -23,7 +24,9 @@
 
 #include <opencv2/aruco.hpp>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sys/resource.h>
 
 #include "splinecal/detect/detect_folders.h"
 #include "splinecal/detect/image_file.h"
@@ -32,6 +35,7 @@
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/image_folder.h"
 #include "splinecal/io/target_yaml.h"
+#include "detect/warped_views.h"
 
 namespace splinecal {
 namespace {
@@ -110,26 +114,95 @@ std::string FolderOfCopies(const std::string& source, const std::string& name) {
   return dir;
 }
 
+// CPU time of every thread of this process [s] (Google Benchmark's CPU time is the main
+// thread's only; the folder benchmarks run workers).
+double ProcessCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+// The command's work on `dir`'s frames at the default effort; counters: frames/s (real time),
+// CPU ms per frame over all threads (what a shared machine cannot inflate much), corners per
+// frame.
+void DetectFolderBench(benchmark::State& state, const std::string& dir,
+                       const CalibrationTarget& target) {
+  const std::vector<ImageFolder> folders = {ListImageFolder(dir)};
+  const double frames = static_cast<double>(folders[0].frames.size());
+  DetectFoldersOptions options;
+  options.threads = static_cast<int>(state.range(0));
+  size_t corners = 0;
+  const double cpu_start = ProcessCpuSeconds();
+  for (auto _ : state) corners = DetectFolders(folders, target, options).observations.size();
+  const double cpu = ProcessCpuSeconds() - cpu_start;
+  state.counters["frames_per_s"] =
+      benchmark::Counter(frames, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cpu_ms_per_frame"] = 1e3 * cpu / (frames * state.iterations());
+  state.counters["corners_per_frame"] = corners / frames;
+}
+
 void DetectFolderBench(benchmark::State& state, const std::string& source,
                        const CalibrationTarget& target, const std::string& name) {
   if (!std::filesystem::exists(source)) {
     state.SkipWithError((source + " is absent").c_str());
     return;
   }
-  const std::vector<ImageFolder> folders = {ListImageFolder(FolderOfCopies(source, name))};
-  DetectFoldersOptions options;
-  options.threads = static_cast<int>(state.range(0));
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(DetectFolders(folders, target, options).observations.size());
-  }
-  state.counters["frames_per_s"] =
-      benchmark::Counter(96.0, benchmark::Counter::kIsIterationInvariantRate);
+  DetectFolderBench(state, FolderOfCopies(source, name), target);
 }
 
 void BM_DetectFolderAprilGrid(benchmark::State& state) {
   DetectFolderBench(state, kEurocFrame, EurocGrid(), "splinecal_bench_aprilgrid");
 }
 BENCHMARK(BM_DetectFolderAprilGrid)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+
+// 96 resampled copies of the EuRoC frame with small, oblique tags, the kind of views of
+// tests/detect/aprilgrid_recall_test.cc (detect/warped_views.h): scales 0.42, 0.5 and 0.6 against
+// tilts of 0 to 60 degrees, turned in the image, every third blurred (0.8 px) or noisy (3 grey
+// levels), each pasted at the centre of a 640 x 480 grey frame (a folder's frames share one size).
+// Tags of about 12 to 25 px on their shortest side, where the default effort's extra steps run.
+std::string FolderOfSmallTags() {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / "splinecal_bench_small_tags").string();
+  std::filesystem::create_directories(dir);
+  const GrayImage frame = ReadGrayImage(kEurocFrame);
+  std::vector<Eigen::Vector2d> region;
+  for (const CornerDetection& c : TargetDetector(EurocGrid()).Detect(frame.view()).corners) {
+    region.push_back(c.uv);
+  }
+  const std::vector<std::pair<double, double>> tilts = {{0, 0},   {35, 0},  {50, 90},
+                                                        {60, 0}, {60, 90}, {45, 45}};
+  uint32_t seed = 1;
+  for (int i = 0; i < 96; ++i, ++seed) {
+    testing::ViewSpec spec;
+    spec.scale = std::vector<double>{0.42, 0.5, 0.6}[(i / 6) % 3];
+    spec.tilt_deg = tilts[i % 6].first;
+    spec.tilt_axis_deg = tilts[i % 6].second;
+    spec.roll_deg = 37.0 * seed;
+    spec.seed = seed;
+    if (seed % 3 == 1) spec.blur_px = 0.8;
+    if (seed % 3 == 2) spec.noise = 3.0;
+    const testing::WarpedView view = testing::MakeWarpedView(frame.view(), region, spec);
+    cv::Mat canvas(480, 640, CV_8UC1, cv::Scalar(128));
+    const int w = std::min(view.image.width, 640), h = std::min(view.image.height, 480);
+    const cv::Mat pixels(view.image.height, view.image.width, CV_8UC1,
+                         const_cast<uint8_t*>(view.image.pixels.data()));
+    pixels(cv::Rect((view.image.width - w) / 2, (view.image.height - h) / 2, w, h))
+        .copyTo(canvas(cv::Rect((640 - w) / 2, (480 - h) / 2, w, h)));
+    cv::imwrite(dir + "/" + std::to_string(1000 + i) + ".png", canvas);
+  }
+  return dir;
+}
+
+void BM_DetectFolderSmallTags(benchmark::State& state) {
+  if (!std::filesystem::exists(kEurocFrame)) {
+    state.SkipWithError("the bundled EuRoC frame is absent");
+    return;
+  }
+  static const std::string dir = FolderOfSmallTags();
+  DetectFolderBench(state, dir, EurocGrid());
+}
+BENCHMARK(BM_DetectFolderSmallTags)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
 void BM_DetectFolderCheckerboard(benchmark::State& state) {
   DetectFolderBench(state, kChessboard, MakeCheckerboard(9, 6, 0.025, 0.025),

@@ -6,10 +6,19 @@
 #include <pybind11/pybind11.h>
 
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "bindings.h"
+#include "command_outputs.h"
 #include "interruptible.h"
 #include "numpy_io.h"
+#include "splinecal/detect/detect_folders.h"
+#include "splinecal/detect/detect_report.h"
 #include "splinecal/detect/image_file.h"
 #include "splinecal/error.h"
 #include "splinecal/detect/target_detector.h"
@@ -74,44 +83,158 @@ py::dict DetectFile(const std::string& path, TargetDetector* detector) {
   return dict;
 }
 
-py::object Detect(py::handle images, py::handle target, const std::string& effort) {
-  const CalibrationTarget board = ReadTargetYaml(PathArgument(target, "target"));
+// The paths of a list or tuple `object` (every item checked before any is used; a ValueError
+// naming `name`[i] for an item that is not a path); nullopt when `object` is no list or tuple.
+std::optional<std::vector<std::string>> PathList(py::handle object, const std::string& name,
+                                                 const std::string& what) {
+  if (!py::isinstance<py::list>(object) && !py::isinstance<py::tuple>(object)) return std::nullopt;
+  std::vector<std::string> paths;
+  for (py::handle item : object) {
+    const std::optional<std::string> path = AsPath(item);
+    if (!path) {
+      throw py::value_error(name + "[" + std::to_string(paths.size()) +
+                            "]: expected a path (str or os.PathLike) in a list of " + what);
+    }
+    paths.push_back(*path);
+  }
+  return paths;
+}
+
+// Each line as a Python warning (UserWarning), where the command line prints
+// "detect: warning: LINE" to stderr.
+void Warn(const std::vector<std::string>& lines) {
+  for (const std::string& line : lines) {
+    if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) != 0) throw py::error_already_set();
+  }
+}
+
+// A camera folder as `splinecal detect --images` reads it: every frame searched, one dict per
+// frame in time order (with t_ns and path); frames that cannot be used are warnings, as in the
+// command line.
+py::list DetectFolder(const std::string& dir, const CalibrationTarget& board,
+                      const DetectorOptions& detector, int threads) {
+  DetectFoldersOptions options;
+  options.threads = threads;
+  options.detector = detector;
+  std::mutex mutex;
+  std::map<int64_t, std::pair<std::string, TargetDetection>> frames;
+  options.on_detection = [&](int, const ImageFrame& frame, const GrayImage&,
+                             const TargetDetection& detection) {
+    std::lock_guard<std::mutex> lock(mutex);
+    frames[frame.t_ns] = {frame.path, detection};
+  };
+  const DetectFoldersResult result =
+      RunWithoutGil([&] { return DetectFolders({ListImageFolder(dir)}, board, options); });
+  Warn(result.warnings);
+  py::list list;
+  for (const auto& [t_ns, frame] : frames) {
+    py::dict dict = DetectionDict(frame.second);
+    dict["path"] = frame.first;
+    dict["t_ns"] = t_ns;
+    list.append(dict);
+  }
+  return list;
+}
+
+// The whole command (`splinecal detect --images ...`): result.yaml as a dict with the
+// observations, and with out= the command's files, written by the same function.
+py::dict DetectCommand(py::handle images, const std::string& target_path,
+                       const CalibrationTarget& board, const DetectorOptions& detector,
+                       int threads, bool draw, py::handle out) {
+  // A str (or path) is split at commas as the command line splits --images; a list holds one
+  // folder per camera.
+  std::vector<std::string> dirs;
+  if (const std::optional<std::string> list = AsPath(images)) {
+    size_t begin = 0;
+    while (true) {
+      const size_t comma = list->find(',', begin);
+      dirs.push_back(list->substr(begin, comma - begin));
+      if (comma == std::string::npos) break;
+      begin = comma + 1;
+    }
+  } else if (std::optional<std::vector<std::string>> list = PathList(images, "images", "folders")) {
+    dirs = *list;
+  } else {
+    throw py::type_error("images: expected camera folders, a list or a comma-separated str");
+  }
+  std::vector<ImageFolder> folders;
+  for (const std::string& dir : dirs) {
+    if (dir.empty()) throw py::value_error("images: an empty folder name");
+    folders.push_back(ListImageFolder(dir));
+  }
+  std::unique_ptr<OutputDir> dir = OutputArgument(out);
+  if (draw && dir == nullptr) {
+    throw py::value_error("draw: the overlays are files under out/overlays/; give out= too");
+  }
+  DetectFoldersOptions options;
+  options.threads = threads;
+  options.detector = detector;
+  if (draw) options.on_detection = OverlayWriter(dir.get());
+  const DetectFoldersResult result =
+      RunWithoutGil([&] { return DetectFolders(folders, board, options); });
+  Warn(result.warnings);
+  py::dict dict = FinishOutputs(dir.get(), DetectOutputFiles(result, board, target_path));
+  dict["observations"] = ObservationsDict(result.observations);
+  return dict;
+}
+
+py::object Detect(py::handle images_argument, py::handle target, const std::string& effort,
+                  py::handle images, py::handle out, int threads, bool draw) {
+  const std::string target_path = PathArgument(target, "target");
+  const CalibrationTarget board = ReadTargetYaml(target_path);
   DetectorOptions options;
   try {
     options.effort = ParseDetectEffort(effort);
   } catch (const Error& e) {
     throw py::value_error(std::string("effort: ") + e.what());
   }
+  if (threads < 1 || threads > 256) {
+    throw py::value_error("threads: expected 1 to 256, got " + std::to_string(threads));
+  }
+  if (!images.is_none()) {
+    if (!images_argument.is_none()) {
+      throw py::type_error("detect: give either image (pixels, a file, files or a folder) or "
+                           "images= (camera folders, as --images), not both");
+    }
+    return DetectCommand(images, target_path, board, options, threads, draw, out);
+  }
+  if (!out.is_none() || draw) {
+    throw py::type_error(std::string(draw ? "draw" : "out") +
+                         ": writes the command's files, for images= (camera folders, as "
+                         "--images); detect(image, ...) returns its corners only");
+  }
+  if (images_argument.is_none()) {
+    throw py::type_error("detect: missing image (pixels, a file, files or a folder) or images=");
+  }
   TargetDetector detector(board, options);
-  if (const std::optional<std::string> path = AsPath(images)) {
-    if (!std::filesystem::is_directory(*path)) return DetectFile(*path, &detector);
-    // A camera folder as `splinecal detect --images` lists it: one dict per frame, with its
-    // timestamp.
-    const ImageFolder folder = ListImageFolder(*path);
-    py::list frames;
-    for (const ImageFrame& frame : folder.frames) {
-      py::dict dict = DetectFile(frame.path, &detector);
-      dict["t_ns"] = frame.t_ns;
-      frames.append(dict);
-    }
-    return std::move(frames);
+  if (const std::optional<std::string> path = AsPath(images_argument)) {
+    if (std::filesystem::is_directory(*path)) return DetectFolder(*path, board, options, threads);
+    // One file: nothing else to return when it cannot be read (the command line, given only
+    // this frame, stops with "none of cam0's 1 images could be read").
+    return DetectFile(*path, &detector);
   }
-  if (py::isinstance<py::list>(images) || py::isinstance<py::tuple>(images)) {
-    // Every item checked before the first file is read.
-    std::vector<std::string> paths;
-    for (py::handle item : images) {
-      const std::optional<std::string> path = AsPath(item);
-      if (!path) {
-        throw py::value_error("image[" + std::to_string(paths.size()) +
-                              "]: expected a path (str or os.PathLike) in a list of files");
+  if (const std::optional<std::vector<std::string>> list =
+          PathList(images_argument, "image", "files")) {
+    const std::vector<std::string>& paths = *list;
+    // A file that cannot be read is a warning and is left out (its dict would have no corners
+    // to give), as the command line skips such a frame; none readable is an error, as there.
+    py::list frames;
+    std::string first_problem;
+    for (const std::string& path : paths) {
+      try {
+        frames.append(DetectFile(path, &detector));
+      } catch (const Error& e) {
+        if (first_problem.empty()) first_problem = e.what();
+        Warn({std::string(e.what()) + ", frame skipped"});
       }
-      paths.push_back(*path);
     }
-    py::list frames;
-    for (const std::string& path : paths) frames.append(DetectFile(path, &detector));
+    if (frames.empty() && !paths.empty()) {
+      throw Error("image: none of the " + std::to_string(paths.size()) +
+                  " files could be read (first problem: " + first_problem + ")");
+    }
     return std::move(frames);
   }
-  return DetectArray(images, &detector);
+  return DetectArray(images_argument, &detector);
 }
 
 }  // namespace
@@ -119,23 +242,35 @@ py::object Detect(py::handle images, py::handle target, const std::string& effor
 void BindDetect(py::module_& m) {
   m.def("detect",
         &Detect,
-        py::arg("image"),
-        py::arg("target"),
+        py::arg("image") = py::none(),
+        py::arg("target") = py::none(),
         py::kw_only(),
         py::arg("effort") = "default",
+        py::arg("images") = py::none(),
+        py::arg("out") = py::none(),
+        py::arg("threads") = 2,
+        py::arg("draw") = false,
         R"(Target corners in grayscale images; target: a Kalibr target YAML path.
 
 image: a uint8 array (h, w) of pixels already decoded, or the path of a PNG/JPEG file, or a
 list of such paths, or a camera folder as `splinecal detect --images` reads it (EuRoC data.csv
 and data/, or <t_ns>.png files). Files are decoded by splinecal's own decoder, as the command
 line does, so the same file gives the same corners in both.
+images: instead of image, the command itself: camera folders (a list, or a str with commas,
+as --images; the i-th is camera i), searched on `threads` workers; returns result.yaml's dict
+with "observations" (t_ns, cam_id, point_id, uv arrays). out: a folder to write the command's
+files to (observations.csv, result.yaml, and with draw=True overlays/camN/<t_ns>.png), whole or
+not at all. A target found in no frame raises splinecal.Error, as the command exits 2.
 effort: "default" (recall first), "thorough" (the upsampled searches in every frame) or
 "fast" (one search, misses most tags under 25 px), as `splinecal detect --effort`.
+threads: frames searched at once (images= and a folder).
 
 Returns, for an array or a file, a dict: point_id (k,) and uv (k, 2) [px] (pixel centres at
 integers, docs/conventions.md), tags_found, tags_rejected, corners_rejected (and path for a
 file); for a list of files, a list of such dicts in its order; for a folder, a list in time
-order whose dicts also hold t_ns. A file that cannot be read raises splinecal.Error naming it.)");
+order whose dicts also hold t_ns. A frame that cannot be used (unreadable, another size) is a
+UserWarning naming it and is left out, where the command line warns and skips it; a single file
+that cannot be read raises splinecal.Error naming it.)");
 }
 
 }  // namespace python

@@ -1,13 +1,15 @@
 """detect on a rendered checkerboard against `splinecal detect` on the same image as a PNG."""
 import pathlib
 import struct
+import subprocess
 import zlib
 
 import numpy as np
 import pytest
 
 import splinecal
-from conftest import DATA, read_csv_columns, run_tool
+from conftest import (DATA, TOOL, assert_same, assert_same_files, load_yaml, read_csv_columns,
+                      run_tool, tool_error)
 
 SQUARE_PX = 24
 
@@ -108,7 +110,113 @@ def test_effort_is_checked_and_fast_still_finds_the_euroc_grid():
 def test_a_file_that_is_no_image_names_itself(tmp_path, target):
     bad = tmp_path / "1000.png"
     bad.write_bytes(b"not an image")
-    with pytest.raises(splinecal.Error, match="1000.png"):
+    # Warned as the command line warns, then none readable: an error naming it.
+    with pytest.raises(splinecal.Error, match="1000.png"), pytest.warns(UserWarning, match="1000.png"):
         splinecal.detect([bad], target)
     with pytest.raises(ValueError, match=r"image\[1\]"):
         splinecal.detect([bad, 3], target)
+
+
+APRIL = DATA / "euroc_april_frames"
+
+
+def tool_warnings(*args):
+    """The "detect: warning: ..." lines of a `splinecal detect` run (exit 0), without the prefix."""
+    done = subprocess.run([TOOL, "detect", *map(str, args)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    prefix = "detect: warning: "
+    return [line[len(prefix):] for line in done.stderr.splitlines() if line.startswith(prefix)]
+
+
+def test_images_keyword_is_the_command_with_the_same_files(tmp_path):
+    folders = [APRIL / "cam0", APRIL / "cam1"]
+    target = APRIL / "aprilgrid.yaml"
+    run_tool("detect", "--images", ",".join(map(str, folders)), "--target", target,
+             "--draw", "--out", tmp_path / "cli")
+    result = splinecal.detect(images=folders, target=target, out=tmp_path / "py", draw=True)
+    assert_same_files(tmp_path / "py", tmp_path / "cli",
+                      ["observations.csv", "overlays/cam0/1403709395937837056.png",
+                       "overlays/cam1/1403709395937837056.png"])
+    # result.yaml: the same but for the times of this run.
+    expected = load_yaml(tmp_path / "cli" / "result.yaml")
+    written = load_yaml(tmp_path / "py" / "result.yaml")
+    for run in (expected, written, result):
+        run.pop("wall_time_s")
+        for camera in run["cameras"].values():
+            camera.pop("detection_time_s")
+    assert_same(written, expected, 0)
+    # The dict is result.yaml's, with the observations themselves where the file names
+    # observations.csv (as splinecal.simulate returns them).
+    assert expected.pop("observations") == "observations.csv"
+    observations = result.pop("observations")
+    assert_same(result, expected, 0)
+    assert result["cameras"]["cam1"]["corners"] == 144
+    # The observations returned are the file's rows.
+    t_ns, columns = read_csv_columns(tmp_path / "cli" / "observations.csv")
+    np.testing.assert_array_equal(observations["t_ns"], t_ns)
+    np.testing.assert_array_equal(observations["point_id"], columns[:, 1].astype(np.int64))
+    np.testing.assert_allclose(observations["uv"], columns[:, 2:4], rtol=0, atol=1e-12)
+    # A comma-separated str, as --images, and one thread: the same corners.
+    again = splinecal.detect(images=",".join(map(str, folders)), target=target, threads=1)
+    np.testing.assert_array_equal(again["observations"]["uv"], observations["uv"])
+
+
+def folder_with_a_bad_frame(tmp_path):
+    """A plain folder: the EuRoC frame as 1000.png and a file that is no image as 2000.png."""
+    folder = tmp_path / "frames"
+    folder.mkdir()
+    (folder / "1000.png").write_bytes(
+        (APRIL / "cam0" / "data" / "1403709395937837056.png").read_bytes())
+    (folder / "2000.png").write_bytes(b"not an image")
+    return folder
+
+
+def test_python_warns_where_the_command_line_warns(tmp_path):
+    folder = folder_with_a_bad_frame(tmp_path)
+    target = APRIL / "aprilgrid.yaml"
+    expected = tool_warnings("--images", folder, "--target", target, "--out", tmp_path / "cli")
+    assert len(expected) == 1 and "2000.png" in expected[0], expected
+    # The command (images=) and a folder (image): the command line's line, word for word.
+    for call in (lambda: splinecal.detect(images=[folder], target=target),
+                 lambda: splinecal.detect(folder, target)):
+        with pytest.warns(UserWarning) as caught:
+            result = call()
+        assert [str(w.message) for w in caught] == expected
+    frames = splinecal.detect(folder, target)
+    assert [f["t_ns"] for f in frames] == [1000] and len(frames[0]["point_id"]) == 144
+    # A list of files: the same warning for the bad one, which is left out.
+    with pytest.warns(UserWarning, match="2000.png.*frame skipped"):
+        listed = splinecal.detect([folder / "1000.png", folder / "2000.png"], target)
+    assert [pathlib.Path(f["path"]).name for f in listed] == ["1000.png"]
+
+
+def test_errors_of_the_command_are_errors_in_python(tmp_path, target):
+    april = APRIL / "aprilgrid.yaml"
+    # No frame shows the target: the command's exit 2 and its line.
+    message = tool_error("detect", "--images", APRIL / "cam0", "--target", target,
+                         "--out", tmp_path / "cli")
+    with pytest.raises(splinecal.Error) as raised:
+        splinecal.detect(images=[APRIL / "cam0"], target=target, out=tmp_path / "py")
+    assert str(raised.value) in message
+    assert not (tmp_path / "py" / "result.yaml").exists()
+    with pytest.raises(ValueError, match="draw.*out"):
+        splinecal.detect(images=[APRIL / "cam0"], target=april, draw=True)
+    with pytest.raises(TypeError, match="out"):
+        splinecal.detect(APRIL / "cam0", april, out=tmp_path / "py")
+    with pytest.raises(TypeError, match="not both"):
+        splinecal.detect(APRIL / "cam0", april, images=[APRIL / "cam0"])
+    with pytest.raises(ValueError, match="threads"):
+        splinecal.detect(images=[APRIL / "cam0"], target=april, threads=0)
+
+
+def test_a_target_file_that_contradicts_the_board_is_the_commands_error(tmp_path):
+    grid = tmp_path / "grid7.yaml"
+    grid.write_text("target_type: aprilgrid\ntagCols: 7\ntagRows: 7\ntagSize: 0.088\n"
+                    "tagSpacing: 0.3\n")
+    message = tool_error("detect", "--images", APRIL / "cam0", "--target", grid,
+                         "--out", tmp_path / "cli")
+    assert "lie on an aprilgrid of 6 tag columns, not the 7 of this file" in message
+    with pytest.raises(splinecal.Error) as raised:
+        splinecal.detect(images=[APRIL / "cam0"], target=grid, out=tmp_path / "py")
+    assert str(raised.value) in message
+    assert not (tmp_path / "py" / "observations.csv").exists()

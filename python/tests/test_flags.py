@@ -18,12 +18,6 @@ NOT_IN_PYTHON = {
     "quiet",
 }
 
-# Flags that python/detect_bindings.cc (detection on one image array, owned by another change
-# in flight) does not take yet. This is an exact list, not a skip: the test fails as soon as
-# detect takes one of them (remove it here) and when a new detect flag is missing (add it to
-# Python, or here with the reason).
-DETECT_NOT_YET = {"images", "out", "threads", "draw"}
-
 # Keywords whose Python default differs from the flag's in form only, with the reason.
 DEFAULT_FORM = {
     # The command's 20 s is its default for the analytic trajectories; with --trajectory-file it
@@ -90,10 +84,7 @@ def same_default(cli, python):
 def test_every_flag_is_a_keyword_with_the_same_default(command):
     parameters = inspect.signature(getattr(splinecal, command)).parameters
     missing = {f for f in flags(command) if f not in parameters} - NOT_IN_PYTHON
-    if command == "detect":
-        assert missing == DETECT_NOT_YET
-    else:
-        assert not missing, f"splinecal.{command} lacks the keywords {sorted(missing)}"
+    assert not missing, f"splinecal.{command} lacks the keywords {sorted(missing)}"
     for flag, cli_default in flags(command).items():
         if flag in missing or flag in NOT_IN_PYTHON or (command, flag) in DEFAULT_FORM:
             continue

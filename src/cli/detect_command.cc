@@ -4,8 +4,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <mutex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,10 +12,8 @@
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/detect/detect_folders.h"
 #include "splinecal/detect/detect_report.h"
-#include "splinecal/detect/image_file.h"
 #include "splinecal/error.h"
 #include "splinecal/io/image_folder.h"
-#include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/string_printf.h"
@@ -28,11 +24,12 @@ DEFINE_string(images,
               "(data.csv and data/) or a folder of <t_ns>.png / <t_ns>.jpg [paths]");
 DEFINE_string(effort,
               "default",
-              "aprilgrid: how hard to look for tags, recall against time: default (searches of "
-              "the frame upsampled 2x when the first search found no tag or missed tags of the "
-              "grid in view: 87% of the corners of 15-20 px tags, 99% from 20 px in "
-              "docs/detect.md's test), thorough (the upsampled searches in every frame), fast "
-              "(the first search only: 14% of 15-20 px tags, 78% of 20-25 px ones)");
+              "aprilgrid: how hard to look for tags, recall against time: default (when tags "
+              "of the grid in view are missing, the tags their found neighbours predict, kept "
+              "when their code reads right, and searches of the frame upsampled 2x: 98% of the "
+              "corners of 15-20 px tags, 100% from 20 px in docs/detect.md's test), thorough "
+              "(the upsampled searches in every frame), fast (the first search only: 14% of "
+              "15-20 px tags, 78% of 20-25 px ones)");
 DEFINE_bool(draw, false, "Also write one overlay PNG per frame with corners under overlays/camN/");
 
 namespace splinecal {
@@ -120,43 +117,11 @@ int RunDetect() {
   options.detector.effort = in.effort;
   ProgressBar bar;
   options.progress = [&bar](const DetectProgress& p) { bar.Update(p); };
-  std::mutex staging;
-  if (FLAGS_draw) {
-    options.on_detection = [&](int cam_id, const ImageFrame& frame, const GrayImage& image,
-                               const TargetDetection& detection) {
-      std::vector<OverlayCorner> corners;
-      for (const CornerDetection& c : detection.corners) corners.push_back({c.point_id, c.uv});
-      const std::string relative =
-          "overlays/cam" + std::to_string(cam_id) + "/" + std::to_string(frame.t_ns) + ".png";
-      std::string path;
-      {
-        std::lock_guard<std::mutex> lock(staging);
-        path = output.StagedPath(relative);
-      }
-      WriteOverlayPng(image.view(), corners,
-                      StringPrintf("cam%d %lld: %zu corners", cam_id,
-                                   static_cast<long long>(frame.t_ns), corners.size()),
-                      path);
-    };
-  }
+  if (FLAGS_draw) options.on_detection = OverlayWriter(&output);
   const DetectFoldersResult result = DetectFolders(in.folders, in.target, options);
   for (const std::string& warning : result.warnings) Progress("detect: warning: " + warning);
 
-  if (result.observations.empty()) {
-    int64_t read = 0;
-    for (const CameraDetectionSummary& camera : result.cameras) read += camera.images_read;
-    const std::string hint = in.target.type == "aprilgrid"
-                                 ? "do tagCols and tagRows match the printed grid?"
-                                 : "do targetCols and targetRows count the inner corners?";
-    throw Error(FLAGS_target, 0,
-                "this " + in.target.type + " was found in none of the " + std::to_string(read) +
-                    " images read; nothing was written (" + hint + ")");
-  }
-  std::ostringstream csv;
-  WriteObservationsCsv(result.observations, &csv);
-  output.WriteFile("observations.csv", csv.str());
-  output.WriteFile("result.yaml",
-                   DetectResultYamlText(result, in.target, FLAGS_target));
+  output.WriteFiles(DetectOutputFiles(result, in.target, FLAGS_target));
   output.Commit();
   if (!Quiet()) std::fputs(DetectSummaryText(result).c_str(), stderr);
   return 0;

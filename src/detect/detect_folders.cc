@@ -125,7 +125,7 @@ DetectFoldersResult DetectFolders(const std::vector<ImageFolder>& folders,
           outcome.problem = e.what();
         }
         // A failing callback (an overlay that cannot be written) ends the run: below.
-        if (outcome.used && options.on_detection && !outcome.detection.corners.empty()) {
+        if (outcome.used && options.on_detection) {
           options.on_detection(cam, frame, image, outcome.detection);
         }
         outcome.seconds = SecondsSince(frame_start);

@@ -114,6 +114,32 @@ TEST(DetectCommand, RefusesFoldersWithNothingUsable) {
                 out, "--effort: detect effort 'slow': expected fast, default or thorough");
 }
 
+// A target file that does not describe the printed board: the EuRoC frames show a 6 x 6 grid
+// with tagSpacing 0.3. With 5, 7 or 8 tag columns most tags still pass the detector's neighbour
+// check (neighbours in a row are neighbours in either numbering), so the corners would get wrong
+// ids; the layout gate refuses them before anything is written, and names the 6 columns the
+// decoded tags fit. A wrong tagSpacing is the layout check's own message. The right file passes
+// (FindsEveryCornerOfTheBundledStereoFrame).
+TEST(DetectCommand, RefusesATargetFileThatContradictsTheBoard) {
+  testing::TempDir dir;
+  const std::string out = dir.File("out");
+  const std::string images = kBundled + "/cam0," + kBundled + "/cam1";
+  for (const int cols : {5, 7, 8}) {
+    const std::string grid = dir.Write(
+        "grid" + std::to_string(cols) + ".yaml",
+        "target_type: aprilgrid\ntagCols: " + std::to_string(cols) + "\ntagRows: " +
+            std::to_string(cols) + "\ntagSize: 0.088\ntagSpacing: 0.3\n");
+    ExpectRefused({"detect", "--images", images, "--target", grid, "--out", out}, out,
+                  grid + ": the tags found in the images lie on an aprilgrid of 6 tag columns, "
+                         "not the " + std::to_string(cols) + " of this file: set tagCols: 6");
+  }
+  const std::string spacing = dir.Write(
+      "spacing.yaml",
+      "target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: 0.088\ntagSpacing: 0.5\n");
+  ExpectRefused({"detect", "--images", images, "--target", spacing, "--out", out}, out,
+                "the images: the corners fit tagSpacing 0.30");
+}
+
 // Each effort finds the whole grid of the EuRoC frame (36 tags of ~40 px, found by the first
 // search), at the same corners: the searches only add tags, the refinement is the same.
 TEST(DetectCommand, EveryEffortFindsTheEurocGridAtTheSameCorners) {

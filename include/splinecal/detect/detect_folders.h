@@ -52,8 +52,9 @@ struct DetectFoldersOptions {
   // Called from the worker that finished a frame, at most every 0.2 s and once at the end (never
   // concurrently).
   std::function<void(const DetectProgress&)> progress;
-  // Called for every frame with a detection, from the worker that made it (concurrently: the
-  // callee synchronises what it shares). For overlays.
+  // Called for every frame that was searched, with or without corners, from the worker that
+  // searched it (concurrently: the callee synchronises what it shares). For overlays and for
+  // Python's per-frame results.
   std::function<void(int cam_id, const ImageFrame& frame, const GrayImage& image,
                      const TargetDetection& detection)>
       on_detection;

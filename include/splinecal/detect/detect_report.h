@@ -3,10 +3,13 @@
 #ifndef SPLINECAL_DETECT_DETECT_REPORT_H_
 #define SPLINECAL_DETECT_DETECT_REPORT_H_
 
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "splinecal/camera/target.h"
 #include "splinecal/detect/detect_folders.h"
+#include "splinecal/io/output_dir.h"
 
 namespace splinecal {
 
@@ -16,6 +19,21 @@ namespace splinecal {
 std::string DetectResultYamlText(const DetectFoldersResult& result,
                                  const CalibrationTarget& target,
                                  const std::string& target_path);
+
+// The files `splinecal detect --out` writes, as the command line and Python's detect(images=...,
+// out=...) both write them: observations.csv (io/observations_csv.h) and result.yaml. Throws
+// splinecal::Error naming `target_path` when no frame showed the target (nothing is written:
+// a wrong target file, not an empty result), and CheckTargetLayout's error
+// (camera/target_layout_check.h) when the corners contradict the target's columns or spacing.
+std::vector<OutputFile> DetectOutputFiles(const DetectFoldersResult& result,
+                                          const CalibrationTarget& target,
+                                          const std::string& target_path);
+
+// A DetectFoldersOptions::on_detection callback for `--draw`: stages
+// overlays/camN/<t_ns>.png in `output` for every frame with corners (workers call it
+// concurrently; it serialises its use of `output`, which must outlive the run).
+std::function<void(int, const ImageFrame&, const GrayImage&, const TargetDetection&)>
+OverlayWriter(OutputDir* output);
 
 // "detect: cam0 752 x 480: 1440 of 1440 images read, 1389 with the target, 190208 corners".
 std::string DetectSummaryText(const DetectFoldersResult& result);
