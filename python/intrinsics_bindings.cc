@@ -11,6 +11,7 @@
 #include "numpy_io.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/intrinsics/camera_specs.h"
+#include "splinecal/intrinsics/compare_models.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/report/command_outputs.h"
 
@@ -27,6 +28,7 @@ py::dict IntrinsicsFunction(py::handle observations,
                             py::handle cameras,
                             double outlier_sigmas,
                             bool keep_repeated_views,
+                            bool compare_models,
                             int max_views,
                             int min_corners,
                             double huber,
@@ -64,6 +66,12 @@ py::dict IntrinsicsFunction(py::handle observations,
 
   const IntrinsicsResult result = RunInterruptible(
       &options.solver, [&] { return CalibrateIntrinsics(points, board, specs, options); });
+  std::vector<ModelFit> fits;
+  if (compare_models) {
+    fits = RunInterruptible(&options.solver,
+                            [&] { return CompareModels(result, board, specs, options); });
+    inputs.model_comparison = &fits;
+  }
   const std::vector<OutputFile> files = IntrinsicsOutputFiles(result, inputs);
   py::dict dict = FinishOutputs(output.get(), files);
   dict["camchain_yaml"] = OutputFileContents(files, "camchain.yaml");
@@ -84,6 +92,7 @@ void BindIntrinsics(py::module_& m) {
         py::arg("cameras") = "",
         py::arg("outlier_sigmas") = 5.0,
         py::arg("keep_repeated_views") = false,
+        py::arg("compare_models") = false,
         py::arg("max_views") = 0,
         py::arg("min_corners") = 12,
         py::arg("huber") = 2.0,
@@ -94,7 +103,9 @@ flags as keywords. observations: an observations.csv path or {t_ns, cam_id, poin
 target: a Kalibr target YAML path; models: "pinhole-radtan,pinhole-equi" or a list, one per
 camera (cam0 first); the image size from resolution ("752x480", one for all or one per camera,
 or a list) or from camchain (a camchain.yaml path), one of the two; cameras: "0,2" or [0, 2] selects
-input cameras (models then names those); outlier_sigmas 0 removes no corner. out: a folder to write
+input cameras (models then names those); outlier_sigmas 0 removes no corner; compare_models also
+fits pinhole-radtan, pinhole-equi and ds-none to the corners used (result's model_comparison).
+out: a folder to write
 camchain.yaml, result.yaml and report.html to. Returns result.yaml's keys plus camchain_yaml
 (the text of camchain.yaml, Kalibr's keys: calibrate's camchain).)");
 }

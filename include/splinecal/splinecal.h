@@ -163,9 +163,11 @@
 // intrinsics/
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/intrinsics/camera_specs.h"
+#include "splinecal/intrinsics/compare_models.h"
 #include "splinecal/intrinsics/corner_outliers.h"
 #include "splinecal/intrinsics/initial_intrinsics.h"
 #include "splinecal/intrinsics/intrinsics_observability.h"
+#include "splinecal/intrinsics/local_corner_fit.h"
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"

@@ -55,3 +55,18 @@ def test_intrinsics_refuses_an_unknown_model_as_the_command_does(tmp_path):
         splinecal.intrinsics(observations, CALIBRATION / "aprilgrid.yaml", "pinhole-radtann",
                              resolution="752x480")
     assert message == "splinecal intrinsics: " + str(error.value)
+
+
+def test_intrinsics_compare_models_equals_the_command_line(tmp_path):
+    observations, _ = simulated_observations(tmp_path)
+    flags = dict(target=CALIBRATION / "aprilgrid.yaml", models="pinhole-radtan",
+                 camchain=CALIBRATION / "camchain_guess.yaml", threads=1)
+    run_tool("intrinsics", "--observations", observations,
+             *[f"--{k}={v}" for k, v in flags.items()], "--compare-models",
+             "--out", tmp_path / "cli")
+    expected = load_yaml(tmp_path / "cli" / "result.yaml")
+    result = splinecal.intrinsics(observations, **flags, compare_models=True)
+    result.pop("camchain_yaml")
+    models = [row["model"] for row in result["model_comparison"]]
+    assert models == ["pinhole-radtan", "pinhole-equi", "ds-none"]
+    assert_same(without_wall_times(result, expected), expected, tol=1e-9)

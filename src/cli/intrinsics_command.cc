@@ -14,6 +14,7 @@
 #include "splinecal/error.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/intrinsics/camera_specs.h"
+#include "splinecal/intrinsics/compare_models.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
@@ -33,12 +34,18 @@ DEFINE_string(resolution,
               "--camchain");
 DEFINE_double(outlier_sigmas,
               5.0,
-              "Corners whose error exceeds this many robust pixel sigmas are removed after the "
-              "first solve; 0: none is removed");
+              "After the first solve a corner is removed when its error exceeds this many "
+              "robust sigmas of the model's fit and its pixel is as far from its neighbours on "
+              "the target (a corner the model misfits stays); 0: none is removed");
 DEFINE_bool(keep_repeated_views,
             false,
             "Keep views that repeat an earlier view of the same camera (by default set aside: a "
             "camera held still would weigh its one view many times)");
+DEFINE_bool(compare_models,
+            false,
+            "Also fit pinhole-radtan, pinhole-equi and ds-none to the corners used (exact least "
+            "squares) and print their RMS and sums of squares; report.html shows each model's "
+            "errors by image position");
 DECLARE_string(cameras);
 
 DEFINE_int32(max_views,
@@ -99,10 +106,19 @@ int RunIntrinsics() {
   in.options.solver.progress = [](const std::string& line) { Progress(line); };
   const IntrinsicsResult result =
       CalibrateIntrinsics(in.observations, in.target, in.cameras, in.options);
-  const IntrinsicsReportInputs inputs{FLAGS_observations, FLAGS_target, FLAGS_camchain};
+  IntrinsicsReportInputs inputs{FLAGS_observations, FLAGS_target, FLAGS_camchain};
+  std::vector<ModelFit> fits;
+  if (FLAGS_compare_models) {
+    Progress("intrinsics: fitting pinhole-radtan, pinhole-equi and ds-none to the same corners");
+    fits = CompareModels(result, in.target, in.cameras, in.options);
+    inputs.model_comparison = &fits;
+  }
   output.WriteFiles(IntrinsicsOutputFiles(result, inputs));
   output.Commit();
-  if (!Quiet()) std::fputs(IntrinsicsSummaryText(result).c_str(), stderr);
+  if (!Quiet()) {
+    std::fputs(IntrinsicsSummaryText(result).c_str(), stderr);
+    if (FLAGS_compare_models) std::fputs(ModelComparisonText(fits).c_str(), stderr);
+  }
   return 0;
 }
 
@@ -115,14 +131,15 @@ Command IntrinsicsCommand() {
   command.usage =
       "splinecal intrinsics --observations FILE --target FILE --models M0[,M1...] "
       "(--resolution WxH[,WxH...] | --camchain FILE) [--max-views N] [--min-corners N] "
-      "[--cameras I,J] [--huber PX] [--outlier-sigmas N] [--keep-repeated-views] [--threads N] "
-      "--out DIR";
+      "[--cameras I,J] [--huber PX] [--outlier-sigmas N] [--keep-repeated-views] "
+      "[--compare-models] [--threads N] --out DIR";
   command.description =
       "Calibrates every camera of observations.csv (from `splinecal detect`) with its model of "
       "--models (Kalibr's names), all cameras in one problem with the rig's camera-to-camera "
       "poses. Starts from a sweep over focal lengths and model shapes (works for fisheye and "
       "omnidirectional lenses), drops views that repeat earlier ones and outlier corners, and "
-      "reports what it used. Writes camchain.yaml (Kalibr's keys, T_cn_cnm1 from cam1 on), "
+      "reports what it used; --compare-models fits pinhole-radtan, pinhole-equi and ds-none to "
+      "the same corners. Writes camchain.yaml (Kalibr's keys, T_cn_cnm1 from cam1 on), "
       "result.yaml (per camera: intrinsics and distortion with stds, RMS, views) and "
       "report.html. With --camchain a camera of the same model starts from its values. See "
       "docs/intrinsics.md.";
@@ -146,6 +163,7 @@ Command IntrinsicsCommand() {
                     "removed; 0 disables it"},
                    {"outlier_sigmas", ""},
                    {"keep_repeated_views", ""},
+                   {"compare_models", ""},
                    {"threads", "", "2"},
                    {"out", ""},
                    {"quiet", ""}};

@@ -333,7 +333,10 @@ void RejectOutliers(const IntrinsicsOptions& options,
       indices.push_back(v);
       ViewErrors& e = errors.emplace_back();
       e.error = RigViewErrors(CameraAt(*state, n), TargetInCamera(*state, view), view.corners);
-      for (const TargetCornerObservation& c : view.corners) e.uv.push_back(c.uv);
+      for (const TargetCornerObservation& c : view.corners) {
+        e.uv.push_back(c.uv);
+        e.p_t.push_back(c.p_t);
+      }
     }
     const Camera& camera = state->cameras[n];
     const CornerOutliers outliers =

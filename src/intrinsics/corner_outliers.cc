@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "splinecal/intrinsics/intrinsics_observability.h"
+#include "splinecal/intrinsics/local_corner_fit.h"
 #include "splinecal/median.h"
 #include "splinecal/string_printf.h"
 
@@ -83,15 +84,43 @@ CornerOutliers FindCornerOutliers(const std::vector<ViewErrors>& views,
       cell_scale[c] = RobustScale(cell_components[c]);
     }
   }
+  // The model-free test's residuals and their scales, camera-wide and per view.
+  std::vector<std::vector<Eigen::Vector2d>> local(views.size());
+  std::vector<double> local_view_scale(views.size(), 0.0);
+  std::vector<double> local_all;
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (outlier_sigmas > 0.0 && !views[v].p_t.empty()) {
+      local[v] = LocalFitResiduals(views[v].p_t, views[v].uv);
+    }
+    std::vector<double> components;
+    for (const Eigen::Vector2d& l : local[v]) {
+      if (!l.allFinite()) continue;
+      for (double x : {std::abs(l.x()), std::abs(l.y())}) components.push_back(x);
+    }
+    local_all.insert(local_all.end(), components.begin(), components.end());
+    if (!components.empty()) local_view_scale[v] = RobustScale(components);
+  }
+  const double local_scale = local_all.empty() ? 0.0 : RobustScale(local_all);
   for (size_t v = 0; v < views.size(); ++v) {
     out.outlier[v].assign(views[v].error.size(), false);
     for (size_t i = 0; i < views[v].error.size(); ++i) {
       ++out.corners;
       const int c = CellOf(views[v].uv[i], width, height);
+      if (!beyond[v][i].allFinite()) {
+        out.outlier[v][i] = true;
+        ++out.removed;
+        if (AtBorder(c)) ++out.removed_at_border;
+        continue;
+      }
       const double limit = outlier_sigmas * std::max(cell_scale[c], view_scale[v]);
-      const bool outlier =
-          !beyond[v][i].allFinite() || (outlier_sigmas > 0.0 && beyond[v][i].norm() > limit);
-      if (!outlier) continue;
+      if (!(outlier_sigmas > 0.0 && beyond[v][i].norm() > limit)) continue;
+      const bool judged = i < local[v].size() && local[v][i].allFinite();
+      const double local_limit = outlier_sigmas * std::max(local_scale, local_view_scale[v]);
+      if (judged && local[v][i].norm() <= local_limit) {
+        ++out.kept_misfit;
+        if (AtBorder(c)) ++out.kept_misfit_at_border;
+        continue;
+      }
       out.outlier[v][i] = true;
       ++out.removed;
       if (AtBorder(c)) ++out.removed_at_border;
@@ -103,18 +132,34 @@ CornerOutliers FindCornerOutliers(const std::vector<ViewErrors>& views,
 std::string CornerOutlierWarning(const std::string& camera_name,
                                  const std::string& model_name,
                                  const CornerOutliers& outliers) {
-  if (outliers.corners == 0 || outliers.removed == 0) return "";
-  // The outer ring holds 28 of the 64 cells; a share well above it says where the errors are.
+  if (outliers.corners == 0) return "";
+  std::string text;
+  if (outliers.removed > kOutlierWarningShare * outliers.corners) {
+    text = StringPrintf(
+        "%s: %d of %d corners (%.1f%%) removed as outliers (far from the model's fit and from "
+        "their neighbours on the target)",
+        camera_name.c_str(),
+        outliers.removed,
+        outliers.corners,
+        100.0 * outliers.removed / outliers.corners);
+  }
+  // The outer ring holds 28 of the 64 cells; a share well above it says where the misfit is.
   constexpr double kBorderCells = 4.0 * (kCoverageCells - 1) / (kCoverageCells * kCoverageCells);
-  const double at_border = static_cast<double>(outliers.removed_at_border) / outliers.removed;
-  const bool border = outliers.removed >= kMinBorderCorners && at_border > 1.5 * kBorderCells;
-  if (!border && outliers.removed <= kOutlierWarningShare * outliers.corners) return "";
-  std::string text = StringPrintf(
-      "%s: %d of %d corners (%.1f%%) removed as outliers, %.0f%% of them at the image border",
+  const int misfit = outliers.kept_misfit;
+  const double at_border =
+      misfit > 0 ? static_cast<double>(outliers.kept_misfit_at_border) / misfit : 0.0;
+  const bool border = misfit >= kMinBorderCorners && at_border > 1.5 * kBorderCells;
+  if (!border && misfit <= kOutlierWarningShare * outliers.corners) return text;
+  if (!text.empty()) text += "; ";
+  text += StringPrintf(
+      "%s: %d of %d corners (%.1f%%) lie beyond the outlier limit of %s's fit but agree with "
+      "their neighbours on the target (kept: the model misfits them), %.0f%% of them at the image "
+      "border",
       camera_name.c_str(),
-      outliers.removed,
+      misfit,
       outliers.corners,
-      100.0 * outliers.removed / outliers.corners,
+      100.0 * misfit / outliers.corners,
+      model_name.c_str(),
       100.0 * at_border);
   if (border) {
     // Wide-angle models that describe a lens's border where radtan's polynomial cannot.
@@ -123,10 +168,9 @@ std::string CornerOutlierWarning(const std::string& camera_name,
       if (model_name == other || std::count(others.begin(), others.end(), ' ') >= 2) continue;
       others += (others.empty() ? "" : " or ") + std::string(other);
     }
-    text += StringPrintf(
-        ": %s likely misfits the border (try %s; --outlier-sigmas 0 keeps every corner)",
-        model_name.c_str(),
-        others.c_str());
+    text += StringPrintf(": %s likely misfits the border (try %s)",
+                         model_name.c_str(),
+                         others.c_str());
   }
   return text;
 }

@@ -95,7 +95,7 @@ std::vector<OutputFile> IntrinsicsOutputFiles(const IntrinsicsResult& result,
   }
   return {{"camchain.yaml",
            CamchainYamlText(camchain, CamchainKeys::kCamerasOnly, covariances)},
-          {"result.yaml", IntrinsicsResultYaml(result)},
+          {"result.yaml", IntrinsicsResultYaml(result, inputs.model_comparison)},
           {"report.html", IntrinsicsReportHtml(result, inputs, kIntrinsicsReportMaxPoints)}};
 }
 

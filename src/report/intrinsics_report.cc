@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "splinecal/intrinsics/intrinsics_observability.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/plot/svg_plot.h"
@@ -101,12 +102,12 @@ std::string CameraTableHtml(const IntrinsicsResult& result) {
     const IntrinsicsVector values = c.camera.intrinsics();
     std::string intrinsics, distortion;
     for (int i : KalibrIntrinsicsOrder(c.camera)) {
-      intrinsics += (intrinsics.empty() ? "" : "<br>") +
+      intrinsics += (intrinsics.empty() ? "" : "<br>") + IntrinsicName(c.camera, i) + " " +
                     ValueWithStd(values(i), c.intrinsics_std(i), i < 4 ? "%.3f" : "%.5f");
     }
     for (int i : KalibrDistortionOrder(c.camera)) {
-      distortion +=
-          (distortion.empty() ? "" : "<br>") + ValueWithStd(values(i), c.intrinsics_std(i), "%.6f");
+      distortion += (distortion.empty() ? "" : "<br>") + IntrinsicName(c.camera, i) + " " +
+                    ValueWithStd(values(i), c.intrinsics_std(i), "%.6f");
     }
     html += StringPrintf(
         "<tr><th>cam%zu</th><td>%s</td><td>%s</td><td>%s</td><td>%.3f</td><td>%d / %d</td>"
@@ -167,9 +168,69 @@ std::string ViewsTableHtml(const IntrinsicsResult& result) {
   return html + "</table>\n";
 }
 
+// --compare-models: the table, then each model's error map, all at the magnification of the
+// model whose errors need the smallest (its arrows fit; the others' are then comparable).
+void AppendModelComparison(const std::vector<ModelFit>& fits, int max_points, HtmlPage* page) {
+  std::string html =
+      "<table><caption>Models fitted to the same corners (exact least squares)</caption><tr>"
+      "<th>camera</th><th>model</th><th>RMS [px]</th><th>sum of squares [px&sup2;]</th>"
+      "<th>corners</th><th>parameters</th></tr>\n";
+  std::vector<ReprojectionData> maps;
+  double gain = 0.0;
+  for (const ModelFit& fit : fits) {
+    if (!fit.failure.empty()) {
+      html += "<tr><td></td><td>" + fit.model + "</td><td colspan=\"4\">failed: " +
+              plot::EscapeXml(fit.failure) + "</td></tr>\n";
+      continue;
+    }
+    for (size_t n = 0; n < fit.cameras.size(); ++n) {
+      const IntrinsicsCameraResult& c = fit.cameras[n];
+      const IntrinsicsVector values = c.camera.intrinsics();
+      std::string parameters;
+      for (const std::vector<int>& order :
+           {KalibrIntrinsicsOrder(c.camera), KalibrDistortionOrder(c.camera)}) {
+        for (int i : order) {
+          parameters += StringPrintf("%s%s %.*f",
+                                     parameters.empty() ? "" : "<br>",
+                                     IntrinsicName(c.camera, i).c_str(),
+                                     i < 4 ? 3 : 6,
+                                     values(i));
+        }
+      }
+      html += StringPrintf(
+          "<tr><th>cam%zu</th><td>%s</td><td>%.4f</td><td>%.3f</td><td>%d</td><td>%s</td></tr>\n",
+          n,
+          fit.model.c_str(),
+          c.reprojection_rms_px,
+          fit.sum_of_squares_px2[n],
+          c.corners_used,
+          parameters.c_str());
+    }
+    ReprojectionData& data = maps.emplace_back();
+    for (const IntrinsicsCameraResult& c : fit.cameras) {
+      data.image_sizes.emplace_back(c.camera.width, c.camera.height);
+    }
+    data.samples = &fit.residuals;
+    const double automatic = MakeReprojectionImageFigure(data, max_points).vector_gain;
+    gain = gain > 0.0 ? std::min(gain, automatic) : automatic;
+  }
+  page->Append(html + "</table>\n");
+  size_t m = 0;
+  for (const ModelFit& fit : fits) {
+    if (!fit.failure.empty()) continue;
+    ReprojectionData& data = maps[m++];
+    data.vector_gain = gain;
+    ReprojectionImageFigure map = MakeReprojectionImageFigure(data, max_points);
+    map.figure.title = fit.model + ": errors by image position";
+    page->FigureSection("Errors by image position, " + fit.model, std::move(map.figure));
+    page->Append(map.key_html);
+  }
+}
+
 }  // namespace
 
-std::string IntrinsicsResultYaml(const IntrinsicsResult& result) {
+std::string IntrinsicsResultYaml(const IntrinsicsResult& result,
+                                 const std::vector<ModelFit>* model_comparison) {
   YamlWriter yaml;
   yaml.Comment(
       "splinecal intrinsics: per camera its model in Kalibr's names and order, stds "
@@ -237,6 +298,32 @@ std::string IntrinsicsResultYaml(const IntrinsicsResult& result) {
   yaml.Scalar("termination", result.solve.termination);
   yaml.EndMap();
   yaml.StringList("warnings", result.warnings);
+  if (model_comparison != nullptr) {
+    yaml.Comment("--compare-models: each model fitted to the same corners, exact least squares");
+    yaml.BeginList("model_comparison");
+    for (const ModelFit& fit : *model_comparison) {
+      for (size_t n = 0; n < std::max<size_t>(fit.cameras.size(), 1); ++n) {
+        yaml.BeginListItem();
+        yaml.Scalar("model", fit.model);
+        if (!fit.failure.empty()) {
+          yaml.Scalar("failure", fit.failure);
+          yaml.EndListItem();
+          break;
+        }
+        const IntrinsicsCameraResult& c = fit.cameras[n];
+        yaml.Scalar("camera", StringPrintf("cam%zu", n));
+        yaml.Scalar("reprojection_rms_px", c.reprojection_rms_px);
+        yaml.Scalar("sum_of_squares_px2", fit.sum_of_squares_px2[n]);
+        yaml.Scalar("corners_used", c.corners_used);
+        yaml.Scalar("views_used", c.views_used);
+        const IntrinsicsVector values = c.camera.intrinsics();
+        yaml.Vector("intrinsics", Pick(values, KalibrIntrinsicsOrder(c.camera)));
+        yaml.Vector("distortion_coeffs", Pick(values, KalibrDistortionOrder(c.camera)));
+        yaml.EndListItem();
+      }
+    }
+    yaml.EndList();
+  }
   return yaml.str();
 }
 
@@ -259,6 +346,8 @@ std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
   }
   data.samples = &result.residuals;
   if (!result.views.empty()) data.t0_ns = result.views.front().t_ns;  // sorted by time
+  data.time_label = "time since the first view [s]";
+  data.one_panel_per_camera = true;  // cam1's errors never hide cam0's
   page.FigureSection("Reprojection errors", ReprojectionErrorFigure(data, max_points));
   ReprojectionImageFigure by_position = MakeReprojectionImageFigure(data, max_points);
   // The corners the outlier pass removed, as squares on their camera's panel: whether they
@@ -283,6 +372,9 @@ std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
   page.FigureSection("Errors and coverage by image position", std::move(by_position.figure));
   page.Append(by_position.key_html);
   page.FigureSection("Views", ViewRmsFigure(result));
+  if (inputs.model_comparison != nullptr) {
+    AppendModelComparison(*inputs.model_comparison, max_points, &page);
+  }
   return page.str();
 }
 
@@ -293,12 +385,14 @@ std::string IntrinsicsSummaryText(const IntrinsicsResult& result) {
     const IntrinsicsVector values = c.camera.intrinsics();
     text += StringPrintf("cam%zu %s:", n, ModelName(c.camera).c_str());
     for (int i : KalibrIntrinsicsOrder(c.camera)) {
-      text += StringPrintf(" %.3f (%.2g)", values(i), c.intrinsics_std(i));
+      text += StringPrintf(
+          " %s %.3f (%.2g)", IntrinsicName(c.camera, i).c_str(), values(i), c.intrinsics_std(i));
     }
     text += "\n  distortion";
     if (KalibrDistortionOrder(c.camera).empty()) text += " none";
     for (int i : KalibrDistortionOrder(c.camera)) {
-      text += StringPrintf(" %.6f (%.2g)", values(i), c.intrinsics_std(i));
+      text += StringPrintf(
+          " %s %.6f (%.2g)", IntrinsicName(c.camera, i).c_str(), values(i), c.intrinsics_std(i));
     }
     text += StringPrintf("\n  reprojection RMS %.3f px, %d of %d views, %d corners (%d rejected)\n",
                          c.reprojection_rms_px,

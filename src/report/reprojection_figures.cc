@@ -1,5 +1,6 @@
 #include "splinecal/report/reprojection_figures.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -32,6 +33,14 @@ constexpr double kLongestVectorCells = 0.8;
 // at the image border with large errors would otherwise shrink every other vector to a dot (they
 // are drawn longer than a cell instead, clipped at the plot's edge).
 constexpr double kGainQuantile = 0.9;
+// The image drawn with a margin of this share of its width on every side.
+constexpr double kImageMarginRatio = 0.04;
+// Arrowheads: barbs at this angle to the shaft, this share of its length, at most this share of
+// a cell (a long vector keeps a head of readable size).
+constexpr double kArrowheadDeg = 25.0;
+constexpr double kArrowheadRatio = 0.3;
+constexpr double kArrowheadCells = 0.25;
+constexpr char kOutlineColor[] = "#555555";
 
 int NumCameras(const ReprojectionData& r) {
   int n = static_cast<int>(r.image_sizes.size());
@@ -131,14 +140,19 @@ plot::Figure ReprojectionErrorFigure(const ReprojectionData& r, int max_points) 
   plot::Figure figure;
   figure.title = "Reprojection errors (predicted - observed)";
   figure.columns = 2;
-  plot::Panel& scatter = plot::AddPanel(&figure, "error scatter", "u error [px]", "v error [px]");
-  scatter.equal_aspect = true;
-  plot::Panel& over_time =
-      plot::AddPanel(&figure, "error norm over time", "time [s] (IMU spline)", "|error| [px]");
   const std::vector<std::vector<size_t>> per_camera = SamplesPerCamera(r);
+  plot::Panel* scatter = nullptr;
+  plot::Panel* over_time = nullptr;
   for (size_t cam = 0; cam < per_camera.size(); ++cam) {
-    plot::Series& points = scatter.series.emplace_back();
-    plot::Series& norms = over_time.series.emplace_back();
+    if (scatter == nullptr || r.one_panel_per_camera) {
+      const std::string prefix = r.one_panel_per_camera ? "cam" + std::to_string(cam) + ": " : "";
+      scatter = &plot::AddPanel(&figure, prefix + "error scatter", "u error [px]", "v error [px]");
+      scatter->equal_aspect = true;
+      over_time =
+          &plot::AddPanel(&figure, prefix + "error norm over time", r.time_label, "|error| [px]");
+    }
+    plot::Series& points = scatter->series.emplace_back();
+    plot::Series& norms = over_time->series.emplace_back();
     for (plot::Series* series : {&points, &norms}) {
       series->label = "cam" + std::to_string(cam);
       series->color = CameraColor(static_cast<int>(cam));
@@ -175,7 +189,9 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const ReprojectionData& r, i
     const double cell = sizes[cam].x() / kImageCellsAcross;
     for (const CellMean& c : cells[cam]) lengths_cells.push_back(c.error.norm() / cell);
   }
-  if (!lengths_cells.empty()) {
+  if (r.vector_gain > 0.0) {
+    out.vector_gain = r.vector_gain;
+  } else if (!lengths_cells.empty()) {
     std::sort(lengths_cells.begin(), lengths_cells.end());
     double reference =
         lengths_cells[static_cast<size_t>(kGainQuantile * (lengths_cells.size() - 1))];
@@ -188,10 +204,13 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const ReprojectionData& r, i
   for (size_t cam = 0; cam < per_camera.size(); ++cam) {
     plot::Panel& panel =
         plot::AddPanel(&figure, "cam" + std::to_string(cam), "u [px]", "v [px] (down)");
-    panel.x.min = 0.0;
-    panel.x.max = sizes[cam].x();
-    panel.y.min = 0.0;
-    panel.y.max = sizes[cam].y();
+    // A margin around the image, so that its outline shows and vectors that leave the image
+    // are drawn up to the panel's edge (the plot clips there).
+    const double margin = kImageMarginRatio * sizes[cam].x();
+    panel.x.min = -margin;
+    panel.x.max = sizes[cam].x() + margin;
+    panel.y.min = -margin;
+    panel.y.max = sizes[cam].y() + margin;
     panel.y.reversed = true;
     panel.equal_aspect = true;
     panel.grid = false;
@@ -221,13 +240,35 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const ReprojectionData& r, i
     origins.marker = plot::Marker::kCircle;
     origins.marker_size = 1.3;
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    // Arrowheads: two barbs at each tip, kArrowheadDeg off the shaft, kArrowheadRatio of its
+    // length but at most kArrowheadCells of a cell (a broken line, like the vectors).
+    plot::Series& heads = panel.series.emplace_back();
+    heads.color = kVectorColor;
+    heads.line_width = 1.6;
+    const double cell = sizes[cam].x() / kImageCellsAcross;
     for (const CellMean& c : cells[cam]) {
       const Eigen::Vector2d tip = c.uv + out.vector_gain * c.error;
       vectors.x.insert(vectors.x.end(), {c.uv.x(), tip.x(), kNaN});
       vectors.y.insert(vectors.y.end(), {c.uv.y(), tip.y(), kNaN});
       origins.x.push_back(c.uv.x());
       origins.y.push_back(c.uv.y());
+      const Eigen::Vector2d shaft = tip - c.uv;
+      const double length = shaft.norm();
+      if (!(length > 0.0) || !std::isfinite(length)) continue;
+      const double barb = std::min(kArrowheadRatio * length, kArrowheadCells * cell);
+      const Eigen::Vector2d back = -shaft / length * barb;
+      const Eigen::Rotation2Dd turn(kArrowheadDeg * kPi / 180.0);
+      const Eigen::Vector2d left = tip + turn * back;
+      const Eigen::Vector2d right = tip + turn.inverse() * back;
+      heads.x.insert(heads.x.end(), {left.x(), tip.x(), right.x(), kNaN});
+      heads.y.insert(heads.y.end(), {left.y(), tip.y(), right.y(), kNaN});
     }
+    // The image's outline.
+    plot::Series& outline = panel.series.emplace_back();
+    outline.color = kOutlineColor;
+    outline.line_width = 1.0;
+    outline.x = {0.0, sizes[cam].x(), sizes[cam].x(), 0.0, 0.0};
+    outline.y = {0.0, 0.0, sizes[cam].y(), sizes[cam].y(), 0.0};
   }
   std::string key = "<p>Points: observed corners (at most " + std::to_string(max_points) +
                     " per camera) by |error|:";
@@ -236,10 +277,11 @@ ReprojectionImageFigure MakeReprojectionImageFigure(const ReprojectionData& r, i
            plot::EscapeXml(ClassLabel(k)) + (k + 1 < kNumClasses ? "," : ".");
   }
   key += StringPrintf(
-      " <span style=\"color:%s\">Vectors</span>: the mean error (predicted - observed) of each "
+      " <span style=\"color:%s\">Arrows</span>: the mean error (predicted - observed) of each "
       "cell of 1/%d image width with at least %d corners, magnified x%g (from the dot at the "
       "cell's mean corner; the factor makes 90%% of them shorter than 0.8 cell). Noise averages "
-      "out; long aligned vectors show a region the camera model does not fit.</p>\n",
+      "out; long aligned arrows show a region the camera model does not fit. The grey rectangle "
+      "is the image's outline.</p>\n",
       kVectorColor,
       kImageCellsAcross,
       kMinCellObservations,

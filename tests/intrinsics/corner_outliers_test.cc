@@ -1,5 +1,6 @@
-// intrinsics/corner_outliers.h: a gross error goes, a region the model misfits stays, a blurred
-// view keeps its corners, and the warning names the border.
+// intrinsics/corner_outliers.h: a gross error goes, a region the model misfits stays (also where
+// the misfit is steep and sparse: the image's corners), a blurred view keeps its corners, and the
+// warning names the border.
 #include "splinecal/intrinsics/corner_outliers.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,12 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include "intrinsics/intrinsics_simulation.h"
+#include "splinecal/camera/camera_model.h"
+#include "splinecal/camera/target.h"
+#include "splinecal/lie/se3.h"
+#include "splinecal/lie/so3.h"
 
 namespace splinecal {
 namespace {
@@ -79,15 +86,82 @@ TEST(CornerOutliers, NoRemovalWithZeroSigmasButUnprojectableCornersGo) {
 TEST(CornerOutliers, WarningNamesTheBorder) {
   CornerOutliers out;
   out.corners = 10000;
-  out.removed = 12;
-  out.removed_at_border = 11;
+  out.kept_misfit = 12;
+  out.kept_misfit_at_border = 11;
   const std::string warning = CornerOutlierWarning("cam1", "pinhole-radtan", out);
   EXPECT_NE(warning.find("cam1: 12 of 10000 corners"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("kept: the model misfits them"), std::string::npos) << warning;
   EXPECT_NE(warning.find("pinhole-radtan likely misfits the border (try pinhole-equi or ds-none"),
             std::string::npos)
       << warning;
-  out.removed_at_border = 3;  // scattered and few: no warning
+  out.kept_misfit_at_border = 3;  // scattered and few: no warning
   EXPECT_TRUE(CornerOutlierWarning("cam1", "pinhole-radtan", out).empty());
+  // Removed corners are named once they are more than 1% of the camera's.
+  out.removed = 101;
+  const std::string removed = CornerOutlierWarning("cam1", "pinhole-radtan", out);
+  EXPECT_NE(removed.find("101 of 10000 corners (1.0%) removed as outliers"), std::string::npos)
+      << removed;
+  EXPECT_EQ(removed.find("likely misfits"), std::string::npos) << removed;
+}
+
+// A model's misfit that grows steeply towards the image's corners, as radtan's does on EuRoC
+// (docs/intrinsics.md, "Outliers"): 0 within 380 px of the centre, then outward, 8.7 px at the
+// image's corner (446 px), too steep and too sparse for a cell median to absorb.
+Eigen::Vector2d SteepBorderMisfit(const Eigen::Vector2d& uv) {
+  const Eigen::Vector2d from_centre = uv - Eigen::Vector2d(376.0, 240.0);
+  const double r = from_centre.norm();
+  return r <= 380.0 ? Eigen::Vector2d::Zero()
+                    : Eigen::Vector2d(0.002 * (r - 380.0) * (r - 380.0) * from_centre / r);
+}
+
+TEST(CornerOutliers, ASteepMisfitAtTheImageCornersStaysAGrossDetectionErrorGoes) {
+  const Camera camera = testutil::EurocCam0();
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<ViewErrors> views;
+  for (int k = 0; k < 60; ++k) {
+    // Poses that put the board anywhere in the image, some into its corners.
+    const SE3d T_c_t(SO3d::Exp(Eigen::Vector3d(0.4 * unit(rng), 0.4 * unit(rng), unit(rng))),
+                     Eigen::Vector3d(0.7 * unit(rng) - 0.3, 0.5 * unit(rng) - 0.3, 0.9));
+    ViewErrors view;
+    for (const auto& [id, p_t] : target.points) {
+      Eigen::Vector2d uv;
+      if (!camera.Project(T_c_t * p_t, &uv) || !camera.InImage(uv)) continue;
+      const Eigen::Vector2d n(noise(rng), noise(rng));
+      view.p_t.push_back(p_t);
+      view.uv.push_back(uv + n);
+      view.error.push_back(SteepBorderMisfit(uv) - n);  // predicted - observed
+    }
+    if (view.uv.size() >= 20) views.push_back(std::move(view));
+  }
+  // A corner detected 6 px off (a neighbouring tag's edge), in the image's middle.
+  size_t gross_view = 0, gross_corner = 0;
+  double best = 1e9;
+  for (size_t v = 0; v < views.size(); ++v) {
+    for (size_t i = 0; i < views[v].uv.size(); ++i) {
+      const double d = (views[v].uv[i] - Eigen::Vector2d(376.0, 240.0)).norm();
+      if (d < best) best = d, gross_view = v, gross_corner = i;
+    }
+  }
+  views[gross_view].uv[gross_corner] += Eigen::Vector2d(6.0, 0.0);
+  views[gross_view].error[gross_corner] -= Eigen::Vector2d(6.0, 0.0);
+  int misfit = 0;
+  for (const ViewErrors& view : views) {
+    for (const Eigen::Vector2d& e : view.error) misfit += e.norm() > 3.0 ? 1 : 0;
+  }
+  ASSERT_GE(misfit, 10);  // the misfit is beyond 5 sigma of the noise at enough corners
+  const CornerOutliers out = FindCornerOutliers(views, 752, 480, 5.0);
+  EXPECT_TRUE(out.outlier[gross_view][gross_corner]);
+  // Every other corner stays: the misfit's corners agree with their neighbours on the target,
+  // and 5 sigma of Gaussian noise is crossed by chance in 1 of ~270,000 corners.
+  EXPECT_EQ(out.removed, 1);
+  EXPECT_GE(out.kept_misfit, misfit / 2);
+  EXPECT_EQ(out.kept_misfit_at_border, out.kept_misfit);
+  // The model test alone (no target coordinates) removes them: what the local test prevents.
+  for (ViewErrors& view : views) view.p_t.clear();
+  EXPECT_GE(FindCornerOutliers(views, 752, 480, 5.0).removed, misfit / 2);
 }
 
 }  // namespace

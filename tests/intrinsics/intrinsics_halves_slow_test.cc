@@ -5,13 +5,14 @@
 // the normalised differences (a - b) / sqrt(std_a^2 + std_b^2) at least 0.25, so that stds
 // inflated far beyond the disagreement fail too (for honest stds that RMS is about 1).
 //
-// NOT YET MET: the goal is |z| <= 3. With the time blocks the halves differ by up to 5.3 combined
-// std (radtan cam1 p2; ds pu of both cameras -5.0 and -5.3; RMS of z 2.88, measured), against 7
-// to 13 with one cluster per frame. In a half (36 s) the 20-block floor caps the blocks at
-// 1.3-1.8 s, shorter than the errors' correlation, and a bias that differs between the halves
-// (radtan's border misfit with a different coverage) is not a variance any clustering inside
-// one half can see. The test holds the bar reached, |z| <= 6, so that a return to per-frame
-// clusters fails; docs/intrinsics.md lists it as open.
+// NOT YET MET: the goal is |z| <= 3. With the time blocks the halves differ by up to 5.2
+// combined std (measured with the model-free outlier test, intrinsics/corner_outliers.h: radtan
+// cam0 fy 5.00, RMS of z 3.38; ds-none cam1 pu -5.17 and cam0 pu -4.92, RMS 2.42), against 7 to 13
+// with one cluster per frame. Longer blocks do not close it: the first half's correlation length
+// is 0.65 s and its pu std stays at 0.31-0.33 px with a 10-block floor (docs/intrinsics.md, "Error
+// bars"); the halves differ systematically (likely by what their views cover), which no
+// clustering inside one half can see. The test holds the bar reached, |z| <= 6, so that a return
+// to per-frame clusters fails.
 #include <gtest/gtest.h>
 
 #include <cmath>

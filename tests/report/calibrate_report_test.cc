@@ -278,11 +278,13 @@ TEST(MakeReprojectionImageFigure, ARegionWithAMismatchStandsOut) {
       ReprojectionDataOf(LatticeResult(Eigen::Vector2d(3.0, 0.0))), 100000);
   ASSERT_EQ(map.figure.panels.size(), 1u);
   const plot::Panel& panel = map.figure.panels[0];
-  EXPECT_EQ(panel.x.max, 752.0);
-  EXPECT_EQ(panel.y.max, 480.0);
+  // The image with a margin of 4% of its width (its outline shows).
+  EXPECT_NEAR(panel.x.max, 752.0 * 1.04, 1e-9);
+  EXPECT_NEAR(panel.y.max, 480.0 + 752.0 * 0.04, 1e-9);
   EXPECT_TRUE(panel.y.reversed);  // v down, as the image shows it
-  // Classes < 0.5, 0.5-1, 1-2, 2-5, >= 5 px, then the cell vectors and their dots.
-  ASSERT_EQ(panel.series.size(), 7u);
+  // Classes < 0.5, 0.5-1, 1-2, 2-5, >= 5 px, then the cell vectors, their dots, their
+  // arrowheads and the image's outline.
+  ASSERT_EQ(panel.series.size(), 9u);
   const size_t mismatched = 4 * 5 * 5;              // 5 x 5 lattice points in the corner, 4 each
   EXPECT_EQ(panel.series[3].x.size(), mismatched);  // |error| = 2.8 or 3.2 px
   EXPECT_EQ(panel.series[0].x.size() + panel.series[3].x.size(),

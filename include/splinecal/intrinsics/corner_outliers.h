@@ -1,6 +1,7 @@
 // Which corners of one camera are outliers (calibrate_intrinsics.h, step 5): a corner is an
 // outlier when its error is far beyond the robust scale of its own view AND of its image
-// neighbourhood, not merely far from zero.
+// neighbourhood, AND its observed pixel disagrees with its neighbours on the target; not merely
+// when it is far from zero.
 //
 // A camera model that misfits a region of the image (radtan at a wide lens's border) leaves
 // every corner there with a large error of the same direction; a test against one camera-wide
@@ -15,8 +16,19 @@
 //   s_c      1.4826 x the median |d| component in cell c (the camera's, in a sparse cell),
 //   s_v      1.4826 x the median |d| component in the corner's view,
 //
-// and the corner is an outlier when |d| > outlier_sigmas x max(s_c, s_v). A mislabelled corner,
-// a corner of a neighbouring tag or a reflection lies far outside all of them.
+// and the model test fails when |d| > outlier_sigmas x max(s_c, s_v). That alone is not enough
+// where the misfit is steepest: the image's extreme corners hold too few corners for a cell
+// median, and there radtan's misfit grows by several pixels within one tag. On EuRoC cam0 (every
+// 8th frame) it removed 16 corners with radtan errors up to 24 px that ds-none fits within
+// 0.5 px, and moved cx 2.2 px away from the least-squares solution (docs/intrinsics.md,
+// "Outliers"). So a corner must also fail the model-free test (intrinsics/local_corner_fit.h):
+//
+//   l        its observed pixel minus the quadratic through its neighbours on the target,
+//   t_c, t_v 1.4826 x the median |l| component over the camera's and over the view's corners,
+//
+// |l| > outlier_sigmas x max(t_c, t_v). A mislabelled corner, a corner of a neighbouring tag or
+// a reflection fails both; a corner the model cannot describe passes the second. Where l cannot
+// be computed (a view with too few corners, a non-planar target) the model test decides alone.
 #ifndef SPLINECAL_INTRINSICS_CORNER_OUTLIERS_H_
 #define SPLINECAL_INTRINSICS_CORNER_OUTLIERS_H_
 
@@ -29,11 +41,13 @@ namespace splinecal {
 // A cell needs this many corners for its median misfit and its own scale.
 inline constexpr int kMinCellCorners = 20;
 
-// One view's corners: observed pixels and errors (predicted - observed; NaN where the model
-// cannot project the corner: always an outlier).
+// One view's corners: observed pixels, errors (predicted - observed; NaN where the model
+// cannot project the corner: always an outlier) and target coordinates (empty: the model test
+// decides alone).
 struct ViewErrors {
   std::vector<Eigen::Vector2d> uv;
   std::vector<Eigen::Vector2d> error;
+  std::vector<Eigen::Vector3d> p_t;
 };
 
 struct CornerOutliers {
@@ -42,6 +56,10 @@ struct CornerOutliers {
   int removed = 0;
   int removed_at_border = 0;  // in the outer ring of cells
   int corners = 0;
+  // Corners that failed the model test but agree with their neighbours on the target: kept
+  // (the model misfits them), and how many of them sit in the outer ring of cells.
+  int kept_misfit = 0;
+  int kept_misfit_at_border = 0;
 };
 
 // The outliers of one camera's views (outlier_sigmas = 0: only corners without an error).
@@ -50,12 +68,11 @@ CornerOutliers FindCornerOutliers(const std::vector<ViewErrors>& views,
                                   int height,
                                   double outlier_sigmas);
 
-// The warning when more than kOutlierWarningShare of a camera's corners went, or at least
-// kMinBorderCorners went and more than 1.5x the border's share of the cells hold them (empty
-// otherwise): the count, and where they sit, naming the likely misfit when it is the border. A
-// few corners at the border weigh much: on EuRoC cam0 (every 8th frame, pinhole-radtan) 16
-// corners in the image's top-right and bottom-left corners, with errors of 2 to 24 px pointing
-// outward, moved cx by 2.2 px (docs/intrinsics.md, "Outliers").
+// The warning (empty when none): the count of removed corners when more than
+// kOutlierWarningShare of the camera's went; and the corners the model misfits (kept_misfit)
+// when more than that share, or at least kMinBorderCorners of them with more than 1.5x the
+// border's share of the cells at the border, naming the likely misfit ("pinhole-radtan likely
+// misfits the border (try pinhole-equi or ds-none)").
 inline constexpr double kOutlierWarningShare = 0.01;
 inline constexpr int kMinBorderCorners = 10;
 std::string CornerOutlierWarning(const std::string& camera_name,

@@ -10,7 +10,11 @@
 //   report.html   the same in tables, and figures: the errors (u/v scatter, norm over time),
 //                 the errors against the image position with every corner drawn (where the
 //                 image has corners: the coverage; where the model misses: aligned vectors),
-//                 and every view's RMS over time, used and set aside.
+//                 and every view's RMS over time, used and set aside. One panel per camera,
+//                 parameters by Kalibr's names.
+//   With --compare-models, result.yaml's `model_comparison:` list (per model and camera: RMS,
+//   sum of squares, corners, intrinsics and distortion) and report.html's table and error map
+//   per model, the arrows of every model at one magnification.
 //   summary       the lines printed on stderr.
 #ifndef SPLINECAL_REPORT_INTRINSICS_REPORT_H_
 #define SPLINECAL_REPORT_INTRINSICS_REPORT_H_
@@ -19,6 +23,7 @@
 #include <vector>
 
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
+#include "splinecal/intrinsics/compare_models.h"
 
 namespace splinecal {
 
@@ -26,9 +31,12 @@ struct IntrinsicsReportInputs {
   std::string observations_path;
   std::string target_path;
   std::string camchain_path;  // empty: not given
+  // --compare-models: the models fitted to the same corners (not owned; nullptr: not asked for).
+  const std::vector<ModelFit>* model_comparison = nullptr;
 };
 
-std::string IntrinsicsResultYaml(const IntrinsicsResult& result);
+std::string IntrinsicsResultYaml(const IntrinsicsResult& result,
+                                 const std::vector<ModelFit>* model_comparison = nullptr);
 std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
                                  const IntrinsicsReportInputs& inputs,
                                  int max_points);

@@ -5,7 +5,8 @@
 //                            over time.
 //   ReprojectionImageFigure  per camera, where in the image the errors are: every observed corner
 //                            (decimated) coloured by its error's size, plus the mean error of each
-//                            cell of a grid over the image drawn as a magnified vector. Noise
+//                            cell of a grid over the image drawn as a magnified arrow, and the
+//                            image's outline (the panel shows a margin around it). Noise
 //                            averages out in a cell's mean; a model that does not fit a region of
 //                            the image (distortion, intrinsics, rolling shutter) leaves long,
 //                            aligned vectors there.
@@ -28,6 +29,13 @@ struct ReprojectionData {
   std::vector<Eigen::Vector2i> image_sizes;
   const std::vector<ReprojectionSample>* samples = nullptr;
   int64_t t0_ns = 0;  // time zero of the plots over time
+  std::string time_label = "time [s] (IMU spline)";  // x axis of the error norm over time
+  // ReprojectionErrorFigure: a scatter and a norm-over-time panel per camera (else every camera
+  // in one pair of panels, one colour each).
+  bool one_panel_per_camera = false;
+  // MakeReprojectionImageFigure: > 0 draws the arrows at this magnification (figures that must
+  // compare, e.g. one per camera model) instead of the automatic one.
+  double vector_gain = 0.0;
 };
 ReprojectionData ReprojectionDataOf(const CalibrationResult& result);
 
