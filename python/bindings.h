@@ -18,6 +18,7 @@ void BindIntrinsics(pybind11::module_& m);  // intrinsics (intrinsics_bindings.c
 void BindEvaluate(pybind11::module_& m);    // evaluate (evaluate_bindings.cc)
 void BindIntegrate(pybind11::module_& m);   // integrate (integrate_bindings.cc)
 void BindAlign(pybind11::module_& m);       // align (align_bindings.cc)
+void BindExport(pybind11::module_& m);      // export (export_bindings.cc)
 
 }  // namespace python
 }  // namespace splinecal

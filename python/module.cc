@@ -20,4 +20,5 @@ PYBIND11_MODULE(_splinecal, m) {
   splinecal::python::BindEvaluate(m);
   splinecal::python::BindIntegrate(m);
   splinecal::python::BindAlign(m);
+  splinecal::python::BindExport(m);
 }

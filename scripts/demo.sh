@@ -108,3 +108,6 @@ $sc calibrate --imu "$out/simulate_camera/mav0/imu0/data.csv" \
 echo "truth (data/calibration/camchain_truth.yaml): translation [0.06 -0.02 0.01] m,"
 echo "  timeshift_cam_imu 4.2 ms, line_delay 30 us/row; the start was 2.9 deg and 2.7 cm off"
 echo "(report: $out/calibrate/report.html)"
+echo
+echo "== 10. the calibration exported for OpenVINS (docs/export.md) =="
+$sc export --from "$out/calibrate" --format openvins --out "$out/export_openvins"

@@ -19,7 +19,7 @@ from ._splinecal import Error, SE3Spline
 
 # The command each function mirrors, in `splinecal help`'s order.
 COMMANDS = ("detect", "intrinsics", "evaluate", "simulate", "integrate", "allan", "align", "fit",
-            "calibrate")
+            "calibrate", "export")
 
 
 def _split_top_level(text):
@@ -92,6 +92,7 @@ allan = _checked(_splinecal.allan)
 align = _checked(_splinecal.align)
 fit = _checked(_splinecal.fit)
 calibrate = _checked(_splinecal.calibrate)
+export = _checked(_splinecal.export)
 
 __all__ = ["COMMANDS", "Error", "SE3Spline", "align", "allan", "allan_deviation", "calibrate",
-           "detect", "evaluate", "fit", "integrate", "intrinsics", "simulate"]
+           "detect", "evaluate", "export", "fit", "integrate", "intrinsics", "simulate"]

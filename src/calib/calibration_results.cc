@@ -7,6 +7,8 @@
 #include <set>
 #include <vector>
 
+#include "splinecal/imu/imu_rate.h"
+
 namespace splinecal {
 namespace calibrate_internal {
 
@@ -150,6 +152,23 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
     result->control_poses.push_back(result->T_w_target * T_t_s);
   }
   result->camchain = camchain_;
+  // Kalibr's cam_overlaps: the cameras that saw the target at the same frame time. Without
+  // target frames (natural landmarks only) the camchain's own list stays.
+  std::map<int64_t, std::set<int>> cameras_at_time;
+  for (const TargetFrame& frame : target_frames_) cameras_at_time[frame.t_ns].insert(frame.cam);
+  if (!cameras_at_time.empty()) {
+    std::vector<std::set<int>> overlaps(cameras_.size());
+    for (const auto& [t_ns, cameras] : cameras_at_time) {
+      for (int a : cameras) {
+        for (int b : cameras) {
+          if (a != b) overlaps[a].insert(b);
+        }
+      }
+    }
+    for (size_t c = 0; c < cameras_.size(); ++c) {
+      result->camchain[c].cam_overlaps.assign(overlaps[c].begin(), overlaps[c].end());
+    }
+  }
   result->cameras.resize(cameras_.size());
   result->camera_chain = chain_mode_;
   for (size_t c = 0; c < cameras_.size(); ++c) {
@@ -181,6 +200,7 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
         }
       });
   result->num_imu_samples = static_cast<int>(imu_.size());
+  result->imu_rate_hz = ImuRateHz(imu_);
   result->gyro_rms = imu_stats.gyro_rms;
   result->accel_rms = imu_stats.accel_rms;
   result->gyro_bias = imu_stats.mean_gyro_bias;

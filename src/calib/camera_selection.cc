@@ -41,6 +41,16 @@ void SelectCameras(const std::vector<int>& selection,
     new_id[selection[k]] = static_cast<int>(k);
     kept.push_back((*camchain)[selection[k]]);
   }
+  // cam_overlaps name cameras by their index: renumber them, and drop the cameras left out.
+  for (CameraCalibration& calibration : kept) {
+    std::vector<int> overlaps;
+    for (int other : calibration.cam_overlaps) {
+      if (other >= 0 && other < static_cast<int>(new_id.size()) && new_id[other] >= 0) {
+        overlaps.push_back(new_id[other]);
+      }
+    }
+    calibration.cam_overlaps = std::move(overlaps);
+  }
   std::vector<Observation> kept_observations;
   for (Observation o : *observations) {
     if (o.cam_id < 0 || o.cam_id >= static_cast<int>(new_id.size()) || new_id[o.cam_id] < 0) {

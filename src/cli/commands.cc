@@ -16,6 +16,7 @@ const std::vector<Command>& AllCommands() {
       DetectCommand(),
       IntrinsicsCommand(),
       CalibrateCommand(),
+      ExportCommand(),
   };
   return commands;
 }

@@ -30,6 +30,8 @@ constexpr double kMaxIntrinsic = 1e6;
 constexpr double kMaxDistortionCoefficient = 1e3;
 constexpr double kMaxTimeOffsetS = 1e9;
 constexpr double kMaxLineDelay = 1e-2;
+// cam_overlaps: camera indices; a rig of more than 64 cameras is a corrupt file.
+constexpr double kMaxCameras = 64;
 // The keys of a camN map: ours and the others Kalibr writes (ignored); near misses are typos.
 const std::vector<std::string> kCameraKeys = {"camera_model",
                                               "intrinsics",
@@ -242,6 +244,16 @@ CameraCalibration ReadCamera(const YamlDocument& yaml, const std::string& cam) {
     }
   }
   if (yaml.Has(cam + "/rostopic")) calibration.rostopic = yaml.String(cam + "/rostopic");
+  if (yaml.Has(cam + "/cam_overlaps")) {
+    for (double index : yaml.BoundedNumbers(cam + "/cam_overlaps", kMaxCameras, "cameras")) {
+      if (index < 0.0 || index != std::floor(index)) {
+        throw Error(yaml.path(),
+                    yaml.Line(cam + "/cam_overlaps"),
+                    cam + "/cam_overlaps: expected camera indices (0, 1, ...)");
+      }
+      calibration.cam_overlaps.push_back(static_cast<int>(index));
+    }
+  }
   return calibration;
 }
 
@@ -256,6 +268,18 @@ Camchain ReadCamchainYaml(const std::string& path) {
     camchain.push_back(ReadCamera(yaml, cam));
   }
   if (camchain.empty()) throw Error(path, 0, "no camera: expected a key 'cam0'");
+  for (size_t i = 0; i < camchain.size(); ++i) {
+    for (int other : camchain[i].cam_overlaps) {
+      if (other >= static_cast<int>(camchain.size()) || other == static_cast<int>(i)) {
+        const std::string key = "cam" + std::to_string(i) + "/cam_overlaps";
+        throw Error(path,
+                    yaml.Line(key),
+                    key + ": camera " + std::to_string(other) +
+                        (other == static_cast<int>(i) ? " is the camera itself"
+                                                      : " is not in the chain"));
+      }
+    }
+  }
   for (const std::string& key : yaml.TopLevelKeys()) {
     if (key.rfind("cam", 0) == 0 && key.size() > 3 &&
         key.find_first_not_of("0123456789", 3) == std::string::npos &&
@@ -323,6 +347,11 @@ std::string CamchainYamlText(const Camchain& camchain,
       yaml.Scalar("line_delay", c.line_delay_s);
     }
     if (!c.rostopic.empty()) yaml.Scalar("rostopic", c.rostopic);
+    if (!c.cam_overlaps.empty()) {
+      yaml.Vector("cam_overlaps",
+                  Eigen::Map<const Eigen::VectorXi>(c.cam_overlaps.data(), c.cam_overlaps.size())
+                      .cast<double>());
+    }
     if (i < covariances.size() && covariances[i].matrix.size() > 0) {
       WriteParameterCovariance(covariances[i], &yaml);
     }

@@ -41,7 +41,7 @@ ImuNoise ReadImuYaml(const std::string& path) {
   return noise;
 }
 
-std::string ImuYamlText(const ImuNoise& noise) {
+std::string ImuYamlText(const ImuNoise& noise, const std::string& rostopic) {
   std::string text;
   text += "# IMU noise in Kalibr's continuous-time densities (written by splinecal)\n";
   text += "accelerometer_noise_density: " + FormatDouble(noise.accelerometer_noise_density) +
@@ -52,7 +52,7 @@ std::string ImuYamlText(const ImuNoise& noise) {
           "  # [rad/s/sqrt(Hz)]\n";
   text += "gyroscope_random_walk: " + FormatDouble(noise.gyroscope_random_walk) +
           "  # [rad/s^2/sqrt(Hz)]\n";
-  text += "rostopic: /imu0\n";
+  text += "rostopic: " + rostopic + "\n";
   text += "update_rate: " + FormatDouble(noise.update_rate_hz) + "  # [Hz]\n";
   return text;
 }

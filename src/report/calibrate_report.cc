@@ -315,6 +315,7 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("gyro_rms", r.gyro_rms);
   yaml.Scalar("accel_rms", r.accel_rms);
   yaml.Scalar("num_imu_samples", r.num_imu_samples);
+  yaml.Scalar("imu_rate_hz", r.imu_rate_hz);
   yaml.Scalar("num_landmarks", r.num_landmarks);
   yaml.Scalar("knot_spacing_s", NanosecondsToSeconds(r.layout.dt_ns));
   yaml.Scalar("knot_spacing_rule", r.knot_spacing_rule);

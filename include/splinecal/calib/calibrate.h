@@ -249,6 +249,7 @@ struct CalibrationResult {
   double accel_rms = 0.0;            // [m/s^2]
   int num_landmarks = 0;
   int num_imu_samples = 0;
+  double imu_rate_hz = 0.0;  // 1 / the median sample period (imu/imu_rate.h)
 
   // How the camera chain was used (CalibrateOptions::camera_chain, resolved).
   ParameterMode camera_chain = ParameterMode::kFree;

@@ -30,6 +30,9 @@ struct CameraCalibration {
   double time_offset_s = 0.0;
   double line_delay_s = 0.0;
   std::string rostopic;  // kept from the input, written back when not empty
+  // Kalibr's cam_overlaps: the cameras that saw the target together with this one. Kept from the
+  // input and written back when not empty; no estimate uses it.
+  std::vector<int> cam_overlaps;
   // Camera n-1 into camera n (Kalibr's T_cn_cnm1), when the file has it (cam1 onwards): the
   // rig's camera-to-camera poses from a camera calibration (`splinecal intrinsics`).
   std::optional<SE3d> T_cn_cnm1;

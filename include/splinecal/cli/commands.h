@@ -16,6 +16,7 @@ Command FitCommand();
 Command CalibrateCommand();
 Command DetectCommand();
 Command IntrinsicsCommand();
+Command ExportCommand();
 
 }  // namespace cli
 }  // namespace splinecal

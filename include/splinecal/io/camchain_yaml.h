@@ -18,6 +18,7 @@
 //   timeshift_cam_imu  [s] (optional: 0), CameraCalibration::time_offset_s
 //   line_delay         [s] per image row (optional: 0, a global shutter)
 //   rostopic           (optional, kept)
+//   cam_overlaps       (optional, kept) camera indices, each in the chain and not the camera's own
 //   splinecal_covariance  (written when CamchainYamlText is given one with a matrix; not read,
 //                      and Kalibr's readers ignore it) parameters: [names], matrix: rows,
 //                      block_seconds (camera/parameter_covariance.h)
@@ -27,7 +28,6 @@
 //                      what splinecal uses). Written: the one the T_cam_imu imply,
 //                      T_cn_imu * T_cnm1_imu^-1, so that a stereo extrinsic read from the output
 //                      agrees with the estimated T_cam_imu.
-// cam_overlaps is ignored.
 #ifndef SPLINECAL_IO_CAMCHAIN_YAML_H_
 #define SPLINECAL_IO_CAMCHAIN_YAML_H_
 
@@ -51,7 +51,7 @@ Camchain ReadCamchainYaml(const std::string& path);
 // intrinsics (align).
 CameraCalibration ReadCam0Extrinsics(const std::string& path);
 
-// The YAML text of `camchain` with every key above but cam_overlaps (Kalibr's
+// The YAML text of `camchain` with every key above (Kalibr's
 // camchain-imucam.yaml layout; numbers with 17 significant digits so that it reads back exactly).
 // radtan writes 5 coefficients when k3 is estimated (radtan_k3) or not zero, else 4.
 // kCamerasOnly: Kalibr's camchain.yaml of a camera calibration (`splinecal intrinsics`): the

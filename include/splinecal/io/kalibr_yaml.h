@@ -15,8 +15,8 @@ namespace splinecal {
 // Throws Error with the line of the offending key.
 ImuNoise ReadImuYaml(const std::string& path);
 
-// The text of a Kalibr imu.yaml for `noise` (rostopic /imu0).
-std::string ImuYamlText(const ImuNoise& noise);
+// The text of a Kalibr imu.yaml for `noise`.
+std::string ImuYamlText(const ImuNoise& noise, const std::string& rostopic = "/imu0");
 
 }  // namespace splinecal
 
