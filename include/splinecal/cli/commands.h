@@ -16,6 +16,8 @@ Command FitCommand();
 Command CalibrateCommand();
 Command DetectCommand();
 Command IntrinsicsCommand();
+Command BagInfoCommand();
+Command BagExtractCommand();
 
 }  // namespace cli
 }  // namespace splinecal
