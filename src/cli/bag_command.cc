@@ -251,7 +251,8 @@ Command BagInfoCommand() {
 Command BagExtractCommand() {
   return {"bag extract",
           "write a bag's IMU and image topics as EuRoC/ASL folders",
-          "splinecal bag extract FILE... --out DIR [--topics T0,T1,...] [--bag-time header|receive]",
+          "splinecal bag extract FILE... [--bags FILE,...] --out DIR [--topics T0,T1,...]\n"
+          "    [--bag-time header|receive]",
           "Writes the IMU topics (sensor_msgs/Imu) as DIR/imu0/data.csv, imu1, ... and the image\n"
           "topics (sensor_msgs/Image in mono8, mono16, 8UC1, bgr8, rgb8, bgra8, rgba8 and the\n"
           "four bayer encodings; CompressedImage in JPEG or PNG) as DIR/cam0/data.csv and\n"

@@ -67,11 +67,11 @@ namespace {
 // Chunks larger than this are refused before allocating: far beyond the few MB writers use
 // (rosbag: 768 KiB, MCAP writers: 1-4 MiB), small enough that a corrupt size cannot take the
 // machine's memory.
-constexpr uint64_t kMaxChunkBytes = uint64_t{1} << 31;
+constexpr uint64_t kMaxChunkBytes = uint64_t{1} << 29;
 
 void CheckChunkSize(uint64_t size, const BagFile& file, int64_t offset) {
   if (size > kMaxChunkBytes) {
-    file.Fail(offset, StringPrintf("chunk claims %llu uncompressed bytes (more than 2 GiB): "
+    file.Fail(offset, StringPrintf("chunk claims %llu uncompressed bytes (more than 512 MiB): "
                                    "corrupt chunk header",
                                    static_cast<unsigned long long>(size)));
   }
