@@ -55,9 +55,12 @@ class McapReader : public IndexedBagReader {
     if (file.size() < static_cast<int64_t>(kMagic.size())) file.Fail(0, "too short for MCAP");
     file.Read(0, kMagic.size(), "magic", &bytes);
     if (bytes != kMagic) file.Fail(0, "not an MCAP file (no MCAP magic)");
-    if (!ReadSummary()) {
-      warnings_.push_back(path + ": no MCAP summary with message indexes (a writer that did not "
-                                 "finish?); read by a linear scan");
+    const Summary summary = ReadSummary();
+    if (summary != Summary::kIndexed) {
+      if (summary == Summary::kMissing) {
+        warnings_.push_back(path + ": no MCAP summary with message indexes (a writer that did not "
+                                   "finish?); read by a linear scan");
+      }
       topics_.clear();
       channels_.clear();
       schemas_.clear();
@@ -223,21 +226,27 @@ class McapReader : public IndexedBagReader {
                                 "' is not one of none, zstd, lz4");
   }
 
+  enum class Summary {
+    kIndexed,    // chunk and message indexes of every message read
+    kMissing,    // no summary, or a chunk without message indexes
+    kUnchunked,  // a summary without chunks: messages outside chunks, which MCAP never indexes
+  };
   // The summary section: schemas, channels, chunk indexes, then each chunk's message indexes.
-  // False when there is none, or a chunk without message indexes.
-  bool ReadSummary() {
+  Summary ReadSummary() {
     const BagFile& file = *files_[0];
     const int64_t footer = file.size() - static_cast<int64_t>(kMagic.size()) - kFooterRecordBytes;
-    if (footer < static_cast<int64_t>(kMagic.size())) return false;
+    if (footer < static_cast<int64_t>(kMagic.size())) return Summary::kMissing;
     std::string bytes;
     file.Read(footer, kFooterRecordBytes + kMagic.size(), "footer", &bytes);
-    if (bytes.substr(kFooterRecordBytes) != kMagic || bytes[0] != kFooter) return false;
+    if (bytes.substr(kFooterRecordBytes) != kMagic || bytes[0] != kFooter) {
+      return Summary::kMissing;
+    }
     ByteCursor cursor(bytes, file, footer);
     cursor.Bytes(9, "footer opcode and length");
     const uint64_t summary_start = cursor.Get<uint64_t>("summary start");
     cursor.Get<uint64_t>("summary offset start");
     const uint32_t summary_crc = cursor.Get<uint32_t>("summary CRC");
-    if (summary_start == 0) return false;
+    if (summary_start == 0) return Summary::kMissing;
     if (summary_start >= static_cast<uint64_t>(footer)) {
       file.Fail(footer, "footer's summary start is past the footer (corrupt footer)");
     }
@@ -302,8 +311,9 @@ class McapReader : public IndexedBagReader {
             ChunkFromRecord(content_view, static_cast<int64_t>(chunk_start) + 9);
       }
     }
+    if (indexes.empty()) return Summary::kUnchunked;
     for (const Index& index : indexes) {
-      if (index.message_index_bytes == 0 && index.chunk.size > 0) return false;
+      if (index.message_index_bytes == 0 && index.chunk.size > 0) return Summary::kMissing;
       chunks_.push_back(index.chunk);
       std::string message_indexes;
       file.Read(index.message_index_offset, static_cast<int64_t>(index.message_index_bytes),
@@ -329,7 +339,7 @@ class McapReader : public IndexedBagReader {
         }
       }
     }
-    return true;
+    return Summary::kIndexed;
   }
 
   // Every record of the data section in order; chunks decompressed to list their messages.

@@ -59,7 +59,7 @@ TEST(BagCommand, EveryFormatExtractsTheSameFolders) {
       {Bag("ros1_none.bag")},      {Bag("ros1_bz2.bag")},       {Bag("ros1_lz4.bag")},
       {Bag("ros1_unindexed.bag")}, {Bag("ros1_split_0.bag"), Bag("ros1_split_1.bag")},
       {Bag("mcap_none.mcap")},     {Bag("mcap_zstd.mcap")},     {Bag("mcap_lz4.mcap")},
-      {Bag("mcap_unindexed.mcap")}, {Bag("rosbag2_db3")}};
+      {Bag("mcap_unindexed.mcap")}, {Bag("mcap_unchunked.mcap")}, {Bag("rosbag2_db3")}};
   std::vector<std::pair<std::string, std::string>> first;
   for (size_t i = 0; i < recordings.size(); ++i) {
     const std::string out = dir.File("out" + std::to_string(i));

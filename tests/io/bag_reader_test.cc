@@ -117,6 +117,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Fixture{{"ros1_split_0.bag", "ros1_split_1.bag"}, false},
                       Fixture{{"mcap_none.mcap"}, false}, Fixture{{"mcap_zstd.mcap"}, false},
                       Fixture{{"mcap_lz4.mcap"}, false}, Fixture{{"mcap_unindexed.mcap"}, true},
+                      Fixture{{"mcap_unchunked.mcap"}, false},
                       Fixture{{"rosbag2_db3"}, false},
                       Fixture{{"rosbag2_db3/metadata.yaml"}, false},
                       Fixture{{"rosbag2_db3/rosbag2_db3_0.db3", "rosbag2_db3/rosbag2_db3_1.db3"},
