@@ -8,7 +8,8 @@ set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cp "$repo/scripts/fixtures/package.json" "$repo/scripts/fixtures/make_mcap_fixtures.mjs" "$work/"
+cp "$repo/scripts/fixtures/package.json" "$repo/scripts/fixtures/make_mcap_fixtures.mjs" \
+  "$repo/scripts/fixtures/ros2_definitions.mjs" "$work/"
 (cd "$work" && npm install --no-audit --no-fund --silent >/dev/null)
 rm -rf "$repo/data/bags"
 node "$work/make_mcap_fixtures.mjs" "$repo" "$work"

@@ -87,7 +87,7 @@ void DecompressLz4Frame(std::string_view in, uint64_t size, const BagFile& file,
                         std::string* out);
 void DecompressZstd(std::string_view in, uint64_t size, const BagFile& file, int64_t offset,
                     std::string* out);
-// CRC-32 (ISO-HDLC, zlib's crc32), MCAP's checksum.
+// CRC-32 (ISO-HDLC, zlib's crc32), MCAP's checksum; `crc` continues a previous one.
 uint32_t Crc32(std::string_view bytes, uint32_t crc = 0);
 
 // Where one message is.
