@@ -19,6 +19,7 @@
 #include "splinecal/io/bag_reader.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/output_dir.h"
+#include "splinecal/io/yaml_writer.h"
 #include "splinecal/string_printf.h"
 
 DEFINE_string(bags,
@@ -119,7 +120,33 @@ struct ExtractedTopic {
   std::vector<ImuSample> imu;
   std::string frames_csv;
   int64_t messages = 0;
+  int64_t first_t_ns = 0;  // as written (header stamp or receive time)
+  int64_t last_t_ns = 0;
 };
+
+// result.yaml of `bag extract` (docs/conventions.md, "Command line"): which topic became which
+// folder, with its count and time range.
+std::string ExtractResultYaml(const BagReader& bag, const std::vector<ExtractedTopic>& topics) {
+  YamlWriter yaml;
+  yaml.Comment("splinecal bag extract: a recording's IMU and image topics as EuRoC/ASL folders "
+               "(docs/bags.md)");
+  yaml.StringList("bags", ListFlag("bags", FLAGS_bags));
+  yaml.Scalar("format", bag.format());
+  yaml.Scalar("bag_time", FLAGS_bag_time);
+  yaml.BeginMap("folders");
+  for (const ExtractedTopic& topic : topics) {
+    yaml.BeginMap(topic.folder);
+    yaml.Scalar("topic", bag.topics()[topic.topic].name);
+    yaml.Scalar("type", bag.topics()[topic.topic].type);
+    yaml.Scalar("messages", topic.messages);
+    yaml.Scalar("first_t_ns", topic.first_t_ns);
+    yaml.Scalar("last_t_ns", topic.last_t_ns);
+    yaml.EndMap();
+  }
+  yaml.EndMap();
+  yaml.StringList("warnings", bag.warnings());
+  return yaml.str();
+}
 
 // The topics --topics names (all readable ones when empty), each with its folder: IMU topics
 // become imu0, imu1, ..., image topics cam0, cam1, ... in the order given (by name when all).
@@ -189,13 +216,14 @@ std::vector<ExtractedTopic> Extract(BagReader* bag, OutputDir* output) {
   while (bag->Next(&message)) {
     const BagTopic& topic = bag->topics()[message.topic];
     ExtractedTopic& out = topics[slot[message.topic]];
-    ++out.messages;
+    int64_t t_ns;
     if (KindOfType(topic.type) == BagMessageKind::kImu) {
       const ImuMessage imu = ParseImuMessage(topic, message);
-      out.imu.push_back({stamps.Stamp(topic, message, imu.stamp_ns), imu.gyro, imu.accel});
+      t_ns = stamps.Stamp(topic, message, imu.stamp_ns);
+      out.imu.push_back({t_ns, imu.gyro, imu.accel});
     } else {
       const ImageMessage image = ParseImageMessage(topic, message);
-      const int64_t t_ns = stamps.Stamp(topic, message, image.stamp_ns);
+      t_ns = stamps.Stamp(topic, message, image.stamp_ns);
       const GrayImage gray = BagImageToGray(image, message.where + ": " + topic.name);
       const std::string name = std::to_string(t_ns) + ".png";
       out.frames_csv += std::to_string(t_ns) + "," + name + "\n";
@@ -203,6 +231,8 @@ std::vector<ExtractedTopic> Extract(BagReader* bag, OutputDir* output) {
         output->WriteFile(out.folder + "/data/" + name, EncodeGrayPng(gray.view()));
       }
     }
+    if (out.messages++ == 0) out.first_t_ns = t_ns;
+    out.last_t_ns = t_ns;
     if (++done % 1000 == 0) Progress(StringPrintf("bag extract: %lld messages", (long long)done));
   }
   return topics;
@@ -227,6 +257,7 @@ int RunBagExtract() {
                 bag->topics()[topic.topic].name.c_str(), static_cast<long long>(topic.messages),
                 bag->topics()[topic.topic].type.c_str());
   }
+  output.WriteFile("result.yaml", ExtractResultYaml(*bag, topics));
   output.Commit();
   return 0;
 }
@@ -260,7 +291,8 @@ Command BagExtractCommand() {
           "reads (docs/bags.md says how each encoding becomes grey). Topics are taken in the order\n"
           "--topics gives, by name without it. A message's time is its header stamp, or with\n"
           "--bag-time receive the recording time; a topic whose times go backwards or repeat is\n"
-          "refused at its first offending message.",
+          "refused at its first offending message. result.yaml says which topic became which\n"
+          "folder.",
           {{"bags", ""}, {"out", ""}, {"topics", ""}, {"bag_time", ""}},
           &RunBagExtract,
           [] {
