@@ -17,6 +17,13 @@ mkdir -p "$out"
 yaml() { grep -E "^ *$2:" "$1" | head -1 | sed 's/^ *//'; }
 
 echo
+echo "== 0. bags: a ROS 2 recording (two .db3 files, data/bags/rosbag2_db3) to EuRoC folders =="
+$sc bag info data/bags/rosbag2_db3
+$sc bag extract data/bags/rosbag2_db3 --topics /imu0,/cam0/image_raw,/cam1/image_raw \
+  --out "$out/from_bag"
+head -3 "$out/from_bag/imu0/data.csv"
+
+echo
 echo "== 1. detect: AprilGrid corners in a real EuRoC stereo frame (data/euroc_april_frames) =="
 $sc detect --images data/euroc_april_frames/cam0,data/euroc_april_frames/cam1 \
   --target data/euroc_april_frames/aprilgrid.yaml --draw --out "$out/detect" 2>&1 | grep -v '\[='

@@ -14,7 +14,8 @@ packages=(build-essential cmake ninja-build
           pybind11-dev python3-dev python3-pytest python3-yaml
           # the image front end (splinecal detect, docs/detect.md): OpenCV (with the contrib
           # modules: ArUco is benchmarked against libapriltag), libapriltag, libjpeg, libpng, zlib
-          libopencv-dev libopencv-contrib-dev libapriltag-dev libjpeg-dev libpng-dev zlib1g-dev)
+          libopencv-dev libopencv-contrib-dev libapriltag-dev libjpeg-dev libpng-dev zlib1g-dev
+          libbz2-dev liblz4-dev libzstd-dev libsqlite3-dev)  # ROS bags (docs/bags.md)
 if [[ "${1:-}" == "--fuzz" ]]; then packages+=(clang libclang-rt-14-dev); fi
 
 missing=()

@@ -73,6 +73,8 @@
 #include "splinecal/camera/target_layout_check.h"
 
 // io/
+#include "splinecal/io/bag_messages.h"
+#include "splinecal/io/bag_reader.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/euroc.h"
@@ -98,6 +100,7 @@
 #include "splinecal/plot/svg_plot.h"
 
 // detect/ (link splinecal::detect)
+#include "splinecal/detect/bag_image.h"
 #include "splinecal/detect/detect_folders.h"
 #include "splinecal/detect/detect_report.h"
 #include "splinecal/detect/gray_image.h"

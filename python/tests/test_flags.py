@@ -44,10 +44,20 @@ def tool_help(*args):
     return done.stdout + done.stderr
 
 
+# Commands without a Python function yet: the bag readers (docs/bags.md) came to the command line
+# first. An exact list, not a skip: the test fails when one gets a function (remove it
+# here) and when another command lacks one.
+COMMANDS_NOT_YET = {"bag info", "bag extract"}
+
+
 def commands():
-    """The command names `splinecal help` lists (help and version are the front end's)."""
-    names = re.findall(r"^  (\w+) ", tool_help("help"), re.MULTILINE)
-    return [n for n in names if n not in ("help", "version")]
+    """The command names `splinecal help` lists (help and version are the front end's), a command
+    group's two words joined by a space ("bag info")."""
+    names = [m.group(1) or m.group(2) for m in re.finditer(
+        r"^  (?:(bag \w+)|(\w+)) ", tool_help("help"), re.MULTILINE)]
+    missing = COMMANDS_NOT_YET - set(names)
+    assert not missing, f"COMMANDS_NOT_YET names commands that are gone: {sorted(missing)}"
+    return [n for n in names if n not in ("help", "version") and n not in COMMANDS_NOT_YET]
 
 
 @functools.lru_cache(maxsize=None)

@@ -16,6 +16,8 @@ const std::vector<Command>& AllCommands() {
       DetectCommand(),
       IntrinsicsCommand(),
       CalibrateCommand(),
+      BagInfoCommand(),
+      BagExtractCommand(),
       ExportCommand(),
   };
   return commands;

@@ -89,6 +89,18 @@ double KnotSpacingFlag(bool can_choose) {
   return FLAGS_knot_spacing;
 }
 
+std::vector<std::string> ListFlag(const std::string& name, const std::string& text) {
+  std::vector<std::string> items;
+  if (text.empty()) return items;
+  for (size_t begin = 0;;) {
+    const size_t comma = text.find(',', begin);
+    items.push_back(text.substr(begin, comma - begin));
+    if (items.back().empty()) throw Error("--" + name + ": empty entry in '" + text + "'");
+    if (comma == std::string::npos) return items;
+    begin = comma + 1;
+  }
+}
+
 const std::string& RequiredFlag(const std::string& name, const std::string& value) {
   if (value.empty()) throw Error("--" + name + " is required");
   return value;

@@ -134,11 +134,16 @@ bool ParseFlags(const Command& command,
         flag.name.c_str(), CommandDefault(flag).c_str(), gflags::SET_FLAGS_DEFAULT);
     CHECK(!set.empty()) << "bad default '" << CommandDefault(flag) << "' of --" << flag.name;
   }
+  std::string positional;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     if (arg == "--help" || arg == "-h" || arg == "-help") {
       *help = true;
       return true;
+    }
+    if (!command.positional_flag.empty() && !arg.empty() && arg[0] != '-') {
+      positional += (positional.empty() ? "" : ",") + arg;
+      continue;
     }
     if (arg.size() < 2 || arg[0] != '-') {
       *error = "unexpected argument '" + arg + "' (flags are written --name value)";
@@ -174,6 +179,12 @@ bool ParseFlags(const Command& command,
       return false;
     }
   }
+  if (!positional.empty()) {
+    gflags::CommandLineFlagInfo info;
+    gflags::GetCommandLineFlagInfo(command.positional_flag.c_str(), &info);
+    if (!info.is_default) positional = info.current_value + "," + positional;
+    gflags::SetCommandLineOption(command.positional_flag.c_str(), positional.c_str());
+  }
   return true;
 }
 
@@ -187,7 +198,18 @@ int Main(int argc, char** argv) {
   KeepFreedMemoryForReuse();  // splinecal/memory_reuse.h: each page faulted once
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argc > 0 ? argv[0] : "splinecal");
-  const std::vector<std::string> args(argv + (argc > 0 ? 1 : 0), argv + argc);
+  std::vector<std::string> args(argv + (argc > 0 ? 1 : 0), argv + argc);
+  // A command group ("bag info"): its two words are the command's name.
+  if (args.size() >= 2 && FindCommand(args[0]) == nullptr &&
+      FindCommand(args[0] + " " + args[1]) != nullptr) {
+    args[1] = args[0] + " " + args[1];
+    args.erase(args.begin());
+  }
+  if (args.size() >= 3 && (args[0] == "help" || args[0] == "--help" || args[0] == "-h") &&
+      FindCommand(args[1] + " " + args[2]) != nullptr) {
+    args[2] = args[1] + " " + args[2];
+    args.erase(args.begin() + 1);
+  }
   if (args.empty()) {
     PrintGeneralHelp(stderr);
     return kExitBadInput;

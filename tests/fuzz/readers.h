@@ -9,6 +9,7 @@
 #define SPLINECAL_TESTS_FUZZ_READERS_H_
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -16,9 +17,12 @@
 #include <vector>
 
 #include "fuzz_input.h"
+#include "splinecal/detect/bag_image.h"
 #include "splinecal/detect/image_file.h"
 #include "splinecal/detect/target_detector.h"
 #include "splinecal/error.h"
+#include "splinecal/io/bag_messages.h"
+#include "splinecal/io/bag_reader.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
@@ -173,6 +177,27 @@ inline void ReadStaticRecordings(const std::string& path) {
   }
 }
 
+// A bag of any format (io/bag_reader.h, told apart by its bytes): every message read, the IMU
+// and image ones parsed and the images turned to grey, as `splinecal bag extract` does. A bag
+// that reads must list every message it then serves.
+inline void ReadBagWhole(const std::string& path) {
+  const std::unique_ptr<BagReader> bag = OpenBag({path});
+  int64_t listed = 0;
+  for (const BagTopic& topic : bag->topics()) listed += topic.message_count;
+  int64_t served = 0;
+  BagMessage message;
+  while (bag->Next(&message)) {
+    ++served;
+    const BagTopic& topic = bag->topics()[message.topic];
+    const BagMessageKind kind = KindOfType(topic.type);
+    if (kind == BagMessageKind::kImu) ParseImuMessage(topic, message);
+    if (kind == BagMessageKind::kImage || kind == BagMessageKind::kCompressedImage) {
+      BagImageToGray(ParseImageMessage(topic, message), message.where);
+    }
+  }
+  Expect(served == listed, "bag: serves every message it lists");
+}
+
 inline const std::vector<Reader>& Readers() {
   static const std::vector<Reader> readers = {
       {"euroc_imu", ".csv", [](const std::string& p) { ReadEurocImu(p); }},
@@ -186,6 +211,7 @@ inline const std::vector<Reader>& Readers() {
       {"spline_csv", ".csv", ReadSplineRoundTrip},
       {"static_recording", ".csv", ReadStaticRecordings},
       {"image_file", ".png", ReadImageAndDetect},
+      {"bag", ".bag", ReadBagWhole},
   };
   return readers;
 }

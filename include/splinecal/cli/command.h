@@ -52,9 +52,13 @@ struct Command {
   // nothing. Throws splinecal::Error exactly as run() would; the fuzz targets (tests/fuzz/) call
   // it on every input, since a whole run per input would be far too slow.
   void (*read_inputs)();
+  // The string flag that collects arguments without a leading '-' (comma-joined), for commands
+  // that take files as `splinecal bag info A.bag B.bag`; empty: such arguments are refused.
+  std::string positional_flag = "";
 };
 
-// Every command, in the order `splinecal help` lists them (src/cli/commands.cc).
+// Every command, in the order `splinecal help` lists them (src/cli/commands.cc). A name of two
+// words ("bag info") is a command group: `splinecal bag info ...` runs it.
 const std::vector<Command>& AllCommands();
 
 // The whole front end: dispatch, flag parsing, error reporting. Returns the process exit code.

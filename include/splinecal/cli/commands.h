@@ -16,6 +16,8 @@ Command FitCommand();
 Command CalibrateCommand();
 Command DetectCommand();
 Command IntrinsicsCommand();
+Command BagInfoCommand();
+Command BagExtractCommand();
 Command ExportCommand();
 
 }  // namespace cli

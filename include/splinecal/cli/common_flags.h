@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "splinecal/estimation/imu_noise_mode.h"
 #include "splinecal/io/euroc.h"
@@ -51,6 +52,10 @@ int ThreadsFlag();
 double KnotSpacingFlag(bool can_choose);
 // A required path flag: refused when empty.
 const std::string& RequiredFlag(const std::string& name, const std::string& value);
+
+// A comma-separated list flag ("a,b,c"); an empty entry is refused with Error("--name: ...").
+// Empty text gives an empty list.
+std::vector<std::string> ListFlag(const std::string& name, const std::string& text);
 
 // "x,y,z" -> a finite 3-vector; throws Error("--name: ...") otherwise.
 Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text);
