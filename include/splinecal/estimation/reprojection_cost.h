@@ -1,7 +1,7 @@
 // Reprojection residuals of `splinecal calibrate` with analytic Jacobians: a calibration-target
 // corner or an inverse-depth landmark, seen by a (rolling-shutter) camera riding on the IMU
-// spline T_w_s(t) ([Lovegrove13 §4-5], [seed002], CONVENTIONS.md "Camera, time offset, rolling
-// shutter").
+// spline T_w_s(t) ([Lovegrove13 §4-5], [seed002], docs/conventions.md "Camera, time offset,
+// rolling shutter").
 //
 // Model. A point is a homogeneous world point X_w = (x_w, w):
 //   target corner p_t:      X_w = (R_w_t p_t + t_w_t, 1)                   (T_w_t estimated)
