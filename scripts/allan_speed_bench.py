@@ -1,9 +1,10 @@
 #!/usr/bin/python3
-"""Issue 16's speed target, measured in one run: the whole `splinecal allan` command on a 10^7-row,
-6-axis EuRoC CSV (about 1.4 GB, generated once in /tmp, not in the repository) against a numpy
-implementation of allantools' cumulative-sum overlapping ADEV (the same arithmetic as
-allantools.oadev: phase by cumulative sum, then one vectorised second difference per averaging
-time) on ONE axis of the same data already in memory, both at 10 averaging times per decade.
+"""The Allan speed target (docs/performance.md, "Allan deviation against numpy"), measured in
+one run: the whole `splinecal allan` command on a 10^7-row, 6-axis EuRoC CSV (about 1.4 GB,
+generated once in /tmp, not in the repository) against a numpy implementation of allantools'
+cumulative-sum overlapping ADEV (the same arithmetic as allantools.oadev: phase by cumulative
+sum, then one vectorised second difference per averaging time) on ONE axis of the same data
+already in memory, both at 10 averaging times per decade.
 allantools itself is not a Debian package; this is its method written from the formula, not its
 code. Target: splinecal / numpy <= 0.6.
 
