@@ -211,7 +211,6 @@ std::vector<int64_t> TagCornerIds(int tag) {
 }
 
 TEST(AprilGridDetector, APredictedTagWhoseCodeIsAnotherIdIsRefused) {
-  SPLINECAL_REQUIRE_SHARED_DATA(kFrames);
   const CalibrationTarget target = EurocGrid();
   GrayImage image = ReadGrayImage(FramePath(0));
   const auto original = ById(DetectTargetCorners(image.view(), target));
