@@ -14,6 +14,8 @@
 namespace splinecal {
 namespace python {
 
+namespace py = pybind11;
+
 namespace {
 
 py::dict ExportFunction(const std::string& from,
