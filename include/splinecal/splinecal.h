@@ -75,6 +75,7 @@
 // io/
 #include "splinecal/io/bag_messages.h"
 #include "splinecal/io/bag_reader.h"
+#include "splinecal/io/calibration_export.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/euroc.h"
