@@ -23,6 +23,7 @@
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/intrinsics/time_blocks.h"
+#include "splinecal/intrinsics/view_clusters.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/median.h"
 #include "splinecal/string_printf.h"
@@ -473,13 +474,15 @@ void FillCameraResults(IntrinsicsSolver* solver,
     }
   }
   Eigen::MatrixXd covariance;
-  Eigen::Array<bool, Eigen::Dynamic, 1> from_blocks;  // per coordinate: the time blocks' std
+  // Per coordinate: where its std comes from (the names result.yaml's std_from uses).
+  std::vector<const char*> source(size, "noise");
   if (options.covariance.compute) {
     MarginalCovarianceOptions cov_options;
     cov_options.backend = options.covariance.backend;
     cov_options.max_ceres_covariance_entries = options.covariance.max_ceres_covariance_entries;
     cov_options.num_threads = options.solver.num_threads;
-    if (options.covariance.robust_window_s > 0.0) {
+    const bool robust = options.covariance.robust_window_s > 0.0;
+    if (robust) {
       std::vector<double> t_s;
       std::vector<Eigen::VectorXd> scores;
       TimestampScores(solver, *state, offset_intrinsics, size, &t_s, &scores);
@@ -496,10 +499,36 @@ void FillCameraResults(IntrinsicsSolver* solver,
     const MarginalCovariance marginal =
         ComputeMarginalCovariance(solver->problem(), blocks, cov_options);
     if (marginal.ok) {
-      const ReportedCovariance reported = ReportedCovarianceOf(marginal);
-      covariance = reported.covariance;
+      const ReportedCovariance by_time = ReportedCovarianceOf(marginal);
       result->time_blocks_count = marginal.num_clusters;
-      from_blocks = reported.inflation.array() > 1.0 + 1e-9;
+      Eigen::VectorXd inflation = by_time.inflation;
+      for (int i = 0; i < size; ++i) {
+        if (inflation(i) > 1.0 + 1e-9) source[i] = "time blocks";
+      }
+      if (robust) {
+        // The second sandwich, over kinds of view (view_clusters.h); each std is the larger.
+        MarginalCovarianceOptions view_options = cov_options;
+        const RigState* rig = state;
+        view_options.cluster_of = [solver, rig](ceres::ResidualBlockId id) {
+          const TargetView& view = solver->ViewOf(id);
+          return ViewCluster(
+              rig->cameras[view.cam_id], view.corners, TargetInCamera(*rig, view));
+        };
+        const MarginalCovariance by_view_kind =
+            ComputeMarginalCovariance(solver->problem(), blocks, view_options);
+        result->view_clusters_count = by_view_kind.num_clusters;
+        if (by_view_kind.ok && by_view_kind.num_clusters >= kMinViewClusters) {
+          const ReportedCovariance by_view = ReportedCovarianceOf(by_view_kind);
+          for (int i = 0; i < size; ++i) {
+            if (by_view.inflation(i) > inflation(i) && by_view.inflation(i) > 1.0 + 1e-9) {
+              inflation(i) = by_view.inflation(i);
+              source[i] = "view clusters";
+            }
+          }
+        }
+      }
+      // Rows and columns scaled alike: the correlations stay the noise model's.
+      covariance = inflation.asDiagonal() * marginal.covariance * inflation.asDiagonal();
     } else {
       result->warnings.push_back(
           "the intrinsics are not all determined (singular information): no standard deviations");
@@ -530,7 +559,7 @@ void FillCameraResults(IntrinsicsSolver* solver,
         if (found == camera.active.end()) continue;
         rows.push_back(offset_intrinsics[n] + static_cast<int>(found - camera.active.begin()));
         camera.covariance.parameters.push_back(IntrinsicName(camera.camera, index));
-        camera.std_from_time_blocks.push_back(from_blocks.size() > 0 && from_blocks(rows.back()));
+        camera.std_from.push_back(source[rows.back()]);
       }
     }
     const bool with_extrinsic = n > 0 && offset_extrinsic[n] >= 0;

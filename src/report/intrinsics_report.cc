@@ -5,6 +5,7 @@
 #include <map>
 
 #include "splinecal/intrinsics/intrinsics_observability.h"
+#include "splinecal/intrinsics/view_clusters.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/plot/svg_plot.h"
@@ -270,23 +271,24 @@ std::string IntrinsicsResultYaml(const IntrinsicsResult& result,
     }
     yaml.Scalar("initialisation", c.initialisation);
     if (c.covariance.matrix.size() > 0) {
-      std::vector<std::string> from;
-      for (bool blocks : c.std_from_time_blocks) from.push_back(blocks ? "time blocks" : "noise");
-      yaml.StringList("std_from", from);  // per intrinsic of splinecal_covariance.parameters
+      yaml.StringList("std_from", c.std_from);  // per intrinsic of splinecal_covariance.parameters
       WriteParameterCovariance(c.covariance, &yaml);
     }
     yaml.EndListItem();
   }
   yaml.EndList();
   yaml.BeginMap("covariance");
-  yaml.Comment(
-      "each std is the larger of the noise model's and, where significantly larger, the "
-      "cluster-robust one over time blocks of block_seconds (2 correlation lengths of the "
-      "residuals' scores, at most 1/20 of the recording)");
+  yaml.Comment(StringPrintf(
+      "each std is the largest of the noise model's and, where significantly larger, the "
+      "cluster-robust ones over time blocks of block_seconds (2 correlation lengths of the "
+      "residuals' scores, at most 1/20 of the recording) and over view_clusters kinds of view "
+      "(image region x tilt direction, used from %d); std_from says which",
+      kMinViewClusters));
   yaml.Scalar("block_seconds", result.time_blocks.block_s);
   yaml.Scalar("correlation_length_s", result.time_blocks.correlation_length_s);
   yaml.Scalar("blocks", result.time_blocks_count);
   yaml.Scalar("limited_by_min_blocks", result.time_blocks.limited_by_min_blocks);
+  yaml.Scalar("view_clusters", result.view_clusters_count);
   yaml.EndMap();
   yaml.BeginMap("solver");
   yaml.Scalar("rounds", result.solve.rounds);

@@ -5,14 +5,15 @@
 // the normalised differences (a - b) / sqrt(std_a^2 + std_b^2) at least 0.25, so that stds
 // inflated far beyond the disagreement fail too (for honest stds that RMS is about 1).
 //
-// NOT YET MET: the goal is |z| <= 3. With the time blocks the halves differ by up to 5.2
-// combined std (measured with the model-free outlier test, intrinsics/corner_outliers.h: radtan
-// cam0 fy 5.00, RMS of z 3.38; ds-none cam1 pu -5.17 and cam0 pu -4.92, RMS 2.42), against 7 to 13
-// with one cluster per frame. Longer blocks do not close it: the first half's correlation length
-// is 0.65 s and its pu std stays at 0.31-0.33 px with a 10-block floor (docs/intrinsics.md, "Error
-// bars"); the halves differ systematically (likely by what their views cover), which no
-// clustering inside one half can see. The test holds the bar reached, |z| <= 6, so that a return
-// to per-frame clusters fails.
+// The goal |z| <= 3 is met by ds-none, not by pinhole-radtan. Measured with the two cluster-robust
+// covariances (time blocks, intrinsics/time_blocks.h, and kinds of view,
+// intrinsics/view_clusters.h): ds-none |z| up to 2.99 (cam1 pu), radtan up to 4.66 (cam0 fv:
+// 456.24 +- 1.12 against 465.51 +- 1.64); with time blocks alone 5.17 and 5.00, with one
+// cluster per frame 7 to 13 (docs/intrinsics.md, "Error bars"). radtan's focal lengths move
+// by 8-9 px between the halves, whose views differ in distance (1.24-1.38 m against
+// 1.05-1.19 m) and blur: a misfit no clustering inside one half measured. Each model's bar is
+// the value reached with a 0.1-0.25 margin for numerical noise across machines, so that a
+// return to weaker error bars fails.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,7 +28,10 @@
 namespace splinecal {
 namespace {
 
-constexpr double kMaxNormalisedDifference = 6.0;  // the goal is 3 (file comment)
+// The bar per model (file comment); the goal is 3 for both.
+double MaxNormalisedDifference(const std::string& model) {
+  return model == "ds-none" ? 3.1 : 4.9;
+}
 
 TEST(IntrinsicsHalves, HalvesOfTheRecordingAgreeWithinTheirStds) {
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april");
@@ -63,7 +67,7 @@ TEST(IntrinsicsHalves, HalvesOfTheRecordingAgreeWithinTheirStds) {
         const double z = (ca.camera.intrinsics()(j) - cb.camera.intrinsics()(j)) / combined;
         ::testing::Test::RecordProperty(
             model + "_cam" + std::to_string(n) + "_" + std::to_string(j), std::to_string(z));
-        EXPECT_LE(std::abs(z), kMaxNormalisedDifference) << model << " cam" << n << " entry " << j;
+        EXPECT_LE(std::abs(z), MaxNormalisedDifference(model)) << model << " cam" << n << " entry " << j;
         sum_sq += z * z;
         ++count;
       }

@@ -38,9 +38,11 @@
 //      removed, a warning names a large share and where it sits; then the
 //      problem is solved again without the loss, residuals weighted by 1 / sigma.
 //   6. Standard deviations: the marginal covariance of the intrinsics and extrinsics
-//      (estimation/marginal_covariance.h), the larger of the noise model's and, where
-//      significant, the cluster-robust one over time blocks whose length the residuals'
-//      autocorrelation chooses (intrinsics/time_blocks.h; ReportedCovarianceOf).
+//      (estimation/marginal_covariance.h), per coordinate the largest of the noise model's
+//      and, where significant (ReportedCovarianceOf), two cluster-robust ones: over time blocks
+//      whose length the residuals' autocorrelation chooses (intrinsics/time_blocks.h: errors
+//      that nearby frames share) and over kinds of view, by image region and tilt
+//      (intrinsics/view_clusters.h: model error that depends on the view).
 //   7. Observability: the information matrix of each camera's intrinsics with the target poses
 //      marginalised; parameters with a standard deviation above their threshold (focal lengths
 //      and principal point: kUndeterminedPixelRatio of the image width; shape and distortion
@@ -131,9 +133,10 @@ struct IntrinsicsCameraResult {
   std::string initialisation;  // how the start was found, in words
   // The covariance of the active intrinsics (Kalibr's order) and, for n > 0 with an estimated
   // extrinsic, T_cn_cnm1's right tangent (camera/parameter_covariance.h), for camchain.yaml; and per
-  // intrinsic of it whether its std is the time blocks' cluster-robust one (else the noise's).
+  // intrinsic of it where its std comes from: "noise" (the noise model), "time blocks" or
+  // "view clusters" (the cluster-robust one over time blocks or over kinds of view, step 6).
   ParameterCovariance covariance;
-  std::vector<bool> std_from_time_blocks;
+  std::vector<std::string> std_from;
 };
 
 struct IntrinsicsResult {
@@ -149,6 +152,9 @@ struct IntrinsicsResult {
   // the recording held.
   TimeBlocks time_blocks;
   int time_blocks_count = 0;
+  // The occupied view clusters of the second cluster-robust covariance (view_clusters.h); it is
+  // used when there are at least kMinViewClusters.
+  int view_clusters_count = 0;
   std::vector<std::string> warnings;
 };
 

@@ -1,0 +1,68 @@
+// intrinsics/view_clusters.h: a view's cluster is its corners' image cell (3 x 3 grid) times the
+// quadrant its target tilts towards; the normal's sign (which side of the board faces the camera)
+// does not matter.
+#include "splinecal/intrinsics/view_clusters.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <vector>
+
+#include "splinecal/units.h"
+
+namespace splinecal {
+namespace {
+
+Camera ImageOf752x480() {
+  Camera camera;
+  camera.width = 752;
+  camera.height = 480;
+  return camera;
+}
+
+// Four corners around (u, v), 10 px apart.
+std::vector<TargetCornerObservation> CornersAround(double u, double v) {
+  std::vector<TargetCornerObservation> corners(4);
+  corners[0].uv = {u - 5.0, v - 5.0};
+  corners[1].uv = {u + 5.0, v - 5.0};
+  corners[2].uv = {u - 5.0, v + 5.0};
+  corners[3].uv = {u + 5.0, v + 5.0};
+  return corners;
+}
+
+// A target 1 m ahead, turned about the camera's x and y axes [rad].
+SE3d TiltedTarget(double about_x, double about_y) {
+  return SE3d(SO3d::Exp(Eigen::Vector3d(about_x, about_y, 0.0)), Eigen::Vector3d(0.0, 0.0, 1.0));
+}
+
+TEST(ViewClusters, EachCellAndTiltDirectionIsItsOwnCluster) {
+  const Camera camera = ImageOf752x480();
+  std::set<int> clusters;
+  for (double u : {100.0, 376.0, 700.0}) {
+    for (double v : {60.0, 240.0, 420.0}) {
+      for (double about_x : {-0.4, 0.4}) {
+        for (double about_y : {-0.4, 0.4}) {
+          clusters.insert(ViewCluster(camera, CornersAround(u, v), TiltedTarget(about_x, about_y)));
+        }
+      }
+    }
+  }
+  EXPECT_EQ(clusters.size(), 36u);
+  EXPECT_EQ(*clusters.begin(), 0);
+  EXPECT_EQ(*clusters.rbegin(), 35);
+}
+
+TEST(ViewClusters, TheBoardsSideAndTheImageEdgeDoNotChangeTheCluster) {
+  const Camera camera = ImageOf752x480();
+  const SE3d front = TiltedTarget(0.3, -0.2);
+  // The same plane seen from its back: the normal flips, the tilt direction does not.
+  const SE3d back(front.so3() * SO3d::Exp(Eigen::Vector3d(kPi, 0.0, 0.0)), front.translation());
+  EXPECT_EQ(ViewCluster(camera, CornersAround(200.0, 300.0), front),
+            ViewCluster(camera, CornersAround(200.0, 300.0), back));
+  // A centroid on the last column and row belongs to the last cell.
+  EXPECT_EQ(ViewCluster(camera, CornersAround(752.0, 480.0), front) / 4,
+            kViewClusterCells * kViewClusterCells - 1);
+}
+
+}  // namespace
+}  // namespace splinecal
