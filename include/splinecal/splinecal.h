@@ -176,6 +176,7 @@
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/intrinsics/time_blocks.h"
+#include "splinecal/intrinsics/view_clusters.h"
 
 // report/
 #include "splinecal/report/align_report.h"
