@@ -31,10 +31,6 @@ DEFINE_string(topics,
               "",
               "Topics to extract, comma-separated; empty: every sensor_msgs/Imu, Image and "
               "CompressedImage topic");
-DEFINE_string(bag_time,
-              "header",
-              "Time of a bag message: header (its header stamp, as Kalibr) or receive (the time "
-              "the recorder received it)");
 
 namespace splinecal {
 namespace cli {
