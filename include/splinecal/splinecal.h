@@ -102,6 +102,7 @@
 #include "splinecal/plot/svg_plot.h"
 
 // detect/ (link splinecal::detect)
+#include "splinecal/detect/bag_extract.h"
 #include "splinecal/detect/bag_image.h"
 #include "splinecal/detect/detect_bag.h"
 #include "splinecal/detect/detect_folders.h"

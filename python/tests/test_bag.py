@@ -87,3 +87,31 @@ def test_bag_errors_are_those_of_the_command(tmp_path):
     assert "(its sensor_msgs/Imu topics: /imu0, /sim/imu0)" in message
     with pytest.raises(TypeError, match="image_topics"):
         splinecal.detect(images=CAMERAS, target=TARGET, image_topics=["/cam0/image_raw"])
+
+
+def test_bag_info_lists_what_the_command_prints():
+    info = splinecal.bag_info(BAG)
+    printed = run_tool("bag", "info", BAG)
+    assert info["format"] == "ROS 1 bag 2.0" and "format:    ROS 1 bag 2.0" in printed
+    assert info["messages"] == 1403 and "messages:  1403" in printed
+    imu = info["topics"]["/imu0"]
+    assert (imu["type"], imu["messages"], imu["read_by_splinecal"]) == \
+        ("sensor_msgs/Imu", 800, True)
+    # EuRoC's 200 Hz stamps are not exactly 5 ms apart: 199.999997 Hz over these 800 rows.
+    assert imu["rate_hz"] == pytest.approx(200.0, rel=1e-6)
+    assert f"{imu['rate_hz']:8.3f} Hz  max gap {imu['max_gap_s'] * 1e3:.1f} ms" in printed
+    assert info["warnings"] == []
+
+
+def test_bag_extract_writes_what_the_command_writes(tmp_path):
+    run_tool("bag", "extract", BAG, "--topics", "/imu0,/cam0/image_raw", "--out", tmp_path / "cli")
+    result = splinecal.bag_extract(BAG, tmp_path / "py", topics=["/imu0", "/cam0/image_raw"])
+    assert result["folders"]["imu0"]["messages"] == 800
+    assert result["folders"]["cam0"]["topic"] == "/cam0/image_raw"
+    for name in ("imu0/data.csv", "cam0/data.csv", "cam0/data/1403709395937837056.png",
+                 "result.yaml"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert result == load_yaml(tmp_path / "cli" / "result.yaml")
+    with pytest.raises(splinecal.Error, match="--topics: /cam2 is not in the recording"):
+        splinecal.bag_extract(BAG, tmp_path / "bad", topics="/cam2")
+    assert not (tmp_path / "bad").exists()
