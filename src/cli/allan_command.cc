@@ -170,7 +170,8 @@ Command AllanCommand() {
   command.summary =
       "IMU noise densities from a static recording (Allan deviation, Kalibr imu.yaml)";
   command.usage =
-      "splinecal allan (--imu imu0/data.csv | --bag FILE [--imu-topic T] [--bag-time header|receive]\n"
+      "splinecal allan (--imu imu0/data.csv\n"
+      "    | --bag FILE [--imu-topic T] [--bag-time header|receive]\n"
       "    | --columns FILE --rate HZ [--sensor gyro|accel])\n"
       "    [--taus-per-decade N] [--max-tau-fraction F] [--max-passes P] [--combine mean|max]\n"
       "    [--gyro-scale S] [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g]\n"

@@ -224,7 +224,8 @@ Command CalibrateCommand() {
   return {"calibrate",
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
-          "splinecal calibrate (--imu FILE | --bag FILE [--imu-topic T] [--bag-time header|receive])\n"
+          "splinecal calibrate (--imu FILE\n"
+          "    | --bag FILE [--imu-topic T] [--bag-time header|receive])\n"
           "    --observations FILE --camchain FILE [--target FILE]\n"
           "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
           "    [--intrinsics held|prior|free] [--camera-chain held|prior|free] [--target-scale check|free|held]\n"

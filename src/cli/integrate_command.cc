@@ -91,7 +91,8 @@ int RunIntegrate() {
 Command IntegrateCommand() {
   return {"integrate",
           "IMU dead reckoning (euler, midpoint, rk4) and its drift against ground truth",
-          "splinecal integrate (--imu FILE | --bag FILE [--imu-topic T] [--bag-time header|receive])\n"
+          "splinecal integrate (--imu FILE\n"
+          "    | --bag FILE [--imu-topic T] [--bag-time header|receive])\n"
           "    --groundtruth FILE [--method euler,midpoint,rk4]\n"
           "    [--start S] [--duration S] [--gravity M_S2] [--accel-unit m/s^2|g]\n"
           "    [--gyro-unit rad/s|deg/s] --out DIR",

@@ -75,8 +75,8 @@ DetectFoldersResult DetectFrames(FrameSource* source,
   }
   // No more workers than cores: each holds a decode table and a frame's buffers.
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  const int threads = static_cast<int>(
-      std::max<int64_t>(1, std::min<int64_t>({options.threads, cores, std::max<int64_t>(1, total)})));
+  const int threads = static_cast<int>(std::max<int64_t>(
+      1, std::min<int64_t>({options.threads, cores, std::max<int64_t>(1, total)})));
   // Built before the workers start so that a bad target fails once, on this thread.
   std::vector<std::unique_ptr<TargetDetector>> detectors;
   for (int t = 0; t < threads; ++t) {

@@ -60,7 +60,8 @@ class BagImuStream {
 
 // Every sample of the topic, checked as ReadEurocImu checks imu0/data.csv: at least 2 samples,
 // no gap longer than options.max_gap_periods median periods (named with the sample's index and
-// time), an accelerometer not in g (unless options say so), and the rate of an IMU (imu/imu_rate.h).
+// time), an accelerometer not in g (unless options say so), and the rate of an IMU
+// (imu/imu_rate.h).
 std::vector<ImuSample> ReadBagImu(const BagImuSource& source, const ImuReadOptions& options = {});
 
 }  // namespace splinecal
