@@ -11,6 +11,7 @@
 
 #include "bindings.h"
 #include "command_outputs.h"
+#include "estimate_arguments.h"
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/allan/allan.h"
@@ -99,11 +100,15 @@ py::dict Allan(py::handle imu,
                double accel_scale,
                const std::string& gyro_unit,
                const std::string& accel_unit,
-               py::handle out) {
-  if (imu.is_none() == columns.is_none()) {
+               py::handle out,
+               py::handle bag,
+               const std::string& imu_topic,
+               const std::string& bag_time) {
+  if (int{!imu.is_none()} + int{!columns.is_none()} + int{!bag.is_none()} != 1) {
     throw py::value_error(
-        "imu, columns: give the static recording as imu (a EuRoC imu0/data.csv path or an "
-        "array) or as columns (a plain-columns path) with rate, not both");
+        "imu, bag, columns: give the static recording as imu (a EuRoC imu0/data.csv path or an "
+        "array), as bag (a recording) with imu_topic, or as columns (a plain-columns path) with "
+        "rate: exactly one");
   }
   AllanOptions options;
   options.taus_per_decade = taus_per_decade;
@@ -134,7 +139,16 @@ py::dict Allan(py::handle imu,
   const std::unique_ptr<OutputDir> output = OutputArgument(out);
 
   StaticRecording recording;
-  if (const std::optional<std::string> path = AsPath(imu)) {
+  if (!bag.is_none()) {
+    if (!rate.is_none() || axes_of) {
+      throw py::value_error("rate, sensor: are for arrays and columns; bags carry timestamps");
+    }
+    BagImuSource source;
+    source.paths = BagPaths(bag);
+    source.topic = imu_topic;
+    source.time = ParseBagTime(bag_time);
+    recording = RunWithoutGil([&] { return ReadBagStaticRecording(source, read); });
+  } else if (const std::optional<std::string> path = AsPath(imu)) {
     if (!rate.is_none() || axes_of) {
       throw py::value_error("rate, sensor: are for arrays and columns; EuRoC files carry "
                             "timestamps");
@@ -191,6 +205,9 @@ overlapping at every one (no work budget).)");
         py::arg("gyro_unit") = "rad/s",
         py::arg("accel_unit") = "m/s^2",
         py::arg("out") = py::none(),
+        py::arg("bag") = py::none(),
+        py::arg("imu_topic") = "/imu0",
+        py::arg("bag_time") = "header",
         R"(IMU noise from a static recording, as `splinecal allan` with its flags as keywords.
 imu: the path of a EuRoC imu0/data.csv, or an array (n, 6) of gyro xyz [rad/s] and accel xyz
 [m/s^2] (or (n, 1..3) of one sensor, with sensor="gyro" or "accel") sampled at rate [Hz];

@@ -19,6 +19,7 @@ void BindEvaluate(pybind11::module_& m);    // evaluate (evaluate_bindings.cc)
 void BindIntegrate(pybind11::module_& m);   // integrate (integrate_bindings.cc)
 void BindAlign(pybind11::module_& m);       // align (align_bindings.cc)
 void BindExport(pybind11::module_& m);      // export (export_bindings.cc)
+void BindBag(pybind11::module_& m);         // bag_info, bag_extract (bag_bindings.cc)
 
 }  // namespace python
 }  // namespace splinecal

@@ -47,7 +47,10 @@ py::dict CalibrateFunction(py::handle imu,
                            const std::string& accel_unit,
                            const std::string& gyro_unit,
                            int threads,
-                           py::handle out) {
+                           py::handle out,
+                           py::handle bag,
+                           const std::string& imu_topic,
+                           const std::string& bag_time) {
   const EstimateArguments arguments{
       knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads, trajectory};
   CalibrateOptions options;
@@ -71,7 +74,10 @@ py::dict CalibrateFunction(py::handle imu,
   }
 
   CalibrateReportInputs inputs;
-  inputs.imu_path = AsPath(imu).value_or("");
+  const BagImuArguments bag_arguments{bag, imu_topic, bag_time};
+  RequiredArgument(observations, "observations");
+  RequiredArgument(camchain, "camchain");
+  inputs.imu_path = ImuSourceName(imu, bag_arguments);
   inputs.observations_path = AsPath(observations).value_or("");
   inputs.camchain_path = PathArgument(camchain, "camchain");
   inputs.target_path = target.is_none() ? "" : PathArgument(target, "target");
@@ -94,7 +100,8 @@ py::dict CalibrateFunction(py::handle imu,
                            &rig,
                            &points,
                            &options);
-  const std::vector<ImuSample> samples = ImuInUnits(imu, arguments);
+  const std::vector<ImuSample> samples =
+      ImuInUnits(imu, bag_arguments, arguments.accel_unit, arguments.gyro_unit);
   std::vector<StampedPose> initial;
   if (!initial_poses.is_none()) initial = StampedPoses(initial_poses, "initial_poses");
 
@@ -111,9 +118,9 @@ py::dict CalibrateFunction(py::handle imu,
 void BindCalibrate(py::module_& m) {
   m.def("calibrate",
         &CalibrateFunction,
-        py::arg("imu"),
-        py::arg("observations"),
-        py::arg("camchain"),
+        py::arg("imu") = py::none(),
+        py::arg("observations") = py::none(),
+        py::arg("camchain") = py::none(),
         py::arg("target") = py::none(),
         py::kw_only(),
         py::arg("cameras") = "",
@@ -137,6 +144,9 @@ void BindCalibrate(py::module_& m) {
         py::arg("gyro_unit") = "rad/s",
         py::arg("threads") = 1,
         py::arg("out") = py::none(),
+        py::arg("bag") = py::none(),
+        py::arg("imu_topic") = "/imu0",
+        py::arg("bag_time") = "header",
         R"(Camera-IMU calibration as `splinecal calibrate`, with its flags as keywords. imu: a
 EuRoC imu0/data.csv path or {t_ns, gyro, accel}; observations: an observations.csv path or
 {t_ns, cam_id, point_id, uv}; camchain and target: Kalibr YAML paths (target None: natural

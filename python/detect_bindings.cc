@@ -15,8 +15,10 @@
 
 #include "bindings.h"
 #include "command_outputs.h"
+#include "estimate_arguments.h"
 #include "interruptible.h"
 #include "numpy_io.h"
+#include "splinecal/detect/detect_bag.h"
 #include "splinecal/detect/detect_folders.h"
 #include "splinecal/detect/detect_report.h"
 #include "splinecal/detect/image_file.h"
@@ -138,13 +140,16 @@ py::list DetectFolder(const std::string& dir, const CalibrationTarget& board,
 
 // The whole command (`splinecal detect --images ...`): result.yaml as a dict with the
 // observations, and with out= the command's files, written by the same function.
-py::dict DetectCommand(py::handle images, const std::string& target_path,
-                       const CalibrationTarget& board, const DetectorOptions& detector,
-                       int threads, bool draw, py::handle out) {
+// With a bag source (bag=, as --bag), the frames are the messages of its image topics instead.
+py::dict DetectCommand(py::handle images, const std::optional<BagImageSource>& bag,
+                       const std::string& target_path, const CalibrationTarget& board,
+                       const DetectorOptions& detector, int threads, bool draw, py::handle out) {
   // A str (or path) is split at commas as the command line splits --images; a list holds one
   // folder per camera.
   std::vector<std::string> dirs;
-  if (const std::optional<std::string> list = AsPath(images)) {
+  if (bag.has_value()) {
+    // no folders
+  } else if (const std::optional<std::string> list = AsPath(images)) {
     size_t begin = 0;
     while (true) {
       const size_t comma = list->find(',', begin);
@@ -170,8 +175,10 @@ py::dict DetectCommand(py::handle images, const std::string& target_path,
   options.threads = threads;
   options.detector = detector;
   if (draw) options.on_detection = OverlayWriter(dir.get());
-  const DetectFoldersResult result =
-      RunWithoutGil([&] { return DetectFolders(folders, board, options); });
+  const DetectFoldersResult result = RunWithoutGil([&] {
+    return bag.has_value() ? DetectBag(*bag, board, options)
+                           : DetectFolders(folders, board, options);
+  });
   Warn(result.warnings);
   py::dict dict = FinishOutputs(dir.get(), DetectOutputFiles(result, board, target_path));
   dict["observations"] = ObservationsDict(result.observations);
@@ -179,7 +186,8 @@ py::dict DetectCommand(py::handle images, const std::string& target_path,
 }
 
 py::object Detect(py::handle images_argument, py::handle target, const std::string& effort,
-                  py::handle images, py::handle out, int threads, bool draw) {
+                  py::handle images, py::handle out, int threads, bool draw, py::handle bag,
+                  py::handle image_topics, const std::string& bag_time) {
   const std::string target_path = PathArgument(target, "target");
   const CalibrationTarget board = ReadTargetYaml(target_path);
   DetectorOptions options;
@@ -191,12 +199,42 @@ py::object Detect(py::handle images_argument, py::handle target, const std::stri
   if (threads < 1 || threads > 256) {
     throw py::value_error("threads: expected 1 to 256, got " + std::to_string(threads));
   }
+  if (!bag.is_none()) {
+    if (!images.is_none() || !images_argument.is_none()) {
+      throw py::type_error("detect: give the frames as bag= with image_topics= (as --bag), or "
+                           "as image or images=, not both");
+    }
+    BagImageSource source;
+    source.paths = BagPaths(bag);
+    if (const std::optional<std::string> topics = AsPath(image_topics)) {
+      size_t begin = 0;
+      while (true) {
+        const size_t comma = topics->find(',', begin);
+        source.topics.push_back(topics->substr(begin, comma - begin));
+        if (source.topics.back().empty()) throw py::value_error("image_topics: an empty topic");
+        if (comma == std::string::npos) break;
+        begin = comma + 1;
+      }
+    } else if (std::optional<std::vector<std::string>> list =
+                   PathList(image_topics, "image_topics", "topics")) {
+      source.topics = *list;
+    }
+    if (source.topics.empty()) {
+      throw py::value_error("image_topics: the bag's image topics (a list, or a str with "
+                            "commas, as --image-topics; the i-th is camera i)");
+    }
+    source.time = ParseBagTime(bag_time);
+    return DetectCommand(py::none(), source, target_path, board, options, threads, draw, out);
+  }
+  if (!image_topics.is_none()) {
+    throw py::type_error("image_topics: the topics of bag=; give bag= too");
+  }
   if (!images.is_none()) {
     if (!images_argument.is_none()) {
       throw py::type_error("detect: give either image (pixels, a file, files or a folder) or "
                            "images= (camera folders, as --images), not both");
     }
-    return DetectCommand(images, target_path, board, options, threads, draw, out);
+    return DetectCommand(images, std::nullopt, target_path, board, options, threads, draw, out);
   }
   if (!out.is_none() || draw) {
     throw py::type_error(std::string(draw ? "draw" : "out") +
@@ -250,6 +288,9 @@ void BindDetect(py::module_& m) {
         py::arg("out") = py::none(),
         py::arg("threads") = 2,
         py::arg("draw") = false,
+        py::arg("bag") = py::none(),
+        py::arg("image_topics") = py::none(),
+        py::arg("bag_time") = "header",
         R"(Target corners in grayscale images; target: a Kalibr target YAML path.
 
 image: a uint8 array (h, w) of pixels already decoded, or the path of a PNG/JPEG file, or a
@@ -264,6 +305,10 @@ not at all. A target found in no frame raises splinecal.Error, as the command ex
 effort: "default" (recall first), "thorough" (the upsampled searches in every frame) or
 "fast" (one search, misses most tags under 25 px), as `splinecal detect --effort`.
 threads: frames searched at once (images= and a folder).
+bag: instead of images=, a recording (a path or a list: a ROS 1 bag, split bags, an MCAP file,
+a rosbag2 folder), its image_topics (a list, or a str with commas; the i-th is camera i) as
+`splinecal detect --bag --image-topics`, streamed; bag_time "header" (the header stamps) or
+"receive" (the recording time). Returns and writes what images= does.
 
 Returns, for an array or a file, a dict: point_id (k,) and uv (k, 2) [px] (pixel centres at
 integers, docs/conventions.md), tags_found, tags_rejected, corners_rejected (and path for a

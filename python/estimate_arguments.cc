@@ -1,6 +1,7 @@
 #include "estimate_arguments.h"
 
 #include "numpy_io.h"
+#include "splinecal/io/bag_imu.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/imu_units.h"
 #include "splinecal/io/kalibr_yaml.h"
@@ -72,6 +73,60 @@ std::vector<ImuSample> ImuInUnits(py::handle imu,
 
 std::string ImuYamlPath(const EstimateArguments& arguments) {
   return arguments.imu_yaml.is_none() ? "" : PathArgument(arguments.imu_yaml, "imu_yaml");
+}
+
+py::handle RequiredArgument(py::handle value, const std::string& name) {
+  if (value.is_none()) throw py::type_error("missing required argument '" + name + "'");
+  return value;
+}
+
+std::vector<std::string> BagPaths(py::handle bag) {
+  if (const std::optional<std::string> path = AsPath(bag)) return {*path};
+  std::vector<std::string> paths;
+  if (py::isinstance<py::list>(bag) || py::isinstance<py::tuple>(bag)) {
+    for (py::handle item : bag) paths.push_back(PathArgument(item, "bag"));
+  }
+  if (paths.empty()) {
+    throw py::value_error("bag: expected a path or a list of paths (one split recording)");
+  }
+  return paths;
+}
+
+namespace {
+
+// The bag's source, nullopt without bag; ValueError unless exactly one of imu and bag is given.
+std::optional<BagImuSource> BagSource(py::handle imu, const BagImuArguments& bag) {
+  if (imu.is_none() == bag.bag.is_none()) {
+    throw py::value_error(
+        "imu, bag: give the IMU samples as imu (a EuRoC imu0/data.csv path or arrays) or as bag "
+        "(a recording) with imu_topic: exactly one");
+  }
+  if (bag.bag.is_none()) return std::nullopt;
+  BagImuSource source;
+  source.paths = BagPaths(bag.bag);
+  source.topic = bag.imu_topic;
+  if (source.topic.empty()) throw py::value_error("imu_topic: empty");
+  source.time = ParseBagTime(bag.bag_time);
+  return source;
+}
+
+}  // namespace
+
+std::vector<ImuSample> ImuInUnits(py::handle imu,
+                                  const BagImuArguments& bag,
+                                  const std::string& accel_unit,
+                                  const std::string& gyro_unit) {
+  const std::optional<BagImuSource> source = BagSource(imu, bag);
+  if (!source.has_value()) return ImuInUnits(imu, accel_unit, gyro_unit);
+  ImuReadOptions read = ImuUnitReadOptions(accel_unit, gyro_unit);
+  return ReadBagImu(*source, read);
+}
+
+std::string ImuSourceName(py::handle imu, const BagImuArguments& bag,
+                          const std::string& fallback) {
+  const std::optional<BagImuSource> source = BagSource(imu, bag);
+  if (source.has_value()) return source->Name();
+  return AsPath(imu).value_or(fallback);
 }
 
 }  // namespace python

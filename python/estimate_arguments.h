@@ -47,6 +47,31 @@ std::vector<ImuSample> ImuInUnits(pybind11::handle imu,
 // The path of imu_yaml for the report inputs ("" for None).
 std::string ImuYamlPath(const EstimateArguments& arguments);
 
+// The bag keywords of the functions that read IMU samples, as the commands' --bag, --imu-topic
+// and --bag-time (docs/bags.md, "Commands on a bag"): bag is a path or a list of paths (one
+// split recording), None for imu.
+struct BagImuArguments {
+  pybind11::handle bag;
+  std::string imu_topic = "/imu0";
+  std::string bag_time = "header";
+};
+
+// The samples of `imu` (a path or arrays, as ImuInUnits) or of the bag's topic (ReadBagImu, the
+// same checks), in the units named; ValueError unless exactly one of imu and bag is given.
+std::vector<ImuSample> ImuInUnits(pybind11::handle imu,
+                                  const BagImuArguments& bag,
+                                  const std::string& accel_unit,
+                                  const std::string& gyro_unit);
+// Where the samples come from, for the results: imu's path, "FILE:TOPIC" for a bag, else
+// `fallback` (arrays).
+std::string ImuSourceName(pybind11::handle imu, const BagImuArguments& bag,
+                          const std::string& fallback = "");
+// `value`, or TypeError "missing required argument 'name'" for None: the arguments after imu,
+// which has a default (None: the samples come from bag), need one too.
+pybind11::handle RequiredArgument(pybind11::handle value, const std::string& name);
+// The recording of `bag` (a path or a list of paths); ValueError naming bag otherwise.
+std::vector<std::string> BagPaths(pybind11::handle bag);
+
 }  // namespace python
 }  // namespace splinecal
 

@@ -47,7 +47,10 @@ py::dict FitFunction(py::handle imu,
                      const std::string& accel_unit,
                      const std::string& gyro_unit,
                      int threads,
-                     py::handle out) {
+                     py::handle out,
+                     py::handle bag,
+                     const std::string& imu_topic,
+                     const std::string& bag_time) {
   const EstimateArguments arguments{
       knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads, trajectory};
   FitOptions options;
@@ -75,11 +78,14 @@ py::dict FitFunction(py::handle imu,
   options.model.bias_knot_spacing_s = bias_knot_spacing;
 
   FitReportInputs inputs;
-  inputs.imu_path = AsPath(imu).value_or("");
+  const BagImuArguments bag_arguments{bag, imu_topic, bag_time};
+  RequiredArgument(poses, "poses");
+  inputs.imu_path = ImuSourceName(imu, bag_arguments);
   inputs.poses_path = AsPath(poses).value_or("");
   inputs.imu_yaml_path = ImuYamlPath(arguments);
   const std::unique_ptr<OutputDir> output = OutputArgument(out);
-  const std::vector<ImuSample> samples = ImuInUnits(imu, arguments);
+  const std::vector<ImuSample> samples =
+      ImuInUnits(imu, bag_arguments, arguments.accel_unit, arguments.gyro_unit);
   const std::vector<StampedPose> stamped = StampedPoses(poses, "poses");
 
   const FitResult result =
@@ -95,8 +101,8 @@ py::dict FitFunction(py::handle imu,
 void BindFit(py::module_& m) {
   m.def("fit",
         &FitFunction,
-        py::arg("imu"),
-        py::arg("poses"),
+        py::arg("imu") = py::none(),
+        py::arg("poses") = py::none(),
         py::kw_only(),
         py::arg("imu_yaml") = py::none(),
         py::arg("imu_noise") = "estimated",
@@ -114,6 +120,9 @@ void BindFit(py::module_& m) {
         py::arg("gyro_unit") = "rad/s",
         py::arg("threads") = 1,
         py::arg("out") = py::none(),
+        py::arg("bag") = py::none(),
+        py::arg("imu_topic") = "/imu0",
+        py::arg("bag_time") = "header",
         R"(The continuous-time fit of `splinecal fit`, with its flags as keywords. imu: a EuRoC
 imu0/data.csv path or {t_ns, gyro, accel}; poses: a EuRoC ground truth / TUM path or
 {t_ns, T_w_s (n, 4, 4)}. out: a folder to write the command's files to (result.yaml,

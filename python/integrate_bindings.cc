@@ -35,20 +35,25 @@ py::dict IntegrateFunction(py::handle imu,
                            double gravity,
                            const std::string& accel_unit,
                            const std::string& gyro_unit,
-                           py::handle out) {
+                           py::handle out,
+                           py::handle bag,
+                           const std::string& imu_topic,
+                           const std::string& bag_time) {
   const std::vector<IntegrationMethod> methods =
       ParseIntegrationMethods(CommaListArgument(method, "method"));
   PositiveArgument(gravity, "gravity");
   SpanArgument(start, "start");
   SpanArgument(duration, "duration");
   const std::unique_ptr<OutputDir> output = OutputArgument(out);
-  const std::vector<ImuSample> samples = ImuInUnits(imu, accel_unit, gyro_unit);
+  const BagImuArguments bag_arguments{bag, imu_topic, bag_time};
+  RequiredArgument(groundtruth, "groundtruth");
+  const std::vector<ImuSample> samples = ImuInUnits(imu, bag_arguments, accel_unit, gyro_unit);
   const std::vector<GroundTruthState> truth = GroundTruthStates(groundtruth, "groundtruth");
   const IntegrationSpan span = ChooseIntegrationSpan(samples,
                                                      truth,
                                                      start,
                                                      duration,
-                                                     AsPath(imu).value_or("imu"),
+                                                     ImuSourceName(imu, bag_arguments, "imu"),
                                                      AsPath(groundtruth).value_or("groundtruth"));
   const IntegrationRun run =
       RunWithoutGil([&] { return RunIntegration(samples, truth, span, methods, gravity); });
@@ -60,8 +65,8 @@ py::dict IntegrateFunction(py::handle imu,
 void BindIntegrate(py::module_& m) {
   m.def("integrate",
         &IntegrateFunction,
-        py::arg("imu"),
-        py::arg("groundtruth"),
+        py::arg("imu") = py::none(),
+        py::arg("groundtruth") = py::none(),
         py::kw_only(),
         py::arg("method") = "euler,midpoint,rk4",
         py::arg("start") = 0.0,
@@ -70,6 +75,9 @@ void BindIntegrate(py::module_& m) {
         py::arg("accel_unit") = "m/s^2",
         py::arg("gyro_unit") = "rad/s",
         py::arg("out") = py::none(),
+        py::arg("bag") = py::none(),
+        py::arg("imu_topic") = "/imu0",
+        py::arg("bag_time") = "header",
         R"(IMU dead reckoning as `splinecal integrate`, with its flags as keywords. imu: a EuRoC
 imu0/data.csv path or {t_ns, gyro, accel}; groundtruth: a EuRoC state_groundtruth_estimate0
 path or {t_ns, T_w_s, v_w, gyro_bias, accel_bias} (simulate's ground_truth); method: "euler,rk4"

@@ -21,4 +21,5 @@ PYBIND11_MODULE(_splinecal, m) {
   splinecal::python::BindIntegrate(m);
   splinecal::python::BindAlign(m);
   splinecal::python::BindExport(m);
+  splinecal::python::BindBag(m);
 }

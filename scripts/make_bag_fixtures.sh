@@ -14,4 +14,11 @@ cp "$repo/scripts/fixtures/package.json" "$repo/scripts/fixtures/make_mcap_fixtu
 rm -rf "$repo/data/bags"
 node "$work/make_mcap_fixtures.mjs" "$repo" "$work"
 /usr/bin/python3 "$repo/scripts/fixtures/make_ros_fixtures.py" "$repo" "$work"
+# The recording the --bag tests run every command on (needs a built splinecal, for the simulated
+# calibration half; make_calibration_bag.py says what is in it).
+splinecal=${SPLINECAL:-$repo/build/splinecal}
+"$splinecal" simulate --trajectory calibration --duration 3 --camera-rate 5 \
+  --camchain "$repo/data/calibration/camchain_truth.yaml" \
+  --target "$repo/data/calibration/aprilgrid.yaml" --seed 2 --quiet --out "$work/sim" >/dev/null
+/usr/bin/python3 "$repo/scripts/fixtures/make_calibration_bag.py" "$repo" "$work/sim"
 du -sh "$repo/data/bags"

@@ -73,6 +73,7 @@
 #include "splinecal/camera/target_layout_check.h"
 
 // io/
+#include "splinecal/io/bag_imu.h"
 #include "splinecal/io/bag_messages.h"
 #include "splinecal/io/bag_reader.h"
 #include "splinecal/io/calibration_export.h"
@@ -101,7 +102,9 @@
 #include "splinecal/plot/svg_plot.h"
 
 // detect/ (link splinecal::detect)
+#include "splinecal/detect/bag_extract.h"
 #include "splinecal/detect/bag_image.h"
+#include "splinecal/detect/detect_bag.h"
 #include "splinecal/detect/detect_folders.h"
 #include "splinecal/detect/detect_report.h"
 #include "splinecal/detect/gray_image.h"

@@ -19,7 +19,7 @@ from ._splinecal import Error, SE3Spline
 
 # The command each function mirrors, in `splinecal help`'s order.
 COMMANDS = ("detect", "intrinsics", "evaluate", "simulate", "integrate", "allan", "align", "fit",
-            "calibrate", "export")
+            "calibrate", "export", "bag_info", "bag_extract")
 
 
 def _split_top_level(text):
@@ -93,6 +93,9 @@ align = _checked(_splinecal.align)
 fit = _checked(_splinecal.fit)
 calibrate = _checked(_splinecal.calibrate)
 export = _checked(_splinecal.export)
+bag_info = _checked(_splinecal.bag_info)
+bag_extract = _checked(_splinecal.bag_extract)
 
-__all__ = ["COMMANDS", "Error", "SE3Spline", "align", "allan", "allan_deviation", "calibrate",
-           "detect", "evaluate", "export", "fit", "integrate", "intrinsics", "simulate"]
+__all__ = ["COMMANDS", "Error", "SE3Spline", "align", "allan", "allan_deviation", "bag_extract",
+           "bag_info", "calibrate", "detect", "evaluate", "export", "fit", "integrate",
+           "intrinsics", "simulate"]

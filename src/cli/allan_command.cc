@@ -69,10 +69,11 @@ struct AllanInputs {
 
 AllanInputs ReadAllanInputs() {
   RequiredFlag("out", FLAGS_out);
-  if (FLAGS_imu.empty() == FLAGS_columns.empty()) {
+  const std::optional<BagImuSource> bag = BagImuFlags(" or --columns FILE --rate HZ");
+  if (int{!FLAGS_imu.empty()} + int{bag.has_value()} + int{!FLAGS_columns.empty()} != 1) {
     throw Error(
-        "give the static recording as --imu FILE (EuRoC imu0/data.csv) or as --columns "
-        "FILE --rate HZ, not both");
+        "give the static recording as --imu FILE (EuRoC imu0/data.csv), as --bag FILE "
+        "--imu-topic T, or as --columns FILE --rate HZ: exactly one");
   }
   AllanInputs in;
   AllanOptions& options = in.options;
@@ -113,10 +114,13 @@ AllanInputs ReadAllanInputs() {
   read.check_accel_units = units.check_accel_units;
 
   StaticRecording& recording = in.recording;
-  if (!FLAGS_imu.empty()) {
-    if (FLAGS_rate != 0.0 || !FLAGS_sensor.empty()) {
-      throw Error("--rate and --sensor are for --columns; EuRoC files carry timestamps");
-    }
+  if (FLAGS_columns.empty() && (FLAGS_rate != 0.0 || !FLAGS_sensor.empty())) {
+    throw Error("--rate and --sensor are for --columns; EuRoC files and bags carry timestamps");
+  }
+  if (bag.has_value()) {
+    Progress("allan: reading " + bag->Name());
+    recording = ReadBagStaticRecording(*bag, read);
+  } else if (!FLAGS_imu.empty()) {
     Progress("allan: reading " + FLAGS_imu);
     recording = ReadEurocStaticRecording(FLAGS_imu, read);
   } else {
@@ -166,7 +170,9 @@ Command AllanCommand() {
   command.summary =
       "IMU noise densities from a static recording (Allan deviation, Kalibr imu.yaml)";
   command.usage =
-      "splinecal allan (--imu imu0/data.csv | --columns FILE --rate HZ [--sensor gyro|accel])\n"
+      "splinecal allan (--imu imu0/data.csv\n"
+      "    | --bag FILE [--imu-topic T] [--bag-time header|receive]\n"
+      "    | --columns FILE --rate HZ [--sensor gyro|accel])\n"
       "    [--taus-per-decade N] [--max-tau-fraction F] [--max-passes P] [--combine mean|max]\n"
       "    [--gyro-scale S] [--accel-scale S] [--gyro-unit rad/s|deg/s] [--accel-unit m/s^2|g]\n"
       "    [--start S] [--end S] [--allow-motion] --out DIR";
@@ -189,6 +195,12 @@ Command AllanCommand() {
   command.flags = {{"imu",
                     "Static recording, EuRoC imu0/data.csv; the rate comes from the "
                     "timestamps [path]"},
+                   {"bag",
+                    "Static recording in a bag (its --imu-topic, sensor_msgs/Imu): a ROS 1 bag "
+                    "(several: one split recording), an MCAP file, or a rosbag2 folder, "
+                    "metadata.yaml or .db3 files; the rate comes from the stamps [paths]"},
+                   {"imu_topic", ""},
+                   {"bag_time", ""},
                    {"columns", ""},
                    {"rate", ""},
                    {"sensor", ""},

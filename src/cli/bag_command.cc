@@ -7,19 +7,15 @@
 #include <cinttypes>
 #include <cstdio>
 #include <memory>
-#include <sstream>
 
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
-#include "splinecal/detect/bag_image.h"
+#include "splinecal/detect/bag_extract.h"
 #include "splinecal/error.h"
-#include "splinecal/imu/imu_sample.h"
 #include "splinecal/io/bag_messages.h"
 #include "splinecal/io/bag_reader.h"
-#include "splinecal/io/euroc.h"
 #include "splinecal/io/output_dir.h"
-#include "splinecal/io/yaml_writer.h"
 #include "splinecal/string_printf.h"
 
 DEFINE_string(bags,
@@ -31,10 +27,6 @@ DEFINE_string(topics,
               "",
               "Topics to extract, comma-separated; empty: every sensor_msgs/Imu, Image and "
               "CompressedImage topic");
-DEFINE_string(bag_time,
-              "header",
-              "Time of a bag message: header (its header stamp, as Kalibr) or receive (the time "
-              "the recorder received it)");
 
 namespace splinecal {
 namespace cli {
@@ -113,151 +105,31 @@ int RunBagInfo() {
   return 0;
 }
 
-// One extracted topic and the folder it becomes.
-struct ExtractedTopic {
-  int topic = 0;
-  std::string folder;  // "imu0", "cam0"
-  std::vector<ImuSample> imu;
-  std::string frames_csv;
-  int64_t messages = 0;
-  int64_t first_t_ns = 0;  // as written (header stamp or receive time)
-  int64_t last_t_ns = 0;
-};
-
-// result.yaml of `bag extract` (docs/conventions.md, "Command line"): which topic became which
-// folder, with its count and time range.
-std::string ExtractResultYaml(const BagReader& bag, const std::vector<ExtractedTopic>& topics) {
-  YamlWriter yaml;
-  yaml.Comment("splinecal bag extract: a recording's IMU and image topics as EuRoC/ASL folders "
-               "(docs/bags.md)");
-  yaml.StringList("bags", ListFlag("bags", FLAGS_bags));
-  yaml.Scalar("format", bag.format());
-  yaml.Scalar("bag_time", FLAGS_bag_time);
-  yaml.BeginMap("folders");
-  for (const ExtractedTopic& topic : topics) {
-    yaml.BeginMap(topic.folder);
-    yaml.Scalar("topic", bag.topics()[topic.topic].name);
-    yaml.Scalar("type", bag.topics()[topic.topic].type);
-    yaml.Scalar("messages", topic.messages);
-    yaml.Scalar("first_t_ns", topic.first_t_ns);
-    yaml.Scalar("last_t_ns", topic.last_t_ns);
-    yaml.EndMap();
-  }
-  yaml.EndMap();
-  yaml.StringList("warnings", bag.warnings());
-  return yaml.str();
-}
-
-// The topics --topics names (all readable ones when empty), each with its folder: IMU topics
-// become imu0, imu1, ..., image topics cam0, cam1, ... in the order given (by name when all).
-std::vector<ExtractedTopic> ExtractedTopics(const BagReader& bag) {
-  std::vector<int> chosen;
-  const std::vector<std::string> names = ListFlag("topics", FLAGS_topics);
-  std::string available;
-  for (const BagTopic& topic : bag.topics()) {
-    if (KindOfType(topic.type) != BagMessageKind::kOther) {
-      available += (available.empty() ? "" : ", ") + topic.name;
-    }
-  }
-  if (available.empty()) available = "none";
-  for (const std::string& name : names) {
-    const int topic = bag.FindTopic(name);
-    if (topic < 0) {
-      throw Error("--topics: " + name + " is not in the recording (its IMU and image topics: " +
-                  available + ")");
-    }
-    if (KindOfType(bag.topics()[topic].type) == BagMessageKind::kOther) {
-      throw Error("--topics: " + name + " is a " + bag.topics()[topic].type +
-                  ", not an IMU or image topic (sensor_msgs/Imu, Image, CompressedImage)");
-    }
-    if (std::find(chosen.begin(), chosen.end(), topic) == chosen.end()) chosen.push_back(topic);
-  }
-  if (names.empty()) {
-    for (size_t i = 0; i < bag.topics().size(); ++i) {
-      if (KindOfType(bag.topics()[i].type) != BagMessageKind::kOther) {
-        chosen.push_back(static_cast<int>(i));
-      }
-    }
-    std::sort(chosen.begin(), chosen.end(), [&bag](int a, int b) {
-      return bag.topics()[a].name < bag.topics()[b].name;
-    });
-  }
-  if (chosen.empty()) {
-    throw Error(FLAGS_bags + ": no sensor_msgs/Imu, Image or CompressedImage topic to extract");
-  }
-  std::vector<ExtractedTopic> topics;
-  int imus = 0;
-  int cameras = 0;
-  for (const int topic : chosen) {
-    const bool imu = KindOfType(bag.topics()[topic].type) == BagMessageKind::kImu;
-    ExtractedTopic extracted;
-    extracted.topic = topic;
-    extracted.folder = imu ? "imu" + std::to_string(imus++) : "cam" + std::to_string(cameras++);
-    if (!imu) extracted.frames_csv = "#timestamp [ns],filename\n";
-    topics.push_back(std::move(extracted));
-  }
-  return topics;
-}
-
-// Reads every message of the extracted topics; with `output`, stages the folders in it.
-std::vector<ExtractedTopic> Extract(BagReader* bag, OutputDir* output) {
-  std::vector<ExtractedTopic> topics = ExtractedTopics(*bag);
-  const BagTime time = ParseBagTime(FLAGS_bag_time);
-  std::vector<int> selected;
-  std::vector<int> slot(bag->topics().size(), -1);
-  for (size_t i = 0; i < topics.size(); ++i) {
-    selected.push_back(topics[i].topic);
-    slot[topics[i].topic] = static_cast<int>(i);
-  }
-  bag->SelectTopics(selected);
-  BagStamps stamps(time, bag->topics().size());
-  BagMessage message;
-  int64_t done = 0;
-  while (bag->Next(&message)) {
-    const BagTopic& topic = bag->topics()[message.topic];
-    ExtractedTopic& out = topics[slot[message.topic]];
-    int64_t t_ns;
-    if (KindOfType(topic.type) == BagMessageKind::kImu) {
-      const ImuMessage imu = ParseImuMessage(topic, message);
-      t_ns = stamps.Stamp(topic, message, imu.stamp_ns);
-      out.imu.push_back({t_ns, imu.gyro, imu.accel});
-    } else {
-      const ImageMessage image = ParseImageMessage(topic, message);
-      t_ns = stamps.Stamp(topic, message, image.stamp_ns);
-      const GrayImage gray = BagImageToGray(image, message.where + ": " + topic.name);
-      const std::string name = std::to_string(t_ns) + ".png";
-      out.frames_csv += std::to_string(t_ns) + "," + name + "\n";
-      if (output != nullptr) {
-        output->WriteFile(out.folder + "/data/" + name, EncodeGrayPng(gray.view()));
-      }
-    }
-    if (out.messages++ == 0) out.first_t_ns = t_ns;
-    out.last_t_ns = t_ns;
-    if (++done % 1000 == 0) Progress(StringPrintf("bag extract: %lld messages", (long long)done));
-  }
-  return topics;
+BagExtractOptions ExtractOptionsFromFlags() {
+  BagExtractOptions options;
+  options.topics = ListFlag("topics", FLAGS_topics);
+  options.time = ParseBagTime(FLAGS_bag_time);
+  options.progress = [](int64_t done) {
+    Progress(StringPrintf("bag extract: %lld messages", static_cast<long long>(done)));
+  };
+  return options;
 }
 
 int RunBagExtract() {
   const std::unique_ptr<BagReader> bag = OpenBagFlag();
   PrintWarnings(*bag);
-  ExtractedTopics(*bag);  // refuses a bad --topics before the output folder is made
-  ParseBagTime(FLAGS_bag_time);
+  const BagExtractOptions options = ExtractOptionsFromFlags();
+  // Refuses a bad --topics before the output folder is made.
+  ChooseExtractedTopics(*bag, options, FLAGS_bags);
   OutputDir output(RequiredFlag("out", FLAGS_out));
-  const std::vector<ExtractedTopic> topics = Extract(bag.get(), &output);
+  const std::vector<ExtractedTopic> topics = ExtractBag(bag.get(), options, FLAGS_bags, &output);
   for (const ExtractedTopic& topic : topics) {
-    if (!topic.imu.empty() || topic.frames_csv.empty()) {
-      std::ostringstream csv;
-      WriteEurocImu(topic.imu, &csv);
-      output.WriteFile(topic.folder + "/data.csv", csv.str());
-    } else {
-      output.WriteFile(topic.folder + "/data.csv", topic.frames_csv);
-    }
     std::printf("%-5s <- %s (%lld messages, %s)\n", topic.folder.c_str(),
                 bag->topics()[topic.topic].name.c_str(), static_cast<long long>(topic.messages),
                 bag->topics()[topic.topic].type.c_str());
   }
-  output.WriteFile("result.yaml", ExtractResultYaml(*bag, topics));
+  output.WriteFile("result.yaml", BagExtractResultYaml(*bag, ListFlag("bags", FLAGS_bags),
+                                                       FLAGS_bag_time, topics));
   output.Commit();
   return 0;
 }
@@ -297,7 +169,7 @@ Command BagExtractCommand() {
           &RunBagExtract,
           [] {
             const std::unique_ptr<BagReader> bag = OpenBagFlag();
-            Extract(bag.get(), nullptr);
+            ExtractBag(bag.get(), ExtractOptionsFromFlags(), FLAGS_bags, nullptr);
           },
           "bags"};
 }

@@ -113,7 +113,7 @@ struct CalibrateInputs {
 };
 
 CalibrateInputs ReadCalibrateInputs() {
-  const std::string& imu_path = RequiredFlag("imu", FLAGS_imu);
+  ImuInputName();  // exactly one of --imu and --bag, checked first
   const std::string& observations_path = RequiredFlag("observations", FLAGS_observations);
   const std::string& camchain_path = RequiredFlag("camchain", FLAGS_camchain);
   RequiredFlag("out", FLAGS_out);
@@ -167,7 +167,7 @@ CalibrateInputs ReadCalibrateInputs() {
                            &in.camchain,
                            &in.observations,
                            &options);
-  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
+  in.imu = ReadImuFlags(/*takes_imu_yaml=*/true);
   if (!FLAGS_initial_poses.empty()) in.initial_poses = ReadPoses(FLAGS_initial_poses);
   return in;
 }
@@ -204,7 +204,7 @@ int RunCalibrate() {
   }
 
   // In CalibrateReportInputs' order: IMU, observations, camchain, target, initial poses, imu.yaml.
-  const CalibrateReportInputs report_inputs = {FLAGS_imu,
+  const CalibrateReportInputs report_inputs = {ImuInputName(),
                                                FLAGS_observations,
                                                FLAGS_camchain,
                                                FLAGS_target,
@@ -224,7 +224,9 @@ Command CalibrateCommand() {
   return {"calibrate",
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
-          "splinecal calibrate --imu FILE --observations FILE --camchain FILE [--target FILE]\n"
+          "splinecal calibrate (--imu FILE\n"
+          "    | --bag FILE [--imu-topic T] [--bag-time header|receive])\n"
+          "    --observations FILE --camchain FILE [--target FILE]\n"
           "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
           "    [--intrinsics held|prior|free] [--camera-chain held|prior|free] [--target-scale check|free|held]\n"
           "    [--hold-camera-chain] [--estimate-intrinsics]\n"
@@ -243,7 +245,7 @@ Command CalibrateCommand() {
           "--initial-poses does (e.g. `splinecal align` on SLAM poses). Writes\n"
           "camchain-imucam.yaml (Kalibr's keys), result.yaml with standard deviations and\n"
           "warnings, report.html, spline.csv and reprojection_errors.csv. See docs/calibrate.md.",
-          {{"imu", ""},
+          WithFlags(ImuInputFlags(), {
            {"observations", ""},
            {"camchain",
             "Camera rig, Kalibr camchain.yaml: intrinsics, distortion, resolution; "
@@ -273,7 +275,7 @@ Command CalibrateCommand() {
            {"accel_unit", ""},
            {"gyro_unit", ""},
            {"threads", ""},
-           {"out", ""}},
+           {"out", ""}}),
           &RunCalibrate,
           [] { ReadCalibrateInputs(); }};
 }

@@ -6,6 +6,7 @@
 
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_model.h"
+#include "splinecal/io/bag_imu.h"
 #include "splinecal/io/imu_units.h"
 #include "splinecal/units.h"
 
@@ -14,6 +15,16 @@ DEFINE_string(out,
               "Output folder [path], created if missing; results appear whole or not at all");
 DEFINE_bool(quiet, false, "Silence progress output on stderr");
 DEFINE_string(imu, "", "IMU data, EuRoC imu0/data.csv [path]");
+DEFINE_string(bag,
+              "",
+              "The recording, instead of --imu (and detect's --images): a ROS 1 bag (several: one "
+              "split recording), an MCAP file, or a rosbag2 folder, its metadata.yaml or its .db3 "
+              "files [paths, comma-separated]");
+DEFINE_string(imu_topic, "/imu0", "The IMU's ROS topic (sensor_msgs/Imu) in --bag");
+DEFINE_string(bag_time,
+              "header",
+              "Time of a bag message: header (its header stamp, as Kalibr) or receive (the time "
+              "the recorder received it)");
 DEFINE_string(imu_yaml, "", "IMU noise, Kalibr imu.yaml [path]");
 DEFINE_string(imu_noise,
               "estimated",
@@ -151,6 +162,49 @@ ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml) {
         "EuRoC imu0/data.csv";
   }
   return options;
+}
+
+std::optional<BagImuSource> BagImuFlags(const std::string& other_inputs) {
+  const std::string alternatives = "--imu FILE or --bag FILE --imu-topic T" + other_inputs;
+  if (!FLAGS_imu.empty() && !FLAGS_bag.empty()) {
+    throw Error("--imu and --bag both given: the IMU samples come from one of " + alternatives);
+  }
+  if (FLAGS_bag.empty()) return std::nullopt;
+  BagImuSource source;
+  source.paths = ListFlag("bag", FLAGS_bag);
+  source.topic = RequiredFlag("imu-topic", FLAGS_imu_topic);
+  source.time = ParseBagTime(FLAGS_bag_time);
+  return source;
+}
+
+std::string ImuInputName() {
+  const std::optional<BagImuSource> bag = BagImuFlags();
+  if (bag.has_value()) return bag->Name();
+  if (FLAGS_imu.empty()) {
+    throw Error("--imu is required (or --bag FILE --imu-topic T: the IMU from a recording)");
+  }
+  return FLAGS_imu;
+}
+
+std::vector<ImuSample> ReadImuFlags(bool takes_imu_yaml) {
+  ImuInputName();  // exactly one of --imu and --bag
+  const std::optional<BagImuSource> bag = BagImuFlags();
+  if (!bag.has_value()) return ReadEurocImu(FLAGS_imu, ImuReadOptionsFromFlags(takes_imu_yaml));
+  return ReadBagImu(*bag, ImuReadOptionsFromFlags(takes_imu_yaml));
+}
+
+std::vector<FlagDoc> ImuInputFlags() {
+  return {{"imu", "IMU samples, EuRoC imu0/data.csv [path]; or --bag"},
+          {"bag", "IMU samples from a recording instead of --imu: a ROS 1 bag (several: one split "
+                  "recording), an MCAP file, or a rosbag2 folder, metadata.yaml or .db3 files "
+                  "[paths, comma-separated]"},
+          {"imu_topic", ""},
+          {"bag_time", ""}};
+}
+
+std::vector<FlagDoc> WithFlags(std::vector<FlagDoc> flags, const std::vector<FlagDoc>& more) {
+  flags.insert(flags.end(), more.begin(), more.end());
+  return flags;
 }
 
 }  // namespace cli

@@ -10,9 +10,11 @@
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
+#include "splinecal/detect/detect_bag.h"
 #include "splinecal/detect/detect_folders.h"
 #include "splinecal/detect/detect_report.h"
 #include "splinecal/error.h"
+#include "splinecal/io/bag_messages.h"
 #include "splinecal/io/image_folder.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/target_yaml.h"
@@ -30,6 +32,10 @@ DEFINE_string(effort,
               "corners of 15-20 px tags, 100% from 20 px in docs/detect.md's test), thorough "
               "(the upsampled searches in every frame), fast (the first search only: 14% of "
               "15-20 px tags, 78% of 20-25 px ones)");
+DEFINE_string(image_topics,
+              "",
+              "With --bag: the image topics (sensor_msgs/Image or CompressedImage), comma "
+              "separated; the i-th is camera i");
 DEFINE_bool(draw, false, "Also write one overlay PNG per frame with corners under overlays/camN/");
 
 namespace splinecal {
@@ -37,14 +43,21 @@ namespace cli {
 namespace {
 
 struct DetectInputs {
-  std::vector<ImageFolder> folders;
+  std::vector<ImageFolder> folders;  // --images
+  BagImageSource bag;                // --bag: paths, topics, clock
   CalibrationTarget target;
   int threads = 1;
   DetectEffort effort = DetectEffort::kDefault;
 };
 
 DetectInputs ReadDetectInputs() {
-  RequiredFlag("images", FLAGS_images);
+  if (FLAGS_images.empty() == FLAGS_bag.empty()) {
+    throw Error("give the frames as --images DIR[,DIR...] or as --bag FILE --image-topics "
+                "T0[,T1...]: exactly one");
+  }
+  if (FLAGS_bag.empty() && !FLAGS_image_topics.empty()) {
+    throw Error("--image-topics names the topics of --bag; --images takes folders");
+  }
   RequiredFlag("target", FLAGS_target);
   RequiredFlag("out", FLAGS_out);
   DetectInputs in;
@@ -58,6 +71,12 @@ DetectInputs ReadDetectInputs() {
   if (in.target.type != "aprilgrid" && in.target.type != "checkerboard") {
     throw Error(FLAGS_target, 0,
                 "detect finds aprilgrid and checkerboard targets, not '" + in.target.type + "'");
+  }
+  if (!FLAGS_bag.empty()) {
+    in.bag.paths = ListFlag("bag", FLAGS_bag);
+    in.bag.topics = ListFlag("image-topics", RequiredFlag("image-topics", FLAGS_image_topics));
+    in.bag.time = ParseBagTime(FLAGS_bag_time);
+    return in;
   }
   // Split at every comma (getline would drop a trailing empty name): cam_id i is the i-th.
   size_t begin = 0;
@@ -106,11 +125,13 @@ class ProgressBar {
 int RunDetect() {
   DetectInputs in = ReadDetectInputs();
   OutputDir output(FLAGS_out);
-  int64_t frames = 0;
-  for (const ImageFolder& folder : in.folders) frames += folder.frames.size();
-  Progress(StringPrintf("detect: %lld frames of %zu camera%s, %s target",
-                        static_cast<long long>(frames), in.folders.size(),
-                        in.folders.size() == 1 ? "" : "s", in.target.type.c_str()));
+  if (!in.folders.empty()) {  // a bag's frames are counted as it is opened, by DetectBag
+    int64_t frames = 0;
+    for (const ImageFolder& folder : in.folders) frames += folder.frames.size();
+    Progress(StringPrintf("detect: %lld frames of %zu camera%s, %s target",
+                          static_cast<long long>(frames), in.folders.size(),
+                          in.folders.size() == 1 ? "" : "s", in.target.type.c_str()));
+  }
 
   DetectFoldersOptions options;
   options.threads = in.threads;
@@ -118,7 +139,9 @@ int RunDetect() {
   ProgressBar bar;
   options.progress = [&bar](const DetectProgress& p) { bar.Update(p); };
   if (FLAGS_draw) options.on_detection = OverlayWriter(&output);
-  const DetectFoldersResult result = DetectFolders(in.folders, in.target, options);
+  const DetectFoldersResult result = in.folders.empty()
+                                         ? DetectBag(in.bag, in.target, options)
+                                         : DetectFolders(in.folders, in.target, options);
   for (const std::string& warning : result.warnings) Progress("detect: warning: " + warning);
 
   output.WriteFiles(DetectOutputFiles(result, in.target, FLAGS_target));
@@ -134,8 +157,9 @@ Command DetectCommand() {
   command.name = "detect";
   command.summary = "AprilGrid or checkerboard corners in image folders (observations.csv)";
   command.usage =
-      "splinecal detect --images DIR[,DIR...] --target FILE [--effort fast|default|thorough] "
-      "[--threads N] [--draw] --out DIR";
+      "splinecal detect (--images DIR[,DIR...] | --bag FILE --image-topics T0[,T1...]\n"
+      "    [--bag-time header|receive]) --target FILE [--effort fast|default|thorough]\n"
+      "    [--threads N] [--draw] --out DIR";
   command.description =
       "Finds the calibration target of --target (a Kalibr aprilgrid of tag family 36h11 with a "
       "2-bit black border, or a checkerboard) in every image of every folder; the i-th folder is "
@@ -145,8 +169,17 @@ Command DetectCommand() {
       "reads), result.yaml (per camera: resolution, images read, images with the target, "
       "corners, detection time) and with --draw one overlay per frame under overlays/camN/. A "
       "frame that cannot be read is a warning; no readable frame at all, or no frame with the "
-      "target, is an error. See docs/detect.md.";
+      "target, is an error. With --bag, the frames are the messages of --image-topics (topic i "
+      "is camera i; sensor_msgs/Image or CompressedImage, made grey as bag extract does), "
+      "streamed from the recording, each stamped with its header stamp (--bag-time receive: "
+      "the recording time). See docs/detect.md.";
   command.flags = {{"images", ""},
+                   {"bag",
+                    "The frames from a recording instead of --images: a ROS 1 bag (several: one "
+                    "split recording), an MCAP file, or a rosbag2 folder, metadata.yaml or .db3 "
+                    "files [paths, comma-separated]"},
+                   {"image_topics", ""},
+                   {"bag_time", ""},
                    {"target", "Calibration target: Kalibr aprilgrid or checkerboard YAML [path]"},
                    {"out", ""},
                    {"effort", ""},
@@ -154,7 +187,10 @@ Command DetectCommand() {
                    {"draw", ""},
                    {"quiet", ""}};
   command.run = &RunDetect;
-  command.read_inputs = [] { ReadDetectInputs(); };
+  command.read_inputs = [] {
+    const DetectInputs in = ReadDetectInputs();
+    if (in.folders.empty()) CheckBagImageSource(in.bag);
+  };
   return command;
 }
 

@@ -14,7 +14,6 @@
 
 DEFINE_string(from, "", "Calibration folder: calibrate's (or intrinsics') --out [path]");
 DEFINE_string(format, "", "openvins, vins, basalt or kalibr");
-DEFINE_string(imu_topic, "/imu0", "The IMU's ROS topic, written where a format names it");
 
 namespace splinecal {
 namespace cli {
@@ -85,7 +84,7 @@ Command ExportCommand() {
            {"out", ""},
            {"imu_yaml", "IMU noise densities and rate, Kalibr imu.yaml (default: DIR/imu.yaml, "
                         "else result.yaml's) [path]"},
-           {"imu_topic", ""}},
+           {"imu_topic", "The IMU's ROS topic, written where a format names it"}},
           &RunExport,
           [] { ReadExportInputs(); }};
 }

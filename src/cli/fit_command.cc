@@ -46,7 +46,7 @@ struct FitInputs {
 };
 
 FitInputs ReadFitInputs() {
-  const std::string& imu_path = RequiredFlag("imu", FLAGS_imu);
+  ImuInputName();  // exactly one of --imu and --bag, checked first
   const std::string& poses_path = RequiredFlag("poses", FLAGS_poses);
   RequiredFlag("out", FLAGS_out);
   FitInputs in;
@@ -73,7 +73,7 @@ FitInputs ReadFitInputs() {
   options.solver.num_threads = ThreadsFlag();
   if (!Quiet()) options.solver.progress = [](const std::string& line) { Progress(line); };
 
-  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true));
+  in.imu = ReadImuFlags(/*takes_imu_yaml=*/true);
   in.poses = ReadPoses(poses_path);
   if (!FLAGS_imu_yaml.empty()) options.model.noise = ReadImuYaml(FLAGS_imu_yaml);
   options.model.imu_noise = ImuNoiseModeFlag();
@@ -88,7 +88,7 @@ int RunFit() {
   const FitResult result = Fit(in.imu, in.poses, in.options);
 
   FitReportInputs inputs;
-  inputs.imu_path = FLAGS_imu;
+  inputs.imu_path = ImuInputName();
   inputs.poses_path = FLAGS_poses;
   inputs.imu_yaml_path = FLAGS_imu_yaml;
   output.WriteFiles(FitOutputFiles(result, inputs));
@@ -150,7 +150,8 @@ int RunFit() {
 Command FitCommand() {
   return {"fit",
           "fit IMU biases, gravity, time offset and extrinsic to IMU data and poses",
-          "splinecal fit --imu FILE --poses FILE --out DIR [--imu-yaml FILE] [--imu-noise MODE] [--knot-spacing S]\n"
+          "splinecal fit (--imu FILE | --bag FILE [--imu-topic T] [--bag-time header|receive])\n"
+          "    --poses FILE --out DIR [--imu-yaml FILE] [--imu-noise MODE] [--knot-spacing S]\n"
           "    [--trajectory se3|split] [--pose-sigma-m M] [--pose-sigma-rad R]\n"
           "    [--estimate-time-offset] [--max-time-offset S] [--estimate-extrinsic]\n"
           "    [--bias-model constant|spline] [--bias-knot-spacing S] [--gravity M_S2]\n"
@@ -162,7 +163,7 @@ Command FitCommand() {
           "the solver's covariance; a parameter the data does not excite is named in plain words\n"
           "instead. Writes result.yaml, spline.csv, residuals.csv, pose_residuals.csv and\n"
           "report.html. See docs/fit.md.",
-          {{"imu", ""},
+          WithFlags(ImuInputFlags(), {
            {"poses", ""},
            {"out", ""},
            {"imu_yaml", "IMU noise densities, Kalibr imu.yaml [path]; default ADIS16448"},
@@ -180,7 +181,7 @@ Command FitCommand() {
            {"accel_unit", ""},
            {"gyro_unit", ""},
            {"threads", ""},
-           {"quiet", ""}},
+           {"quiet", ""}}),
           &RunFit,
           [] { ReadFitInputs(); }};
 }

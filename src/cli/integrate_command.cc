@@ -45,14 +45,14 @@ struct IntegrateInputs {
 
 IntegrateInputs ReadIntegrateInputs() {
   IntegrateInputs in;
-  const std::string& imu_path = RequiredFlag("imu", FLAGS_imu);
+  const std::string imu_path = ImuInputName();
   const std::string& truth_path = RequiredFlag("groundtruth", FLAGS_groundtruth);
   in.out_dir = RequiredFlag("out", FLAGS_out);
   in.methods = ParseIntegrationMethods(FLAGS_method);
   in.gravity = PositiveFlag("gravity", FLAGS_gravity);
   SpanFlagNs("start", FLAGS_start, /*allow_zero=*/true);
   SpanFlagNs("duration", FLAGS_duration, /*allow_zero=*/true);
-  in.imu = ReadEurocImu(imu_path, ImuReadOptionsFromFlags());
+  in.imu = ReadImuFlags();
   in.truth = ReadEurocGroundTruth(truth_path);
   in.span =
       ChooseIntegrationSpan(in.imu, in.truth, FLAGS_start, FLAGS_duration, imu_path, truth_path);
@@ -91,7 +91,9 @@ int RunIntegrate() {
 Command IntegrateCommand() {
   return {"integrate",
           "IMU dead reckoning (euler, midpoint, rk4) and its drift against ground truth",
-          "splinecal integrate --imu FILE --groundtruth FILE [--method euler,midpoint,rk4]\n"
+          "splinecal integrate (--imu FILE\n"
+          "    | --bag FILE [--imu-topic T] [--bag-time header|receive])\n"
+          "    --groundtruth FILE [--method euler,midpoint,rk4]\n"
           "    [--start S] [--duration S] [--gravity M_S2] [--accel-unit m/s^2|g]\n"
           "    [--gyro-unit rad/s|deg/s] --out DIR",
           "Integrates the IMU readings from the ground-truth state (position, orientation,\n"
@@ -103,15 +105,16 @@ Command IntegrateCommand() {
           "trajectory_<method>.csv (EuRoC ground-truth format at the IMU times) and\n"
           "trajectory.svg (top view of the ground truth and each method). Prints the drift\n"
           "table. See docs/integrate.md.",
-          {{"imu", ""},
-           {"groundtruth", ""},
-           {"method", ""},
-           {"start", ""},
-           {"duration", "Duration [s] from the start; 0: until the end of the data", "0"},
-           {"gravity", ""},
-           {"accel_unit", ""},
-           {"gyro_unit", ""},
-           {"out", ""}},
+          WithFlags(ImuInputFlags(),
+                    {{"groundtruth", ""},
+                     {"method", ""},
+                     {"start", ""},
+                     {"duration", "Duration [s] from the start; 0: until the end of the data",
+                      "0"},
+                     {"gravity", ""},
+                     {"accel_unit", ""},
+                     {"gyro_unit", ""},
+                     {"out", ""}}),
           &RunIntegrate,
           [] { ReadIntegrateInputs(); }};
 }

@@ -235,6 +235,55 @@ StaticRecording ReadEurocStaticRecording(const std::string& path,
   return recording;
 }
 
+StaticRecording ReadBagStaticRecording(const BagImuSource& source,
+                                       const StaticReadOptions& options) {
+  CheckScales(options);
+  BagImuStream stream(source, options);
+  const std::string name = source.Name();
+  StaticRecording recording;
+  recording.source = name;
+  recording.axes = MakeAxes(true, true, 3);
+  const BagReader& bag = stream.bag();
+  const auto count = bag.topics()[bag.FindTopic(source.topic)].message_count;
+  for (AxisSeries& axis : recording.axes) axis.samples.reserve(static_cast<size_t>(count));
+  ImuSample sample;
+  int64_t first_t_ns = 0;
+  int64_t last_t_ns = 0;
+  int64_t largest_step_ns = 0;
+  int64_t largest_step_message = 0;
+  int64_t largest_step_t_ns = 0;
+  while (stream.Next(&sample)) {
+    if (stream.count() == 1) {
+      first_t_ns = sample.t_ns;
+    } else if (sample.t_ns - last_t_ns > largest_step_ns) {
+      largest_step_ns = sample.t_ns - last_t_ns;
+      largest_step_message = stream.count();
+      largest_step_t_ns = sample.t_ns;
+    }
+    last_t_ns = sample.t_ns;
+    for (int a = 0; a < 3; ++a) {
+      recording.axes[a].samples.push_back(sample.gyro[a]);
+      recording.axes[3 + a].samples.push_back(sample.accel[a]);
+    }
+  }
+  CheckEnoughRows(name, recording.axes);
+  const int64_t rows = stream.count();
+  const double mean_period_s = 1e-9 * static_cast<double>(last_t_ns - first_t_ns) / (rows - 1);
+  recording.rate_hz = 1.0 / mean_period_s;
+  if (1e-9 * largest_step_ns > options.max_gap_periods * mean_period_s) {
+    throw Error(StringPrintf("%s: gap of %.6g s before message %lld (t = %lld ns), more than %g "
+                             "mean sample periods (%.6g s): the Allan variance needs uniformly "
+                             "sampled data",
+                             name.c_str(), 1e-9 * largest_step_ns,
+                             static_cast<long long>(largest_step_message),
+                             static_cast<long long>(largest_step_t_ns), options.max_gap_periods,
+                             mean_period_s));
+  }
+  CheckAccelUnits(name, recording.axes, options);
+  CheckImuRate(recording.rate_hz, name);
+  return recording;
+}
+
 StaticRecording ReadColumnStaticRecording(const std::string& path,
                                           double rate_hz,
                                           std::optional<ImuSensor> sensor,

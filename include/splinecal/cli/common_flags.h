@@ -6,8 +6,13 @@
 #include <gflags/gflags.h>
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "splinecal/cli/command.h"
+#include "splinecal/imu/imu_sample.h"
+#include "splinecal/io/bag_imu.h"
 
 #include "splinecal/estimation/imu_noise_mode.h"
 #include "splinecal/io/euroc.h"
@@ -17,6 +22,9 @@ DECLARE_string(out);
 DECLARE_bool(quiet);
 DECLARE_string(imu);
 DECLARE_string(imu_yaml);
+DECLARE_string(bag);
+DECLARE_string(imu_topic);
+DECLARE_string(bag_time);
 DECLARE_string(imu_noise);
 DECLARE_string(poses);
 DECLARE_double(gravity);
@@ -64,6 +72,22 @@ Eigen::Vector3d Vector3Flag(const std::string& name, const std::string& text);
 // takes_imu_yaml (the command has --imu-yaml), a YAML file given to --imu is refused with a
 // pointer to --imu-yaml (Kalibr calls its noise file `--imu`).
 ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml = false);
+
+// Where a command's IMU samples come from (docs/bags.md, "Commands on a bag"): --imu FILE (EuRoC
+// imu0/data.csv) or --bag FILE[,FILE...] --imu-topic T [--bag-time header|receive]. Exactly one:
+// both given is refused (naming the alternatives, plus `other_inputs` when the command has more,
+// e.g. allan's " or --columns FILE"). The bag's source, nullopt without --bag.
+std::optional<BagImuSource> BagImuFlags(const std::string& other_inputs = "");
+// --imu's path or the bag's "FILE:TOPIC", for results and messages; throws unless exactly one of
+// --imu and --bag is given.
+std::string ImuInputName();
+// The IMU samples of --imu (ReadEurocImu) or --bag (ReadBagImu: the same checks), with
+// ImuReadOptionsFromFlags(takes_imu_yaml). Throws when neither or both are given.
+std::vector<ImuSample> ReadImuFlags(bool takes_imu_yaml = false);
+// The FlagDocs of that choice (--imu, --bag, --imu-topic, --bag-time), for Command::flags.
+std::vector<FlagDoc> ImuInputFlags();
+// `flags` followed by `more`.
+std::vector<FlagDoc> WithFlags(std::vector<FlagDoc> flags, const std::vector<FlagDoc>& more);
 
 // --imu-noise: estimated, reweighted or given (estimation/imu_noise_mode.h).
 ImuNoiseMode ImuNoiseModeFlag();

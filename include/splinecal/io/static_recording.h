@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "splinecal/imu/static_recording.h"
+#include "splinecal/io/bag_imu.h"
 #include "splinecal/io/euroc.h"
 
 namespace splinecal {
@@ -39,6 +40,11 @@ struct StaticReadOptions : ImuReadOptions {
 // increasing, a gap, fewer than 2 samples, an accelerometer in g.
 StaticRecording ReadEurocStaticRecording(const std::string& path,
                                          const StaticReadOptions& options = {});
+
+// The same from a bag's sensor_msgs/Imu topic (io/bag_imu.h), streamed into the axes: the same
+// checks, a gap named with the message after it (its index and time) instead of a line.
+StaticRecording ReadBagStaticRecording(const BagImuSource& source,
+                                       const StaticReadOptions& options = {});
 
 // `sensor` names the sensor of 1 to 3 columns (required then); 6 columns are gyro xyz then
 // accel xyz and take none. rate_hz must be positive and finite. Throws as above, and for 4, 5 or

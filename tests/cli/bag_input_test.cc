@@ -1,0 +1,225 @@
+// --bag on every command that reads IMU samples or images, run as a user runs it, against
+// `bag extract` followed by the same command on the extracted EuRoC folders: the results must be
+// the same bytes (data/bags/ros1_calibration.bag, scripts/fixtures/make_calibration_bag.py).
+// Only what names the input (its path, the command line) and timings may differ.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "testing/paths.h"
+#include "testing/run_tool.h"
+
+namespace splinecal {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::CountLines;
+using testing::ReadFileText;
+using testing::RunTool;
+using testing::TempDir;
+
+const std::string kImuTopic = "/imu0";         // 4 s of EuRoC V1_01_easy
+const std::string kSimImuTopic = "/sim/imu0";  // the simulated calibration recording
+
+std::string Data(const std::string& name) { return testing::BundledDataPath(name); }
+std::string Bag() { return Data("bags/ros1_calibration.bag"); }
+
+// The lines of a result file that do not name the input or a time: the rest must not differ.
+std::vector<std::string> ComparableLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream stream(text);
+  for (std::string line; std::getline(stream, line);) {
+    const bool names_input = line.find("data.csv") != std::string::npos ||
+                             line.find(".bag") != std::string::npos ||
+                             line.find("command_line") != std::string::npos ||
+                             line.find("splinecal ") != std::string::npos;
+    const bool timing = line.find("time_s") != std::string::npos ||
+                        line.find("seconds") != std::string::npos ||
+                        line.find("wall") != std::string::npos;
+    if (!names_input && !timing) lines.push_back(line);
+  }
+  return lines;
+}
+
+// The same lines, except that numbers may differ by `relative` (0: the same text).
+void ExpectSameLines(const std::vector<std::string>& a, const std::vector<std::string>& b,
+                     double relative) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == b[i]) continue;
+    std::istringstream line_a(a[i]);
+    std::istringstream line_b(b[i]);
+    std::string token_a;
+    std::string token_b;
+    while (line_a >> token_a) {
+      ASSERT_TRUE(static_cast<bool>(line_b >> token_b)) << a[i] << " | " << b[i];
+      for (std::string* token : {&token_a, &token_b}) {
+        while (!token->empty() && (token->back() == ',' || token->back() == ']')) {
+          token->pop_back();
+        }
+        if (!token->empty() && token->front() == '[') token->erase(0, 1);
+      }
+      char* end_a = nullptr;
+      char* end_b = nullptr;
+      const double x = std::strtod(token_a.c_str(), &end_a);
+      const double y = std::strtod(token_b.c_str(), &end_b);
+      if (token_a.empty() || *end_a != '\0' || *end_b != '\0' || relative == 0.0) {
+        EXPECT_EQ(token_a, token_b) << a[i] << " | " << b[i];
+      } else {
+        EXPECT_LE(std::abs(x - y), relative * std::max(std::abs(x), std::abs(y)))
+            << a[i] << " | " << b[i];
+      }
+    }
+  }
+}
+
+// Every file the two runs wrote: data files byte for byte, result.yaml without the lines that
+// name the input or a time (report.html embeds both and is left out), its numbers within
+// `relative` (0: the same text).
+void ExpectSameOutputs(const std::string& a, const std::string& b, double relative = 0.0) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(a)) {
+    if (entry.is_regular_file()) {
+      names.push_back(std::filesystem::relative(entry.path(), a).string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  ASSERT_FALSE(names.empty());
+  for (const std::string& name : names) {
+    ASSERT_TRUE(std::filesystem::exists(b + "/" + name)) << name;
+    if (name == "report.html") continue;
+    const std::string text_a = ReadFileText(a + "/" + name);
+    const std::string text_b = ReadFileText(b + "/" + name);
+    if (name.size() >= 5 && name.substr(name.size() - 5) == ".yaml") {
+      SCOPED_TRACE(name);
+      ExpectSameLines(ComparableLines(text_a), ComparableLines(text_b), relative);
+    } else {
+      EXPECT_TRUE(text_a == text_b) << name << " differs";
+    }
+  }
+}
+
+// `bag extract --topics TOPICS` into dir/extracted.
+std::string Extract(const TempDir& dir, const std::string& topics) {
+  const std::string out = dir.File("extracted");
+  const auto result = RunTool({"bag", "extract", Bag(), "--topics", topics, "--out", out});
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  return out;
+}
+
+void RunOk(const std::vector<std::string>& args) {
+  const auto result = RunTool(args);
+  ASSERT_EQ(result.exit_code, 0) << args[0] << ": " << result.err;
+}
+
+TEST(BagInput, DetectOnTheBagEqualsDetectOnTheExtractedFolders) {
+  TempDir dir;
+  const std::string extracted = Extract(dir, "/cam0/image_raw,/cam1/image_raw");
+  const std::string target = Data("euroc_april_frames/aprilgrid.yaml");
+  RunOk({"detect", "--images", extracted + "/cam0," + extracted + "/cam1", "--target", target,
+       "--quiet", "--out", dir.File("folders")});
+  RunOk({"detect", "--bag", Bag(), "--image-topics", "/cam0/image_raw,/cam1/image_raw",
+         "--target", target, "--quiet", "--out", dir.File("bag")});
+  const std::string observations = ReadFileText(dir.File("bag") + "/observations.csv");
+  // cam0 sees all 144 corners of the grid (data/euroc_april_frames/SOURCE.md).
+  EXPECT_GT(CountLines(observations), 144);
+  EXPECT_TRUE(observations == ReadFileText(dir.File("folders") + "/observations.csv"));
+  // The bag holds the bundled frames' pixels: the bundled folders give the same corners.
+  RunOk({"detect", "--images",
+       Data("euroc_april_frames/cam0") + "," + Data("euroc_april_frames/cam1"), "--target",
+       target, "--quiet", "--out", dir.File("bundled")});
+  EXPECT_TRUE(observations == ReadFileText(dir.File("bundled") + "/observations.csv"));
+  const std::string result = ReadFileText(dir.File("bag") + "/result.yaml");
+  EXPECT_THAT(result, HasSubstr("ros1_calibration.bag:/cam1/image_raw"));
+}
+
+TEST(BagInput, IntegrateFitAndAllanOnTheBagEqualTheExtractedCsv) {
+  TempDir dir;
+  const std::string csv = Extract(dir, kImuTopic) + "/imu0/data.csv";
+  const std::string truth = Data("euroc_v1_01_easy_20s/groundtruth.csv");
+  const std::vector<std::string> from_csv = {"--imu", csv};
+  const std::vector<std::string> from_bag = {"--bag", Bag(), "--imu-topic", kImuTopic};
+  const std::vector<std::vector<std::string>> commands = {
+      {"integrate", "--groundtruth", truth, "--quiet"},
+      // 0.05 s knots: the default (0.01 s from the data) costs 5 times the time for no more
+      // coverage of the input path.
+      {"fit", "--poses", truth, "--knot-spacing", "0.05", "--quiet"},
+      // The recording moves (a flight): the Allan figures are marked unreliable, but computed.
+      {"allan", "--allow-motion", "--quiet"}};
+  for (const std::vector<std::string>& command : commands) {
+    const std::string name = command[0];
+    for (const bool bag : {false, true}) {
+      std::vector<std::string> args = command;
+      const std::vector<std::string>& input = bag ? from_bag : from_csv;
+      args.insert(args.end(), input.begin(), input.end());
+      args.insert(args.end(), {"--out", dir.File(name + (bag ? "_bag" : "_csv"))});
+      RunOk(args);
+    }
+    SCOPED_TRACE(name);
+    ExpectSameOutputs(dir.File(name + "_csv"), dir.File(name + "_bag"));
+  }
+}
+
+TEST(BagInput, CalibrateWithTheImuFromTheBagEqualsTheExtractedCsv) {
+  TempDir dir;
+  const std::string csv = Extract(dir, kSimImuTopic) + "/imu0/data.csv";
+  const std::vector<std::string> common = {
+      "calibrate", "--observations", Data("bags/ros1_calibration_observations.csv"),
+      "--camchain", Data("calibration/camchain_guess.yaml"), "--target",
+      Data("calibration/aprilgrid.yaml"), "--quiet"};
+  std::vector<std::string> args = common;
+  args.insert(args.end(), {"--imu", csv, "--out", dir.File("csv")});
+  RunOk(args);
+  args = common;
+  args.insert(args.end(),
+              {"--bag", Bag(), "--imu-topic", kSimImuTopic, "--out", dir.File("bag")});
+  RunOk(args);
+  // The estimates, the spline and the residuals are the same bytes. The standard deviations are
+  // not, in their last digits: calibrate's covariance moves by a few 1e-16 relative when only
+  // the CSV's file name changes (measured: the same data.csv copied to a longer name gave
+  // rotation_std_deg 0.44766307781390702 for ...691, the bag ...763), so that is no difference
+  // of the input.
+  // 1e-12 is far below any figure's meaning and far above that rounding.
+  ExpectSameOutputs(dir.File("csv"), dir.File("bag"), /*relative=*/1e-12);
+}
+
+TEST(BagInput, ImuAndBagTogetherOrAMissingTopicExitTwoWithOneLine) {
+  const auto both = RunTool({"integrate", "--imu", "x.csv", "--bag", Bag(), "--groundtruth",
+                             "y.csv", "--out", "/nonexistent/out"});
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_THAT(both.err, HasSubstr("--imu and --bag both given"));
+  EXPECT_EQ(CountLines(both.err), 1) << both.err;
+
+  TempDir dir;
+  const auto missing = RunTool({"fit", "--bag", Bag(), "--imu-topic", "/imu", "--poses",
+                                Data("euroc_v1_01_easy_20s/groundtruth.csv"), "--out",
+                                dir.File("out")});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_THAT(missing.err,
+              HasSubstr("--imu-topic /imu: not in " + Bag() +
+                        " (its sensor_msgs/Imu topics: /imu0, /sim/imu0)"));
+  EXPECT_EQ(CountLines(missing.err), 1) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.File("out")));
+
+  const auto wrong_type = RunTool({"allan", "--bag", Bag(), "--imu-topic", "/cam0/image_raw",
+                                   "--out", dir.File("allan")});
+  EXPECT_EQ(wrong_type.exit_code, 2);
+  EXPECT_THAT(wrong_type.err, HasSubstr("a sensor_msgs/Image topic, not sensor_msgs/Imu"));
+
+  const auto no_topic = RunTool({"detect", "--bag", Bag(), "--image-topics", "/cam2/image_raw",
+                                 "--target", Data("euroc_april_frames/aprilgrid.yaml"), "--out",
+                                 dir.File("detect")});
+  EXPECT_EQ(no_topic.exit_code, 2);
+  EXPECT_THAT(no_topic.err, HasSubstr("(its image topics: /cam0/image_raw, /cam1/image_raw)"));
+  EXPECT_EQ(CountLines(no_topic.err), 1) << no_topic.err;
+}
+
+}  // namespace
+}  // namespace splinecal
