@@ -142,6 +142,13 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
                                              const ResidualLabel& label_of,
                                              const ResidualLabel& cluster_of,
                                              int num_threads) {
+  std::vector<double*> parameter_blocks;
+  problem->GetParameterBlocks(&parameter_blocks);
+  blocks_by_ordinal_.assign(parameter_blocks.begin(), parameter_blocks.end());
+  ordinal_.reserve(2 * parameter_blocks.size());
+  for (size_t k = 0; k < parameter_blocks.size(); ++k) {
+    ordinal_.emplace(parameter_blocks[k], static_cast<int>(k));
+  }
   std::vector<ceres::ResidualBlockId> residual_blocks;
   problem->GetResidualBlocks(&residual_blocks);
   std::vector<Linearization> chunk;
@@ -176,7 +183,7 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
       }
       num_residuals_[item.label] += item.rows;
       squared_sum_[item.label] += item.squared_sum;
-      Group& group = groups_[GroupKey(item.label, item.blocks[0])];
+      Group& group = groups_[GroupKey(item.label, ordinal_.at(item.blocks[0]))];
       std::vector<std::pair<int, int>> parts;  // (index in the group, first column in J)
       int column = 0;
       for (size_t k = 0; k < item.blocks.size(); ++k) {
@@ -187,9 +194,9 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
       }
       group.Resize();
       if (cluster_of) {
-        std::map<const double*, Eigen::VectorXd>& gradient = cluster_gradients_[item.cluster];
+        std::map<int, Eigen::VectorXd>& gradient = cluster_gradients_[item.cluster];
         for (const auto& [a, column_a] : parts) {
-          Eigen::VectorXd& g = gradient[group.blocks[a]];
+          Eigen::VectorXd& g = gradient[ordinal_.at(group.blocks[a])];
           if (g.size() == 0) g = Eigen::VectorXd::Zero(group.sizes[a]);
           g += item.Jte.segment(column_a, group.sizes[a]);
         }
@@ -401,8 +408,8 @@ bool CompressedInformation::MappedCovariance(const std::vector<const double*>& r
       Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(A.rows(), A.rows());
       for (const auto& [cluster, gradient] : cluster_gradients_) {
         Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());  // Y^T g_k
-        for (const auto& [block, g_block] : gradient) {
-          const auto offset = offsets.find(block);
+        for (const auto& [ordinal, g_block] : gradient) {
+          const auto offset = offsets.find(blocks_by_ordinal_[ordinal]);
           if (offset == offsets.end()) continue;
           x += Y.middleRows(offset->second, g_block.size()).transpose() * g_block;
         }

@@ -19,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -101,7 +102,10 @@ class CompressedInformation {
     int Index(const double* block, int size);
     void Resize();
   };
-  using GroupKey = std::pair<int, const double*>;  // (label, first parameter block)
+  // (label, ordinal of the first parameter block). Ordinals, not addresses: every sum over
+  // groups or blocks then runs in an order fixed by the problem, so that the same problem built
+  // twice (at other heap addresses) gives the same covariance to the last bit.
+  using GroupKey = std::pair<int, int>;
 
   // Every block's offset in H in the elimination order of estimation/information_factor.h
   // (minimum degree on the block graph); returns the size of H.
@@ -116,8 +120,13 @@ class CompressedInformation {
   std::map<const double*, int> block_sizes_;  // tangent sizes
   std::map<int, int> num_residuals_;
   std::map<int, double> squared_sum_;
-  // Per cluster, per (free) parameter block: the tangent gradient J^T e of its residuals.
-  std::map<int, std::map<const double*, Eigen::VectorXd>> cluster_gradients_;
+  // Per cluster, per (free) parameter block by ordinal: the tangent gradient J^T e of its
+  // residuals.
+  std::map<int, std::map<int, Eigen::VectorXd>> cluster_gradients_;
+  // The problem's parameter blocks in the order Problem::GetParameterBlocks lists them (the
+  // order they were added), and each block's place in it.
+  std::vector<const double*> blocks_by_ordinal_;
+  std::unordered_map<const double*, int> ordinal_;
   std::map<const double*, std::vector<double>> tangent_blocks_;
   std::unique_ptr<ceres::Problem> compressed_;
 };
