@@ -7,7 +7,7 @@
 //   lie/         SO(3), SE(3), their Jacobians and Ceres manifolds
 //   spline/      the uniform cubic B-spline of SE(3) poses (coupled SE(3) or split SO(3) x R^3),
 //                its knot layout and derivatives
-//   imu/         IMU samples, the measurement model, noise densities, dead reckoning
+//   imu/         IMU samples, the measurement models (Kalibr's), noise densities, dead reckoning
 //   camera/      camera models, camchains, targets, observations, PnP, rolling shutter
 //   io/          readers and writers of every file format (plain data types in, out)
 //   plot/        SVG plots and the one plot decimation (knows nothing of what it plots)
@@ -50,11 +50,19 @@
 
 // imu/
 #include "splinecal/imu/ground_truth.h"
+#include "splinecal/imu/imu_intrinsic_model.h"
+#include "splinecal/imu/imu_intrinsics.h"
 #include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_model_kind.h"
 #include "splinecal/imu/imu_rate.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/integrate.h"
+#include "splinecal/imu/matrix_parameters.h"
 #include "splinecal/imu/noise.h"
+#include "splinecal/imu/rigid_body_point.h"
+#include "splinecal/imu/scale_misalignment_model.h"
+#include "splinecal/imu/size_effect_model.h"
+#include "splinecal/imu/spline_body_motion.h"
 #include "splinecal/imu/static_recording.h"
 
 // camera/
