@@ -49,6 +49,7 @@
 #include "splinecal/spline/trajectory_model.h"
 
 // imu/
+#include "splinecal/imu/correct_imu.h"
 #include "splinecal/imu/ground_truth.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/imu/imu_intrinsics.h"
@@ -88,6 +89,7 @@
 #include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/image_folder.h"
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/imu_units.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/number_parser.h"
@@ -102,6 +104,7 @@
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/io/yaml_transforms.h"
 #include "splinecal/io/yaml_writer.h"
 
 // plot/

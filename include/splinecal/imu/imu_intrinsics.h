@@ -49,6 +49,16 @@ struct ImuIntrinsics {
 
 using ImuIntrinsicsd = ImuIntrinsics<double>;
 
+// One IMU of a rig as Kalibr's imu-*.yaml describes it (imuN: model, T_i_b, time_offset,
+// accelerometers, gyroscopes): its model, the model's parameters, and its clock offset to the
+// reference IMU, Kalibr's `time_offset` [s]: a reading stamped t senses the motion at
+// t + time_offset on the reference (spline) clock (IccImu: tk = stamp + timeOffset).
+struct ImuCalibration {
+  ImuModelKind model = ImuModelKind::kCalibrated;
+  ImuIntrinsicsd intrinsics;
+  double time_offset_s = 0.0;
+};
+
 // d accel / d (each input). Rotations are perturbed on the RIGHT, C -> C Exp(phi) (splinecal's
 // one convention, lie/se3.h). A block the model does not depend on is zero. d accel / d b_a = I.
 struct ImuAccelJacobians {
