@@ -17,6 +17,7 @@ void BindDetect(pybind11::module_& m);     // detect (detect_bindings.cc)
 void BindIntrinsics(pybind11::module_& m);  // intrinsics (intrinsics_bindings.cc)
 void BindEvaluate(pybind11::module_& m);    // evaluate (evaluate_bindings.cc)
 void BindIntegrate(pybind11::module_& m);   // integrate (integrate_bindings.cc)
+void BindCorrect(pybind11::module_& m);     // correct (correct_bindings.cc)
 void BindAlign(pybind11::module_& m);       // align (align_bindings.cc)
 void BindExport(pybind11::module_& m);      // export (export_bindings.cc)
 

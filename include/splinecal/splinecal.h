@@ -192,6 +192,7 @@
 #include "splinecal/report/align_report.h"
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/command_outputs.h"
+#include "splinecal/report/correct_report.h"
 #include "splinecal/report/evaluate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"

@@ -18,8 +18,8 @@ from . import _splinecal
 from ._splinecal import Error, SE3Spline
 
 # The command each function mirrors, in `splinecal help`'s order.
-COMMANDS = ("detect", "intrinsics", "evaluate", "simulate", "integrate", "allan", "align", "fit",
-            "calibrate", "export")
+COMMANDS = ("detect", "intrinsics", "evaluate", "simulate", "integrate", "correct", "allan",
+            "align", "fit", "calibrate", "export")
 
 
 def _split_top_level(text):
@@ -88,6 +88,7 @@ intrinsics = _checked(_splinecal.intrinsics)
 evaluate = _checked(_splinecal.evaluate)
 simulate = _checked(_splinecal.simulate)
 integrate = _checked(_splinecal.integrate)
+correct = _checked(_splinecal.correct)
 allan = _checked(_splinecal.allan)
 align = _checked(_splinecal.align)
 fit = _checked(_splinecal.fit)
@@ -95,4 +96,4 @@ calibrate = _checked(_splinecal.calibrate)
 export = _checked(_splinecal.export)
 
 __all__ = ["COMMANDS", "Error", "SE3Spline", "align", "allan", "allan_deviation", "calibrate",
-           "detect", "evaluate", "export", "fit", "integrate", "intrinsics", "simulate"]
+           "correct", "detect", "evaluate", "export", "fit", "integrate", "intrinsics", "simulate"]

@@ -5,7 +5,6 @@
 #include <gflags/gflags.h>
 
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,7 +15,7 @@
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/output_dir.h"
-#include "splinecal/io/yaml_writer.h"
+#include "splinecal/report/correct_report.h"
 
 DEFINE_int32(imu_index, 0, "Which IMU of --imu-intrinsics the readings are from (imuN) [index]");
 DEFINE_int32(derivative_window,
@@ -62,38 +61,17 @@ CorrectInputs ReadCorrectInputs() {
   return in;
 }
 
-std::string CorrectResultYaml(const CorrectInputs& in, size_t num_samples) {
-  YamlWriter yaml;
-  yaml.Comment("splinecal correct: raw readings with the IMU model inverted (docs/imu_models.md)");
-  yaml.Scalar("imu", in.imu_path);
-  yaml.Scalar("imu_intrinsics", in.intrinsics_path);
-  yaml.Scalar("imu_index", FLAGS_imu_index);
-  yaml.Scalar("model", ImuModelName(in.imu.model));
-  yaml.Scalar("num_samples", static_cast<int64_t>(num_samples));
-  yaml.Vector("gyro_bias_subtracted", in.options.gyro_bias);
-  yaml.Vector("accel_bias_subtracted", in.options.accel_bias);
-  yaml.Scalar("output_frame", "the IMU's accelerometer frame i, at its origin");
-  if (in.imu.model == ImuModelKind::kScaleMisalignmentSizeEffect) {
-    yaml.Scalar("angular_acceleration",
-                "least-squares slope of the corrected gyro over 2h+1 samples");
-    yaml.Scalar("derivative_half_window", in.options.derivative_half_window);
-  }
-  return yaml.str();
-}
-
 int RunCorrect() {
   const CorrectInputs in = ReadCorrectInputs();
   OutputDir output(in.out_dir);
-  const std::vector<ImuSample> corrected = CorrectImuReadings(in.imu, in.raw, in.options);
-  std::ostringstream csv;
-  WriteEurocImu(corrected, &csv);
-  output.WriteFiles({{"mav0/imu0/data.csv", csv.str()},
-                     {"result.yaml", CorrectResultYaml(in, corrected.size())}});
+  const CorrectRun run =
+      RunCorrection(in.imu, in.raw, in.options, {in.imu_path, in.intrinsics_path, FLAGS_imu_index});
+  output.WriteFiles(run.files);
   output.Commit();
   std::printf(
       "corrected %zu readings with the %s model of imu%d; wrote %s/mav0/imu0/data.csv, "
       "result.yaml\n",
-      corrected.size(),
+      run.corrected.size(),
       ImuModelName(in.imu.model),
       FLAGS_imu_index,
       in.out_dir.c_str());
