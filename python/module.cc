@@ -19,6 +19,7 @@ PYBIND11_MODULE(_splinecal, m) {
   splinecal::python::BindIntrinsics(m);
   splinecal::python::BindEvaluate(m);
   splinecal::python::BindIntegrate(m);
+  splinecal::python::BindCorrect(m);
   splinecal::python::BindAlign(m);
   splinecal::python::BindExport(m);
   splinecal::python::BindBag(m);

@@ -14,6 +14,7 @@
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/target_yaml.h"
@@ -57,6 +58,7 @@ py::dict Simulate(const std::string& trajectory_name,
                   double pixel_noise,
                   py::handle gyro_bias,
                   py::handle accel_bias,
+                  py::object imu_intrinsics,
                   py::handle out) {
   SimulationRun run;
   SimulationOptions& options = run.options;
@@ -85,6 +87,13 @@ py::dict Simulate(const std::string& trajectory_name,
   options.accel_bias = Vector3Argument(accel_bias, "accel_bias");
   options.seed = static_cast<uint64_t>(seed);
   options.gravity_m_s2 = PositiveArgument(gravity, "gravity");
+  if (!imu_intrinsics.is_none()) {
+    // As `splinecal simulate --imu-intrinsics`: imu0 is the spline's body, imu1.. further IMUs.
+    const std::vector<ImuCalibration> imus =
+        ReadImuModelsYaml(PathArgument(imu_intrinsics, "imu_intrinsics"));
+    options.imu = imus.front();
+    run.more_imus.assign(imus.begin() + 1, imus.end());
+  }
 
   SimulationTrajectory trajectory;
   trajectory.name = trajectory_name;
@@ -148,6 +157,9 @@ py::dict Simulate(const std::string& trajectory_name,
   });
   py::dict result = FinishOutputs(output.get(), SimulationOutputFiles(run));
   result["imu"] = ImuDict(run.imu);
+  for (size_t k = 0; k < run.more_imu.size(); ++k) {
+    result[("imu" + std::to_string(k + 1)).c_str()] = ImuDict(run.more_imu[k]);
+  }
   result["ground_truth"] = GroundTruthDict(run.truth);
   result["se3_spline"] = py::cast(run.spline.fit.MakeSpline());
   if (!run.camchain.empty()) result["observations"] = ObservationsDict(run.cameras.observations);
@@ -181,12 +193,15 @@ void BindSimulate(py::module_& m) {
         py::arg("pixel_noise") = 0.5,
         py::arg("gyro_bias") = std::vector<double>{0.0, 0.0, 0.0},
         py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
+        py::arg("imu_intrinsics") = py::none(),
         py::arg("out") = py::none(),
         R"(Simulated IMU data (and camera observations with camchain), as `splinecal simulate`
 with the same keyword names as its flags (duration None: 20 s, or the whole trajectory_file).
 Returns result.yaml's keys plus imu {t_ns, gyro, accel}, ground_truth {t_ns, T_w_s, v_w,
 gyro_bias, accel_bias}, se3_spline (SE3Spline) and with camchain observations {t_ns, cam_id,
-point_id, uv}. out: a folder to write the command's files to (mav0/imu0/data.csv, ...).)");
+point_id, uv}; with imu_intrinsics (Kalibr's imu-*.yaml path: IMU models and further IMUs,
+docs/imu_models.md) also imu1, imu2, ... {t_ns, gyro, accel}. out: a folder to write the
+command's files to (mav0/imu0/data.csv, ...).)");
 }
 
 }  // namespace python

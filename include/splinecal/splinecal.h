@@ -7,7 +7,7 @@
 //   lie/         SO(3), SE(3), their Jacobians and Ceres manifolds
 //   spline/      the uniform cubic B-spline of SE(3) poses (coupled SE(3) or split SO(3) x R^3),
 //                its knot layout and derivatives
-//   imu/         IMU samples, the measurement model, noise densities, dead reckoning
+//   imu/         IMU samples, the measurement models (Kalibr's), noise densities, dead reckoning
 //   camera/      camera models, camchains, targets, observations, PnP, rolling shutter
 //   io/          readers and writers of every file format (plain data types in, out)
 //   plot/        SVG plots and the one plot decimation (knows nothing of what it plots)
@@ -49,12 +49,21 @@
 #include "splinecal/spline/trajectory_model.h"
 
 // imu/
+#include "splinecal/imu/correct_imu.h"
 #include "splinecal/imu/ground_truth.h"
+#include "splinecal/imu/imu_intrinsic_model.h"
+#include "splinecal/imu/imu_intrinsics.h"
 #include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_model_kind.h"
 #include "splinecal/imu/imu_rate.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/integrate.h"
+#include "splinecal/imu/matrix_parameters.h"
 #include "splinecal/imu/noise.h"
+#include "splinecal/imu/rigid_body_point.h"
+#include "splinecal/imu/scale_misalignment_model.h"
+#include "splinecal/imu/size_effect_model.h"
+#include "splinecal/imu/spline_body_motion.h"
 #include "splinecal/imu/static_recording.h"
 
 // camera/
@@ -81,6 +90,7 @@
 #include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/image_folder.h"
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/imu_units.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/number_parser.h"
@@ -95,6 +105,7 @@
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/io/yaml_transforms.h"
 #include "splinecal/io/yaml_writer.h"
 
 // plot/
@@ -185,6 +196,7 @@
 #include "splinecal/report/align_report.h"
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/command_outputs.h"
+#include "splinecal/report/correct_report.h"
 #include "splinecal/report/evaluate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"

@@ -18,8 +18,8 @@ from . import _splinecal
 from ._splinecal import Error, SE3Spline
 
 # The command each function mirrors, in `splinecal help`'s order.
-COMMANDS = ("detect", "intrinsics", "evaluate", "simulate", "integrate", "allan", "align", "fit",
-            "calibrate", "export", "bag_info", "bag_extract")
+COMMANDS = ("detect", "intrinsics", "evaluate", "simulate", "integrate", "correct", "allan",
+            "align", "fit", "calibrate", "export", "bag_info", "bag_extract")
 
 
 def _split_top_level(text):
@@ -88,6 +88,7 @@ intrinsics = _checked(_splinecal.intrinsics)
 evaluate = _checked(_splinecal.evaluate)
 simulate = _checked(_splinecal.simulate)
 integrate = _checked(_splinecal.integrate)
+correct = _checked(_splinecal.correct)
 allan = _checked(_splinecal.allan)
 align = _checked(_splinecal.align)
 fit = _checked(_splinecal.fit)
@@ -97,5 +98,5 @@ bag_info = _checked(_splinecal.bag_info)
 bag_extract = _checked(_splinecal.bag_extract)
 
 __all__ = ["COMMANDS", "Error", "SE3Spline", "align", "allan", "allan_deviation", "bag_extract",
-           "bag_info", "calibrate", "detect", "evaluate", "export", "fit", "integrate",
+           "bag_info", "calibrate", "correct", "detect", "evaluate", "export", "fit", "integrate",
            "intrinsics", "simulate"]

@@ -9,6 +9,7 @@ const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {
       SimulateCommand(),
       IntegrateCommand(),
+      CorrectCommand(),
       AllanCommand(),
       EvaluateCommand(),
       AlignCommand(),

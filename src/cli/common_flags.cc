@@ -46,6 +46,10 @@ DEFINE_string(camchain, "", "Kalibr camchain.yaml [path]");
 DEFINE_string(target, "", "Calibration target: Kalibr aprilgrid YAML or a points YAML [path]");
 DEFINE_string(gyro_bias, "0,0,0", "Gyro bias b_g, x,y,z [rad/s]");
 DEFINE_string(accel_bias, "0,0,0", "Accelerometer bias b_a, x,y,z [m/s^2]");
+DEFINE_string(imu_intrinsics,
+              "",
+              "IMU models, Kalibr's imu-*.yaml layout (imu0: model, T_i_b, time_offset, "
+              "accelerometers, gyroscopes; imu1: ...) [path]");
 DEFINE_string(observations,
               "",
               "Detected points, observations.csv: #t_ns,cam_id,point_id,u,v (frame stamp in the "

@@ -17,6 +17,7 @@
 #include "splinecal/estimation/pose_fit.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
@@ -88,6 +89,7 @@ struct SimulateInputs {
   Camchain camchain;  // empty: no cameras
   CameraSimulationOptions camera_options;
   Eigen::Vector3d target_centre_w = Eigen::Vector3d::Zero();
+  std::vector<ImuCalibration> more_imus;  // imu1, ... of --imu-intrinsics
   std::vector<StampedPose> poses;  // of --trajectory-file; empty for the other trajectories
   int64_t start_ns = 0;            // the simulated time range
   int64_t end_ns = 0;
@@ -114,6 +116,11 @@ SimulateInputs ReadSimulateInputs() {
   options.accel_bias = Vector3Flag("accel-bias", FLAGS_accel_bias);
   options.seed = static_cast<uint64_t>(static_cast<int64_t>(FLAGS_seed));
   options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);
+  if (!FLAGS_imu_intrinsics.empty()) {
+    std::vector<ImuCalibration> imus = ReadImuModelsYaml(FLAGS_imu_intrinsics);
+    options.imu = imus.front();
+    in.more_imus.assign(imus.begin() + 1, imus.end());
+  }
 
   // Cameras (optional).
   CameraSimulationOptions& camera_options = in.camera_options;
@@ -203,6 +210,7 @@ int RunSimulate() {
   run.end_ns = end_ns;
   run.knot_spacing_s = in.knot_spacing_s;
   run.options = options;
+  run.more_imus = in.more_imus;
   run.camchain = camchain;
   run.camera_options = camera_options;
   RunSimulation(trajectory, fit_options, &run);
@@ -218,6 +226,13 @@ int RunSimulate() {
   output.WriteFiles(SimulationOutputFiles(run));
   output.Commit();
 
+  if (HasImuModels(run)) {
+    std::printf("simulated %zu IMU(s), imu0 model %s; wrote mav0/imu0..imu%zu/data.csv and "
+                "imu_models.yaml\n",
+                1 + run.more_imus.size(),
+                ImuModelName(options.imu.model),
+                run.more_imus.size());
+  }
   std::printf(
       "simulated %zu IMU samples (%.6g s at %.6g Hz) on %s; spline fit RMS %.3g m, "
       "%.3g deg\nwrote %s/mav0/imu0/data.csv, "
@@ -244,7 +259,7 @@ Command SimulateCommand() {
       "    --gyroscope_random_walk D --accelerometer_noise_density D\n"
       "    --accelerometer_random_walk D] [--noise-free] [--camchain FILE [--target FILE]\n"
       "    [--landmarks N] [--camera-rate HZ] [--pixel-noise PX]] [--gyro-bias X,Y,Z]\n"
-      "    [--accel-bias X,Y,Z] --out DIR",
+      "    [--accel-bias X,Y,Z] [--imu-intrinsics FILE] --out DIR",
       "Turns a trajectory into spline control poses (a least-squares fit to dense pose\n"
       "samples, or to the poses of --trajectory-file) and writes the spline's IMU readings\n"
       "at --imu-rate with Kalibr's noise model: white noise sigma*sqrt(f) per sample, a bias\n"
@@ -253,7 +268,10 @@ Command SimulateCommand() {
       "DIR/mav0/state_groundtruth_estimate0/data.csv (pose, world velocity and true biases\n"
       "at every IMU time), DIR/spline.csv (the control poses), DIR/imu.yaml (the noise, Kalibr\n"
       "keys) and DIR/result.yaml (with the fit's RMS). With --noise-free and zero biases the\n"
-      "IMU file is exactly the spline's prediction. See docs/simulate.md.",
+      "IMU file is exactly the spline's prediction. --imu-intrinsics simulates Kalibr's IMU\n"
+      "models (scale, misalignment, g-sensitivity, size effect) and further IMUs at their\n"
+      "poses: DIR/mav0/imuN/data.csv and their truth DIR/imu_models.yaml (docs/imu_models.md).\n"
+      "See docs/simulate.md.",
       {{"trajectory",
         "Trajectory: vio_course, figure8, random (seeded by --seed) or calibration (a lively "
         "motion over --target for camera-IMU calibration; needs --camchain)",
@@ -285,6 +303,9 @@ Command SimulateCommand() {
        {"pixel_noise", ""},
        {"gyro_bias", "Initial gyro bias b_g, x,y,z [rad/s]"},
        {"accel_bias", "Initial accelerometer bias b_a, x,y,z [m/s^2]"},
+       {"imu_intrinsics",
+        "IMU models and poses to simulate, Kalibr's imu-*.yaml layout (imu0: model, T_i_b, "
+        "time_offset, accelerometers, gyroscopes; imu1: ...) [path]; imu0 is the spline's body"},
        {"out", ""}},
       &RunSimulate,
       [] { ReadSimulateInputs(); }};

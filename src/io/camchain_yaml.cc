@@ -12,15 +12,13 @@
 #include "splinecal/error.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/io/yaml_transforms.h"
 #include "splinecal/io/yaml_writer.h"
 
 namespace splinecal {
 
 namespace {
 
-// A rotation block this far from orthonormal (max |R^T R - I|) is not a rotation: the matrix is
-// in another layout or corrupt, not rounded in its last digits.
-constexpr double kMaxOrthonormalityError = 1e-6;
 // Resolutions beyond this [px] per side are refused as implausible (a corrupt file).
 constexpr int64_t kMaxResolution = 1 << 20;
 // Plausibility limits, far beyond any real camera (a corrupt file or another unit beyond them):
@@ -122,37 +120,6 @@ std::vector<size_t> CoefficientCounts(DistortionModel model) {
       return {1};
   }
   return {0};
-}
-
-SE3d ReadRigidTransform(const YamlDocument& yaml, const std::string& key) {
-  const std::vector<std::vector<double>> rows = yaml.Rows(key);
-  if (rows.size() != 4 || rows[0].size() != 4) {
-    throw Error(yaml.path(), yaml.Line(key), key + ": expected a 4x4 matrix (4 rows of 4 numbers)");
-  }
-  Eigen::Matrix4d T;
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) T(r, c) = rows[r][c];
-  }
-  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-  const double bottom =
-      std::abs(T(3, 0)) + std::abs(T(3, 1)) + std::abs(T(3, 2)) + std::abs(T(3, 3) - 1.0);
-  if (bottom > kMaxOrthonormalityError ||
-      (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() >
-          kMaxOrthonormalityError ||
-      R.determinant() < 0.0) {
-    throw Error(yaml.path(),
-                yaml.Line(key),
-                key +
-                    ": not a rigid transform (the rotation block must be orthonormal with "
-                    "determinant +1 and the last row 0 0 0 1)");
-  }
-  const Eigen::Vector3d t = T.topRightCorner<3, 1>();
-  if (t.cwiseAbs().maxCoeff() > kMaxPosition) {
-    std::ostringstream message;
-    message << key << ": translation beyond the plausible " << kMaxPosition << " m";
-    throw Error(yaml.path(), yaml.Line(key), message.str());
-  }
-  return SE3d(SO3d::FromMatrix(R), t);
 }
 
 // T_cam_imu and the time offset (Kalibr's key timeshift_cam_imu) of `cam`, when present.

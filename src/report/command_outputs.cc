@@ -49,6 +49,12 @@ std::vector<OutputFile> SimulationOutputFiles(const SimulationRun& run) {
   std::ostringstream imu_csv;
   WriteEurocImu(run.imu, &imu_csv);
   files.push_back({"mav0/imu0/data.csv", imu_csv.str()});
+  for (size_t k = 0; k < run.more_imu.size(); ++k) {
+    std::ostringstream more_csv;
+    WriteEurocImu(run.more_imu[k], &more_csv);
+    files.push_back({"mav0/imu" + std::to_string(k + 1) + "/data.csv", more_csv.str()});
+  }
+  if (HasImuModels(run)) files.push_back({"imu_models.yaml", SimulationImuModelsYaml(run)});
   files.push_back({"mav0/state_groundtruth_estimate0/data.csv", GroundTruthCsvText(run.truth)});
   files.push_back({"spline.csv", SplineCsvText(run.spline.fit.MakeSpline())});
   files.push_back({"imu.yaml", ImuYamlText(run.options.noise)});

@@ -6,11 +6,23 @@
 #include <string>
 
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/sim/noise_generator.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/trajectory_evaluation.h"
 
 namespace splinecal {
+namespace {
+
+// The calibrated model at the body's origin on the body's clock: the readings are formed as
+// PredictImu forms them (bit for bit, see below), without the intrinsic model.
+bool IsPlainImu(const ImuCalibration& imu) {
+  const ImuIntrinsicsd nominal;
+  return imu.model == ImuModelKind::kCalibrated && imu.time_offset_s == 0.0 &&
+         imu.intrinsics.C_i_b == nominal.C_i_b && imu.intrinsics.r_b == nominal.r_b;
+}
+
+}  // namespace
 
 std::vector<int64_t> ImuTimestamps(int64_t start_ns, int64_t end_ns, double rate_hz) {
   if (!std::isfinite(rate_hz) || rate_hz <= 0.0) {
@@ -54,10 +66,17 @@ void SimulateImu(const SE3Splined& spline,
                 std::to_string(spline.end_time_ns()) + "] ns");
   }
   if (!std::isfinite(options.gravity_m_s2)) throw Error("gravity must be finite");
+  if (!(std::abs(options.imu.time_offset_s) <= 1e6)) {
+    throw Error("IMU time offset must be finite and within 1e6 s");
+  }
   if (!options.gyro_bias.allFinite() || !options.accel_bias.allFinite()) {
     throw Error("initial IMU biases must be finite");
   }
-  const std::vector<int64_t> times = ImuTimestamps(start_ns, end_ns, options.imu_rate_hz);
+  // The IMU's own clock: stamps t with t + offset inside [start_ns, end_ns].
+  const int64_t offset_ns = std::llround(options.imu.time_offset_s * 1e9);
+  const std::vector<int64_t> times =
+      ImuTimestamps(start_ns - offset_ns, end_ns - offset_ns, options.imu_rate_hz);
+  const bool plain_model = IsPlainImu(options.imu);
   std::unique_ptr<ImuNoiseGenerator> noise;
   if (!options.noise_free) {
     ImuNoise densities = options.noise;
@@ -73,10 +92,10 @@ void SimulateImu(const SE3Splined& spline,
   Eigen::Vector3d gyro_bias = options.gyro_bias;
   Eigen::Vector3d accel_bias = options.accel_bias;
   for (size_t k = 0; k < times.size(); ++k) {
-    const Segment<double> segment = spline.SegmentAtNs(times[k]);
+    const Segment<double> segment = spline.SegmentAtNs(times[k] + offset_ns);
     SE3d T_w_s;
     Eigen::Matrix3d R_w_s;
-    Eigen::Vector3d w_s, v_s, a_s;
+    Eigen::Vector3d w_s, w_dot_s, v_s, a_s;
     // One pass for the readings and the ground truth. The reading is formed exactly as
     // PredictImu forms it (imu/imu_model.h): gyro = w_s (+ b_g), accel = a_s - R^T g_w (+ b_a),
     // a_s = R^T a_w, so the noise-free zero-bias output is bit-identical to PredictImu.
@@ -86,13 +105,29 @@ void SimulateImu(const SE3Splined& spline,
                                   ground_truth != nullptr ? &T_w_s : nullptr,
                                   &R_w_s,
                                   &w_s,
-                                  nullptr,
+                                  plain_model ? nullptr : &w_dot_s,
                                   ground_truth != nullptr ? &v_s : nullptr,
                                   &a_s);
     ImuSample& sample = (*imu)[k];
     sample.t_ns = times[k];
     sample.gyro = w_s;
     sample.accel = a_s - R_w_s.transpose() * g_w;
+    if (!plain_model) {
+      BodyMotion<double> motion;
+      motion.w_b = w_s;
+      motion.dw_b = w_dot_s;
+      motion.f_b = sample.accel;
+      const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+      PredictImuReadings(options.imu.model,
+                         options.imu.intrinsics,
+                         motion,
+                         zero,
+                         zero,
+                         &sample.gyro,
+                         &sample.accel,
+                         nullptr,
+                         nullptr);
+    }
     if (noise != nullptr) {
       noise->Corrupt(&sample, &gyro_bias, &accel_bias);
     } else {
@@ -101,7 +136,7 @@ void SimulateImu(const SE3Splined& spline,
     }
     if (ground_truth != nullptr) {
       GroundTruthState& truth = (*ground_truth)[k];
-      truth.t_ns = times[k];
+      truth.t_ns = times[k] + offset_ns;
       truth.p_w_s = T_w_s.translation();
       truth.q_w_s = T_w_s.so3().quaternion();
       truth.v_w = R_w_s * v_s;  // As EvaluateSegment forms v_w.

@@ -1,8 +1,19 @@
 #include "splinecal/sim/simulation_result.h"
 
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/yaml_writer.h"
 
 namespace splinecal {
+
+bool HasImuModels(const SimulationRun& run) {
+  return run.options.imu.model != ImuModelKind::kCalibrated || !run.more_imus.empty();
+}
+
+std::string SimulationImuModelsYaml(const SimulationRun& run) {
+  std::vector<ImuCalibration> imus = {run.options.imu};
+  imus.insert(imus.end(), run.more_imus.begin(), run.more_imus.end());
+  return ImuModelsYamlText(imus);
+}
 
 std::string SimulationResultYaml(const SimulationRun& run) {
   const SimulationOptions& options = run.options;
@@ -42,6 +53,11 @@ std::string SimulationResultYaml(const SimulationRun& run) {
   yaml.Scalar("fit_max_rotation_error_deg", fit.max_rotation_error_deg);
   yaml.Scalar("fit_converged", fit.converged);
   yaml.EndMap();
+  if (HasImuModels(run)) {
+    yaml.Scalar("imu_model", ImuModelName(options.imu.model));
+    yaml.Scalar("num_imus", static_cast<int64_t>(1 + run.more_imus.size()));
+    yaml.Scalar("imu_models_file", "imu_models.yaml");
+  }
   if (!run.camchain.empty()) {
     WriteCameraSimulationTruth(run.camchain, run.camera_options, run.cameras, &yaml);
   }

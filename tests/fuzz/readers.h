@@ -25,6 +25,7 @@
 #include "splinecal/io/bag_reader.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/poses.h"
@@ -127,6 +128,28 @@ inline void ReadCamchainRoundTrip(const std::string& path) {
   }
 }
 
+// Kalibr's IMU result file (io/imu_models_yaml.h): what it reads, written and read again, is the
+// same calibration.
+inline void ReadImuModelsRoundTrip(const std::string& path) {
+  const std::vector<ImuCalibration> imus = ReadImuModelsYaml(path);
+  const std::vector<ImuCalibration> again =
+      ReadImuModelsYaml(WriteText(ImuModelsYamlText(imus), ".yaml"));
+  Expect(again.size() == imus.size(), "imu models read back: same IMUs");
+  for (size_t i = 0; i < again.size(); ++i) {
+    const ImuIntrinsicsd& a = imus[i].intrinsics;
+    const ImuIntrinsicsd& b = again[i].intrinsics;
+    Expect(imus[i].model == again[i].model && imus[i].time_offset_s == again[i].time_offset_s &&
+               a.M_a == b.M_a && a.M_g == b.M_g && a.A == b.A && a.ry_i == b.ry_i &&
+               a.rz_i == b.rz_i,
+           "imu models read back exactly");
+    // Rotations go through a quaternion each way, r_b through T_i_b: equal to rounding.
+    Expect((a.C_i_b - b.C_i_b).cwiseAbs().maxCoeff() <= 1e-12 &&
+               (a.C_gyro_i - b.C_gyro_i).cwiseAbs().maxCoeff() <= 1e-12 &&
+               (a.r_b - b.r_b).cwiseAbs().maxCoeff() <= 1e-12 * (1.0 + a.r_b.norm()),
+           "imu models rotations and r_b read back");
+  }
+}
+
 inline void ReadTargetRoundTrip(const std::string& path) {
   const CalibrationTarget target = ReadTargetYaml(path);
   const CalibrationTarget again = ReadTargetYaml(WriteText(TargetPointsYamlText(target), ".yaml"));
@@ -207,6 +230,7 @@ inline const std::vector<Reader>& Readers() {
       {"imu_yaml", ".yaml", ReadImuYamlAndKeys},
       {"observations_csv", ".csv", ReadObservationsRoundTrip},
       {"camchain_yaml", ".yaml", ReadCamchainRoundTrip},
+      {"imu_models_yaml", ".yaml", ReadImuModelsRoundTrip},
       {"target_yaml", ".yaml", ReadTargetRoundTrip},
       {"spline_csv", ".csv", ReadSplineRoundTrip},
       {"static_recording", ".csv", ReadStaticRecordings},

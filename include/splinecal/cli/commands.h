@@ -10,6 +10,7 @@ namespace cli {
 Command EvaluateCommand();
 Command SimulateCommand();
 Command IntegrateCommand();
+Command CorrectCommand();
 Command AllanCommand();
 Command AlignCommand();
 Command FitCommand();

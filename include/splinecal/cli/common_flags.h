@@ -38,6 +38,7 @@ DECLARE_string(camchain);
 DECLARE_string(target);
 DECLARE_string(gyro_bias);
 DECLARE_string(accel_bias);
+DECLARE_string(imu_intrinsics);
 DECLARE_string(observations);
 DECLARE_double(huber);
 DECLARE_int32(min_corners);

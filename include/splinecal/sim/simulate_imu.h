@@ -8,6 +8,16 @@
 //     gyro_k  = w_s(t_k) + b_g,k + n_g,k
 //     accel_k = R_w_s(t_k)^T (a_w(t_k) - g_w) + b_a,k + n_a,k,      g_w = (0, 0, -g)
 //
+// With another model or IMU pose (options.imu) the readings are PredictImuReadings
+// (imu/imu_intrinsic_model.h) of the spline's body motion, the biases and noise added after the
+// model's matrices as above (Kalibr's models add them there too):
+//
+//     [gyro_k; accel_k] = PredictImuReadings(model, intrinsics, motion(t_k + time_offset))
+//                         + [b_g,k + n_g,k; b_a,k + n_a,k]
+//
+// and the IMU's stamps t_k are its own clock: the motion is the spline's at t_k + time_offset
+// (Kalibr's time_offset). The ground truth rows are the body's (T_w_s) at t_k + time_offset.
+//
 // b_.,0 is the initial bias, then a random walk; n white noise (noise_generator.h). With
 // noise_free the biases stay at their initial values and there is no white noise; with
 // noise_free and zero biases every reading is bit for bit PredictImu (imu/imu_model.h) of the
@@ -25,6 +35,7 @@
 #include <vector>
 
 #include "splinecal/estimation/pose_fit.h"
+#include "splinecal/imu/imu_intrinsics.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
@@ -43,6 +54,9 @@ struct SimulationOptions {
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // initial b_a [m/s^2]
   uint64_t seed = 0;
   double gravity_m_s2 = kDefaultGravity;  // g; g_w = (0, 0, -g)
+  // The IMU's model (imu/imu_intrinsic_model.h) and its pose and clock offset relative to the
+  // spline's body frame. The default is the calibrated model at the body's origin.
+  ImuCalibration imu;
 };
 
 // t_k = start_ns + round(k * 1e9 / rate_hz) for t_k <= end_ns. Throws splinecal::Error if

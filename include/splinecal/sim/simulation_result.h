@@ -27,6 +27,11 @@ struct SimulationRun {
   SimulationOptions options;
   std::vector<ImuSample> imu;
   std::vector<GroundTruthState> truth;  // not empty
+  // Further IMUs rigidly mounted on the body (imu1, imu2, ...; options.imu is imu0, the
+  // reference), each simulated with options but its own model, pose, clock offset and noise seed
+  // (options.seed + 200 + k for more_imus[k]); more_imu[k] are its readings.
+  std::vector<ImuCalibration> more_imus;
+  std::vector<std::vector<ImuSample>> more_imu;
   Camchain camchain;                    // empty: no cameras
   CameraSimulationOptions camera_options;
   CameraSimulationResult cameras;
@@ -41,6 +46,11 @@ void RunSimulation(const SimulationTrajectory& trajectory,
                    SimulationRun* run);
 
 std::string SimulationResultYaml(const SimulationRun& run);
+
+// Whether the run has a model other than `calibrated` or several IMUs: then it writes their
+// truth, Kalibr's imu-*.yaml layout (io/imu_models_yaml.h), as imu_models.yaml.
+bool HasImuModels(const SimulationRun& run);
+std::string SimulationImuModelsYaml(const SimulationRun& run);
 
 }  // namespace splinecal
 
