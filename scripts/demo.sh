@@ -55,6 +55,22 @@ $sc integrate --imu "$out/simulate/mav0/imu0/data.csv" \
 echo "(top view: $out/integrate_sim/trajectory.svg)"
 
 echo
+echo "== 3b. Kalibr's IMU models: raw readings of two miscalibrated IMUs, undone by correct =="
+$sc simulate --trajectory vio_course --duration 20 --noise-free \
+  --imu-intrinsics data/imu_models/two_imus.yaml --quiet --out "$out/simulate_models"
+$sc correct --imu "$out/simulate_models/mav0/imu0/data.csv" \
+  --imu-intrinsics "$out/simulate_models/imu_models.yaml" --quiet --out "$out/corrected"
+python3 - "$out/simulate/mav0/imu0/data.csv" "$out/simulate_models/mav0/imu0/data.csv" \
+  "$out/corrected/mav0/imu0/data.csv" <<'PY'
+import csv, sys
+rows = [list(csv.reader(open(f)))[1:] for f in sys.argv[1:]]
+def worst(a, b, cols):
+    return max(abs(float(x[c]) - float(y[c])) for x, y in zip(a, b) for c in cols)
+for name, cols, unit in (("gyro", (1, 2, 3), "rad/s"), ("accel", (4, 5, 6), "m/s^2")):
+    print(f"imu0 {name}: raw off the ideal IMU by up to {worst(rows[0], rows[1], cols):.4f} {unit}, "
+          f"corrected by {worst(rows[0], rows[2], cols):.1e} {unit}")
+PY
+echo
 echo "== 4. integrate the first 10 s of real EuRoC V1_01_easy from its ground-truth start =="
 $sc integrate --imu data/euroc_v1_01_easy_20s/imu0.csv \
   --groundtruth data/euroc_v1_01_easy_20s/groundtruth.csv --duration 10 --quiet \
