@@ -247,8 +247,14 @@ class CalibrationProblem {
     return cam.line_delay <= 0.0 || cam.line_delay >= cam.max_line_delay;
   }
   void ComputeCovariance(CalibrationResult* result);
+  // result->cameras[c].baseline_std_m (c > 0) from the reported covariance `cov` of the
+  // requested blocks (first row of each at offset[block]).
+  void BaselineStd(size_t c,
+                   const Eigen::MatrixXd& cov,
+                   const std::map<const double*, int>& offset,
+                   CalibrationResult* result);
   // Options for ComputeMarginalCovariance: the IMU noise's groups and time clusters, each
-  // camchain prior in a cluster of its own.
+  // camchain prior as model noise (kModelNoiseCluster).
   MarginalCovarianceOptions CovarianceOptionsForProblem();
   void Collect(CalibrationResult* result);
 

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <map>
 #include <set>
 #include <vector>
 
+#include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/imu/imu_rate.h"
 
 namespace splinecal {
@@ -19,14 +19,15 @@ MarginalCovarianceOptions CalibrationProblem::CovarianceOptionsForProblem() {
   imu_noise_->AddToCovarianceOptions(
       spline_.get(), options_.covariance.robust_window_s, &covariance_options);
   if (covariance_options.cluster_of && !prior_blocks_.empty()) {
-    // A prior is a measurement of its own, not part of the first time window (where the spline's
-    // TimeWindowOf would put a residual without a time): each gets a cluster of its own.
+    // A camchain prior is the intrinsics step's estimate with its covariance: its noise is that
+    // step's error, stated by the covariance, not a sample of this recording's scatter. It joins
+    // no time window (where the spline's TimeWindowOf would put a residual without a time) and
+    // is no cluster of its own (whose realised pull, at the solution the data's pull against
+    // it, would be taken as its noise): kModelNoiseCluster, its information as it is.
     const auto by_time = covariance_options.cluster_of;
     const std::set<ceres::ResidualBlockId> priors = prior_blocks_;
     covariance_options.cluster_of = [by_time, priors](ceres::ResidualBlockId id) {
-      const auto it = priors.find(id);
-      if (it == priors.end()) return by_time(id);
-      return -1 - static_cast<int>(std::distance(priors.begin(), it));
+      return priors.count(id) != 0 ? kModelNoiseCluster : by_time(id);
     };
   }
   return covariance_options;
@@ -129,6 +130,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
       estimate.line_delay_std_s = std::sqrt(std::max(0.0, block(&cam.line_delay, 1)(0, 0)));
     }
   }
+  for (size_t c = 1; c < cameras_.size(); ++c) BaselineStd(c, cov, offset, result);
   if (target_scale_free_) {
     result->target_scale_std = std::sqrt(std::max(0.0, block(&target_scale_, 1)(0, 0)));
   }
@@ -136,6 +138,42 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   result->gyro_bias_std = bias_std.head<3>();
   result->accel_bias_std = bias_std.tail<3>();
   AddStandardDeviationWarnings(options_, imu_noise_->estimate(), result);
+}
+
+void CalibrationProblem::BaselineStd(size_t c,
+                                     const Eigen::MatrixXd& cov,
+                                     const std::map<const double*, int>& offset,
+                                     CalibrationResult* result) {
+  // The baseline |t| of T_cn_cnm1 = T_cn_imu T_cnm1_imu^-1, to first order in the right tangents
+  // d = [d_cnm1; d_cn] of the two cameras' extrinsic blocks. With a held chain both cameras use
+  // cam0's block (the same d, held T_cn_c0): the baseline is the camchain's, std 0. The gradient
+  // by central differences: the baseline is smooth, and steps of 1e-6 (rad, m) give it to about
+  // 1e-9 relative, far finer than a std needs.
+  double* blocks[2] = {ExtrinsicBlock(c - 1), ExtrinsicBlock(c)};
+  const bool shared = blocks[0] == blocks[1];
+  auto baseline = [&](const Eigen::Matrix<double, 12, 1>& d) {
+    SE3d T[2];
+    for (int k = 0; k < 2; ++k) {
+      const size_t cam = c - 1 + k;
+      const SE3d pose = PoseFromBlock(blocks[k]) * SE3d::Exp(d.segment<6>(shared ? 0 : 6 * k));
+      T[k] = HeldToReference(cam) ? options_.camera_chain_T_cn_c0[cam] * pose : pose;
+    }
+    return (T[1] * T[0].inverse()).translation().norm();
+  };
+  Eigen::Matrix<double, 12, 12> C = Eigen::Matrix<double, 12, 12>::Zero();
+  for (int a = 0; a < (shared ? 1 : 2); ++a) {
+    for (int b = 0; b < (shared ? 1 : 2); ++b) {
+      C.block<6, 6>(6 * a, 6 * b) = cov.block(offset.at(blocks[a]), offset.at(blocks[b]), 6, 6);
+    }
+  }
+  constexpr double kStep = 1e-6;
+  Eigen::Matrix<double, 12, 1> gradient;
+  for (int i = 0; i < 12; ++i) {
+    Eigen::Matrix<double, 12, 1> d = Eigen::Matrix<double, 12, 1>::Zero();
+    d[i] = kStep;
+    gradient[i] = (baseline(d) - baseline(-d)) / (2.0 * kStep);
+  }
+  result->cameras[c].baseline_std_m = std::sqrt(std::max(0.0, gradient.dot(C * gradient)));
 }
 
 void CalibrationProblem::Collect(CalibrationResult* result) {
@@ -175,6 +213,9 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
     CameraCalibration& out = result->camchain[c];
     out.T_cam_imu = CameraFromImu(c);
     CameraEstimate& estimate = result->cameras[c];
+    if (c > 0) {
+      estimate.baseline_m = (out.T_cam_imu * CameraFromImu(c - 1).inverse()).translation().norm();
+    }
     estimate.intrinsics_before = camchain_[c].camera.intrinsics();
     estimate.intrinsics_mode = intrinsics_modes_[c];
     if (EstimatesIntrinsics(c)) out.camera.set_intrinsics(cameras_[c].intrinsics);

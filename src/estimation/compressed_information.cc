@@ -10,6 +10,7 @@
 
 #include "information_factor.h"
 #include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/run_tasks.h"
 
 namespace splinecal {
@@ -193,7 +194,16 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
         column += item.tangent[k];
       }
       group.Resize();
-      if (cluster_of) {
+      if (cluster_of && item.cluster == kModelNoiseCluster) {
+        Group& model_noise =
+            model_noise_groups_[GroupKey(item.label, ordinal_.at(item.blocks[0]))];
+        std::vector<std::pair<int, int>> model_parts;
+        for (const auto& [a, column_a] : parts) {
+          model_parts.emplace_back(model_noise.Index(group.blocks[a], group.sizes[a]), column_a);
+        }
+        model_noise.Resize();
+        AddInformation(item.JtJ, model_parts, &model_noise);
+      } else if (cluster_of) {
         std::map<int, Eigen::VectorXd>& gradient = cluster_gradients_[item.cluster];
         for (const auto& [a, column_a] : parts) {
           Eigen::VectorXd& g = gradient[ordinal_.at(group.blocks[a])];
@@ -201,12 +211,18 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
           g += item.Jte.segment(column_a, group.sizes[a]);
         }
       }
-      for (const auto& [a, column_a] : parts) {
-        for (const auto& [b, column_b] : parts) {
-          group.H.block(group.offsets[a], group.offsets[b], group.sizes[a], group.sizes[b]) +=
-              item.JtJ.block(column_a, column_b, group.sizes[a], group.sizes[b]);
-        }
-      }
+      AddInformation(item.JtJ, parts, &group);
+    }
+  }
+}
+
+void CompressedInformation::AddInformation(const Eigen::MatrixXd& JtJ,
+                                           const std::vector<std::pair<int, int>>& parts,
+                                           Group* group) {
+  for (const auto& [a, column_a] : parts) {
+    for (const auto& [b, column_b] : parts) {
+      group->H.block(group->offsets[a], group->offsets[b], group->sizes[a], group->sizes[b]) +=
+          JtJ.block(column_a, column_b, group->sizes[a], group->sizes[b]);
     }
   }
 }
@@ -362,6 +378,17 @@ int CompressedInformation::EliminationOffsets(std::map<const double*, int>* offs
   return size;
 }
 
+Eigen::MatrixXd CompressedInformation::GroupRows(const Group& group,
+                                                 const Eigen::MatrixXd& Y,
+                                                 const std::map<const double*, int>& offsets) {
+  Eigen::MatrixXd Y_g(group.H.rows(), Y.cols());
+  for (size_t k = 0; k < group.blocks.size(); ++k) {
+    Y_g.middleRows(group.offsets[k], group.sizes[k]) =
+        Y.middleRows(offsets.at(group.blocks[k]), group.sizes[k]);
+  }
+  return Y_g;
+}
+
 bool CompressedInformation::MappedCovariance(const std::vector<const double*>& requested,
                                              Eigen::MatrixXd* covariance,
                                              CovarianceExtras* extras) {
@@ -415,7 +442,13 @@ bool CompressedInformation::MappedCovariance(const std::vector<const double*>& r
         }
         meat += x * x.transpose();
       }
-      extras->robust = clusters / (clusters - 1.0) * meat;  // small-sample factor G / (G - 1)
+      // Small-sample factor G / (G - 1) on the clusters' scatter; the model-noise residuals'
+      // variance is stated, not estimated (kModelNoiseCluster).
+      extras->robust = clusters / (clusters - 1.0) * meat;
+      for (const auto& [key, group] : model_noise_groups_) {
+        const Eigen::MatrixXd Y_g = GroupRows(group, Y, offsets);
+        extras->robust += Y_g.transpose() * group.H * Y_g;
+      }
     }
     if (!extras->label_factors.empty()) {
       Eigen::MatrixXd noise = Q;
@@ -424,11 +457,7 @@ bool CompressedInformation::MappedCovariance(const std::vector<const double*>& r
         if (factor_of_label == extras->label_factors.end() || factor_of_label->second == 1.0) {
           continue;
         }
-        Eigen::MatrixXd Y_g(group.H.rows(), A.rows());
-        for (size_t k = 0; k < group.blocks.size(); ++k) {
-          Y_g.middleRows(group.offsets[k], group.sizes[k]) =
-              Y.middleRows(offsets.at(group.blocks[k]), group.sizes[k]);
-        }
+        const Eigen::MatrixXd Y_g = GroupRows(group, Y, offsets);
         noise += (factor_of_label->second - 1.0) * Y_g.transpose() * group.H * Y_g;
       }
       extras->noise = noise;

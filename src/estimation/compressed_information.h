@@ -34,7 +34,8 @@ class CompressedInformation {
   // Evaluates every residual block of `problem` once at its current values. label_of may be
   // empty (every block gets label 0). cluster_of (may be empty): the cluster of each residual
   // block (>= 0) for the cluster-robust covariance; the gradient g_k = sum J^T e of each
-  // cluster's residuals is kept. The residual blocks are evaluated on up to num_threads threads
+  // cluster's residuals is kept; a block of kModelNoiseCluster (estimation/model_noise_cluster.h)
+  // is in no cluster, its information J^T J is kept apart instead. The residual blocks are evaluated on up to num_threads threads
   // (their cost functions must allow it, as Ceres' do) and merged in order, so the result does
   // not depend on num_threads.
   explicit CompressedInformation(ceres::Problem* problem,
@@ -70,7 +71,8 @@ class CompressedInformation {
   // reported quantities the data does not determine). Consumes the groups.
   // Extras, with Y as above:
   //   * with clusters, robust: the cluster-robust covariance A (H^-1 M H^-1)_cc A^T with
-  //     M = G / (G - 1) sum_k g_k g_k^T over the G clusters: sum_k (Y^T g_k)(Y^T g_k)^T G/(G-1);
+  //     M = G / (G - 1) sum_k g_k g_k^T over the G clusters, plus the information H_m of the
+  //     kModelNoiseCluster residuals: sum_k (Y^T g_k)(Y^T g_k)^T G/(G-1) + Y_m^T H_m Y_m;
   //   * with label_factors (label -> f_l), noise: the covariance when label l's residuals have
   //     f_l times the variance their weights assume, A (H^-1 (sum_l f_l H_l) H^-1)_cc A^T
   //     = B^T Y + sum_{groups of labels with f != 1} (f - 1) Y_g^T H_g Y_g (Y_g: the group's
@@ -107,6 +109,15 @@ class CompressedInformation {
   // twice (at other heap addresses) gives the same covariance to the last bit.
   using GroupKey = std::pair<int, int>;
 
+  // Adds a residual block's J^T J to `group`: parts = (index in the group, first column in J).
+  static void AddInformation(const Eigen::MatrixXd& JtJ,
+                             const std::vector<std::pair<int, int>>& parts,
+                             Group* group);
+  // The rows of Y (over H's coordinates, `offsets`) of the group's blocks, in the group's order.
+  static Eigen::MatrixXd GroupRows(const Group& group,
+                                   const Eigen::MatrixXd& Y,
+                                   const std::map<const double*, int>& offsets);
+
   // Every block's offset in H in the elimination order of estimation/information_factor.h
   // (minimum degree on the block graph); returns the size of H.
   int EliminationOffsets(std::map<const double*, int>* offsets) const;
@@ -127,6 +138,8 @@ class CompressedInformation {
   // order they were added), and each block's place in it.
   std::vector<const double*> blocks_by_ordinal_;
   std::unordered_map<const double*, int> ordinal_;
+  // The information of the kModelNoiseCluster residuals (also in groups_), by the same key.
+  std::map<GroupKey, Group> model_noise_groups_;
   std::map<const double*, std::vector<double>> tangent_blocks_;
   std::unique_ptr<ceres::Problem> compressed_;
 };

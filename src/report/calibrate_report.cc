@@ -28,6 +28,8 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
   yaml->Matrix("T_cam_imu", c.calibration.T_cam_imu.matrix());
   yaml->Vector("rotation_std_deg", c.rotation_std_deg);
   yaml->Vector("translation_std_m", c.translation_std_m);
+  if (std::isfinite(c.baseline_m)) yaml->Scalar("baseline_m", c.baseline_m);
+  if (std::isfinite(c.baseline_std_m)) yaml->Scalar("baseline_std_m", c.baseline_std_m);
   yaml->Scalar("timeshift_cam_imu", c.calibration.time_offset_s);
   yaml->Scalar("timeshift_estimated", c.time_offset_estimated);
   // A quantity that was held fixed has no standard deviation: "fixed", not NaN.

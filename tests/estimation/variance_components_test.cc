@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/estimation/variance_components.h"
 
 namespace splinecal {
@@ -104,6 +105,20 @@ struct LinearProblem {
     for (size_t i = 0; i < rows.size(); ++i) rows[i]->Evaluate(params, &e[i], nullptr);
     return e;
   }
+  // sum_k g_k g_k^T over clusters 0..clusters-1, g_k = sum over cluster k's rows of j^T e.
+  Eigen::MatrixXd ClusterMeat(int clusters) const {
+    const Eigen::MatrixXd j = J();
+    const Eigen::VectorXd e = Residuals();
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(5, 5);
+    for (int c = 0; c < clusters; ++c) {
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(5);
+      for (int i = 0; i < e.size(); ++i) {
+        if (row_cluster[i] == c) g += j.row(i).transpose() * e[i];
+      }
+      meat += g * g.transpose();
+    }
+    return meat;
+  }
   // H_g = sum over group g's rows of j^T j.
   Eigen::MatrixXd GroupInformation(int g) const {
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(5, 5);
@@ -176,22 +191,75 @@ TEST(MarginalCovarianceExtras, NoiseRobustAndMappedCovariancesMatchTheDenseFormu
   const Eigen::MatrixXd H_inv = (H0 + H1).inverse();
   const Eigen::MatrixXd model = A * H_inv * A.transpose();
   const Eigen::MatrixXd noise = A * H_inv * (0.3 * H0 + 5.0 * H1) * H_inv * A.transpose();
-  const Eigen::MatrixXd j = p.J();
-  const Eigen::VectorXd e = p.Residuals();
-  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(5, 5);
-  for (int c = 0; c < clusters; ++c) {
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(5);
-    for (int i = 0; i < e.size(); ++i) {
-      if (p.row_cluster[i] == c) g += j.row(i).transpose() * e[i];
-    }
-    meat += g * g.transpose();
-  }
+  const Eigen::MatrixXd meat = p.ClusterMeat(clusters);
   const Eigen::MatrixXd robust =
       A * H_inv * (clusters / (clusters - 1.0) * meat) * H_inv * A.transpose();
   EXPECT_TRUE(m.covariance.isApprox(model, 1e-9)) << m.covariance << "\n" << model;
   EXPECT_TRUE(m.noise_covariance.isApprox(noise, 1e-9)) << m.noise_covariance << "\n" << noise;
   EXPECT_TRUE(m.robust_covariance.isApprox(robust, 1e-9)) << m.robust_covariance << "\n" << robust;
   EXPECT_EQ(m.num_clusters, clusters);
+}
+
+// r = L^-1 (x - x0): a prior on the 3-block x with covariance L L^T.
+class PriorOnX : public ceres::SizedCostFunction<3, 3> {
+ public:
+  PriorOnX(const Eigen::Matrix3d& L, const Eigen::Vector3d& x0) : L_inv_(L.inverse()), x0_(x0) {}
+  bool Evaluate(double const* const* p, double* r, double** J) const override {
+    Eigen::Map<Eigen::Vector3d> residual(r);
+    residual = L_inv_ * (Eigen::Map<const Eigen::Vector3d>(p[0]) - x0_);
+    if (J != nullptr && J[0] != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> jacobian(J[0]);
+      jacobian = L_inv_;
+    }
+    return true;
+  }
+
+ private:
+  Eigen::Matrix3d L_inv_;
+  Eigen::Vector3d x0_;
+};
+
+// A prior is not a data cluster (estimation/model_noise_cluster.h): its variance in the robust covariance's
+// M is its information L^-T L^-1, however far the data pull against it. Data that scatter as
+// their weights say, and a prior 4 of its stds from them: the robust std of x stays below the
+// prior's. Taken as a cluster, its realised pull (4 stds) would count 16x its variance.
+TEST(MarginalCovarianceExtras, APriorEntersTheRobustCovarianceByItsStatedVariance) {
+  const double sigma[2] = {1.0, 1.0};
+  const int clusters = 10;  // 2 rows each
+  LinearProblem p(10, sigma, sigma, clusters, 0.0, 5);  // 20 rows: x poorly determined
+  Eigen::Matrix3d L;
+  L << 0.3, 0, 0, 0.1, 0.2, 0, -0.05, 0.02, 0.25;
+  const Eigen::Vector3d x_data(p.x[0], p.x[1], p.x[2]);  // the data's own solution
+  const Eigen::Vector3d x0 = x_data + 4.0 * L * Eigen::Vector3d(1, -1, 1).normalized();
+  const ceres::ResidualBlockId prior =
+      p.problem->AddResidualBlock(new PriorOnX(L, x0), nullptr, p.x);
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.function_tolerance = solver.gradient_tolerance = solver.parameter_tolerance = 1e-15;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, p.problem.get(), &summary);
+  MarginalCovarianceOptions options;
+  options.cluster_of = [&p, prior](ceres::ResidualBlockId id) {
+    return id == prior ? kModelNoiseCluster : p.cluster.at(id);
+  };
+  const MarginalCovariance m = ComputeMarginalCovariance(p.problem.get(), {p.x, p.y}, options);
+  ASSERT_TRUE(m.ok);
+  // Dense reference: H = H_data + H_prior, M = G/(G-1) sum_k g_k g_k^T (data) + H_prior.
+  Eigen::MatrixXd H_prior = Eigen::MatrixXd::Zero(5, 5);
+  const Eigen::Matrix3d L_inv = L.inverse();
+  H_prior.topLeftCorner<3, 3>() = L_inv.transpose() * L_inv;
+  const Eigen::MatrixXd H_inv = (p.GroupInformation(0) + p.GroupInformation(1) + H_prior).inverse();
+  const Eigen::MatrixXd meat = p.ClusterMeat(clusters);
+  const Eigen::MatrixXd robust =
+      H_inv * (clusters / (clusters - 1.0) * meat + H_prior) * H_inv;
+  EXPECT_TRUE(m.covariance.isApprox(H_inv, 1e-9)) << m.covariance << "\n" << H_inv;
+  EXPECT_TRUE(m.robust_covariance.isApprox(robust, 1e-9)) << m.robust_covariance << "\n"
+                                                         << robust;
+  EXPECT_EQ(m.num_clusters, clusters);  // the prior is none of them
+  const Eigen::Matrix3d prior_covariance = L * L.transpose();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LT(m.robust_covariance(k, k), prior_covariance(k, k)) << k;
+  }
 }
 
 TEST(ReportedCovariance, TakesTheLargestAndTheRobustOnlyWhenSignificant) {

@@ -183,6 +183,11 @@ struct CameraEstimate {
   Eigen::Vector3d translation_std_m =
       Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   double time_offset_std_s = std::numeric_limits<double>::quiet_NaN();
+  // Camera n > 0: the stereo baseline |t| of T_cn_cnm1 = T_cn_imu T_cnm1_imu^-1 [m] and its std
+  // from the joint covariance of the two T_cam_imu (0 with a held camera chain: the camchain's);
+  // NaN for cam0 or when not computed.
+  double baseline_m = std::numeric_limits<double>::quiet_NaN();
+  double baseline_std_m = std::numeric_limits<double>::quiet_NaN();
   // The intrinsics: how they were treated, the camchain's values (before; `calibration` has
   // after), the prior's std (kPrior) and the estimate's std (layout of camera/camera_model.h; NaN
   // where held or not in the prior).
