@@ -143,13 +143,12 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
                                              const ResidualLabel& label_of,
                                              const ResidualLabel& cluster_of,
                                              int num_threads) {
-  std::vector<double*> parameter_blocks;
-  problem->GetParameterBlocks(&parameter_blocks);
-  blocks_by_ordinal_.assign(parameter_blocks.begin(), parameter_blocks.end());
-  ordinal_.reserve(2 * parameter_blocks.size());
-  for (size_t k = 0; k < parameter_blocks.size(); ++k) {
-    ordinal_.emplace(parameter_blocks[k], static_cast<int>(k));
-  }
+  // Ordinals by first appearance in the residual blocks, which Problem::GetResidualBlocks lists
+  // in the order they were added. Not Problem::GetParameterBlocks' order: Ceres 2.1 lists the
+  // parameter blocks from a std::map keyed by their address, so that order moves with the heap
+  // layout (an IMU file name 35 characters longer changed the cluster gradients' summation
+  // order, and calibrate's standard deviations in the 16th digit).
+  ordinal_.reserve(2 * static_cast<size_t>(problem->NumParameterBlocks()));
   std::vector<ceres::ResidualBlockId> residual_blocks;
   problem->GetResidualBlocks(&residual_blocks);
   std::vector<Linearization> chunk;
@@ -168,6 +167,9 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
       item.cost = &CompactResidual::RowsOf(*problem->GetCostFunctionForResidualBlock(id));
       problem->GetParameterBlocksForResidualBlock(id, &item.blocks);
       for (double* block : item.blocks) {
+        if (ordinal_.emplace(block, static_cast<int>(blocks_by_ordinal_.size())).second) {
+          blocks_by_ordinal_.push_back(block);
+        }
         item.tangent.push_back(problem->IsParameterBlockConstant(block)
                                    ? 0
                                    : problem->ParameterBlockTangentSize(block));

@@ -134,8 +134,8 @@ class CompressedInformation {
   // Per cluster, per (free) parameter block by ordinal: the tangent gradient J^T e of its
   // residuals.
   std::map<int, std::map<int, Eigen::VectorXd>> cluster_gradients_;
-  // The problem's parameter blocks in the order Problem::GetParameterBlocks lists them (the
-  // order they were added), and each block's place in it.
+  // The parameter blocks of the residual blocks in the order they first appear there (residual
+  // blocks in the order they were added), and each block's place in it.
   std::vector<const double*> blocks_by_ordinal_;
   std::unordered_map<const double*, int> ordinal_;
   // The information of the kModelNoiseCluster residuals (also in groups_), by the same key.
