@@ -1,32 +1,27 @@
 // Real data (label "slow"): the user's own chain on EuRoC's imu_april (../shared/data,
 // euroc_imu_april/SOURCE.md and REFERENCE.md), with no published intrinsics anywhere: `splinecal
-// intrinsics` on the recording's corners (both cameras, pinhole-radtan), then `splinecal
-// calibrate` on its camchain.yaml with the default settings (intrinsics and camera chain enter as
-// priors with the intrinsics step's covariance; docs/calibrate.md, "Intrinsics and camera chain:
-// held, prior, free"). Both steps run through the command line, so the covariance the test uses
-// is whatever the real intrinsics step writes today.
+// intrinsics` on the recording's corners (both cameras, one model), then `splinecal calibrate` on
+// its camchain.yaml with the default settings (intrinsics and camera chain enter as priors with
+// the intrinsics step's covariance; docs/calibrate.md, "Intrinsics and camera chain: held,
+// prior, free"). Both steps run through the command line, so the covariance the test uses is
+// whatever the real intrinsics step writes today. The model is ds-none, which fits this lens
+// (pinhole-equi gives the same T_cam_imu to 0.005 deg and 0.1 mm; pinhole-radtan misfits the
+// image border and lands 6.3-6.6 mm from basalt).
 //
-//   * The stereo baseline of the whole recording within 1 mm of the published 110.074 mm, and
-//     within 3 of its reported std.
-//   * Halves (DISABLED: not met today): each half of the recording runs its own intrinsics and
-//     calibrate; T_cam_imu of the two halves (rotation and translation, per axis, both cameras)
-//     within 3 combined reported std, the RMS of the 12 normalised differences >= 0.25.
-//     Measured (this test, 2026-11-28): translation z 13.6 mm apart at 4.6-4.8 combined std,
-//     y 6.0 mm at 3.5; the halves' intrinsics differ by 7.7 px in fu (457.65 / 465.35, 4.0 of
-//     their combined std from `splinecal intrinsics`), which scales the target's distance by 1.7%
-//     (about 13 mm at the board's distance).
-//   * Against the same calibrate run with the published camchain (DISABLED: not met today):
-//     within 3 of the own chain's std per axis. Measured: the rotation about the IMU's x axis
-//     (the camera's y) 0.47-0.53 deg off at 6.7-6.9 own std, from the principal point (pu 5.8-6.5
-//     px from Kalibr's after calibrate).
-// Enable the two when the intrinsics step's covariance covers its halves (docs/calibrate.md,
-// "On EuRoC's imu_april", says how far each is). The distances to basalt's and Kalibr's
-// calibrations are printed, not asserted (the 0.35 deg / 8 mm target is reported there).
+//   * Whole recording: camera positions within the 8 mm target of basalt, the stereo baseline
+//     within 1 mm of the published 110.074 mm and 3 of its std, and the rotation about the IMU's
+//     y and z within 3 own std of the published-camchain run.
+//   * DISABLED, not met by any model (figures beside each): the whole T_cam_imu within 3 own std
+//     of the published-camchain run, and the halves' T_cam_imu within 3 combined std. Enable them
+//     when the principal point and focal length of the intrinsics step agree with the references
+//     and between the halves within their std (docs/calibrate.md, "On EuRoC's imu_april").
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -80,15 +75,15 @@ std::vector<std::string> CalibrateArgs(const std::string& imu,
           "--out",     out};
 }
 
-// intrinsics, then calibrate with its camchain.yaml and the defaults, into dir/intrinsics and
-// dir/calibrate.
+// intrinsics with `model` for both cameras, then calibrate with its camchain.yaml and the
+// defaults, into dir/intrinsics and dir/calibrate.
 Calibration OwnChain(const std::string& imu, const std::string& observations,
-                     const std::string& dir) {
+                     const std::string& model, const std::string& dir) {
   const testing::ToolResult intrinsics = testing::RunTool(
       {"intrinsics", "--observations", observations, "--target",
        testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"), "--models",
-       "pinhole-radtan,pinhole-radtan", "--resolution", "752x480", "--threads", "2", "--quiet",
-       "--out", dir + "/intrinsics"});
+       model + "," + model, "--resolution", "752x480", "--threads", "2", "--quiet", "--out",
+       dir + "/intrinsics"});
   EXPECT_EQ(intrinsics.exit_code, 0) << intrinsics.err;
   const testing::ToolResult calibrate = testing::RunTool(
       CalibrateArgs(imu, observations, dir + "/intrinsics/camchain.yaml", dir + "/calibrate"));
@@ -115,11 +110,29 @@ Eigen::Matrix<double, 6, 1> Std(const Calibration& c, int cam) {
   return s;
 }
 
-// Rotation angle [deg] and camera-position distance [m] from a reference T_imu_cam.
+// Rotation angle [deg] of T_cam_imu from a reference T_imu_cam.
+double RotationFromDeg(const SE3d& T_cam_imu, const SE3d& T_imu_cam_ref) {
+  return (T_cam_imu * T_imu_cam_ref).so3().Log().norm() * kRadToDeg;
+}
+
+// Distance [m] of the camera position in the IMU frame from a reference T_imu_cam's.
+double PositionFromM(const SE3d& T_cam_imu, const SE3d& T_imu_cam_ref) {
+  return (T_cam_imu.inverse().translation() - T_imu_cam_ref.translation()).norm();
+}
+
 void PrintDistance(const char* name, const SE3d& T_cam_imu, const SE3d& T_imu_cam_ref) {
-  const SE3d d = T_cam_imu * T_imu_cam_ref;
-  std::printf("  from %s: %.3f deg, %.2f mm\n", name, d.so3().Log().norm() * kRadToDeg,
-              1e3 * (T_cam_imu.inverse().translation() - T_imu_cam_ref.translation()).norm());
+  std::printf("  from %s: %.3f deg, %.2f mm\n", name, RotationFromDeg(T_cam_imu, T_imu_cam_ref),
+              1e3 * PositionFromM(T_cam_imu, T_imu_cam_ref));
+}
+
+// basalt's T_imu_cam of cam0 and cam1 (REFERENCE.md).
+const SE3d& Basalt(int cam) {
+  static const SE3d basalt[2] = {
+      SE3d(SO3d::FromQuaternion(Eigen::Quaterniond(0.7123126, -0.0072398, 0.0075413, 0.7017845)),
+           Eigen::Vector3d(-0.0167748, -0.0689389, 0.0051391)),
+      SE3d(SO3d::FromQuaternion(Eigen::Quaterniond(0.7115930, -0.0023361, 0.0130008, 0.7024677)),
+           Eigen::Vector3d(-0.0150744, 0.0412627, 0.0031629))};
+  return basalt[cam];
 }
 
 void WriteHalf(const std::vector<ImuSample>& imu, const std::vector<Observation>& observations,
@@ -139,14 +152,18 @@ void WriteHalf(const std::vector<ImuSample>& imu, const std::vector<Observation>
   WriteObservationsCsv(observations_half, &observations_out);
 }
 
-TEST(CalibrateOwnChain, DISABLED_HalvesAgreeWithinTheirReportedStandardDeviations) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+constexpr const char* kComponentNames[6] = {"rot x", "rot y", "rot z", "t x", "t y", "t z"};
+constexpr double kPrintScale[6] = {1, 1, 1, 1e3, 1e3, 1e3};  // deg, mm
+
+// Each half of the recording (cut at the IMU's middle time, as CalibrateEuroc's halves in
+// calibrate_euroc_slow_test.cc) runs its own chain with `model`. Returns, per camera and
+// component, |T_cam_imu difference| / combined reported std (cam0's 6, then cam1's), printed.
+std::vector<double> HalvesNormalisedDifferences(const std::string& model) {
   const std::vector<ImuSample> imu =
       ReadEurocImu(testing::SharedDataPath("euroc_imu_april/imu0.csv"));
   const std::vector<Observation> observations =
       ReadObservationsCsv(testing::SharedDataPath("euroc_imu_april/observations.csv"));
-  ASSERT_GT(imu.size(), 14000u);
-  // Cut at the IMU's middle time, as CalibrateEuroc's halves (calibrate_euroc_slow_test.cc).
+  EXPECT_GT(imu.size(), 14000u);
   const int64_t middle = imu.front().t_ns + (imu.back().t_ns - imu.front().t_ns) / 2;
   testing::TempDir dir;
   WriteHalf(imu, observations, imu.front().t_ns, middle, dir.File("imu_1.csv"),
@@ -154,82 +171,129 @@ TEST(CalibrateOwnChain, DISABLED_HalvesAgreeWithinTheirReportedStandardDeviation
   WriteHalf(imu, observations, middle, imu.back().t_ns + 1, dir.File("imu_2.csv"),
             dir.File("observations_2.csv"));
   const Calibration first =
-      OwnChain(dir.File("imu_1.csv"), dir.File("observations_1.csv"), dir.File("first"));
+      OwnChain(dir.File("imu_1.csv"), dir.File("observations_1.csv"), model, dir.File("first"));
   const Calibration second =
-      OwnChain(dir.File("imu_2.csv"), dir.File("observations_2.csv"), dir.File("second"));
-  const char* names[6] = {"rot x", "rot y", "rot z", "t x", "t y", "t z"};
-  const double scale[6] = {1, 1, 1, 1e3, 1e3, 1e3};  // deg, mm
-  double worst = 0.0, sum_squares = 0.0;
+      OwnChain(dir.File("imu_2.csv"), dir.File("observations_2.csv"), model, dir.File("second"));
+  std::vector<double> normalised;
   for (int cam = 0; cam < 2; ++cam) {
     const Eigen::Matrix<double, 6, 1> d = Difference(first.T_cam_imu[cam], second.T_cam_imu[cam]);
     const Eigen::Matrix<double, 6, 1> s =
         (Std(first, cam).array().square() + Std(second, cam).array().square()).sqrt();
     for (int k = 0; k < 6; ++k) {
-      const double normalised = std::abs(d[k]) / s[k];
-      worst = std::max(worst, normalised);
-      sum_squares += normalised * normalised;
-      std::printf("cam%d %-6s  difference %9.4f  std %8.4f  |difference|/std %5.2f\n", cam,
-                  names[k], d[k] * scale[k], s[k] * scale[k], normalised);
-      EXPECT_LE(normalised, 3.0) << "cam" << cam << " " << names[k];
+      normalised.push_back(std::abs(d[k]) / s[k]);
+      std::printf("%s cam%d %-6s  difference %9.4f  std %8.4f  |difference|/std %5.2f\n",
+                  model.c_str(), cam, kComponentNames[k], d[k] * kPrintScale[k],
+                  s[k] * kPrintScale[k], normalised.back());
     }
   }
-  // Honest stds make the 12 normalised differences about unit normal: their mean square is
-  // chi-square(12)/12, below 0.25^2 with probability ~1e-6; stds 4x too large put the RMS there.
-  const double rms = std::sqrt(sum_squares / 12.0);
-  std::printf("largest |difference|/std: %.2f, RMS %.2f\n", worst, rms);
-  EXPECT_GE(rms, 0.25) << "reported standard deviations too large";
+  return normalised;
 }
 
-TEST(CalibrateOwnChain, StereoBaselineWithinAMillimetreAndItsStd) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
-  testing::TempDir dir;
-  const Calibration own =
-      OwnChain(testing::SharedDataPath("euroc_imu_april/imu0.csv"),
-               testing::SharedDataPath("euroc_imu_april/observations.csv"), dir.File("own"));
-  std::printf("baseline: own chain %.3f mm (std %.3f), published %.3f mm\n", 1e3 * own.baseline_m,
-              1e3 * own.baseline_std_m, 1e3 * kPublishedBaselineM);
-  // Within 1 mm (the issue's bound; basalt's baseline, from its camera positions, is 110.23 mm,
-  // 0.16 mm from Kalibr's), and the reported std covers the difference.
-  EXPECT_NEAR(own.baseline_m, kPublishedBaselineM, 1e-3);
-  EXPECT_LE(std::abs(own.baseline_m - kPublishedBaselineM), 3.0 * own.baseline_std_m);
+double Rms(const std::vector<double>& values) {
+  double sum_squares = 0.0;
+  for (double v : values) sum_squares += v * v;
+  return std::sqrt(sum_squares / values.size());
 }
 
-TEST(CalibrateOwnChain, DISABLED_WholeRecordingWithinThreeStdOfThePublishedCamchainRun) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+double Largest(const std::vector<double>& values) {
+  return *std::max_element(values.begin(), values.end());
+}
+
+// The whole recording's own chain with `model` and the same calibrate run with the published
+// camchain; `ratios` per camera and component |published - own| / the own chain's reported std
+// (cam0's 6, then cam1's), printed with the distances to basalt's and Kalibr's calibrations.
+struct WholeRecording {
+  Calibration own;
+  Calibration published;
+  std::vector<double> ratios;
+};
+
+WholeRecording CompareWithThePublishedCamchainRun(const std::string& model) {
   testing::TempDir dir;
   const std::string imu = testing::SharedDataPath("euroc_imu_april/imu0.csv");
   const std::string observations = testing::SharedDataPath("euroc_imu_april/observations.csv");
-  const Calibration own = OwnChain(imu, observations, dir.File("own"));
+  WholeRecording w;
+  w.own = OwnChain(imu, observations, model, dir.File("own"));
   const testing::ToolResult published = testing::RunTool(CalibrateArgs(
       imu, observations, testing::SharedDataPath("euroc_imu_april/camchain_euroc.yaml"),
       dir.File("published")));
-  ASSERT_EQ(published.exit_code, 0) << published.err;
-  const Calibration pub = ReadCalibration(dir.File("published"));
-  // The references (REFERENCE.md): basalt's T_imu_cam, Kalibr's T_cam_imu (the published one).
-  const SE3d basalt[2] = {
-      SE3d(SO3d::FromQuaternion(Eigen::Quaterniond(0.7123126, -0.0072398, 0.0075413, 0.7017845)),
-           Eigen::Vector3d(-0.0167748, -0.0689389, 0.0051391)),
-      SE3d(SO3d::FromQuaternion(Eigen::Quaterniond(0.7115930, -0.0023361, 0.0130008, 0.7024677)),
-           Eigen::Vector3d(-0.0150744, 0.0412627, 0.0031629))};
+  EXPECT_EQ(published.exit_code, 0) << published.err;
+  w.published = ReadCalibration(dir.File("published"));
   const Camchain kalibr =
       ReadCamchainYaml(testing::SharedDataPath("euroc_imu_april/camchain_euroc.yaml"));
-  const char* names[6] = {"rot x", "rot y", "rot z", "t x", "t y", "t z"};
-  const double scale[6] = {1, 1, 1, 1e3, 1e3, 1e3};  // deg, mm
+  std::printf("%s baseline: own chain %.3f mm (std %.3f), published camchain %.3f mm\n",
+              model.c_str(), 1e3 * w.own.baseline_m, 1e3 * w.own.baseline_std_m,
+              1e3 * w.published.baseline_m);
   for (int cam = 0; cam < 2; ++cam) {
-    std::printf("cam%d own chain\n", cam);
-    PrintDistance("basalt", own.T_cam_imu[cam], basalt[cam]);
-    PrintDistance("Kalibr", own.T_cam_imu[cam], kalibr[cam].T_cam_imu.inverse());
+    std::printf("cam%d own chain (%s)\n", cam, model.c_str());
+    PrintDistance("basalt", w.own.T_cam_imu[cam], Basalt(cam));
+    PrintDistance("Kalibr", w.own.T_cam_imu[cam], kalibr[cam].T_cam_imu.inverse());
     std::printf("cam%d published camchain\n", cam);
-    PrintDistance("basalt", pub.T_cam_imu[cam], basalt[cam]);
-    PrintDistance("Kalibr", pub.T_cam_imu[cam], kalibr[cam].T_cam_imu.inverse());
-    const Eigen::Matrix<double, 6, 1> d = Difference(own.T_cam_imu[cam], pub.T_cam_imu[cam]);
-    const Eigen::Matrix<double, 6, 1> s = Std(own, cam);
+    PrintDistance("basalt", w.published.T_cam_imu[cam], Basalt(cam));
+    PrintDistance("Kalibr", w.published.T_cam_imu[cam], kalibr[cam].T_cam_imu.inverse());
+    const Eigen::Matrix<double, 6, 1> d =
+        Difference(w.own.T_cam_imu[cam], w.published.T_cam_imu[cam]);
+    const Eigen::Matrix<double, 6, 1> s = Std(w.own, cam);
     for (int k = 0; k < 6; ++k) {
-      std::printf("cam%d %-6s  published - own %9.4f  own std %8.4f  ratio %5.2f\n", cam,
-                  names[k], d[k] * scale[k], s[k] * scale[k], std::abs(d[k]) / s[k]);
-      EXPECT_LE(std::abs(d[k]), 3.0 * s[k]) << "cam" << cam << " " << names[k];
+      w.ratios.push_back(std::abs(d[k]) / s[k]);
+      std::printf("%s cam%d %-6s  published - own %9.4f  own std %8.4f  ratio %5.2f\n",
+                  model.c_str(), cam, kComponentNames[k], d[k] * kPrintScale[k],
+                  s[k] * kPrintScale[k], w.ratios.back());
     }
   }
+  return w;
+}
+
+// The model the data supports (intrinsics --compare-models on every 8th view: ds-none RMS
+// 0.4405 px, pinhole-equi 0.4401, pinhole-radtan 0.5086; docs/intrinsics.md). What holds today:
+// the positions within the 8 mm target of basalt, the baseline within 1 mm of the published one
+// and within 3 of its std, and, against the published-camchain run, the rotation about the IMU's
+// y and z axes within 3 own std. The rotation about the IMU's x axis (the camera's y, the axis a
+// principal-point shift in u turns) is not: printed, asserted by the DISABLED test below.
+TEST(CalibrateOwnChain, DsNonePositionsBaselineAndRotationBesidesThePrincipalPoint) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+  const WholeRecording w = CompareWithThePublishedCamchainRun("ds-none");
+  for (int cam = 0; cam < 2; ++cam) {
+    // Measured 3.65 / 3.40 mm (2026-11-28); radtan's own chain 6.3-6.6 mm.
+    EXPECT_LE(PositionFromM(w.own.T_cam_imu[cam], Basalt(cam)), 8e-3) << "cam" << cam;
+    // Rotation about the IMU's y and z: measured 0.06-0.30 own std.
+    EXPECT_LE(w.ratios[6 * cam + 1], 3.0) << "cam" << cam << " rot y";
+    EXPECT_LE(w.ratios[6 * cam + 2], 3.0) << "cam" << cam << " rot z";
+  }
+  // Within 1 mm (the issue's bound; basalt's baseline, from its camera positions, is 110.23 mm,
+  // 0.16 mm from Kalibr's), and the reported std covers the difference. Measured 110.100 +-
+  // 0.127 mm.
+  EXPECT_NEAR(w.own.baseline_m, kPublishedBaselineM, 1e-3);
+  EXPECT_LE(std::abs(w.own.baseline_m - kPublishedBaselineM), 3.0 * w.own.baseline_std_m);
+}
+
+// Not met by any model today (2026-11-28, this test's printout): the rotation about the IMU's x
+// axis is 0.50 / 0.40 deg (cam0 / cam1) from the published-camchain run at 12.2 / 10.0 own std
+// with ds-none (pinhole-equi 12.3 / 10.0, pinhole-radtan 6.7-6.9), translation y 2.7-2.9 mm at
+// 3.5-3.7 std: the principal point this recording gives (ds-none cam0 pu 362.2 px after
+// calibrate) is 3.7 px from basalt's 365.9 (docs/calibrate.md, "Why: the principal point").
+TEST(CalibrateOwnChain, DISABLED_WholeRecordingWithinThreeStdOfThePublishedCamchainRun) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+  const WholeRecording w = CompareWithThePublishedCamchainRun("ds-none");
+  for (size_t i = 0; i < w.ratios.size(); ++i) {
+    EXPECT_LE(w.ratios[i], 3.0) << "cam" << i / 6 << " " << kComponentNames[i % 6];
+  }
+}
+
+// Not met by any model today (2026-11-28, this test's printout): ds-none's halves differ in
+// translation z by 15.2 / 14.2 mm (cam0 / cam1) at 8.3 / 6.9 combined std, RMS 3.96
+// (pinhole-equi 15.2 / 14.3 mm at 8.3 / 7.7, RMS 4.08; pinhole-radtan 13.6 mm at 4.6-4.8 std,
+// RMS 2.69).
+TEST(CalibrateOwnChain, DISABLED_HalvesAgreeWithinTheirReportedStandardDeviations) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+  const std::vector<double> normalised = HalvesNormalisedDifferences("ds-none");
+  for (size_t i = 0; i < normalised.size(); ++i) {
+    EXPECT_LE(normalised[i], 3.0) << "cam" << i / 6 << " " << kComponentNames[i % 6];
+  }
+  // Honest stds make the 12 normalised differences about unit normal: their mean square is
+  // chi-square(12)/12, below 0.25^2 with probability ~1e-6; stds 4x too large put the RMS there.
+  std::printf("largest |difference|/std: %.2f, RMS %.2f\n", Largest(normalised), Rms(normalised));
+  EXPECT_GE(Rms(normalised), 0.25) << "reported standard deviations too large";
 }
 
 }  // namespace
