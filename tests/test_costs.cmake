@@ -15,6 +15,9 @@ set_tests_properties(
   CalibrateEuroc.WholeRecordingAgreesWithThePublishedCalibrationsFromAPerturbedStart
   PROPERTIES COST 103)
 set_tests_properties(IntrinsicsNees.EveryModelInItsNinetyFivePercentBand PROPERTIES COST 93)
+set_tests_properties(
+  CalibrateOwnChain.DsNonePositionsBaselineAndRotationBesidesThePrincipalPoint
+  PROPERTIES COST 76)
 set_tests_properties(CalibrateMonteCarlo.DiagonalNeesOnAClosedFormTrajectoryIsInsideItsInterval
   PROPERTIES COST 78)
 set_tests_properties(CalibrateEuroc.HalvesAgreeWithinTheirReportedStandardDeviations
