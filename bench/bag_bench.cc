@@ -5,13 +5,21 @@
 //     and a 200 Hz IMU, about 110 MB of messages) in every chunk compression of ROS 1 and MCAP.
 //   - BM_ParseAndConvert/<file>: the same plus parsing every message and turning every image to
 //     grey (detect/bag_image.h), what `bag extract` does before PNG encoding.
+//   - BM_DecodeCompressedImage/<format>: one sensor_msgs/CompressedImage of the bundled real
+//     EuRoC frame (752 x 480) decoded to grey, PNG as the dataset stores it and JPEG as OpenCV
+//     encodes it at quality 95 (what image_transport's compressed plugin writes by default);
+//     counter: frames/s. The decode is what a CompressedImage topic adds over a raw Image.
 //
 // Run: scripts/make_bench_bags.sh DIR, then SPLINECAL_BENCH_BAGS=DIR build-bench/bench/bag_bench
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
+#include <vector>
 
 #include "splinecal/detect/bag_image.h"
 #include "splinecal/error.h"
@@ -73,6 +81,28 @@ void BM_ParseAndConvert(benchmark::State& state) {
   });
 }
 BENCHMARK(BM_ParseAndConvert)->DenseRange(0, 5)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DecodeCompressedImage(benchmark::State& state) {
+  const bool jpeg = state.range(0) == 1;
+  const std::string frame = std::string(SPLINECAL_SOURCE_DIR) +
+                            "/data/euroc_april_frames/cam0/data/1403709395937837056.png";
+  std::vector<unsigned char> bytes;
+  if (jpeg) {
+    cv::imencode(".jpg", cv::imread(frame, cv::IMREAD_GRAYSCALE), bytes,
+                 {cv::IMWRITE_JPEG_QUALITY, 95});
+  } else {
+    std::ifstream file(frame, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  }
+  ImageMessage image;
+  image.compressed = true;
+  image.encoding = jpeg ? "jpeg" : "png";
+  image.data = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  state.SetLabel(image.encoding + ", " + std::to_string(bytes.size()) + " bytes");
+  for (auto _ : state) benchmark::DoNotOptimize(BagImageToGray(image, "bench").view());
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_DecodeCompressedImage)->ArgName("jpeg")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace splinecal

@@ -136,6 +136,7 @@
 #include "splinecal/estimation/interval_manifold.h"
 #include "splinecal/estimation/knot_spacing.h"
 #include "splinecal/estimation/marginal_covariance.h"
+#include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/pose_block_jacobian.h"
 #include "splinecal/estimation/pose_cost.h"
