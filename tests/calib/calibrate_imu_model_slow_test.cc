@@ -1,5 +1,5 @@
 // `calibrate` estimating Kalibr's scale-misalignment IMU model (CalibrateOptions::imu_model) on a
-// simulated sequence (calib/calibrate_test_scenario.h: 15 s of the lively target-viewing
+// simulated sequence (calib/calibrate_test_scenario.h: 20 s of the lively target-viewing
 // trajectory, 200 Hz ADIS16448-like IMU noise, 20 Hz camera, fixed seed) whose IMU readings went
 // through a miscalibrated IMU: gyro' = M_g C_gyro_i gyro + A C_gyro_i accel, accel' = M_a accel
 // (imu/scale_misalignment_model.h with C_i_b = I, r_b = 0). Applied to the noisy readings, the
@@ -22,13 +22,15 @@ namespace {
 // Within 3 reported standard deviations of the truth, entry by entry (a 3-sigma bound of a
 // Gaussian: about 1 in 370 entries outside by chance; 27 entries here with a fixed seed).
 constexpr double kSigmas = 3.0;
-// The standard deviations must mean something: below 0.1% of scale / 1 mrad of misalignment for
-// M_a, M_g (a consumer MEMS IMU's errors are ~1% and ~1 deg, Rehder et al., ICRA 2016), below
-// 1e-3 (rad/s)/(m/s^2) for A (a MEMS gyro's g-sensitivity is ~1e-3 to 1e-2 of that, 0.1 deg/s/g
-// = 1.8e-4), below 0.05 deg for C_gyro_i.
-constexpr double kMaxMatrixStd = 1e-3;
-constexpr double kMaxAStd = 1e-3;
-constexpr double kMaxRotationStdDeg = 0.05;
+// The standard deviations must mean something: below a quarter of a consumer MEMS IMU's errors
+// (~1% of scale and ~1 deg of misalignment, Rehder et al., ICRA 2016), so that such an error
+// stands out at 4 std: 2.5e-3 for an entry of M_a, M_g, 0.25 deg for C_gyro_i. A is determined
+// to ~2e-4 (rad/s)/(m/s^2) here (its z column least: the z specific force is mostly gravity):
+// enough for a poor gyro's g-sensitivity (1e-3), not for a good one's (0.1 deg/s/g = 1.7e-4);
+// the bound is 5e-4.
+constexpr double kMaxMatrixStd = 2.5e-3;
+constexpr double kMaxAStd = 5e-4;
+constexpr double kMaxRotationStdDeg = 0.25;
 
 void ExpectEntriesWithin(const char* name,
                          const Eigen::Matrix3d& estimate,
@@ -56,7 +58,7 @@ void ExpectEntriesWithin(const char* name,
 
 TEST(CalibrateImuModel, ScaleMisalignmentRoundTrip) {
   testing::ScenarioOptions o;
-  o.duration_s = 15.0;
+  o.duration_s = 20.0;
   o.line_delay_s = 0.0;
   testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
   // A consumer-grade IMU (Rehder et al.'s MPU9150: scale errors up to 1%, misalignment up to
@@ -91,10 +93,18 @@ TEST(CalibrateImuModel, ScaleMisalignmentRoundTrip) {
     EXPECT_LT(d.C_gyro_i_deg[a], kMaxRotationStdDeg);
     EXPECT_LE(std::abs(rotation_error[a]) * kRadToDeg, kSigmas * d.C_gyro_i_deg[a]);
   }
-  // The camera's extrinsic and time offset stay as good as with a calibrated IMU.
+  // The camera's extrinsic and time offset within 3 std of the truth. (Not the `calibrated`
+  // tests' absolute targets: with the model, the IMU frame is the accelerometer triad's, whose
+  // axes the data fix less tightly than a calibrated IMU's: T_cam_imu's rotation std grows from
+  // ~0.03 to ~0.09 deg about x and y.)
   const testing::Errors e = testing::ErrorsOf(r.cameras[0].calibration, s.truth[0]);
-  testing::Print("scale-misalignment 15 s", r, e);
-  testing::ExpectWithinTargetsAndStds(r, e, false);
+  testing::Print("scale-misalignment 20 s", r, e);
+  const CameraEstimate& c = r.cameras[0];
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(std::abs(e.rotation_deg[a]), kSigmas * c.rotation_std_deg[a]) << a;
+    EXPECT_LT(std::abs(e.translation_m[a]), kSigmas * c.translation_std_m[a]) << a;
+  }
+  EXPECT_LT(std::abs(e.time_offset_s), kSigmas * c.time_offset_std_s);
 }
 
 }  // namespace
