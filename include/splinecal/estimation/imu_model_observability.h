@@ -9,7 +9,7 @@
 // The test: the information J^T J of the model's parameters from the IMU residuals alone, with
 // everything else (trajectory, biases, gravity) held at its current value. Its standard
 // deviations are a LOWER bound of the full problem's (holding the rest removes correlations), so a
-// parameter whose bound is already above kImuModelMeaninglessStd's figure is not determined by
+// parameter whose bound is already above its meaningless_std (below) is not determined by
 // the recording. Near-zero eigenvalues (below 1e-12 of the largest) count as 1e-12 of it: the
 // combinations they carry get the large std they deserve instead of a division by zero.
 #ifndef SPLINECAL_ESTIMATION_IMU_MODEL_OBSERVABILITY_H_
