@@ -42,7 +42,9 @@ std::vector<SE3d> Motion(bool constant_axis) {
   return poses;
 }
 
-std::set<std::string> UndeterminedNames(bool constant_axis, std::vector<ImuModelParameter>* out) {
+std::set<std::string> UndeterminedNames(bool constant_axis,
+                                        std::vector<ImuModelParameter>* out,
+                                        bool hold = false) {
   KnotLayout layout;
   layout.dt_ns = kDtNs;
   layout.num_control_poses = kNumPoses;
@@ -61,6 +63,19 @@ std::set<std::string> UndeterminedNames(bool constant_axis, std::vector<ImuModel
   problem.Reset();
   problem.AddImuResiduals(imu, kSigmaGyro, kSigmaAccel);
   *out = UndeterminedImuModelParameters(&problem);
+  if (hold) {
+    // Held entries go back to nominal and leave the blocks' tangents (SubsetManifold).
+    problem.imu_model()->m_g[0] = 1.1;
+    for (const ImuModelParameter& p : *out) problem.HoldImuModelEntry(p.block, p.index);
+    problem.Reset();
+    EXPECT_EQ(problem.imu_model()->m_g[0], 1.0);
+    EXPECT_EQ(problem.problem().ParameterBlockTangentSize(problem.imu_model()->m_g.data()), 1);
+    EXPECT_EQ(problem.problem().ParameterBlockTangentSize(problem.imu_model()->phi_gyro_i.data()),
+              2);
+    EXPECT_EQ(problem.problem().ParameterBlockTangentSize(problem.imu_model()->m_a.data()), 6);
+    EXPECT_EQ(problem.HeldImuModelEntries(problem.imu_model()->m_g.data()),
+              std::vector<int>({0, 1, 2, 3, 4}));
+  }
   std::set<std::string> names;
   for (const ImuModelParameter& p : *out) names.insert(p.name);
   return names;
@@ -71,7 +86,7 @@ std::set<std::string> UndeterminedNames(bool constant_axis, std::vector<ImuModel
 // determined; everything read through z rotation or the specific force is.
 TEST(ImuModelObservability, ConstantAxisRotationNamesTheUnexcitedGyroParameters) {
   std::vector<ImuModelParameter> undetermined;
-  const std::set<std::string> names = UndeterminedNames(true, &undetermined);
+  const std::set<std::string> names = UndeterminedNames(true, &undetermined, /*hold=*/true);
   const std::set<std::string> expected = {"M_g(0,0)", "M_g(1,0)", "M_g(1,1)",
                                           "M_g(2,0)", "M_g(2,1)", "C_gyro_i(z)"};
   EXPECT_EQ(names, expected);
