@@ -343,6 +343,7 @@ CalibrationResult CalibrationProblem::Run() {
       solver_options, options_.solver.progress, options_.solver.stop, solver.warm_start_rounds);
   target_scale_free_ = has_target_ && options_.target_scale != TargetScaleMode::kHeld;
   result.target_scale_mode = has_target_ ? options_.target_scale : TargetScaleMode::kHeld;
+  if (options_.imu_model != ImuModelKind::kCalibrated) HoldUndeterminedImuModelParameters(&result);
   SolveUntilStable(&rounds, solver, &result);
   if (target_scale_free_) {
     // The check (calibrate.h): the scale with everything else free, then held at 1.
@@ -386,6 +387,16 @@ CalibrationResult CalibrationProblem::Run() {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return result;
+}
+
+void CalibrationProblem::HoldUndeterminedImuModelParameters(CalibrationResult* result) {
+  // At the initial guess: the information of the model's parameters comes from the motion, which
+  // the initial trajectory already has (estimation/imu_model_observability.h).
+  BuildProblem();
+  const std::vector<ImuModelParameter> undetermined = UndeterminedImuModelParameters(spline_.get());
+  if (undetermined.empty()) return;
+  for (const ImuModelParameter& p : undetermined) spline_->HoldImuModelEntry(p.block, p.index);
+  result->warnings.push_back(UndeterminedImuModelWarning(undetermined));
 }
 
 void CalibrationProblem::SolveUntilStable(SolveRounds* solve_rounds,

@@ -33,6 +33,7 @@
 #include "splinecal/estimation/compact_frame_cost.h"
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/imu_model_observability.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/interval_manifold.h"
 #include "splinecal/estimation/marginal_covariance.h"
@@ -102,6 +103,7 @@ class CalibrationProblem {
     imu_rate_hz_ = ImuRateHz(imu_);
     imu_noise_ = std::make_unique<ImuNoiseEstimator>(
         options.model.noise, imu_rate_hz_, options.model.imu_noise);
+    spline_->SetImuModel(options.imu_model);
     spline_->SetGravity(options.model.gravity_m_s2 * guess.gravity_w.normalized());
     spline_->SetBiases(guess.gyro_bias, guess.accel_bias);
     // Cameras.
@@ -186,6 +188,9 @@ class CalibrationProblem {
   // The frame's cost with the target scale's block when it is free (target_scale_cost.h).
   std::unique_ptr<ceres::CostFunction> ScaledFrameCost(std::unique_ptr<ceres::CostFunction> cost,
                                                        const FrameResidual& r) const;
+  // With an IMU model: holds at nominal, with a warning, the model's parameters the recording
+  // does not determine (estimation/imu_model_observability.h).
+  void HoldUndeterminedImuModelParameters(CalibrationResult* result);
   // Solves in rounds until nothing changes between them (time windows, noise, line delays).
   void SolveUntilStable(SolveRounds* rounds, const SolverOptions& solver, CalibrationResult* result);
   // The target scale's estimate and std with the rest free (false: covariance singular).
@@ -253,6 +258,10 @@ class CalibrationProblem {
                    const Eigen::MatrixXd& cov,
                    const std::map<const double*, int>& offset,
                    CalibrationResult* result);
+  // The IMU model's standard deviations from the reported covariance (as BaselineStd).
+  void ImuModelStdFrom(const Eigen::MatrixXd& cov,
+                       const std::map<const double*, int>& offset,
+                       ImuModelStd* out);
   // Options for ComputeMarginalCovariance: the IMU noise's groups and time clusters, each
   // camchain prior as model noise (kModelNoiseCluster).
   MarginalCovarianceOptions CovarianceOptionsForProblem();

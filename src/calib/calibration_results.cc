@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <vector>
@@ -82,6 +83,16 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     wanted.push_back(&target_scale_);
     ++num_camera;
   }
+  // The IMU model's blocks (none for kCalibrated), reported as they are.
+  std::vector<double*> model_blocks;
+  for (double* block : spline_->ImuModelBlocks()) {
+    if (!problem().IsParameterBlockConstant(block)) model_blocks.push_back(block);
+  }
+  for (double* block : model_blocks) {
+    offset[block] = num_camera;
+    wanted.push_back(block);
+    num_camera += problem().ParameterBlockTangentSize(block);
+  }
   const int num_bias_points = spline_->bias_spline().num_points();
   for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->gyro_bias(m));
   for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->accel_bias(m));
@@ -134,10 +145,42 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   if (target_scale_free_) {
     result->target_scale_std = std::sqrt(std::max(0.0, block(&target_scale_, 1)(0, 0)));
   }
+  if (!model_blocks.empty()) ImuModelStdFrom(cov, offset, &result->imu_model_std);
   const Eigen::VectorXd bias_std = cov.diagonal().tail(6).cwiseMax(0.0).cwiseSqrt();
   result->gyro_bias_std = bias_std.head<3>();
   result->accel_bias_std = bias_std.tail<3>();
   AddStandardDeviationWarnings(options_, imu_noise_->estimate(), result);
+}
+
+void CalibrationProblem::ImuModelStdFrom(const Eigen::MatrixXd& cov,
+                                         const std::map<const double*, int>& offset,
+                                         ImuModelStd* out) {
+  const ImuModelParameters& p = *spline_->imu_model();
+  // A held entry (estimation/imu_model_observability.h) has no std: NaN. The tangent of a block
+  // with held entries skips them (ceres::SubsetManifold).
+  auto std_of = [&](const double* block, int j) {
+    const std::vector<int> held = spline_->HeldImuModelEntries(block);
+    if (offset.count(block) == 0 || std::find(held.begin(), held.end(), j) != held.end()) {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    const int skipped = static_cast<int>(
+        std::count_if(held.begin(), held.end(), [j](int h) { return h < j; }));
+    const int row = offset.at(block) + j - skipped;
+    return std::sqrt(std::max(0.0, cov(row, row)));
+  };
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c <= r; ++c) {
+      out->M_a(r, c) = std_of(p.m_a.data(), LowerTriangularIndex(r, c));
+      out->M_g(r, c) = std_of(p.m_g.data(), LowerTriangularIndex(r, c));
+    }
+    for (int c = 0; c < 3; ++c) out->A(r, c) = std_of(p.a.data(), 3 * r + c);
+    out->C_gyro_i_deg[r] = std_of(p.phi_gyro_i.data(), r) * kRadToDeg;
+  }
+  if (spline_->imu_model_kind() != ImuModelKind::kScaleMisalignmentSizeEffect) return;
+  for (int a = 0; a < 3; ++a) {
+    out->ry_i[a] = std_of(p.ry_i.data(), a);
+    out->rz_i[a] = std_of(p.rz_i.data(), a);
+  }
 }
 
 void CalibrationProblem::BaselineStd(size_t c,
@@ -207,6 +250,8 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
       result->camchain[c].cam_overlaps.assign(overlaps[c].begin(), overlaps[c].end());
     }
   }
+  result->imu_model.model = spline_->imu_model_kind();
+  result->imu_model.intrinsics = spline_->imu_model()->Intrinsics();
   result->cameras.resize(cameras_.size());
   result->camera_chain = chain_mode_;
   for (size_t c = 0; c < cameras_.size(); ++c) {

@@ -22,6 +22,7 @@
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_model_kind.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/euroc.h"
@@ -62,6 +63,12 @@ DEFINE_string(camera_chain,
               "camchain's (one T_cam_imu for the rig), estimated with the covariance's "
               "T_cn_cnm1 rows as a prior, or free (each T_cam_imu on its own). Default: prior "
               "when every camera after cam0 has those rows, else free");
+DEFINE_string(imu_model,
+              "calibrated",
+              "calibrated | scale-misalignment | scale-misalignment-size-effect: Kalibr's IMU "
+              "model (--imu-models); the last two also estimate M_a, M_g, A, C_gyro_i (and the "
+              "accelerometer axes' lever arms ry_i, rz_i), written to imu_models.yaml and "
+              "result.yaml's imu_model (docs/imu_models.md)");
 DEFINE_string(target_scale,
               "check",
               "check | free | held: the target's scale against the IMU (the accelerometer "
@@ -129,6 +136,9 @@ CalibrateInputs ReadCalibrateInputs() {
   options.model.knot_spacing_s = KnotSpacingFlag(/*can_choose=*/true);
   options.model.trajectory = TrajectoryModelFlag();
   options.rolling_shutter = FLAGS_rolling_shutter;
+  if (!ParseImuModelKind(FLAGS_imu_model, &options.imu_model)) {
+    throw Error("--imu-model: '" + FLAGS_imu_model + "' is not one of " + ImuModelNames());
+  }
   options.estimate_time_offset = !FLAGS_no_time_offset;
   options.pixel_sigma_px = NonNegativeFlag("pixel-sigma", FLAGS_pixel_sigma);
   options.huber_px = NonNegativeFlag("huber", FLAGS_huber);
@@ -229,6 +239,7 @@ Command CalibrateCommand() {
           "    --observations FILE --camchain FILE [--target FILE]\n"
           "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
           "    [--intrinsics held|prior|free] [--camera-chain held|prior|free] [--target-scale check|free|held]\n"
+          "    [--imu-model calibrated|scale-misalignment|scale-misalignment-size-effect]\n"
           "    [--hold-camera-chain] [--estimate-intrinsics]\n"
           "    [--knot-spacing S] [--trajectory se3|split] [--pixel-sigma PX] [--huber PX]\n"
           "    [--min-corners N] [--gravity M_S2] [--accel-unit m/s^2|g] [--gyro-unit rad/s|deg/s]\n"
@@ -263,6 +274,7 @@ Command CalibrateCommand() {
            {"intrinsics", ""},
            {"camera_chain", ""},
            {"target_scale", ""},
+           {"imu_model", ""},
            {"hold_camera_chain", ""},
            {"estimate_intrinsics", ""},
            {"no_time_offset", ""},

@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -10,6 +11,8 @@
 #include "splinecal/estimation/bias_costs.h"
 #include "splinecal/estimation/imu_autodiff_costs.h"
 #include "splinecal/estimation/imu_costs.h"
+#include "splinecal/imu/imu_intrinsic_model.h"
+#include "splinecal/imu/spline_body_motion.h"
 
 namespace splinecal {
 
@@ -99,7 +102,53 @@ ceres::Problem& SplineProblem::Reset(bool hold_first_pose) {
     problem_->AddParameterBlock(accel_bias(m), 3);
   }
   problem_->AddParameterBlock(gravity_.data(), 3, &gravity_manifold_);
+  held_model_manifolds_.clear();
+  for (double* block : ImuModelBlocks()) {
+    const int size = block == imu_model_.a.data() ? kFullMatrixParameters
+                     : block == imu_model_.m_a.data() || block == imu_model_.m_g.data()
+                         ? kLowerTriangularParameters
+                         : 3;
+    problem_->AddParameterBlock(block, size);
+    const std::vector<int> held = HeldImuModelEntries(block);
+    if (static_cast<int>(held.size()) == size) {
+      problem_->SetParameterBlockConstant(block);
+    } else if (!held.empty()) {
+      held_model_manifolds_.push_back(std::make_unique<ceres::SubsetManifold>(size, held));
+      problem_->SetManifold(block, held_model_manifolds_.back().get());
+    }
+  }
   return *problem_;
+}
+
+void SplineProblem::HoldImuModelEntry(double* block, int index) {
+  const ImuModelParameters nominal;
+  const std::pair<const double*, const double*> blocks[] = {
+      {imu_model_.m_a.data(), nominal.m_a.data()},   {imu_model_.m_g.data(), nominal.m_g.data()},
+      {imu_model_.a.data(), nominal.a.data()},       {imu_model_.phi_gyro_i.data(), nominal.phi_gyro_i.data()},
+      {imu_model_.ry_i.data(), nominal.ry_i.data()}, {imu_model_.rz_i.data(), nominal.rz_i.data()}};
+  for (const auto& [values, nominal_values] : blocks) {
+    if (values == block) block[index] = nominal_values[index];
+  }
+  std::vector<int>& held = held_model_entries_[block];
+  if (std::find(held.begin(), held.end(), index) == held.end()) {
+    held.push_back(index);
+    std::sort(held.begin(), held.end());
+  }
+}
+
+std::vector<int> SplineProblem::HeldImuModelEntries(const double* block) const {
+  const auto it = held_model_entries_.find(block);
+  return it == held_model_entries_.end() ? std::vector<int>() : it->second;
+}
+
+std::vector<double*> SplineProblem::ImuModelBlocks() {
+  if (imu_model_kind_ == ImuModelKind::kCalibrated) return {};
+  std::vector<double*> blocks = {imu_model_.m_a.data(), imu_model_.m_g.data(),
+                                 imu_model_.a.data(), imu_model_.phi_gyro_i.data()};
+  if (imu_model_kind_ == ImuModelKind::kScaleMisalignmentSizeEffect) {
+    blocks.insert(blocks.end(), {imu_model_.ry_i.data(), imu_model_.rz_i.data()});
+  }
+  return blocks;
 }
 
 void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
@@ -153,7 +202,21 @@ void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
     }
     accel_blocks.push_back(gravity_.data());
 
-    if (!analytic) {
+    if (imu_model_kind_ != ImuModelKind::kCalibrated) {
+      // Kalibr's model (estimation/imu_model_costs.h): the gyro reads f_b through A, so it takes
+      // gravity too.
+      const std::vector<double*> model = ImuModelBlocks();
+      gyro_blocks.push_back(gravity_.data());
+      gyro_blocks.insert(gyro_blocks.end(), model.begin() + 1, model.begin() + 4);
+      accel_blocks.push_back(model[0]);
+      accel_blocks.insert(accel_blocks.end(), model.begin() + 4, model.end());
+      ImuModelSegment gyro_model{imu_model_kind_, gyro_segment, std::move(gyro_samples), nb};
+      ImuModelSegment accel_model{imu_model_kind_, accel_segment, std::move(accel_samples), nb};
+      kinds_[problem_->AddResidualBlock(NewImuModelGyroCost(gyro_model), nullptr, gyro_blocks)] =
+          ImuResidualKind::kGyro;
+      kinds_[problem_->AddResidualBlock(
+          NewImuModelAccelCost(accel_model), nullptr, accel_blocks)] = ImuResidualKind::kAccel;
+    } else if (!analytic) {
       for (size_t s = 0; s < gyro_samples.size(); ++s) {
         kinds_[problem_->AddResidualBlock(
             NewAutoDiffGyroCost(nb, gyro_segment, gyro_samples[s]), nullptr, gyro_blocks)] =
@@ -249,14 +312,21 @@ ImuResidualStatistics SplineProblem::EvaluateImu(
   if (imu.empty()) return stats;
   const SE3Splined spline = Spline();
   const Eigen::Vector3d g_w = gravity_w();
+  const ImuIntrinsicsd intrinsics = imu_model_.Intrinsics();
   double gyro_sq = 0.0;
   double accel_sq = 0.0;
   for (const ImuSample& s : imu) {
     ImuPrediction p;
     p.gyro_bias = GyroBiasAt(s.t_ns);
     p.accel_bias = AccelBiasAt(s.t_ns);
-    PredictImu<double>(
-        spline, spline.SegmentAtNs(s.t_ns), g_w, p.gyro_bias, p.accel_bias, &p.gyro, &p.accel);
+    if (imu_model_kind_ == ImuModelKind::kCalibrated) {
+      PredictImu<double>(
+          spline, spline.SegmentAtNs(s.t_ns), g_w, p.gyro_bias, p.accel_bias, &p.gyro, &p.accel);
+    } else {
+      PredictImuReadings<double>(imu_model_kind_, intrinsics,
+                                 SplineBodyMotion(spline, spline.SegmentAtNs(s.t_ns), g_w),
+                                 p.gyro_bias, p.accel_bias, &p.gyro, &p.accel);
+    }
     gyro_sq += (p.gyro - s.gyro).squaredNorm();
     accel_sq += (p.accel - s.accel).squaredNorm();
     stats.mean_gyro_bias += p.gyro_bias;

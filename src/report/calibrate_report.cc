@@ -285,6 +285,34 @@ std::string EstimatesTable(const CalibrationResult& r, const CalibrateOptions& o
   return html.str();
 }
 
+// The estimated IMU model with its standard deviations (Kalibr's imu-*.yaml keys; the stds per
+// entry, NaN where an entry is not a parameter; C_gyro_i's as its rotation vector per axis).
+void WriteImuModelYaml(const CalibrationResult& r, YamlWriter* yaml) {
+  const ImuIntrinsicsd& p = r.imu_model.intrinsics;
+  const ImuModelStd& s = r.imu_model_std;
+  yaml->BeginMap("imu_model");
+  yaml->Scalar("model", ImuModelName(r.imu_model.model));
+  yaml->BeginMap("accelerometers");
+  yaml->Matrix("M", p.M_a);
+  yaml->Matrix("M_std", s.M_a);
+  if (r.imu_model.model == ImuModelKind::kScaleMisalignmentSizeEffect) {
+    yaml->Vector("ry_i", p.ry_i);
+    yaml->Vector("ry_i_std", s.ry_i);
+    yaml->Vector("rz_i", p.rz_i);
+    yaml->Vector("rz_i_std", s.rz_i);
+  }
+  yaml->EndMap();
+  yaml->BeginMap("gyroscopes");
+  yaml->Matrix("M", p.M_g);
+  yaml->Matrix("M_std", s.M_g);
+  yaml->Matrix("A", p.A);
+  yaml->Matrix("A_std", s.A);
+  yaml->Matrix("C_gyro_i", p.C_gyro_i);
+  yaml->Vector("C_gyro_i_std_deg", s.C_gyro_i_deg);
+  yaml->EndMap();
+  yaml->EndMap();
+}
+
 }  // namespace
 
 std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptions& options) {
@@ -340,6 +368,7 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("target_scale_std", r.target_scale_std);
   yaml.Scalar("target_scale_used", r.target_scale_used);
   if (!options.command_line.empty()) yaml.Scalar("command_line", options.command_line);
+  if (r.imu_model.model != ImuModelKind::kCalibrated) WriteImuModelYaml(r, &yaml);
   if (r.cameras.size() > 1) {
     yaml.BeginMap("cameras");
     for (size_t c = 0; c < r.cameras.size(); ++c) {

@@ -5,6 +5,7 @@
 
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/spline_csv.h"
@@ -73,11 +74,18 @@ std::vector<OutputFile> FitOutputFiles(const FitResult& result, const FitReportI
 std::vector<OutputFile> CalibrateOutputFiles(const CalibrationResult& result,
                                              const CalibrateOptions& options,
                                              const CalibrateReportInputs& inputs) {
-  return {{"camchain-imucam.yaml", CamchainYamlText(result.camchain)},
-          {"result.yaml", CalibrateResultYaml(result, options)},
-          {"reprojection_errors.csv", CalibrateReprojectionCsv(result)},
-          {"spline.csv", SplineCsvText(result.MakeSpline())},
-          {"report.html", CalibrateReportHtml(result, options, inputs)}};
+  std::vector<OutputFile> files = {
+      {"camchain-imucam.yaml", CamchainYamlText(result.camchain)},
+      {"result.yaml", CalibrateResultYaml(result, options)},
+      {"reprojection_errors.csv", CalibrateReprojectionCsv(result)},
+      {"spline.csv", SplineCsvText(result.MakeSpline())},
+      {"report.html", CalibrateReportHtml(result, options, inputs)}};
+  // Kalibr's imu-*.yaml (io/imu_models_yaml.h) when an IMU model was estimated: the file
+  // `splinecal correct` applies to raw readings.
+  if (result.imu_model.model != ImuModelKind::kCalibrated) {
+    files.push_back({"imu_models.yaml", ImuModelsYamlText({result.imu_model})});
+  }
+  return files;
 }
 
 std::vector<OutputFile> AlignOutputFiles(const AlignResult& result, const AlignOptions& options) {

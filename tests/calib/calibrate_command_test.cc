@@ -14,6 +14,7 @@
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/yaml_document.h"
 #include "splinecal/string_printf.h"
@@ -66,6 +67,45 @@ class CalibrateCommand : public ::testing::Test {
   testing::TempDir dir_;
   std::string imu_, observations_, camchain_, target_;
 };
+
+// --imu-model: Kalibr's IMU file beside the camchain, read back by its reader, and result.yaml's
+// imu_model section with the stds. The simulated IMU is ideal (M = I, A = 0): each diagonal
+// entry of M_g within 4 of its stds of 1 (4 rather than 3: six entries in one test, all from
+// one 5 s recording).
+TEST_F(CalibrateCommand, ImuModelWritesKalibrsImuFileAndTheStds) {
+  const std::string out = dir_.File("out");
+  std::vector<std::string> args = Args(out);
+  args.insert(args.end() - 2, {"--imu-model", "scale-misalignment"});
+  const testing::ToolResult r = testing::RunTool(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<ImuCalibration> imus = ReadImuModelsYaml(out + "/imu_models.yaml");
+  ASSERT_EQ(imus.size(), 1u);
+  EXPECT_EQ(imus[0].model, ImuModelKind::kScaleMisalignment);
+  EXPECT_EQ(testing::ExpectStrictYamlFilesIn(out), 3);
+  const YAML::Node model = testing::LoadStrictYamlFile(out + "/result.yaml")["imu_model"];
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model["model"].as<std::string>(), "scale-misalignment");
+  for (const char* sensor : {"accelerometers", "gyroscopes"}) {
+    for (int k = 0; k < 3; ++k) {
+      const double m = model[sensor]["M"][k][k].as<double>();
+      const double std_m = model[sensor]["M_std"][k][k].as<double>();
+      EXPECT_GT(std_m, 0.0) << sensor << k;
+      EXPECT_NEAR(m, 1.0, 4.0 * std_m) << sensor << k;
+      EXPECT_NEAR(m, sensor[0] == 'a' ? imus[0].intrinsics.M_a(k, k) : imus[0].intrinsics.M_g(k, k),
+                  1e-15);
+    }
+  }
+  EXPECT_TRUE(model["gyroscopes"]["A_std"]);
+  EXPECT_TRUE(model["gyroscopes"]["C_gyro_i_std_deg"]);
+
+  args.back() = dir_.File("bad");
+  args[args.size() - 3] = "scale";  // not a model's name
+  const testing::ToolResult bad = testing::RunTool(args);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(testing::CountLines(bad.err), 1) << bad.err;
+  EXPECT_THAT(bad.err, HasSubstr("--imu-model: 'scale' is not one of calibrated,"));
+  EXPECT_FALSE(std::filesystem::exists(dir_.File("bad")));
+}
 
 TEST_F(CalibrateCommand, WritesKalibrCamchainResultAndReport) {
   const std::string out = dir_.File("out");

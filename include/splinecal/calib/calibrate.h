@@ -64,7 +64,9 @@
 #include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/pose_fit.h"
+#include "splinecal/imu/imu_intrinsics.h"
 #include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_model_kind.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
 #include "splinecal/io/camchain_yaml_covariance.h"
@@ -158,6 +160,11 @@ struct CalibrateOptions {
   double warn_time_offset_std_s = 0.001;
   double warn_line_delay_relative_std = 0.05;
   bool keep_residuals = true;  // per-observation and per-IMU-sample residuals in the result
+  // Kalibr's IMU model (--imu-model; imu/imu_model_kind.h, docs/imu_models.md). kCalibrated is
+  // the analytic IMU residuals; another model adds its parameters (M_a, M_g, A, C_gyro_i; ry_i,
+  // rz_i with the size effect) to the problem, starting at nominal, and its residuals are
+  // differentiated automatically (estimation/imu_model_costs.h).
+  ImuModelKind imu_model = ImuModelKind::kCalibrated;
   // For the reports only: the command line these options came from (empty: the library's
   // caller did not say).
   std::string command_line;
@@ -216,6 +223,18 @@ struct ImuResidualRecord {
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
+// Standard deviations of an estimated IMU model, per entry (NaN where not a parameter or not
+// computed): M_a, M_g (lower triangles), A, the rotation vector phi of C_gyro_i = Exp(phi)
+// (estimation/imu_model_costs.h), per axis [deg], ry_i, rz_i [m].
+struct ImuModelStd {
+  Eigen::Matrix3d M_a = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Matrix3d M_g = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Matrix3d A = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d C_gyro_i_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d ry_i = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d rz_i = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+};
+
 struct CalibrationResult {
   std::vector<CameraEstimate> cameras;
   Camchain camchain;  // the estimated camchain (intrinsics as given)
@@ -264,6 +283,11 @@ struct CalibrationResult {
   double target_scale = std::numeric_limits<double>::quiet_NaN();
   double target_scale_std = std::numeric_limits<double>::quiet_NaN();
   double target_scale_used = 1.0;
+
+  // The IMU's model (CalibrateOptions::imu_model): the estimate (the single IMU is the reference:
+  // C_i_b = I, r_b = 0, time_offset 0) and its standard deviations (NaN for kCalibrated).
+  ImuCalibration imu_model;
+  ImuModelStd imu_model_std;
 
   SolveSummary solve;  // rounds: the time windows were rebuilt or the pixel noise re-estimated
   // The largest factor by which a reported std exceeds the noise model's (the cluster-robust

@@ -31,15 +31,18 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <unordered_map>
 #include <vector>
 
 #include "splinecal/estimation/bias_spline.h"
 #include "splinecal/estimation/gravity_manifold.h"
+#include "splinecal/estimation/imu_model_costs.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_model_kind.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
 #include "splinecal/lie/se3.h"
@@ -130,6 +133,25 @@ class SplineProblem {
   // The knot caches shared by the analytic residuals (nullptr when not shared).
   SplineEvaluationCallback* evaluation_callback() const { return callback_.get(); }
 
+  // Kalibr's IMU model of the residuals (imu/imu_model_kind.h). kCalibrated, the default, is the
+  // analytic residuals of estimation/imu_costs.h; another model makes its parameters
+  // (ImuModelParameters, at their current values) blocks of the problem at Reset() and
+  // AddImuResiduals adds estimation/imu_model_costs.h's residuals, one gyro and one accel block
+  // per segment. Call Reset() after changing it.
+  void SetImuModel(ImuModelKind kind) { imu_model_kind_ = kind; }
+  ImuModelKind imu_model_kind() const { return imu_model_kind_; }
+  ImuModelParameters* imu_model() { return &imu_model_; }
+  const ImuModelParameters& imu_model() const { return imu_model_; }
+  // The model's blocks in problem(), in the order m_a, m_g, a, phi_gyro_i (, ry_i, rz_i); empty
+  // for kCalibrated.
+  std::vector<double*> ImuModelBlocks();
+  // Holds entry `index` of model block `block` at its nominal value from the next Reset() on (a
+  // parameter the recording does not determine, estimation/imu_model_observability.h): the
+  // block gets a ceres::SubsetManifold, or is constant when every entry is held.
+  void HoldImuModelEntry(double* block, int index);
+  // The held entries of `block`, increasing (its tangent skips them).
+  std::vector<int> HeldImuModelEntries(const double* block) const;
+
   // Values.
   std::vector<SE3d> ControlPoses() const;
   void SetControlPoses(const std::vector<SE3d>& control_poses);  // same count; refreshes caches
@@ -195,6 +217,10 @@ class SplineProblem {
   std::vector<double> gyro_bias_values_;   // 3 per control point
   std::vector<double> accel_bias_values_;
   std::array<double, 3> gravity_ = {0.0, 0.0, -kDefaultGravity};
+  ImuModelKind imu_model_kind_ = ImuModelKind::kCalibrated;
+  ImuModelParameters imu_model_;
+  std::map<const double*, std::vector<int>> held_model_entries_;
+  std::vector<std::unique_ptr<ceres::Manifold>> held_model_manifolds_;  // of the last Reset
   SE3Manifold se3_manifold_;
   GravityManifold gravity_manifold_;
   std::unique_ptr<SplineEvaluationCallback> callback_;

@@ -1,0 +1,70 @@
+// The IMU residuals of one spline segment under Kalibr's scale-misalignment models
+// (imu/imu_intrinsic_model.h, docs/imu_models.md), differentiated by Ceres' automatic
+// differentiation: the spline's body motion (w_b, dw_b, f_b) at each sample, evaluated in the
+// scalar type from the segment's four control poses, goes through PredictImuReadings. The chain
+// from the angular acceleration dw_b (the size effect and the lever arm need it) to the control
+// poses has no analytic Jacobian yet; autodiff gives it exactly, at the cost of speed (one pass
+// per kImuModelStride parameters).
+//
+// Parameter blocks (ImuModelParameters holds their values):
+//   gyro:   4 control poses (7 each), the segment's gyro bias points (3 each), g_w (3; f_b enters
+//           through the g-sensitivity A), m_g (6), a (9), phi_gyro_i (3)
+//   accel:  4 control poses, the segment's accel bias points, g_w, m_a (6)
+//           (+ ry_i (3), rz_i (3) for scale-misalignment-size-effect)
+// m_a, m_g, a: imu/matrix_parameters.h's layouts. C_gyro_i = Exp(phi_gyro_i) (a rotation vector
+// about the nominal identity: Euclidean, so its standard deviation is in radians per axis). The
+// IMU is the reference one (C_i_b = I, r_b = 0: the spline's frame is its accelerometer frame).
+#ifndef SPLINECAL_ESTIMATION_IMU_MODEL_COSTS_H_
+#define SPLINECAL_ESTIMATION_IMU_MODEL_COSTS_H_
+
+#include <ceres/cost_function.h>
+
+#include <array>
+#include <vector>
+
+#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/imu/imu_intrinsics.h"
+#include "splinecal/imu/imu_model_kind.h"
+
+namespace splinecal {
+
+// Parameters per DynamicAutoDiffCostFunction pass.
+inline constexpr int kImuModelStride = 8;
+
+// The values of the model's parameter blocks, nominal by default (the `calibrated` model).
+struct ImuModelParameters {
+  std::array<double, kLowerTriangularParameters> m_a = {1.0, 0.0, 1.0, 0.0, 0.0, 1.0};
+  std::array<double, kLowerTriangularParameters> m_g = {1.0, 0.0, 1.0, 0.0, 0.0, 1.0};
+  std::array<double, kFullMatrixParameters> a = {};
+  std::array<double, 3> phi_gyro_i = {};
+  std::array<double, 3> ry_i = {};
+  std::array<double, 3> rz_i = {};
+
+  // As ImuIntrinsics (C_i_b = I, r_b = 0).
+  template <typename T>
+  static ImuIntrinsics<T> Intrinsics(const T* m_a,
+                                     const T* m_g,
+                                     const T* a,
+                                     const T* phi_gyro_i,
+                                     const T* ry_i,
+                                     const T* rz_i);
+  ImuIntrinsicsd Intrinsics() const;
+};
+
+// The segment's samples and how many bias points each block list carries (1 or 4).
+struct ImuModelSegment {
+  ImuModelKind kind = ImuModelKind::kScaleMisalignment;
+  ImuResidualSegment segment;
+  std::vector<ImuResidualSample> samples;
+  int bias_blocks = 1;
+};
+
+// The gyro or accelerometer residuals (predicted - measured) / sigma, as estimation/imu_costs.h,
+// of every sample of the segment; the caller owns the result and passes the blocks in the order
+// above.
+ceres::CostFunction* NewImuModelGyroCost(const ImuModelSegment& segment);
+ceres::CostFunction* NewImuModelAccelCost(const ImuModelSegment& segment);
+
+}  // namespace splinecal
+
+#endif  // SPLINECAL_ESTIMATION_IMU_MODEL_COSTS_H_

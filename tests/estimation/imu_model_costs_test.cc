@@ -1,0 +1,281 @@
+#include "splinecal/estimation/imu_model_costs.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "splinecal/estimation/imu_autodiff_costs.h"
+#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/imu/imu_intrinsic_model.h"
+#include "splinecal/lie/se3_manifold.h"
+#include "splinecal/spline/trajectory_evaluation.h"
+
+namespace splinecal {
+namespace {
+
+// Autodiff and the analytic Jacobians are exact derivatives of the same double-precision
+// function: they differ by rounding (~1e-14 of the O(10) entries), so 1e-9 relative to
+// max(1, |entry|) has a wide margin.
+constexpr double kExactTolerance = 1e-9;
+// Central differences with step 1e-6: truncation ~1e-12 |f'''|, rounding ~1e-16 |f| / 1e-6,
+// relative to the block's largest entry.
+constexpr double kNumericTolerance = 1e-6;
+constexpr double kDtS = 0.1;
+
+struct Evaluation {
+  Eigen::VectorXd residuals;
+  std::vector<Eigen::MatrixXd> jacobians;  // ambient, per block
+};
+
+Evaluation Evaluate(const ceres::CostFunction& cost, const std::vector<double*>& blocks) {
+  Evaluation e;
+  const int rows = cost.num_residuals();
+  e.residuals.resize(rows);
+  std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J;
+  std::vector<double*> pointers;
+  for (int size : cost.parameter_block_sizes()) J.emplace_back(rows, size);
+  for (auto& j : J) pointers.push_back(j.data());
+  EXPECT_TRUE(cost.Evaluate(blocks.data(), e.residuals.data(), pointers.data()));
+  for (auto& j : J) e.jacobians.emplace_back(j);
+  return e;
+}
+
+double RelativeError(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff());
+}
+
+// Four lively control poses (rotation steps ~0.35 rad, translation ~1 m per 0.1 s knot).
+struct Fixture {
+  std::vector<std::array<double, 7>> poses;
+  std::vector<std::array<double, 3>> gyro_bias;
+  std::vector<std::array<double, 3>> accel_bias;
+  std::array<double, 3> gravity = {0.3, -0.2, -9.8};
+  ImuModelParameters model;
+
+  explicit Fixture(uint64_t seed) {
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    std::normal_distribution<double> normal(0.0, 1.0);
+    SE3d T = SE3d::Exp((Vector6d() << 1.0, -2.0, 0.5, 0.3, -1.2, 2.0).finished());
+    poses.resize(4);
+    for (auto& pose : poses) {
+      Vector6d xi;
+      for (int k = 0; k < 6; ++k) xi[k] = (k < 3 ? 1.0 : 0.35) * normal(rng);
+      T = T * SE3d::Exp(xi);
+      PoseToBlock(T, pose.data());
+    }
+    gyro_bias.resize(4);
+    accel_bias.resize(4);
+    for (int j = 0; j < 4; ++j) {
+      for (int a = 0; a < 3; ++a) {
+        gyro_bias[j][a] = 0.01 * normal(rng);
+        accel_bias[j][a] = 0.1 * normal(rng);
+      }
+    }
+  }
+  // A miscalibrated IMU: scale 2%, misalignment 0.01, A 0.005, C_gyro_i 0.02 rad, lever arms
+  // of a few cm (values of the order Rehder et al. report, magnified).
+  void Perturb(bool rotate_gyro) {
+    model.m_a = {1.02, 0.01, 0.98, -0.012, 0.008, 1.01};
+    model.m_g = {0.99, -0.01, 1.015, 0.007, -0.009, 1.02};
+    for (int j = 0; j < 9; ++j) model.a[j] = 0.005 * (j % 3 - 1) + 0.001 * j;
+    if (rotate_gyro) model.phi_gyro_i = {0.02, -0.015, 0.01};
+    model.ry_i = {0.01, 0.03, -0.02};
+    model.rz_i = {-0.02, 0.01, 0.04};
+  }
+  std::vector<double*> Common(int nb, bool gyro) {
+    std::vector<double*> p;
+    for (auto& pose : poses) p.push_back(pose.data());
+    for (int j = 0; j < nb; ++j) p.push_back(gyro ? gyro_bias[j].data() : accel_bias[j].data());
+    p.push_back(gravity.data());
+    return p;
+  }
+  std::vector<double*> GyroBlocks(int nb) {
+    std::vector<double*> p = Common(nb, true);
+    p.insert(p.end(), {model.m_g.data(), model.a.data(), model.phi_gyro_i.data()});
+    return p;
+  }
+  std::vector<double*> AccelBlocks(int nb, ImuModelKind kind) {
+    std::vector<double*> p = Common(nb, false);
+    p.push_back(model.m_a.data());
+    if (kind == ImuModelKind::kScaleMisalignmentSizeEffect) {
+      p.insert(p.end(), {model.ry_i.data(), model.rz_i.data()});
+    }
+    return p;
+  }
+};
+
+ImuModelSegment MakeModelSegment(ImuModelKind kind, int nb, double sigma, bool gyro) {
+  ImuModelSegment s;
+  s.kind = kind;
+  s.segment.segment_index = 2;
+  s.segment.dt_s = kDtS;
+  s.segment.sigma = sigma;
+  s.bias_blocks = nb;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (double u : {0.0, 0.37, 0.81}) {
+    ImuResidualSample sample;
+    sample.u = u;
+    for (int a = 0; a < 3; ++a) sample.measured[a] = (gyro ? 1.0 : 10.0) * normal(rng);
+    if (nb == 4) sample.bias_weights = {0.1, 0.5, 0.3, 0.1};
+    s.samples.push_back(sample);
+  }
+  return s;
+}
+
+// At the nominal model the residuals are the `calibrated` model's: the same values and pose,
+// bias and gravity Jacobians as the analytic costs of estimation/imu_costs.h.
+TEST(ImuModelCosts, AtNominalEqualTheAnalyticCalibratedCosts) {
+  for (int nb : {1, 4}) {
+    Fixture f(3);
+    const ImuModelSegment gyro_segment =
+        MakeModelSegment(ImuModelKind::kScaleMisalignmentSizeEffect, nb, 0.01, true);
+    const ImuModelSegment accel_segment =
+        MakeModelSegment(ImuModelKind::kScaleMisalignmentSizeEffect, nb, 0.1, false);
+    const std::unique_ptr<ceres::CostFunction> gyro(NewImuModelGyroCost(gyro_segment));
+    const std::unique_ptr<ceres::CostFunction> accel(NewImuModelAccelCost(accel_segment));
+    const Evaluation g = Evaluate(*gyro, f.GyroBlocks(nb));
+    const Evaluation a = Evaluate(*accel, f.AccelBlocks(nb, gyro_segment.kind));
+    for (size_t k = 0; k < gyro_segment.samples.size(); ++k) {
+      std::unique_ptr<ceres::CostFunction> g_ref(
+          NewAutoDiffGyroCost(nb, gyro_segment.segment, gyro_segment.samples[k]));
+      std::unique_ptr<ceres::CostFunction> a_ref(
+          NewAutoDiffAccelCost(nb, accel_segment.segment, accel_segment.samples[k]));
+      std::vector<double*> gyro_blocks = f.Common(nb, true);
+      gyro_blocks.pop_back();  // the calibrated gyro does not read gravity
+      const Evaluation g0 = Evaluate(*g_ref, gyro_blocks);
+      const Evaluation a0 = Evaluate(*a_ref, f.Common(nb, false));
+      EXPECT_LE(RelativeError(g.residuals.segment<3>(3 * k), g0.residuals), kExactTolerance);
+      EXPECT_LE(RelativeError(a.residuals.segment<3>(3 * k), a0.residuals), kExactTolerance);
+      for (size_t b = 0; b < gyro_blocks.size(); ++b) {
+        EXPECT_LE(RelativeError(g.jacobians[b].middleRows<3>(3 * k), g0.jacobians[b]),
+                  kExactTolerance) << "gyro block " << b;
+      }
+      // With A = 0 the gyro does not depend on gravity.
+      EXPECT_EQ(g.jacobians[4 + nb].middleRows<3>(3 * k).cwiseAbs().maxCoeff(), 0.0);
+      for (int b = 0; b < 5 + nb; ++b) {
+        EXPECT_LE(RelativeError(a.jacobians[b].middleRows<3>(3 * k), a0.jacobians[b]),
+                  kExactTolerance) << "accel block " << b;
+      }
+    }
+  }
+}
+
+// Away from nominal: the residuals are PredictImuReadings' on the segment's motion, and the
+// Jacobians of the model's blocks are imu/imu_intrinsic_model.h's analytic ones.
+TEST(ImuModelCosts, ModelJacobiansMatchTheAnalyticModel) {
+  for (ImuModelKind kind :
+       {ImuModelKind::kScaleMisalignment, ImuModelKind::kScaleMisalignmentSizeEffect}) {
+    Fixture f(4);
+    // phi = 0 keeps d C_gyro_i / d phi the right perturbation's (Exp's Jacobian at 0 is I).
+    f.Perturb(/*rotate_gyro=*/false);
+    const double sigma_g = 0.01;
+    const double sigma_a = 0.1;
+    const ImuModelSegment gs = MakeModelSegment(kind, 1, sigma_g, true);
+    const ImuModelSegment as = MakeModelSegment(kind, 1, sigma_a, false);
+    const std::unique_ptr<ceres::CostFunction> gyro(NewImuModelGyroCost(gs));
+    const std::unique_ptr<ceres::CostFunction> accel(NewImuModelAccelCost(as));
+    const Evaluation g = Evaluate(*gyro, f.GyroBlocks(1));
+    const Evaluation a = Evaluate(*accel, f.AccelBlocks(1, kind));
+    std::vector<double*> pose_blocks = f.Common(1, true);
+    const SegmentKnotData<double> data =
+        internal::KnotDataFromBlocks<double>(pose_blocks.data());
+    const ImuIntrinsicsd p = f.model.Intrinsics();
+    for (size_t k = 0; k < gs.samples.size(); ++k) {
+      const Segment<double> seg = splinecal::MakeSegment(2, gs.samples[k].u, kDtS);
+      BodyMotion<double> motion;
+      Eigen::Matrix3d R_w_s;
+      Eigen::Vector3d a_s;
+      internal::EvaluateSegmentBody(TrajectoryModel::kSE3, data.knots(), seg, nullptr, &R_w_s,
+                                    &motion.w_b, &motion.dw_b, nullptr, &a_s);
+      motion.f_b = a_s - R_w_s.transpose() * Eigen::Map<const Eigen::Vector3d>(f.gravity.data());
+      Eigen::Vector3d gyro_pred;
+      Eigen::Vector3d accel_pred;
+      ImuGyroJacobians Jg;
+      ImuAccelJacobians Ja;
+      PredictImuReadings(kind, p, motion, Eigen::Map<const Eigen::Vector3d>(f.gyro_bias[0].data()),
+                         Eigen::Map<const Eigen::Vector3d>(f.accel_bias[0].data()), &gyro_pred,
+                         &accel_pred, &Jg, &Ja);
+      EXPECT_LE(RelativeError(g.residuals.segment<3>(3 * k),
+                              (gyro_pred - gs.samples[k].measured) / sigma_g),
+                kExactTolerance);
+      EXPECT_LE(RelativeError(a.residuals.segment<3>(3 * k),
+                              (accel_pred - as.samples[k].measured) / sigma_a),
+                kExactTolerance);
+      EXPECT_LE(RelativeError(sigma_g * g.jacobians[6].middleRows<3>(3 * k), Jg.M_g),
+                kExactTolerance);
+      EXPECT_LE(RelativeError(sigma_g * g.jacobians[7].middleRows<3>(3 * k), Jg.A),
+                kExactTolerance);
+      EXPECT_LE(RelativeError(sigma_g * g.jacobians[8].middleRows<3>(3 * k), Jg.phi_gyro_i),
+                kExactTolerance);
+      EXPECT_LE(RelativeError(sigma_a * a.jacobians[6].middleRows<3>(3 * k), Ja.M_a),
+                kExactTolerance);
+      if (kind == ImuModelKind::kScaleMisalignmentSizeEffect) {
+        EXPECT_LE(RelativeError(sigma_a * a.jacobians[7].middleRows<3>(3 * k), Ja.ry_i),
+                  kExactTolerance);
+        EXPECT_LE(RelativeError(sigma_a * a.jacobians[8].middleRows<3>(3 * k), Ja.rz_i),
+                  kExactTolerance);
+        EXPECT_GT(Ja.ry_i.cwiseAbs().maxCoeff(), 0.0);  // the size effect is exercised
+      }
+    }
+  }
+}
+
+// Every block, poses through their manifold, against central differences: the chain from the
+// angular acceleration dw_b (size effect) to the control poses included.
+TEST(ImuModelCosts, JacobiansMatchNumericDifferentiation) {
+  const SE3Manifold se3;
+  for (int nb : {1, 4}) {
+    Fixture f(5);
+    f.Perturb(/*rotate_gyro=*/true);
+    const ImuModelKind kind = ImuModelKind::kScaleMisalignmentSizeEffect;
+    const std::unique_ptr<ceres::CostFunction> gyro(
+        NewImuModelGyroCost(MakeModelSegment(kind, nb, 0.01, true)));
+    const std::unique_ptr<ceres::CostFunction> accel(
+        NewImuModelAccelCost(MakeModelSegment(kind, nb, 0.1, false)));
+    for (bool is_gyro : {true, false}) {
+      const ceres::CostFunction& cost = is_gyro ? *gyro : *accel;
+      std::vector<double*> blocks = is_gyro ? f.GyroBlocks(nb) : f.AccelBlocks(nb, kind);
+      const Evaluation e = Evaluate(cost, blocks);
+      for (size_t i = 0; i < blocks.size(); ++i) {
+        const int ambient = cost.parameter_block_sizes()[i];
+        const bool pose = i < 4;
+        const int tangent = pose ? 6 : ambient;
+        Eigen::MatrixXd plus = Eigen::MatrixXd::Identity(ambient, tangent);
+        if (pose) {
+          Eigen::Matrix<double, 7, 6, Eigen::RowMajor> pj;
+          se3.PlusJacobian(blocks[i], pj.data());
+          plus = pj;
+        }
+        const Eigen::MatrixXd J = e.jacobians[i] * plus;
+        Eigen::MatrixXd J_numeric(cost.num_residuals(), tangent);
+        const std::vector<double> original(blocks[i], blocks[i] + ambient);
+        constexpr double kStep = 1e-6;
+        for (int c = 0; c < tangent; ++c) {
+          Eigen::VectorXd r[2];
+          for (int side = 0; side < 2; ++side) {
+            Eigen::VectorXd delta = Eigen::VectorXd::Zero(tangent);
+            delta[c] = side == 0 ? kStep : -kStep;
+            if (pose) {
+              se3.Plus(original.data(), delta.data(), blocks[i]);
+            } else {
+              for (int k = 0; k < ambient; ++k) blocks[i][k] = original[k] + delta[k];
+            }
+            r[side].resize(cost.num_residuals());
+            cost.Evaluate(blocks.data(), r[side].data(), nullptr);
+          }
+          std::copy(original.begin(), original.end(), blocks[i]);
+          J_numeric.col(c) = (r[0] - r[1]) / (2.0 * kStep);
+        }
+        EXPECT_LE(RelativeError(J, J_numeric), kNumericTolerance)
+            << (is_gyro ? "gyro" : "accel") << " block " << i << " nb " << nb;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace splinecal
