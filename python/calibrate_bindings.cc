@@ -13,6 +13,7 @@
 #include "splinecal/calib/calibrate_run.h"
 #include "splinecal/calib/camera_selection.h"
 #include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/imu_model_kind.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/target_yaml.h"
@@ -32,6 +33,7 @@ py::dict CalibrateFunction(py::handle imu,
                            py::object imu_yaml,
                            const std::string& imu_noise,
                            bool rolling_shutter,
+                           const std::string& imu_model,
                            const std::string& intrinsics,
                            const std::string& camera_chain,
                            const std::string& target_scale,
@@ -56,6 +58,9 @@ py::dict CalibrateFunction(py::handle imu,
   CalibrateOptions options;
   ApplyEstimateArguments(arguments, &options.model, &options.solver);
   options.rolling_shutter = rolling_shutter;
+  if (!ParseImuModelKind(imu_model, &options.imu_model)) {
+    throw py::value_error("imu_model: '" + imu_model + "' is not one of " + ImuModelNames());
+  }
   options.estimate_time_offset = !no_time_offset;
   options.intrinsics = ParseParameterMode(
       "intrinsics", intrinsics, estimate_intrinsics, ParameterMode::kFree, "estimate_intrinsics");
@@ -128,6 +133,7 @@ void BindCalibrate(py::module_& m) {
         py::arg("imu_yaml") = py::none(),
         py::arg("imu_noise") = "estimated",
         py::arg("rolling_shutter") = false,
+        py::arg("imu_model") = "calibrated",
         py::arg("intrinsics") = "",
         py::arg("camera_chain") = "",
         py::arg("target_scale") = "check",
@@ -152,8 +158,10 @@ EuRoC imu0/data.csv path or {t_ns, gyro, accel}; observations: an observations.c
 {t_ns, cam_id, point_id, uv}; camchain and target: Kalibr YAML paths (target None: natural
 landmarks only, which needs initial_poses: a EuRoC ground truth / TUM path or {t_ns, T_w_s});
 cameras: "0,2" or [0, 2] (default: all); intrinsics, camera_chain: "held", "prior" or "free"
-("": the camchain decides, docs/calibrate.md); target_scale: "check", "free" or "held". out: a folder to write the command's files to
-(camchain-imucam.yaml, result.yaml, reprojection_errors.csv, spline.csv, report.html).
+("": the camchain decides, docs/calibrate.md); target_scale: "check", "free" or "held";
+imu_model: Kalibr's "calibrated", "scale-misalignment" or "scale-misalignment-size-effect"
+(docs/imu_models.md). out: a folder to write the command's files to (camchain-imucam.yaml,
+result.yaml, reprojection_errors.csv, spline.csv, report.html; imu_models.yaml with a model).
 Returns result.yaml's keys plus se3_spline (SE3Spline). Ctrl-C stops the solve
 (KeyboardInterrupt).)");
 }

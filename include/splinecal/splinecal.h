@@ -131,6 +131,8 @@
 #include "splinecal/estimation/gravity_tangent.h"
 #include "splinecal/estimation/imu_autodiff_costs.h"
 #include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/imu_model_costs.h"
+#include "splinecal/estimation/imu_model_observability.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/imu_noise_mode.h"
 #include "splinecal/estimation/interval_manifold.h"
