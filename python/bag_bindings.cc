@@ -78,13 +78,7 @@ py::dict BagExtract(py::handle bags, py::handle out, py::handle topics,
   for (const std::string& path : paths) name += (name.empty() ? "" : ",") + path;
   BagExtractOptions options;
   const std::string list = topics.is_none() ? "" : CommaListArgument(topics, "topics");
-  for (size_t begin = 0; !list.empty();) {
-    const size_t comma = list.find(',', begin);
-    options.topics.push_back(list.substr(begin, comma - begin));
-    if (options.topics.back().empty()) throw py::value_error("topics: an empty topic");
-    if (comma == std::string::npos) break;
-    begin = comma + 1;
-  }
+  if (!list.empty()) options.topics = SplitCommaList(list, "topics", "topic");
   options.time = ParseBagTime(bag_time);
   const std::unique_ptr<BagReader> bag = OpenBag(paths);
   ChooseExtractedTopics(*bag, options, name);  // a bad topic before the folder is made

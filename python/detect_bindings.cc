@@ -207,14 +207,7 @@ py::object Detect(py::handle images_argument, py::handle target, const std::stri
     BagImageSource source;
     source.paths = BagPaths(bag);
     if (const std::optional<std::string> topics = AsPath(image_topics)) {
-      size_t begin = 0;
-      while (true) {
-        const size_t comma = topics->find(',', begin);
-        source.topics.push_back(topics->substr(begin, comma - begin));
-        if (source.topics.back().empty()) throw py::value_error("image_topics: an empty topic");
-        if (comma == std::string::npos) break;
-        begin = comma + 1;
-      }
+      source.topics = SplitCommaList(*topics, "image_topics", "topic");
     } else if (std::optional<std::vector<std::string>> list =
                    PathList(image_topics, "image_topics", "topics")) {
       source.topics = *list;

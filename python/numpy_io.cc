@@ -82,6 +82,19 @@ std::string CommaListArgument(py::handle object, const std::string& name) {
   return text;
 }
 
+std::vector<std::string> SplitCommaList(const std::string& text,
+                                        const std::string& name,
+                                        const std::string& entry) {
+  std::vector<std::string> items;
+  for (size_t begin = 0;;) {
+    const size_t comma = text.find(',', begin);
+    items.push_back(text.substr(begin, comma - begin));
+    if (items.back().empty()) throw py::value_error(name + ": an empty " + entry);
+    if (comma == std::string::npos) return items;
+    begin = comma + 1;
+  }
+}
+
 double PositiveArgument(double value, const std::string& name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw py::value_error(name + ": must be a positive number, got " + std::to_string(value));

@@ -39,6 +39,12 @@ double NonNegativeArgument(double value, const std::string& name);
 // passed on as it is, a sequence of str or int is joined with commas; TypeError otherwise.
 std::string CommaListArgument(py::handle object, const std::string& name);
 
+// The entries of a comma-separated `text` of argument `name` (e.g. bag topics); ValueError
+// "<name>: an empty <entry>" for an empty one.
+std::vector<std::string> SplitCommaList(const std::string& text,
+                                        const std::string& name,
+                                        const std::string& entry);
+
 // A 3-vector argument (any sequence of three finite numbers).
 Eigen::Vector3d Vector3Argument(py::handle object, const std::string& name);
 
