@@ -1,5 +1,5 @@
-// The numerical constants and unit conversions every area shares, written once (CONVENTIONS.md:
-// SI units inside, nanoseconds for timestamps, degrees only at the user's end).
+// The numerical constants and unit conversions every area shares, written once (docs/conventions.md
+// "Time": SI units inside, nanoseconds for timestamps, degrees only at the user's end).
 #ifndef SPLINECAL_UNITS_H_
 #define SPLINECAL_UNITS_H_
 

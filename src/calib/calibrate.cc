@@ -14,7 +14,7 @@
 #include "splinecal/camera/observation_gates.h"
 
 namespace splinecal {
-namespace calibrate_internal {
+namespace internal {
 namespace {
 
 // Stops a solve (SOLVER_TERMINATE_SUCCESSFULLY) at the first iteration for which stop(summary)
@@ -488,9 +488,9 @@ bool CalibrationProblem::ReleaseLineDelays() {
   return any;
 }
 
-}  // namespace calibrate_internal
+}  // namespace internal
 
-using calibrate_internal::CalibrationProblem;
+using internal::CalibrationProblem;
 
 const char* ParameterModeName(ParameterMode mode) {
   switch (mode) {

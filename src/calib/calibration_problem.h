@@ -47,20 +47,20 @@
 
 namespace splinecal {
 
-using calibrate_internal::AddStandardDeviationWarnings;
-using calibrate_internal::CheckInputs;
-using calibrate_internal::CheckRotationExcitation;
-using calibrate_internal::CheckTargetSeen;
-using calibrate_internal::FramePeriods;
-using calibrate_internal::ImuBetween;
-using calibrate_internal::Landmark;
-using calibrate_internal::MakeLandmarks;
-using calibrate_internal::MakeTargetFrames;
-using calibrate_internal::ObservationsInsideImu;
-using calibrate_internal::SpanOfFrames;
-using calibrate_internal::TargetFrame;
+using internal::AddStandardDeviationWarnings;
+using internal::CheckInputs;
+using internal::CheckRotationExcitation;
+using internal::CheckTargetSeen;
+using internal::FramePeriods;
+using internal::ImuBetween;
+using internal::Landmark;
+using internal::MakeLandmarks;
+using internal::MakeTargetFrames;
+using internal::ObservationsInsideImu;
+using internal::SpanOfFrames;
+using internal::TargetFrame;
 
-namespace calibrate_internal {
+namespace internal {
 
 
 // Time windows of the reprojection residuals reach this far beyond the current exposure range
@@ -166,8 +166,8 @@ class CalibrationProblem {
   const std::vector<double*>& control_blocks() const { return spline_->control_blocks(); }
   ceres::Problem& problem() { return spline_->problem(); }
 
-  ReprojectionSettings Settings(int cam, double sigma, double huber) const {
-    ReprojectionSettings s;
+  ReprojectionOptions Settings(int cam, double sigma, double huber) const {
+    ReprojectionOptions s;
     s.camera = &camchain_[cam].camera;
     s.layout = layout_;
     s.model = spline_->trajectory_model();
@@ -281,7 +281,7 @@ class CalibrationProblem {
   std::vector<LandmarkResidual> landmark_residuals_;
 };
 
-}  // namespace calibrate_internal
+}  // namespace internal
 }  // namespace splinecal
 
 #endif  // SPLINECAL_SRC_CALIB_CALIBRATION_PROBLEM_H_

@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace splinecal {
-namespace calibrate_internal {
+namespace internal {
 
 MarginalCovarianceOptions CalibrationProblem::CovarianceOptionsForProblem() {
   MarginalCovarianceOptions covariance_options;
@@ -238,5 +238,5 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
             });
 }
 
-}  // namespace calibrate_internal
+}  // namespace internal
 }  // namespace splinecal

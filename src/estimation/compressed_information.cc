@@ -13,7 +13,7 @@
 #include "splinecal/run_tasks.h"
 
 namespace splinecal {
-namespace estimation_internal {
+namespace internal {
 
 namespace {
 
@@ -453,5 +453,5 @@ bool CompressedInformation::LabelTraces(std::map<int, double>* traces) const {
   return true;
 }
 
-}  // namespace estimation_internal
+}  // namespace internal
 }  // namespace splinecal

@@ -11,7 +11,7 @@
 
 namespace splinecal {
 
-RigViewCostFunction::RigViewCostFunction(const RigViewSettings& settings,
+RigViewCostFunction::RigViewCostFunction(const RigViewOptions& settings,
                                          std::vector<TargetCornerObservation> corners)
     : settings_(settings), corners_(std::move(corners)) {
   set_num_residuals(2 * static_cast<int>(corners_.size()));

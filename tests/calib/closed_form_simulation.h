@@ -12,8 +12,8 @@
 //
 // with w_s, a_w the trajectory's analytic derivatives and the noise and bias random walk of
 // sim/noise_generator.h; and each target corner exposed at t_frame + time_offset + tau with
-// tau = line_delay * v(tau) (CONVENTIONS.md "Rolling shutter"), solved by fixed-point
-// iteration (the map's slope is line_delay * dv/dt, a few percent for real motion).
+// tau = line_delay * v(tau) (docs/conventions.md "Camera, time offset, rolling shutter"), solved by
+// fixed-point iteration (the map's slope is line_delay * dv/dt, a few percent for real motion).
 //
 // Trajectory time: (t_ns - start_ns) * 1e-9 s, IMU clock.
 #ifndef SPLINECAL_TESTS_CALIB_CLOSED_FORM_SIMULATION_H_

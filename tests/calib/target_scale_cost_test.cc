@@ -81,7 +81,7 @@ class TargetScaleCostTest : public ::testing::Test {
   }
 
   testing::CameraTestScene scene_;
-  ReprojectionSettings settings_;
+  ReprojectionOptions settings_;
   SE3Manifold manifold_;
 };
 
@@ -129,9 +129,10 @@ TEST_F(TargetScaleCostTest, ScaledTranslationsSeeTheScaledTargetAndJacobiansMatc
       CHECK(cost.Evaluate(p.data(), out.data(), nullptr));
       return out;
     };
-    testutil::RiddersOptions options;
+    testing::RiddersOptions options;
     options.initial_step = pose ? 1e-3 : 1e-3 * std::max(1e-6, std::abs(x0[0]));
-    const Eigen::MatrixXd numeric = testutil::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
+    const Eigen::MatrixXd numeric =
+        testing::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
     const Eigen::MatrixXd analytic = J.middleCols(column, tangent);
     column += tangent;
     const double largest = std::max(analytic.cwiseAbs().maxCoeff(), 1e-12);

@@ -114,11 +114,11 @@ TEST(CameraJacobians, ProjectMatchesCentralDifferences) {
       Eigen::Matrix<double, 2, 3> J_p;
       Eigen::Matrix<double, 2, kNumIntrinsics> J_k;
       ASSERT_TRUE(c.camera.Project(p, nullptr, &J_p, &J_k)) << c.label;
-      const Eigen::MatrixXd J_p_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_p_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::Vector3d& q) { return PixelOf(c.camera, k, q); },
           p,
           kFiniteDifferenceStep);
-      const Eigen::MatrixXd J_k_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_k_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::VectorXd& moved) { return PixelOf(c.camera, moved, p); },
           k,
           kFiniteDifferenceStep);
@@ -142,14 +142,14 @@ TEST(CameraJacobians, UnprojectJacobiansMatchCentralDifferences) {
       // Steps: 1e-3 px on uv; the ray is O(1..10) with third derivatives O(1e-6) per px^3, so
       // central differences are good to ~1e-12 (rounding eps |ray| / h ~ 1e-12 too). The
       // entries are ~1/f ~ 1e-3: the tolerance is relative to the largest, not to 1.
-      const Eigen::MatrixXd J_uv_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_uv_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::Vector2d& q) { return RayOf(c.camera, k, q); }, uv, 1e-3);
       EXPECT_LT((J_uv - J_uv_num).cwiseAbs().maxCoeff(), 1e-6 * J_uv.cwiseAbs().maxCoeff())
           << Where(c, p) << "\n"
           << J_uv << "\nvs\n"
           << J_uv_num;
       // 1e-6 on the intrinsics: rounding eps |ray| / h ~ 1e-9 against entries up to O(1).
-      const Eigen::MatrixXd J_k_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_k_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::VectorXd& moved) { return RayOf(c.camera, moved, uv); }, k, 1e-6);
       ExpectJacobianNear(J_k, J_k_num, 1e-6, Where(c, p) + ", d ray / d intrinsics");
     }
@@ -227,7 +227,7 @@ TEST(CameraJacobians, FovWithTinyWMatchesAutodiffAndCentralDifferences) {
   ExpectJacobianNear(J_k, J_k_auto, kAutodiffTolerance, "fov, tiny w, d uv / d intrinsics");
   // d uv / d w at w = 3e-6: fu x 2 w (1/12 - r^2/3) ~ 1e-4 px/rad; central differences in w
   // with a step of 1e-7 (below w, so both sides stay in the series branch).
-  const Eigen::MatrixXd J_num = testutil::CentralDifferenceJacobian(
+  const Eigen::MatrixXd J_num = testing::CentralDifferenceJacobian(
       [&](const Eigen::VectorXd& moved) { return PixelOf(camera, moved, p); },
       camera.intrinsics(),
       1e-7);

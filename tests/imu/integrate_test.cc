@@ -46,7 +46,7 @@ AnalyticData MakeAnalyticData(const AnalyticTrajectory& trajectory,
     ImuSample sample;
     sample.t_ns = t_ns;
     sample.gyro = state.w_s;
-    // CONVENTIONS.md: accel = R_w_s^T (a_w - g_w).
+    // docs/conventions.md "IMU model": accel = R_w_s^T (a_w - g_w).
     sample.accel = state.T_w_s.so3().inverse() * (state.a_w - kGravityW);
     data.imu.push_back(sample);
     GroundTruthState truth;

@@ -5,7 +5,7 @@
 //
 // Model. Rotation control points R_k and position control points p_k, k = 0..n-1, at knot times
 // t_k = t0 + k dt. For t in [t_i, t_{i+1}), u = (t - t_i) / dt, with the cumulative coefficients
-// b_j = Bt_j(u) of CONVENTIONS.md "The spline" (j = 1..3) and the segment's control points
+// b_j = Bt_j(u) of docs/conventions.md "The spline" (j = 1..3) and the segment's control points
 // R_0..R_3 = R_{i-1}..R_{i+2} (likewise p):
 //
 //     R(t) = R_0 A_1 A_2 A_3,   A_j = Exp(b_j phi_j),   phi_j = Log(R_{j-1}^T R_j)
@@ -171,7 +171,8 @@ struct Query {
   std::array<double, 4> b_ddot{};
 };
 
-// d/du of the cumulative basis C [1 u u^2 u^3]^T, C of CONVENTIONS.md, written out per row.
+// d/du of the cumulative basis C [1 u u^2 u^3]^T, C of docs/conventions.md "The spline", written
+// out per row.
 inline Query MakeQuery(int index, double u, double dt_s) {
   const double u2 = u * u;
   const double u3 = u2 * u;

@@ -2,7 +2,7 @@
 // [Lovegrove13], [seed002]). docs/calibrate.md is the user's guide; this comment is the
 // contract.
 //
-// The problem (CONVENTIONS.md for frames, units, T_cam_imu, the time offset, line_delay):
+// The problem (docs/conventions.md for frames, units, T_cam_imu, the time offset, line_delay):
 //
 //   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (estimation/imu_costs.h)
 //           + sum_m |r_rw,m|^2                         bias random walk (estimation/bias_costs.h)

@@ -4,7 +4,7 @@
 // ceres::Covariance and plain-words warnings where the data does not determine a parameter.
 // docs/fit.md is the user's guide; this comment is the contract.
 //
-// The problem (CONVENTIONS.md for frames, units and the IMU model):
+// The problem (docs/conventions.md for frames, units and the IMU model):
 //
 //   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2       every IMU sample in the overlap
 //           + sum_j |r_pose,j|^2                      every pose in the overlap
@@ -85,9 +85,9 @@ struct FitOptions {
   bool estimate_time_offset = false;
   double time_offset_s = 0.0;
   double max_time_offset_s = 0.1;  // search range +-max [s] when estimated
-  // Extrinsic T_m_s: the IMU s in the pose source's frame m (CONVENTIONS.md frames; maps
-  // IMU-frame points into m). Fixed, or the initial guess when estimated. result.yaml writes it
-  // under the key T_pose_imu.
+  // Extrinsic T_m_s: the IMU s in the pose source's frame m (docs/conventions.md "Frames and
+  // notation"; maps IMU-frame points into m). Fixed, or the initial guess when estimated.
+  // result.yaml writes it under the key T_pose_imu.
   bool estimate_extrinsic = false;
   SE3d T_m_s;
   // Levenberg-Marquardt, up to 4 rounds (pose residuals re-attached after the time offset moved

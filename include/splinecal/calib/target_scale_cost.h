@@ -8,7 +8,7 @@
 // divided by s. Scaling translations is an automorphism of SE(3) that commutes with Exp and Log,
 // so the spline of the scaled control poses is the scaled spline, in both trajectory models
 // (spline/trajectory_model.h), with the same exposure times (the pixels do not change). With a
-// held camera chain (ReprojectionSettings::T_cam_cref) the chain's translation scales with the
+// held camera chain (ReprojectionOptions::T_cam_cref) the chain's translation scales with the
 // target too: it came from a camera calibration with the same target.
 //
 // Jacobians from the unscaled frame's ambient pose Jacobians J' (translation columns J'_t, at

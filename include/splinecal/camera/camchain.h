@@ -1,4 +1,4 @@
-// A camera rig as Kalibr describes it in camchain.yaml / camchain-imucam.yaml (CONVENTIONS.md
+// A camera rig as Kalibr describes it in camchain.yaml / camchain-imucam.yaml (docs/conventions.md
 // "Camera, time offset, rolling shutter"): per camera the intrinsics and distortion
 // (camera/camera_model.h), the image size, the extrinsic T_cam_imu, the camera-IMU time offset
 // and the rolling-shutter line delay.

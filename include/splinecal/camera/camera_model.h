@@ -1,4 +1,4 @@
-// Camera models (Kalibr's, CONVENTIONS.md "Camera ..."): projection and unprojection with
+// Camera models (Kalibr's, docs/conventions.md "Camera models"): projection and unprojection with
 // analytic Jacobians with respect to the point and to the intrinsics, valid-region checks, and
 // the names used in camchain.yaml and on the command line.
 //

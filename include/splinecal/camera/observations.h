@@ -1,8 +1,8 @@
 // Camera observations: one detected point per row of observations.csv
 // (`#t_ns,cam_id,point_id,u,v`, io/observations_csv.h): the frame's timestamp in the CAMERA clock
-// [ns] (row 0's exposure time for a rolling shutter, CONVENTIONS.md), the camera index (camN of
-// the camchain), the point id (a target corner id, camera/target.h, or a natural landmark's id)
-// and the pixel (u right, v down, pixel centres at integers).
+// [ns] (row 0's exposure time for a rolling shutter, docs/conventions.md "Time"), the camera index
+// (camN of the camchain), the point id (a target corner id, camera/target.h, or a natural
+// landmark's id) and the pixel (u right, v down, pixel centres at integers).
 #ifndef SPLINECAL_CAMERA_OBSERVATIONS_H_
 #define SPLINECAL_CAMERA_OBSERVATIONS_H_
 

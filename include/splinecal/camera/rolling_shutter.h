@@ -1,5 +1,5 @@
-// Rolling shutter: when is a point exposed? ([Lovegrove13 §5], CONVENTIONS.md "Rolling
-// shutter").
+// Rolling shutter: when is a point exposed? ([Lovegrove13 §5], docs/conventions.md "Camera, time
+// offset, rolling shutter").
 //
 // Image row r of a frame stamped t_frame (camera clock) is exposed at t_frame + r * line_delay.
 // In the IMU clock (t_imu = t_cam + time_offset) a point seen in that frame is exposed at

@@ -1,5 +1,5 @@
 // IMU biases in `splinecal fit`: constant, or a uniform cubic B-spline in R^3 with a random-walk
-// prior weighted by Kalibr's random-walk density ([Kalibr], CONVENTIONS.md "IMU model").
+// prior weighted by Kalibr's random-walk density ([Kalibr], docs/conventions.md "IMU model").
 //
 // Bias spline. Control points c_m in R^3 at bias knot times tb_m = tb_0 + m db (db: the bias
 // knot spacing). For t in [tb_m, tb_{m+1}), u = (t - tb_m) / db,

@@ -1,6 +1,6 @@
 // The gravity vector g_w as a Ceres parameter block with 2 degrees of freedom: its direction moves
 // on the sphere |g_w| = g, its magnitude stays what it was initialised to (--gravity,
-// CONVENTIONS.md "IMU model").
+// docs/conventions.md "IMU model").
 //
 // Block layout: double gravity[3] = g_w (ambient 3, tangent 2). Built on estimation/gravity_tangent.h
 // (a tangent basis B(g) that is well conditioned for EVERY direction of g, [seed001]):

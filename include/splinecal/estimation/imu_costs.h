@@ -2,8 +2,8 @@
 // automatic-differentiation twins, for the tests and the benchmark, are in
 // estimation/imu_autodiff_costs.h).
 //
-// Model (CONVENTIONS.md "IMU model", imu/imu_model.h, [seed000 eqs. (9)-(10)]): at an IMU time t
-// in pose-spline segment i (u = (t - t_i) / dt),
+// Model (docs/conventions.md "IMU model", imu/imu_model.h, [seed000 eqs. (9)-(10)]): at an IMU time
+// t in pose-spline segment i (u = (t - t_i) / dt),
 //
 //   gyro residual   r_g = (w_s(t) + b_g(t) - gyro_measured) / sigma_g
 //   accel residual  r_a = (R_w_s(t)^T (a_w(t) - g_w) + b_a(t) - accel_measured) / sigma_a

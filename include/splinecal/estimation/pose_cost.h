@@ -5,10 +5,11 @@
 // (estimation/pose_fit.h has a segment pose cost for fitting control poses to poses; it has no time
 // offset, no extrinsic and no sigma weights, hence this one.)
 //
-// Frames and time (CONVENTIONS.md): the pose source reports T_w_m, the pose of its body frame m;
-// the spline represents the IMU s in the same world w, on the IMU's clock. The extrinsic
-// The extrinsic T_m_s maps IMU-frame points into m, so T_w_m = T_w_s T_m_s^-1. A pose stamped
-// t_pose on the pose source's clock was taken at IMU time t = t_pose + time_offset. The residual
+// Frames and time (docs/conventions.md "Frames and notation", "Time"): the pose source reports
+// T_w_m, the pose of its body frame m; the spline represents the IMU s in the same world w, on the
+// IMU's clock. The extrinsic T_m_s maps IMU-frame points into m, so T_w_m = T_w_s T_m_s^-1. A
+// pose stamped t_pose on the pose source's clock was taken at IMU time t = t_pose + time_offset.
+// The residual
 //
 //   T_pred = T_w_s(t_pose + time_offset) T_m_s^-1
 //   r      = [ (p_pred - p_measured) / sigma_m ;  Log(R_measured^T R_pred) / sigma_rad ]   (6)

@@ -5,7 +5,7 @@
 // points (estimation/bias_spline.h) and gravity g_w (GravityManifold, |g_w| fixed) -- the
 // ceres::Problem over them, and the evaluation callback that refreshes the spline's knot caches
 // once per evaluation point (estimation/spline_evaluation_callback.h). It adds the IMU residuals
-// (estimation/imu_costs.h, CONVENTIONS.md "IMU model") and the bias random-walk prior
+// (estimation/imu_costs.h, docs/conventions.md "IMU model") and the bias random-walk prior
 // (estimation/bias_costs.h):
 //
 //   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2  +  sum_m |r_rw,m|^2  +  what the caller adds.

@@ -39,7 +39,8 @@
 
 namespace splinecal {
 
-// Standard gravity used unless the user sets another value [m/s^2] (CONVENTIONS.md).
+// Standard gravity used unless the user sets another value [m/s^2] (docs/conventions.md "IMU
+// model").
 inline constexpr double kDefaultGravity = 9.81;
 
 // g_w = (0, 0, -g): gravity in a z-up, gravity-aligned world frame.

@@ -19,7 +19,7 @@ struct ImuNoise {
   // The defaults above are the EuRoC ADIS16448 values (its sensor.yaml).
   static ImuNoise Adis16448() { return ImuNoise(); }
 
-  // Per-sample standard deviations at rate f [Hz] (CONVENTIONS.md, "IMU model"): white noise
+  // Per-sample standard deviations at rate f [Hz] (docs/conventions.md, "IMU model"): white noise
   // density * sqrt(f), random-walk step density / sqrt(f).
   double GyroWhiteStd(double rate_hz) const { return gyroscope_noise_density * std::sqrt(rate_hz); }
   double AccelWhiteStd(double rate_hz) const {

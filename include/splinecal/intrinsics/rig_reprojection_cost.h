@@ -34,7 +34,7 @@
 
 namespace splinecal {
 
-struct RigViewSettings {
+struct RigViewOptions {
   Camera model;                // the camera model (projection, distortion, size); its values unused
   bool has_extrinsic = false;  // camera n > 0: a T_cn_c0 block follows the target pose
   double sigma_px = 1.0;       // pixel noise std [px]
@@ -47,7 +47,7 @@ struct RigViewSettings {
 // residuals have alone (the intrinsics, shared by every view, would make one huge group).
 class RigViewCostFunction : public ceres::CostFunction {
  public:
-  RigViewCostFunction(const RigViewSettings& settings,
+  RigViewCostFunction(const RigViewOptions& settings,
                       std::vector<TargetCornerObservation> corners);
 
   bool Evaluate(double const* const* parameters,
@@ -57,7 +57,7 @@ class RigViewCostFunction : public ceres::CostFunction {
   const std::vector<TargetCornerObservation>& corners() const { return corners_; }
 
  private:
-  RigViewSettings settings_;
+  RigViewOptions settings_;
   std::vector<TargetCornerObservation> corners_;
 };
 

@@ -1,4 +1,4 @@
-// Kalibr's camchain.yaml / camchain-imucam.yaml (CONVENTIONS.md "File formats"), read with the
+// Kalibr's camchain.yaml / camchain-imucam.yaml (docs/conventions.md "File formats"), read with the
 // one YAML layer (io/yaml_document.h: OpenCV's %YAML:1.0 first line accepted, errors name the
 // file and the line) and written with io/yaml_writer.h.
 //

@@ -1,7 +1,8 @@
 // SE(3), the group of rigid-body motions, built from lie/so3.h.
 //
 // Conventions (binding for the whole library)
-//   * T_a_b is the pose of frame b in frame a: p_a = R_a_b p_b + t_a_b (CONVENTIONS.md).
+//   * T_a_b is the pose of frame b in frame a: p_a = R_a_b p_b + t_a_b (docs/conventions.md "Frames
+//     and notation").
 //   * Tangent vectors are xi = [rho; phi] in R^6, TRANSLATION FIRST (rho), rotation second (phi):
 //       Hat(xi) = [[Hat(phi), rho], [0, 0]]  (4x4).
 //   * ONE perturbation convention: RIGHT.  T (+) d = T * Exp(d),  d = [rho; phi].

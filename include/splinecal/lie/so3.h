@@ -2,7 +2,7 @@
 //
 // What this header implements
 //   SO3<T>            a rotation R, held as a unit quaternion q = (w, x, y, z), q and -q being the
-//                     same rotation (CONVENTIONS.md, "Frames and notation").
+//                     same rotation (docs/conventions.md, "Frames and notation").
 //   Hat / Vee         so(3) <-> R^3:  Hat(v) = [v]x, the skew matrix with [v]x p = v x p.
 //   SO3::Exp / Log    the exponential and logarithm maps (rotation vector phi = angle * axis).
 //   Right/Left Jacobians and their inverses (closed forms, Taylor series near 0).

@@ -4,8 +4,8 @@
 //
 // Frames. Camera n takes frames at t_cam_k = t_first + k / camera_rate (camera clock, t_first the
 // first stamp whose whole readout [t_cam + time_offset, t_cam + time_offset + (height - 1)
-// line_delay] lies in [start_ns, end_ns] in the IMU clock, CONVENTIONS.md). Every stamp is
-// rounded to the nanosecond once, never accumulated.
+// line_delay] lies in [start_ns, end_ns] in the IMU clock, docs/conventions.md "Time"). Every stamp
+// is rounded to the nanosecond once, never accumulated.
 //
 // A point is observed in a frame when (visibility and field-of-view checks):
 //   * its exposure time solves (Newton, camera/rolling_shutter.h; the row falls in the image),

@@ -31,8 +31,8 @@ inline constexpr int kMaxBasisDerivative = 2;
 
 namespace internal {
 
-// 6 * C, exactly as written in CONVENTIONS.md (integers, so the table is exact in binary).
-// clang-format off
+// 6 * C, exactly as written in docs/conventions.md "The spline" (integers, so the table is exact in
+// binary). clang-format off
 inline constexpr double kCumulativeBasisTimes6[kSplineOrder][kSplineOrder] = {
     {6.0, 0.0,  0.0,  0.0},
     {5.0, 3.0, -3.0,  1.0},
@@ -50,7 +50,7 @@ inline constexpr double kPowerDerivativeFactor[kMaxBasisDerivative + 1][kSplineO
 
 }  // namespace internal
 
-// The cumulative blending matrix C (4x4) of CONVENTIONS.md.
+// The cumulative blending matrix C (4x4) of docs/conventions.md "The spline".
 inline Eigen::Matrix4d CumulativeBlendingMatrix() {
   Eigen::Matrix4d C;
   for (int r = 0; r < kSplineOrder; ++r) {

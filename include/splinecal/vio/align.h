@@ -5,7 +5,8 @@
 //
 // Inputs: camera poses T_c0_c(t_k), k = 0..n-1 (the first camera frame c0 is the reference;
 // positions p_bar up to an unknown scale s, metric = s * p_bar), the IMU readings, and
-// T_cam_imu = T_c_s (CONVENTIONS.md). Frame k's IMU pose in c0:
+// T_cam_imu = T_c_s (docs/conventions.md "Camera, time offset, rolling shutter"). Frame k's IMU
+// pose in c0:
 //
 //   R_c0_sk = R_c0_ck R_c_s,     p_c0_sk = s p_bar_k + l_k,   l_k = R_c0_ck t_c_s           (1)
 //
@@ -16,8 +17,8 @@
 //          r_k = Log( dR_k(b_g)^T R_c_s^T R_ck_ck+1 R_c_s ),
 //      re-preintegrating at every new bias until the step is below a tolerance.
 //   3. Full preintegration (dp, dv, covariance) at that bias. With T_k the interval, v_k the IMU
-//      velocity in c0 and g the gravity vector in c0 (CONVENTIONS.md: points down, norm g), the
-//      preintegration model (vio/preintegration.h) and (1) give, per pair k,
+//      velocity in c0 and g the gravity vector in c0 (docs/conventions.md "IMU model": points
+//      down, norm g), the preintegration model (vio/preintegration.h) and (1) give, per pair k,
 //          s dp_bar_k + dl_k = v_k T + g T^2/2 + R_c0_sk dp_k,   v_k+1 - v_k = g T + R_c0_sk dv_k
 //      We divide by s and solve for u = 1/s, v'_k = u v_k, g' = u g (camera units):
 //          r_p = R_c0_sk^T (v'_k T + g' T^2/2 - u dl_k - dp_bar_k) + u dp_k

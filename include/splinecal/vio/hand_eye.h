@@ -3,8 +3,8 @@
 // What this header implements
 //   For frame pairs k (consecutive camera frames), the camera's relative rotation
 //   Rc_k = R_ck_ck+1 (from the camera poses) and the IMU's Rs_k = R_sk_sk+1 (the preintegrated
-//   gyro) satisfy, with X = R_cam_imu = R_c_s (CONVENTIONS.md: T_cam_imu maps IMU points into the
-//   camera):
+//   gyro) satisfy, with X = R_cam_imu = R_c_s (docs/conventions.md "Camera, time offset, rolling
+//   shutter": T_cam_imu maps IMU points into the camera):
 //
 //     R_c0_sk = R_c0_ck X   =>   Rs_k = X^T Rc_k X   <=>   Rc_k X = X Rs_k
 //

@@ -15,7 +15,7 @@
 //
 //   starting from dR = I, dv = dp = 0. The results are expressed in the IMU frame s_i at t_i
 //   (the seed's gamma, beta, alpha) and relate the states at t_i and t_j by (T = t_j - t_i,
-//   g_w the gravity vector, CONVENTIONS.md "IMU model"):
+//   g_w the gravity vector, docs/conventions.md "IMU model"):
 //
 //     R_w_sj = R_w_si dR
 //     v_j    = v_i + g_w T + R_w_si dv
