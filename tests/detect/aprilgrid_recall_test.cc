@@ -1,5 +1,5 @@
 // Recall of the AprilGrid detector on small and oblique tags, on real pixels: resampled copies of
-// the two EuRoC frames (../shared/data/euroc_april_frames; tests/detect/warped_views.h) scaled to
+// the two EuRoC frames (bundled in data/euroc_april_frames; tests/detect/warped_views.h) scaled to
 // 0.35..1 and turned by up to 60 degrees, some blurred or noisy. Truth in a copy: the frame's own
 // detected corners mapped through the homography that made the copy.
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@
 #include "splinecal/detect/image_file.h"
 #include "splinecal/detect/target_detector.h"
 #include "splinecal/io/target_yaml.h"
-#include "testing/shared_data.h"
+#include "testing/paths.h"
 #include "warped_views.h"
 
 namespace splinecal {
@@ -125,12 +125,12 @@ std::vector<testing::ViewSpec> Specs() {
 
 RecallTable MeasureRecall(const DetectorOptions& options) {
   const CalibrationTarget target =
-      ReadTargetYaml(testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"));
+      ReadTargetYaml(testing::BundledDataPath(std::string(kFrames) + "/aprilgrid.yaml"));
   TargetDetector detector(target, options);
   RecallTable table;
   for (int cam = 0; cam < 2; ++cam) {
-    const GrayImage frame = ReadGrayImage(testing::SharedDataPath(
-        std::string(kFrames) + "/cam" + std::to_string(cam) + "_1403709395937837056.png"));
+    const GrayImage frame = ReadGrayImage(testing::BundledDataPath(
+        std::string(kFrames) + "/cam" + std::to_string(cam) + "/data/1403709395937837056.png"));
     std::map<int64_t, Eigen::Vector2d> truth_frame;
     std::vector<Eigen::Vector2d> region;
     for (const CornerDetection& c : TargetDetector(target).Detect(frame.view()).corners) {
@@ -197,7 +197,6 @@ RecallTable MeasureRecall(const DetectorOptions& options) {
 }
 
 TEST(AprilGridRecall, SmallAndObliqueTagsOfRealFramesAreFoundWithTheRightIds) {
-  SPLINECAL_REQUIRE_SHARED_DATA(kFrames);
   DetectorOptions fast;
   fast.effort = DetectEffort::kFast;
   const RecallTable before = MeasureRecall(fast);

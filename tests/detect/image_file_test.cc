@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -11,13 +12,18 @@
 #include <zlib.h>
 
 #include "splinecal/error.h"
-#include "testing/shared_data.h"
+#include "testing/paths.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
 namespace {
 
 using ::testing::HasSubstr;
+
+// Real images bundled in data/ (byte-identical to ../shared/data's euroc_april_frames/
+// cam0_1403709395937837056.png and opencv_chessboard/left01.jpg), so these checks always run.
+constexpr char kPng[] = "euroc_april_frames/cam0/data/1403709395937837056.png";
+constexpr char kJpeg[] = "opencv_chessboard/cam0/1000000000.jpg";
 
 std::string ReadBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -34,11 +40,8 @@ std::string ErrorOf(const std::string& path) {
 }
 
 TEST(ReadGrayImage, ReadsPngAndJpegAsOpenCvDecodesThem) {
-  SPLINECAL_REQUIRE_SHARED_DATA("opencv_chessboard");
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_april_frames");
-  for (const std::string relative :
-       {"opencv_chessboard/left01.jpg", "euroc_april_frames/cam0_1403709395937837056.png"}) {
-    const std::string path = testing::SharedDataPath(relative);
+  for (const char* relative : {kJpeg, kPng}) {
+    const std::string path = testing::BundledDataPath(relative);
     const GrayImage image = ReadGrayImage(path);
     const cv::Mat reference = cv::imread(path, cv::IMREAD_GRAYSCALE);
     ASSERT_EQ(image.width, reference.cols);
@@ -59,18 +62,16 @@ TEST(ReadGrayImage, ConvertsColourToGrey) {
 }
 
 TEST(ReadGrayImage, RefusesMissingNonImageAndTruncatedFiles) {
-  SPLINECAL_REQUIRE_SHARED_DATA("opencv_chessboard");
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_april_frames");
   testing::TempDir dir;
   EXPECT_THAT(ErrorOf(dir.File("absent.png")), HasSubstr("absent.png: cannot open the image"));
   EXPECT_THAT(ErrorOf(dir.Write("text.png", "not an image\n")),
               HasSubstr("text.png: not a PNG or JPEG image"));
   EXPECT_THAT(ErrorOf(dir.Write("empty.jpg", "")), HasSubstr("not a PNG or JPEG image"));
   const std::string png =
-      ReadBytes(testing::SharedDataPath("euroc_april_frames/cam0_1403709395937837056.png"));
+      ReadBytes(testing::BundledDataPath(kPng));
   EXPECT_THAT(ErrorOf(dir.Write("cut.png", png.substr(0, png.size() / 2))),
               HasSubstr("cut.png: truncated PNG"));
-  const std::string jpeg = ReadBytes(testing::SharedDataPath("opencv_chessboard/left01.jpg"));
+  const std::string jpeg = ReadBytes(testing::BundledDataPath(kJpeg));
   EXPECT_THAT(ErrorOf(dir.Write("cut.jpg", jpeg.substr(0, jpeg.size() / 2))),
               HasSubstr("cut.jpg: damaged JPEG (Premature end of JPEG file)"));
   // A PNG damaged in the middle but ending properly: its chunk CRC finds it (before libpng
@@ -109,10 +110,9 @@ TEST(ReadGrayImage, RefusesImplausiblyLargeImagesBeforeDecoding) {
 // A PNG whose CRCs hold but whose header is invalid (bit depth 3): libpng's complaint becomes the
 // error instead of a line it prints itself.
 TEST(ReadGrayImage, RefusesAnInvalidPngHeaderWithLibpngsReason) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_april_frames");
   testing::TempDir dir;
   std::string png =
-      ReadBytes(testing::SharedDataPath("euroc_april_frames/cam0_1403709395937837056.png"));
+      ReadBytes(testing::BundledDataPath(kPng));
   png[24] = 3;  // IHDR: length (4), "IHDR" (4), width (4), height (4), then the bit depth
   const uint32_t crc = static_cast<uint32_t>(
       crc32(0L, reinterpret_cast<const Bytef*>(png.data() + 12), 17));

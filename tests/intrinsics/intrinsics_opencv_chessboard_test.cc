@@ -1,10 +1,10 @@
-// splinecal intrinsics on OpenCV's own sample chessboards (../shared/data/opencv_chessboard, the
-// 13 left images), corners from splinecal's detector: the exact least-squares solve against
-// OpenCV's calibrateCamera (k3 fixed at 0: the 4-coefficient radtan model of Kalibr and of
-// splinecal's pinhole-radtan) run here on the same corners (intrinsics/opencv_reference.h), the
-// default robust solve against the exact one, and both near the reference SOURCE.md gives
-// (OpenCV 4.6 on its own detector's corners: fx, fy, cx, cy = 533.052, 533.182, 342.459,
-// 233.915).
+// splinecal intrinsics on OpenCV's own sample chessboards (the 13 left images, bundled in
+// data/opencv_chessboard/cam0: byte-identical to ../shared/data/opencv_chessboard), corners from
+// splinecal's detector: the exact least-squares solve against OpenCV's calibrateCamera (k3 fixed at
+// 0: the 4-coefficient radtan model of Kalibr and of splinecal's pinhole-radtan) run here on the
+// same corners (intrinsics/opencv_reference.h), the default robust solve against the exact one, and
+// both near the reference SOURCE.md gives (OpenCV 4.6 on its own detector's corners: fx, fy, cx, cy
+// = 533.052, 533.182, 342.459, 233.915).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -15,20 +15,19 @@
 #include "splinecal/detect/target_detector.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "intrinsics/opencv_reference.h"
-#include "testing/shared_data.h"
+#include "testing/paths.h"
 
 namespace splinecal {
 namespace {
 
 TEST(IntrinsicsOpenCvChessboard, ExactLeastSquaresMatchesOpenCvCalibrateCamera) {
-  SPLINECAL_REQUIRE_SHARED_DATA("opencv_chessboard");
   const CalibrationTarget board = MakeCheckerboard(9, 6, 1.0, 1.0);  // square = 1, as OpenCV
   TargetDetector detector(board);
   std::vector<Observation> observations;
   for (int index : {1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14}) {
     char name[32];
-    std::snprintf(name, sizeof(name), "opencv_chessboard/left%02d.jpg", index);
-    const GrayImage image = ReadGrayImage(testing::SharedDataPath(name));
+    std::snprintf(name, sizeof(name), "opencv_chessboard/cam0/%d000000000.jpg", index);
+    const GrayImage image = ReadGrayImage(testing::BundledDataPath(name));
     for (const CornerDetection& corner : detector.Detect(image.view()).corners) {
       observations.push_back({index * 1'000'000'000LL, 0, corner.point_id, corner.uv});
     }
