@@ -1,4 +1,4 @@
-// Benchmarks of `splinecal allan` (issue 4 targets, docs/performance.md):
+// Benchmarks of `splinecal allan` (targets in docs/performance.md):
 //   - BM_AllanDeviationOneAxis: one axis of 10^7 samples at 65 log-spaced averaging times
 //     (target <= 0.35 s; allantools takes 3.6 s).
 //   - BM_DeviationPassesOneAxis / BM_IntegrateOneAxis: its two parts.

@@ -10,7 +10,7 @@
 // BM_CalibrateEuroc: the real EuRoC calibration recording (../shared/data/euroc_imu_april,
 // SPLINECAL_SHARED_DATA_DIR; 72 s, cam0: 1416 frames, 179k target corners, 200 Hz IMU) with
 // `splinecal calibrate --cameras 0 --threads 2`'s options, at knot spacings of 0.05, 0.02 and
-// 0.01 s (Kalibr's density; issue 17's target: 0.01 s in at most 20 s on 2 cores). Files are read
+// 0.01 s (Kalibr's density; the target: 0.01 s in at most 20 s on 2 cores). Files are read
 // once, outside the timed region. peak_rss_MB is the process's peak so far (getrusage).
 //
 //   calibrate_bench --benchmark_filter=CalibrateEuroc

@@ -1,4 +1,4 @@
-// `splinecal fit` speed (issue 5, docs/performance.md):
+// `splinecal fit` speed (docs/performance.md):
 //
 //   Reference problem: 1000 control poses at 0.1 s (99.7 s), 200 Hz IMU with ADIS16448 white
 //   noise and constant biases, poses at 1 Hz, initial guess = truth perturbed by 0.05 (every

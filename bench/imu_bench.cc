@@ -1,4 +1,4 @@
-// IMU simulation and integration throughput (issue 3 targets: simulation >= 3 million IMU
+// IMU simulation and integration throughput (targets: simulation >= 3 million IMU
 // samples/s including noise, without file writing; integration >= 10 million samples/s).
 //
 //   build-*/bench/imu_bench            items_per_second = IMU samples per second

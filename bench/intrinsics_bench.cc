@@ -1,4 +1,4 @@
-// `splinecal intrinsics` on the real EuRoC calibration recording (issue 14's target: the
+// `splinecal intrinsics` on the real EuRoC calibration recording (the target: the
 // two-camera intrinsics with every frame offered, the tool selecting, in under 20 s on 2
 // cores): the whole CalibrateIntrinsics call (initialisation sweep, PnP, repeat removal, the
 // robust and the final solve, covariance, observability), per camera model, reading the files

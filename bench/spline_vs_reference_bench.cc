@@ -1,8 +1,8 @@
 // splinecal's two trajectory models -- the coupled SE(3) spline and the split SO(3) x R^3 spline
 // (spline/trajectory_model.h) -- side by side with a reference split spline (the trajectory model
 // of basalt-headers' Se3Spline, tests/spline/reference_split_spline.h) on the same control poses
-// and the same query times (issue 17). Run with interleaved repetitions so that every side sees
-// the same machine state:
+// and the same query times (docs/performance.md). Run with interleaved repetitions so that every
+// side sees the same machine state:
 //
 //   build-bench/bench/spline_vs_reference_bench --benchmark_repetitions=10
 //       --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true

@@ -11,6 +11,7 @@
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/report/command_outputs.h"
@@ -70,7 +71,7 @@ void BindAlign(py::module_& m) {
         py::arg("camchain") = py::none(),
         py::arg("imu_yaml") = py::none(),
         py::arg("estimate_rotation_extrinsic") = false,
-        py::arg("gravity") = 9.81,
+        py::arg("gravity") = kDefaultGravity,
         py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
         py::arg("camera_position_std") = 0.005,
         py::arg("camera_rotation_std") = 0.002,

@@ -12,6 +12,7 @@
 #include "numpy_io.h"
 #include "splinecal/calib/calibrate_run.h"
 #include "splinecal/calib/camera_selection.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/target_yaml.h"
@@ -131,7 +132,7 @@ void BindCalibrate(py::module_& m) {
         py::arg("pixel_sigma") = 0.0,
         py::arg("huber") = 2.0,
         py::arg("min_corners") = 8,
-        py::arg("gravity") = 9.81,
+        py::arg("gravity") = kDefaultGravity,
         py::arg("accel_unit") = "m/s^2",
         py::arg("gyro_unit") = "rad/s",
         py::arg("threads") = 1,

@@ -11,6 +11,7 @@
 
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/spline/trajectory_model.h"
 
@@ -18,8 +19,8 @@ namespace splinecal {
 namespace python {
 
 struct EstimateArguments {
-  double knot_spacing = 0.0;  // [s]; 0: chosen from the IMU data
-  double gravity = 9.81;      // [m/s^2]
+  double knot_spacing = 0.0;         // [s]; 0: chosen from the IMU data
+  double gravity = kDefaultGravity;  // [m/s^2]
   pybind11::object imu_yaml;  // path of a Kalibr imu.yaml, or None (ADIS16448)
   std::string imu_noise = "estimated";
   std::string accel_unit = "m/s^2";

@@ -8,6 +8,7 @@
 #include "bindings.h"
 #include "command_outputs.h"
 #include "numpy_io.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/report/evaluate_report.h"
 
@@ -68,7 +69,7 @@ void BindEvaluate(py::module_& m) {
         py::kw_only(),
         py::arg("samples") = 5,
         py::arg("every") = 0.0,
-        py::arg("gravity") = 9.81,
+        py::arg("gravity") = kDefaultGravity,
         py::arg("gyro_bias") = std::vector<double>{0.0, 0.0, 0.0},
         py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
         py::arg("out") = py::none(),

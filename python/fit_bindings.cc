@@ -11,6 +11,7 @@
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/calib/fit.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/report/command_outputs.h"
 #include "splinecal/report/fit_report.h"
 
@@ -108,7 +109,7 @@ void BindFit(py::module_& m) {
         py::arg("estimate_extrinsic") = false,
         py::arg("bias_model") = "constant",
         py::arg("bias_knot_spacing") = 1.0,
-        py::arg("gravity") = 9.81,
+        py::arg("gravity") = kDefaultGravity,
         py::arg("accel_unit") = "m/s^2",
         py::arg("gyro_unit") = "rad/s",
         py::arg("threads") = 1,

@@ -9,6 +9,7 @@
 #include "estimate_arguments.h"
 #include "interruptible.h"
 #include "numpy_io.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/integrate.h"
 #include "splinecal/report/integrate_report.h"
 
@@ -65,7 +66,7 @@ void BindIntegrate(py::module_& m) {
         py::arg("method") = "euler,midpoint,rk4",
         py::arg("start") = 0.0,
         py::arg("duration") = 0.0,
-        py::arg("gravity") = 9.81,
+        py::arg("gravity") = kDefaultGravity,
         py::arg("accel_unit") = "m/s^2",
         py::arg("gyro_unit") = "rad/s",
         py::arg("out") = py::none(),

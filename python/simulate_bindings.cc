@@ -12,6 +12,7 @@
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/poses.h"
@@ -166,7 +167,7 @@ void BindSimulate(py::module_& m) {
         py::arg("imu_rate") = 200.0,
         py::arg("knot_spacing") = 0.05,
         py::arg("seed") = 1,
-        py::arg("gravity") = 9.81,
+        py::arg("gravity") = kDefaultGravity,
         py::arg("imu_yaml") = py::none(),
         py::arg("gyroscope_noise_density") = adis.gyroscope_noise_density,
         py::arg("gyroscope_random_walk") = adis.gyroscope_random_walk,

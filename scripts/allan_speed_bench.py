@@ -8,9 +8,9 @@ allantools itself is not a Debian package; this is its method written from the f
 code. Target: splinecal / numpy <= 0.6.
 
 With --per-decade LIST (e.g. 3,10,30,100,1000) it times instead the whole command at each number
-of averaging times per decade (issue 16: the time nearly independent of it, under the default
-work budget of --max-passes 100), ROUNDS rounds taken in turn, and prints a table: median wall
-time, the command's CPU time, the averaging times, the passes over each axis they would take
+of averaging times per decade (docs/performance.md: the time nearly independent of it, under the
+default work budget of --max-passes 100), ROUNDS rounds taken in turn, and prints a table: median
+wall time, the command's CPU time, the averaging times, the passes over each axis they would take
 fully overlapping and the passes used, and the Kalibr keys (the same within their intervals).
 
 Usage: scripts/allan_speed_bench.py BUILD_DIR/splinecal [ROUNDS] [--per-decade LIST]
@@ -98,7 +98,7 @@ def yaml_number(text, key):
 
 
 def per_decade_table(tool, rounds, settings):
-    """The whole command at each number of averaging times per decade (issue 16)."""
+    """The whole command at each number of averaging times per decade."""
     subprocess.run(["cat", PATH], stdout=subprocess.DEVNULL, check=True)  # page cache warm
     times = {p: [] for p in settings}
     for _ in range(rounds):

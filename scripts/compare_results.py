@@ -2,7 +2,7 @@
 """compare_results.py A B [N]: the largest relative difference between the numeric leaves of two
 result.yaml files (same keys) and where it occurs; with N, also the N largest. Differences below
 1e-14 absolute (a gravity component of 1e-18) and timing keys are left out. Used to check that a
-speed change leaves results unchanged (docs/performance.md, issue 17):
+speed change leaves results unchanged (docs/performance.md):
     scripts/compare_results.py before/result.yaml after/result.yaml 5
 """
 import sys, math, yaml

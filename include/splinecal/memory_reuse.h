@@ -5,9 +5,10 @@
 // normal equations, factorisations). glibc's malloc serves blocks above 128 KB to 32 MB by mmap
 // and returns them to the system when freed, and trims its heap, so every round faults the same
 // memory in again. A page fault costs about 10 us per 4 KB page on the 2-core VMs the targets are
-// measured on (docs/performance.md, issue 17: 0.69 s to touch 256 MB), a few seconds of a
-// calibration; with the memory kept, the heap's pages are faulted once. Peak memory stays what
-// the program holds at once (freed blocks are reused), plus fragmentation.
+// measured on (0.69 s to touch 256 MB, docs/performance.md "Calibrate at Kalibr's knot density in
+// under 20 s"), a few seconds of a calibration; with the memory kept, the heap's pages are faulted
+// once. Peak memory stays what the program holds at once (freed blocks are reused), plus
+// fragmentation.
 #ifndef SPLINECAL_MEMORY_REUSE_H_
 #define SPLINECAL_MEMORY_REUSE_H_
 

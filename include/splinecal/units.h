@@ -14,11 +14,8 @@ inline constexpr double kDegToRad = kPi / 180.0;
 
 inline constexpr int64_t kNanosecondsPerSecond = 1'000'000'000;
 
-// Seconds of a nanosecond count (or difference), and the nearest nanosecond count of seconds.
+// Seconds of a nanosecond count (or difference).
 constexpr double NanosecondsToSeconds(int64_t t_ns) { return 1e-9 * static_cast<double>(t_ns); }
-inline int64_t SecondsToNanoseconds(double t_s) {
-  return std::llround(t_s * 1e9);
-}
 
 }  // namespace splinecal
 

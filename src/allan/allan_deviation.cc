@@ -28,7 +28,7 @@ constexpr int64_t kBlock = internal::kMaxKernelLength;
 //  - "near" cluster sizes (2m <= kNearSpan) are processed together, block by block: all of them
 //    read a[j .. j + kBlock + 2m), a window that moves forward through the array and stays in the
 //    last-level cache (16 MB at most) while every near m is summed, so the data comes from memory
-//    once for all of them. Up to issue 16 the window was the L2 cache (1 MB, 2m <= 131072) and the
+//    once for all of them. Before d535ace the window was the L2 cache (1 MB, 2m <= 131072) and the
 //    longer averaging times took the comb below: one pass from memory each, 20% more time at 10
 //    averaging times per decade on 10^7 samples;
 //  - "far" cluster sizes (records above 2 * 10^7 samples) are traversed as a comb: for a chunk of

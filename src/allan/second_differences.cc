@@ -1,5 +1,5 @@
-// The kernels of second_differences.h. Moved here unchanged from allan_deviation.cc (issue 16,
-// the strided sums use them too): the overlapping curve keeps its bits.
+// The kernels of second_differences.h. Moved here unchanged from allan_deviation.cc (the
+// strided sums use them too): the overlapping curve keeps its bits.
 #include "second_differences.h"
 
 namespace splinecal {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/io/imu_units.h"
 #include "splinecal/units.h"
 
@@ -20,7 +21,9 @@ DEFINE_string(imu_noise,
               "noise measured and used in the standard deviations), reweighted (the measured "
               "white noise also weights the solve) or given (--imu-yaml trusted as it is)");
 DEFINE_string(poses, "", "Pose source, EuRoC ground truth or TUM trajectory [path]");
-DEFINE_double(gravity, 9.81, "Gravity magnitude g [m/s^2]; g_w = (0, 0, -g)");
+DEFINE_double(gravity,
+              splinecal::kDefaultGravity,
+              "Gravity magnitude g [m/s^2]; g_w = (0, 0, -g)");
 DEFINE_int32(seed, 1, "Random seed; the same seed gives byte-identical output");
 DEFINE_int32(threads, 1, "Worker threads, 1 to 256");
 DEFINE_double(knot_spacing,

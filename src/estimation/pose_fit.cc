@@ -103,7 +103,7 @@ class SegmentPoseCost : public ceres::CostFunction {
 // so d r / d d_{i-1} = -w Jl^-1(Omega_i), d r / d d_i = w (Jr^-1(Omega_i) + Jl^-1(Omega_{i+1})),
 // d r / d d_{i+1} = -w Jr^-1(Omega_{i+1}), lifted to the ambient blocks
 // (estimation/pose_block_jacobian.h). Analytic: its automatic differentiation through three
-// SE(3) logarithms was most of a pose fit's Jacobian time (docs/performance.md, issue 17).
+// SE(3) logarithms was most of a pose fit's Jacobian time (docs/performance.md, 711d43c).
 class SmoothnessPriorCost : public ceres::SizedCostFunction<6, 7, 7, 7> {
  public:
   explicit SmoothnessPriorCost(double weight) : weight_(weight) {}

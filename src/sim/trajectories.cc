@@ -30,19 +30,6 @@ void SinusoidChannel::Evaluate(double t_s, double* value, double* first, double*
   if (second != nullptr) *second = d2;
 }
 
-double SinusoidChannel::MaxFirstDerivative() const {
-  double bound = std::abs(rate);
-  for (const Term& term : terms) bound += std::abs(term.amplitude * term.omega_rad_s);
-  return bound;
-}
-
-double SinusoidChannel::MaxSecondDerivative() const {
-  double bound = 0.0;
-  for (const Term& term : terms) {
-    bound += std::abs(term.amplitude) * term.omega_rad_s * term.omega_rad_s;
-  }
-  return bound;
-}
 
 AnalyticTrajectory::AnalyticTrajectory(std::string name,
                                        std::array<SinusoidChannel, 3> position,

@@ -1,6 +1,6 @@
 // The noise-term decisions of allan/noise_fit.h on the recordings that fooled the earlier fit
-// (issue 16): a Gauss-Markov bias that rises like a random walk, a random walk whose +1/2 range
-// is only a decade long, and a filtered sensor whose curve dips below the white-noise line.
+// (docs/allan.md): a Gauss-Markov bias that rises like a random walk, a random walk whose +1/2
+// range is only a decade long, and a filtered sensor whose curve dips below the white-noise line.
 // Each runs the whole ComputeAllan (motion check, curve, decisions) on three simulated axes.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -26,8 +26,8 @@ using testing::ReadFileText;
 using testing::RunTool;
 using testing::TempDir;
 
-// A smooth recorded trajectory must come back "well under a millimetre" (issue 3): the fit to
-// 100 Hz poses of vio_course is ~1e-6 m (calib/pose_fit_test.cc); 1e-4 m leaves room for the
+// A smooth recorded trajectory must come back "well under a millimetre" (docs/simulate.md): the fit
+// to 100 Hz poses of vio_course is ~1e-6 m (calib/pose_fit_test.cc); 1e-4 m leaves room for the
 // 17-digit text round trip and the knot placement of a file's own time base.
 constexpr double kTrajectoryFileTolerance = 1e-4;
 

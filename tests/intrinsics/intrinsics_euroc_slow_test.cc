@@ -122,8 +122,8 @@ TEST(IntrinsicsEuroc, DoubleSphereAgainstBasaltsPublishedCalibration) {
     EXPECT_NEAR(c.pv, b[3], 8.0);
     // The focal length near the optical axis, f / (1 + xi) (the double sphere's projection of
     // a small angle), within 2% of basalt's. fx and xi themselves trade along a valley this
-    // recording does not resolve: fx lands 7% below basalt's, xi 0.05 lower (an open item of
-    // issue 14, docs/intrinsics.md).
+    // recording does not resolve: fx lands 7% below basalt's, xi 0.05 lower (docs/intrinsics.md,
+    // "fx 7% below basalt's").
     EXPECT_NEAR(c.fu / (1.0 + c.projection_params(0)), b[0] / (1.0 + b[4]),
                 0.02 * b[0] / (1.0 + b[4]));
     EXPECT_NEAR(c.fv / (1.0 + c.projection_params(0)), b[1] / (1.0 + b[4]),

@@ -1,7 +1,7 @@
 // A reference trajectory model for the benchmarks (bench/spline_vs_reference_bench.cc): the
 // "split" spline of basalt-headers' Se3Spline, written here from the published formulas so that
-// splinecal's coupled SE(3) spline can be timed against it in one binary (issue 17). Not part of
-// the library; header-only; its own SO(3) helpers so that it shares no code with splinecal.
+// splinecal's coupled SE(3) spline can be timed against it in one binary (docs/performance.md). Not
+// part of the library; header-only; its own SO(3) helpers so that it shares no code with splinecal.
 //
 // Model. Rotation control points R_k and position control points p_k, k = 0..n-1, at knot times
 // t_k = t0 + k dt. For t in [t_i, t_{i+1}), u = (t - t_i) / dt, with the cumulative coefficients

@@ -4,7 +4,8 @@
 //
 // Why: Ceres forms J^T J on one thread, block by block, and touches every Jacobian entry several
 // times per iteration (scaling, products, validity checks); with 179k corners at 0.01 s knots
-// that was the largest single cost of a calibration (docs/performance.md, issue 17).
+// that was the largest single cost of a calibration (docs/performance.md "Calibrate on real data at
+// Kalibr's knot density").
 //
 // How (TargetFrameCostFunction::LinearizeGlobalShutter): the frame's Jacobian factors as
 //   J = [A J_T_0 .. A J_T_3 | -A | A xi | C] = G B,   G = [A | C] (m x g),

@@ -8,10 +8,11 @@
 // Ceres' trust-region minimizer, which then runs a projected Armijo line search along every step
 // and evaluates the Jacobian at the candidate inside it, and again when the step is accepted:
 // two Jacobian evaluations per iteration instead of one (on the 72 s EuRoC calibration at
-// 0.01 s knots, 28 evaluations in 14 iterations, a quarter of the solve; docs/performance.md,
-// issue 17). Ceres applies bounds in ParameterBlock::Plus by the same clamp, so a step whose
-// line search accepts the full step (the usual case) lands on the same point either way.
-// The tangent space is the real line, so covariances are of the scalar itself.
+// 0.01 s knots, 28 evaluations in 14 iterations, a quarter of the solve; docs/performance.md
+// "Calibrate on real data at Kalibr's knot density"). Ceres applies bounds in ParameterBlock::Plus
+// by the same clamp, so a step whose line search accepts the full step (the usual case) lands on
+// the same point either way. The tangent space is the real line, so covariances are of the scalar
+// itself.
 #ifndef SPLINECAL_ESTIMATION_INTERVAL_MANIFOLD_H_
 #define SPLINECAL_ESTIMATION_INTERVAL_MANIFOLD_H_
 

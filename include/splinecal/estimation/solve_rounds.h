@@ -27,9 +27,10 @@ enum class LinearSolver {
   kSparseSchur,
 };
 
-// Ceres' sparse linear algebra for kSparseNormalCholesky's factorisation (docs/performance.md,
-// issue 17: calibrate on EuRoC at 0.01 s knots, 0.25 s per iteration with CHOLMOD, 0.14 s with
-// Eigen; fit of V1_01 with constant biases, 0.35 s with CHOLMOD, 0.62 s with Eigen).
+// Ceres' sparse linear algebra for kSparseNormalCholesky's factorisation (docs/performance.md
+// "Calibrate at Kalibr's knot density in under 20 s": calibrate on EuRoC at 0.01 s knots, 0.25 s
+// per iteration with CHOLMOD, 0.14 s with Eigen; fit of V1_01 with constant biases, 0.35 s with
+// CHOLMOD, 0.62 s with Eigen).
 enum class SparseLibrary {
   // kSuiteSparse, unless the estimate knows its structure better (SplineProblem's
   // PreferredSparseLibrary, which fit and calibrate ask).
@@ -56,8 +57,8 @@ struct SolverOptions {
   // re-solves the same problem from the previous solution (re-weighted, re-windowed); restarted
   // at 1e4, calibrate's rounds spent ~12 iterations each growing the radius 3x per accepted step
   // (every step had a gain ratio ~1.000: the model was never the limit) before Gauss-Newton
-  // steps were allowed (docs/performance.md, issue 17). false: every round starts at
-  // initial_trust_region_radius.
+  // steps were allowed (d438137 in docs/performance.md "Calibrate at Kalibr's knot density in
+  // under 20 s"). false: every round starts at initial_trust_region_radius.
   bool warm_start_rounds = true;
   LinearSolver linear_solver = LinearSolver::kAuto;
   SparseLibrary sparse_library = SparseLibrary::kAuto;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/spline/se3_spline.h"
 
@@ -24,7 +25,7 @@ struct SplineEvaluation {
 struct EvaluateOptions {
   int samples = 5;       // evenly spaced times, ends included, 2 to 100000
   double every_s = 0.0;  // evaluation.csv's step [s]; 0: no evaluation.csv
-  double gravity_m_s2 = 9.81;
+  double gravity_m_s2 = kDefaultGravity;
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   // b_g [rad/s]
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // b_a [m/s^2]
 };

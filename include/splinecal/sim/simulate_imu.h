@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "splinecal/estimation/pose_fit.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
 #include "splinecal/sim/trajectories.h"
@@ -41,7 +42,7 @@ struct SimulationOptions {
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   // initial b_g [rad/s]
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // initial b_a [m/s^2]
   uint64_t seed = 0;
-  double gravity_m_s2 = 9.81;  // g; g_w = (0, 0, -g)
+  double gravity_m_s2 = kDefaultGravity;  // g; g_w = (0, 0, -g)
 };
 
 // t_k = start_ns + round(k * 1e9 / rate_hz) for t_k <= end_ns. Throws splinecal::Error if

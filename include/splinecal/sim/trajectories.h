@@ -55,9 +55,6 @@ struct SinusoidChannel {
 
   // The value and its first two time derivatives at t [s]; each output may be nullptr.
   void Evaluate(double t_s, double* value, double* first, double* second) const;
-  // Upper bounds of |first derivative| and |second derivative| over all t.
-  double MaxFirstDerivative() const;
-  double MaxSecondDerivative() const;
 };
 
 // The exact state of an analytic trajectory at one time.

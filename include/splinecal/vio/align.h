@@ -62,6 +62,7 @@
 #include <string>
 #include <vector>
 
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/imu/noise.h"
 #include "splinecal/io/euroc.h"
@@ -84,7 +85,7 @@ struct CameraNoise {
 };
 
 struct AlignOptions {
-  double gravity_m_s2 = 9.81;  // known gravity magnitude g [m/s^2]
+  double gravity_m_s2 = kDefaultGravity;  // known gravity magnitude g [m/s^2]
   // T_cam_imu = T_c_s. Its rotation is the initial guess when estimate_rotation_extrinsic; its
   // translation is always used as known (metric).
   SE3d T_cam_imu;
