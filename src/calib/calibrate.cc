@@ -134,7 +134,7 @@ void CalibrationProblem::BuildProblem() {
     std::unique_ptr<TargetFrameCostFunction> rows =
         FrameCost(residual, sigma_px_, options_.huber_px);
     // A global-shutter frame goes to Ceres compacted: same steps, ~35x fewer rows
-    // (estimation/compact_frame_cost.h).
+    // (estimation/detail/compact_frame_cost.h).
     const bool global_shutter = !options_.rolling_shutter && cameras_[frame.cam].line_delay == 0.0;
     std::unique_ptr<ceres::CostFunction> cost;
     if (global_shutter && CompactFrameCostFunction::SavesRows(*rows)) {

@@ -9,7 +9,7 @@
 #include <unordered_map>
 
 #include "information_factor.h"
-#include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/detail/compact_frame_cost.h"
 #include "splinecal/run_tasks.h"
 
 namespace splinecal {

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/detail/pose_block_jacobian.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment_jacobians.h"

@@ -1,5 +1,5 @@
 // The analytic Jacobians of Camera::Project and Camera::Unproject against automatic
-// differentiation through Camera::ProjectT and against central differences, for every model at
+// differentiation through testing::ProjectT and against central differences, for every model at
 // points on the optical axis, 1e-9 rad off it, mid field and at the edge of the field (beyond 90
 // degrees for the wide-angle models); and the series branches near singular points against the
 // closed forms just outside them.
@@ -15,6 +15,7 @@
 #include "camera/camera_test_models.h"
 #include "splinecal/camera/camera_model.h"
 #include "testing/numeric_diff.h"
+#include "testing/project_t.h"
 
 namespace splinecal {
 namespace {
@@ -81,7 +82,7 @@ bool AutodiffProject(const Camera& camera,
   const IntrinsicsVector k = camera.intrinsics();
   for (int i = 0; i < kNumIntrinsics; ++i) intrinsics[i] = Jet(k(i), 3 + i);
   Eigen::Matrix<Jet, 2, 1> uv_jet;
-  if (!Camera::ProjectT(camera.projection, camera.distortion, intrinsics, p_jet, &uv_jet)) {
+  if (!testing::ProjectT(camera.projection, camera.distortion, intrinsics, p_jet, &uv_jet)) {
     return false;
   }
   for (int r = 0; r < 2; ++r) {

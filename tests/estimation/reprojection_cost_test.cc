@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "calib/camera_test_scene.h"
-#include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/detail/compact_frame_cost.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "testing/numeric_diff.h"
 
@@ -337,7 +337,7 @@ void ExpectSameNormalEquations(const NormalEquations& got, const NormalEquations
 }
 
 TEST_F(ReprojectionCostTest, CompactFrameHasTheRowsNormalEquations) {
-  // estimation/compact_frame_cost.h: Ceres must take the same steps on the compact frame. Huber
+  // estimation/detail/compact_frame_cost.h: Ceres must take the same steps on the compact frame. Huber
   // active on part of the corners; the line delay held at 0 (no Jacobian), as in calibrate.
   // Both trajectory models: the compact form takes the pose Jacobian of the model it is given.
   for (TrajectoryModel model : {TrajectoryModel::kSE3, TrajectoryModel::kSplitSO3R3}) {

@@ -42,7 +42,7 @@
 // multiplied by M; the line delay gets M dG/d line_delay + g_dot v / D; the time shift's
 // partial is d uv / dt (plus the landmark's reference-time term).
 // Control-pose, extrinsic and target-pose Jacobians are lifted to the ambient blocks
-// {px, py, pz, qx, qy, qz, qw} exactly by estimation/pose_block_jacobian.h, so
+// {px, py, pz, qx, qy, qz, qw} exactly by estimation/detail/pose_block_jacobian.h, so
 // ceres::GradientChecker agrees with them through SE3Manifold.
 //
 // Robust loss inside the cost function. Several points share one residual block (a frame's
