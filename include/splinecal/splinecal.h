@@ -18,7 +18,7 @@
 //   allan/       Allan deviation and noise identification
 //   calib/       fit (IMU + poses) and calibrate (camera-IMU)
 //   intrinsics/  camera intrinsics and the rig's camera-to-camera poses (`splinecal intrinsics`)
-//   report/      result files and HTML reports of fit, calibrate and align
+//   report/      the result files of every command and the HTML reports (one writer)
 // (cli/, the command-line front end, sits on top and is not part of the library.)
 // docs/library.md shows a complete program. Each header's comment is its contract.
 #ifndef SPLINECAL_SPLINECAL_H_
@@ -97,7 +97,6 @@
 
 // detect/ (link splinecal::detect)
 #include "splinecal/detect/detect_folders.h"
-#include "splinecal/detect/detect_report.h"
 #include "splinecal/detect/gray_image.h"
 #include "splinecal/detect/image_file.h"
 #include "splinecal/detect/saddle_point.h"
@@ -165,8 +164,10 @@
 
 // report/
 #include "splinecal/report/align_report.h"
+#include "splinecal/report/allan_report.h"
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/command_outputs.h"
+#include "splinecal/report/detect_report.h"
 #include "splinecal/report/evaluate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"
@@ -174,5 +175,6 @@
 #include "splinecal/report/intrinsics_report.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
+#include "splinecal/report/simulate_report.h"
 
 #endif  // SPLINECAL_SPLINECAL_H_

@@ -5,7 +5,6 @@
 
 #include <cstdio>
 #include <mutex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -13,13 +12,12 @@
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/detect/detect_folders.h"
-#include "splinecal/detect/detect_report.h"
 #include "splinecal/detect/image_file.h"
 #include "splinecal/error.h"
 #include "splinecal/io/image_folder.h"
-#include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/target_yaml.h"
+#include "splinecal/report/detect_report.h"
 #include "splinecal/string_printf.h"
 
 DEFINE_string(images,
@@ -152,11 +150,7 @@ int RunDetect() {
                 "this " + in.target.type + " was found in none of the " + std::to_string(read) +
                     " images read; nothing was written (" + hint + ")");
   }
-  std::ostringstream csv;
-  WriteObservationsCsv(result.observations, &csv);
-  output.WriteFile("observations.csv", csv.str());
-  output.WriteFile("result.yaml",
-                   DetectResultYamlText(result, in.target, FLAGS_target));
+  output.WriteFiles(DetectOutputFiles(result, in.target, FLAGS_target, FLAGS_effort));
   output.Commit();
   if (!Quiet()) std::fputs(DetectSummaryText(result).c_str(), stderr);
   return 0;

@@ -1,5 +1,8 @@
-#include "splinecal/detect/detect_report.h"
+#include "splinecal/report/detect_report.h"
 
+#include <sstream>
+
+#include "splinecal/io/observations_csv.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/string_printf.h"
 
@@ -7,7 +10,8 @@ namespace splinecal {
 
 std::string DetectResultYamlText(const DetectFoldersResult& result,
                                  const CalibrationTarget& target,
-                                 const std::string& target_path) {
+                                 const std::string& target_path,
+                                 const std::string& effort) {
   YamlWriter yaml;
   yaml.Comment("splinecal detect: target corners found in the images (docs/detect.md)");
   yaml.BeginMap("target");
@@ -16,6 +20,7 @@ std::string DetectResultYamlText(const DetectFoldersResult& result,
   yaml.Scalar("points", static_cast<int64_t>(target.points.size()));
   yaml.EndMap();
   yaml.Scalar("observations", "observations.csv");
+  yaml.Scalar("effort", effort);
   yaml.Scalar("threads", result.threads);
   yaml.Scalar("wall_time_s", result.wall_time_s);
   yaml.BeginMap("cameras");
@@ -34,6 +39,16 @@ std::string DetectResultYamlText(const DetectFoldersResult& result,
   yaml.EndMap();
   yaml.StringList("warnings", result.warnings);
   return yaml.str();
+}
+
+std::vector<OutputFile> DetectOutputFiles(const DetectFoldersResult& result,
+                                          const CalibrationTarget& target,
+                                          const std::string& target_path,
+                                          const std::string& effort) {
+  std::ostringstream csv;
+  WriteObservationsCsv(result.observations, &csv);
+  return {{"observations.csv", csv.str()},
+          {"result.yaml", DetectResultYamlText(result, target, target_path, effort)}};
 }
 
 std::string DetectSummaryText(const DetectFoldersResult& result) {
