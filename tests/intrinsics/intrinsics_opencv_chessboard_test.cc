@@ -25,7 +25,7 @@ TEST(IntrinsicsOpenCvChessboard, ExactLeastSquaresMatchesOpenCvCalibrateCamera) 
   TargetDetector detector(board);
   std::vector<Observation> observations;
   for (int index : {1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14}) {
-    char name[32];
+    char name[64];
     std::snprintf(name, sizeof(name), "opencv_chessboard/cam0/%d000000000.jpg", index);
     const GrayImage image = ReadGrayImage(testing::BundledDataPath(name));
     for (const CornerDetection& corner : detector.Detect(image.view()).corners) {
