@@ -24,7 +24,7 @@ namespace splinecal {
 namespace {
 
 using testing::Value;
-using ::testing::Values;
+using testing::Values;
 
 using Jet6 = ceres::Jet<double, 6>;
 

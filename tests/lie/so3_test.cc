@@ -28,7 +28,7 @@ namespace {
 
 using testing::RandomQuaternion;
 using testing::Value;
-using ::testing::Values;
+using testing::Values;
 
 using Jet6 = ceres::Jet<double, 6>;
 using Jet3 = ceres::Jet<double, 3>;
