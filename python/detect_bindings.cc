@@ -18,7 +18,7 @@
 #include "interruptible.h"
 #include "numpy_io.h"
 #include "splinecal/detect/detect_folders.h"
-#include "splinecal/detect/detect_report.h"
+#include "splinecal/report/detect_report.h"
 #include "splinecal/detect/image_file.h"
 #include "splinecal/error.h"
 #include "splinecal/detect/target_detector.h"
@@ -139,8 +139,9 @@ py::list DetectFolder(const std::string& dir, const CalibrationTarget& board,
 // The whole command (`splinecal detect --images ...`): result.yaml as a dict with the
 // observations, and with out= the command's files, written by the same function.
 py::dict DetectCommand(py::handle images, const std::string& target_path,
-                       const CalibrationTarget& board, const DetectorOptions& detector,
-                       int threads, bool draw, py::handle out) {
+                       const CalibrationTarget& board, const std::string& effort,
+                       const DetectorOptions& detector, int threads, bool draw,
+                       py::handle out) {
   // A str (or path) is split at commas as the command line splits --images; a list holds one
   // folder per camera.
   std::vector<std::string> dirs;
@@ -173,7 +174,7 @@ py::dict DetectCommand(py::handle images, const std::string& target_path,
   const DetectFoldersResult result =
       RunWithoutGil([&] { return DetectFolders(folders, board, options); });
   Warn(result.warnings);
-  py::dict dict = FinishOutputs(dir.get(), DetectOutputFiles(result, board, target_path));
+  py::dict dict = FinishOutputs(dir.get(), DetectOutputFiles(result, board, target_path, effort));
   dict["observations"] = ObservationsDict(result.observations);
   return dict;
 }
@@ -196,7 +197,7 @@ py::object Detect(py::handle images_argument, py::handle target, const std::stri
       throw py::type_error("detect: give either image (pixels, a file, files or a folder) or "
                            "images= (camera folders, as --images), not both");
     }
-    return DetectCommand(images, target_path, board, options, threads, draw, out);
+    return DetectCommand(images, target_path, board, effort, options, threads, draw, out);
   }
   if (!out.is_none() || draw) {
     throw py::type_error(std::string(draw ? "draw" : "out") +

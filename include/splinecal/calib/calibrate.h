@@ -4,7 +4,7 @@
 //
 // The problem (docs/conventions.md for frames, units, T_cam_imu, the time offset, line_delay):
 //
-//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (estimation/imu_costs.h)
+//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (estimation/detail/imu_costs.h)
 //           + sum_m |r_rw,m|^2                         bias random walk (estimation/bias_costs.h)
 //           + sum_f sum_c rho(|r_c,f|^2)               target corners, per frame
 //           + sum_o rho(|r_o|^2)                       landmark observations

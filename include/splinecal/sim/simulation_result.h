@@ -1,7 +1,6 @@
-// result.yaml of `splinecal simulate` (docs/simulate.md, "Outputs"): what was simulated (the
-// trajectory, time range, rate, seed, gravity, noise densities, initial and final biases), how
-// well the spline fits the trajectory, and with cameras their truth (sim/simulate_camera.h,
-// WriteCameraSimulationTruth).
+// One run of `splinecal simulate` (docs/simulate.md): its settings and what it produced, and the
+// pipeline that produces it. Its files are written by report/simulate_report.h and
+// report/command_outputs.h.
 #ifndef SPLINECAL_SIM_SIMULATION_RESULT_H_
 #define SPLINECAL_SIM_SIMULATION_RESULT_H_
 
@@ -39,8 +38,6 @@ struct SimulationRun {
 void RunSimulation(const SimulationTrajectory& trajectory,
                    const PoseFitOptions& fit_options,
                    SimulationRun* run);
-
-std::string SimulationResultYaml(const SimulationRun& run);
 
 }  // namespace splinecal
 
