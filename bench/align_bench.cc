@@ -10,28 +10,28 @@
 namespace splinecal {
 namespace {
 
-const testdata::Scenario& Window() {
-  static const testdata::Scenario scenario = [] {
-    testdata::ScenarioOptions options;
-    options.T_cam_imu = testdata::EurocCam0TCamImu();
+const testing::Scenario& Window() {
+  static const testing::Scenario scenario = [] {
+    testing::ScenarioOptions options;
+    options.T_cam_imu = testing::EurocCam0TCamImu();
     options.imu_noise = true;
     options.camera_translation_std_m = 0.005;
     options.camera_rotation_std_rad = 0.002;
-    return testdata::MakeScenario(Figure8Trajectory(), options);
+    return testing::MakeScenario(Figure8Trajectory(), options);
   }();
   return scenario;
 }
 
 AlignOptions Options(bool estimate_rotation) {
   AlignOptions options;
-  options.T_cam_imu = testdata::EurocCam0TCamImu();
+  options.T_cam_imu = testing::EurocCam0TCamImu();
   options.estimate_rotation_extrinsic = estimate_rotation;
   return options;
 }
 
 // The whole pipeline: gyro bias, preintegration with covariance, linear solve, refinement.
 void BM_Align(benchmark::State& state) {
-  const testdata::Scenario& s = Window();
+  const testing::Scenario& s = Window();
   const AlignOptions options = Options(state.range(0) != 0);
   for (auto _ : state) {
     AlignResult result = Align(s.imu, s.camera_poses, options);
@@ -45,7 +45,7 @@ BENCHMARK(BM_Align)->Arg(0)->Arg(1)->ArgName("estimate_rotation")->Unit(benchmar
 
 // One frame interval (20 IMU steps) with bias Jacobians and covariance.
 void BM_PreintegrateWithCovariance(benchmark::State& state) {
-  const testdata::Scenario& s = Window();
+  const testing::Scenario& s = Window();
   const ImuNoise noise;
   const int64_t t0 = s.camera_poses[10].t_ns;
   const int64_t t1 = s.camera_poses[11].t_ns;
@@ -58,7 +58,7 @@ void BM_PreintegrateWithCovariance(benchmark::State& state) {
 BENCHMARK(BM_PreintegrateWithCovariance)->Unit(benchmark::kMicrosecond);
 
 void BM_PreintegrateRotation(benchmark::State& state) {
-  const testdata::Scenario& s = Window();
+  const testing::Scenario& s = Window();
   const int64_t t0 = s.camera_poses[10].t_ns;
   const int64_t t1 = s.camera_poses[11].t_ns;
   Eigen::Matrix3d J;

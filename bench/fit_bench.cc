@@ -29,6 +29,7 @@
 #include "splinecal/calib/fit.h"
 #include "splinecal/sim/simulate_imu.h"
 #include "splinecal/sim/trajectories.h"
+#include "testing/autodiff_costs.h"
 
 namespace splinecal {
 namespace {
@@ -113,8 +114,7 @@ void BM_FitReference(benchmark::State& state, Path path) {
   options.residuals.layout = path == Path::kAnalyticPerSample ? ImuResidualLayout::kPerSample
                                                     : ImuResidualLayout::kPerSegment;
   options.residuals.share_knot_caches = path != Path::kAnalyticUnshared;
-  options.residuals.differentiation =
-      path == Path::kAutoDiff ? Differentiation::kAutoDiff : Differentiation::kAnalytic;
+  if (path == Path::kAutoDiff) options.residuals.replacement = testing::AutoDiffReplacementCosts();
   std::mt19937_64 rng(11);
   std::normal_distribution<double> normal(0.0, 0.05);
   std::vector<SE3d> initial = data.truth.control_poses();

@@ -20,7 +20,7 @@
 #include "numpy_io.h"
 #include "splinecal/detect/detect_bag.h"
 #include "splinecal/detect/detect_folders.h"
-#include "splinecal/detect/detect_report.h"
+#include "splinecal/report/detect_report.h"
 #include "splinecal/detect/image_file.h"
 #include "splinecal/error.h"
 #include "splinecal/detect/target_detector.h"
@@ -143,7 +143,8 @@ py::list DetectFolder(const std::string& dir, const CalibrationTarget& board,
 // With a bag source (bag=, as --bag), the frames are the messages of its image topics instead.
 py::dict DetectCommand(py::handle images, const std::optional<BagImageSource>& bag,
                        const std::string& target_path, const CalibrationTarget& board,
-                       const DetectorOptions& detector, int threads, bool draw, py::handle out) {
+                       const std::string& effort, const DetectorOptions& detector, int threads,
+                       bool draw, py::handle out) {
   // A str (or path) is split at commas as the command line splits --images; a list holds one
   // folder per camera.
   std::vector<std::string> dirs;
@@ -180,7 +181,7 @@ py::dict DetectCommand(py::handle images, const std::optional<BagImageSource>& b
                            : DetectFolders(folders, board, options);
   });
   Warn(result.warnings);
-  py::dict dict = FinishOutputs(dir.get(), DetectOutputFiles(result, board, target_path));
+  py::dict dict = FinishOutputs(dir.get(), DetectOutputFiles(result, board, target_path, effort));
   dict["observations"] = ObservationsDict(result.observations);
   return dict;
 }
@@ -217,7 +218,8 @@ py::object Detect(py::handle images_argument, py::handle target, const std::stri
                             "commas, as --image-topics; the i-th is camera i)");
     }
     source.time = ParseBagTime(bag_time);
-    return DetectCommand(py::none(), source, target_path, board, options, threads, draw, out);
+    return DetectCommand(py::none(), source, target_path, board, effort, options, threads, draw,
+                         out);
   }
   if (!image_topics.is_none()) {
     throw py::type_error("image_topics: the topics of bag=; give bag= too");
@@ -227,7 +229,8 @@ py::object Detect(py::handle images_argument, py::handle target, const std::stri
       throw py::type_error("detect: give either image (pixels, a file, files or a folder) or "
                            "images= (camera folders, as --images), not both");
     }
-    return DetectCommand(images, std::nullopt, target_path, board, options, threads, draw, out);
+    return DetectCommand(images, std::nullopt, target_path, board, effort, options, threads, draw,
+                         out);
   }
   if (!out.is_none() || draw) {
     throw py::type_error(std::string(draw ? "draw" : "out") +

@@ -18,7 +18,7 @@
 //   allan/       Allan deviation and noise identification
 //   calib/       fit (IMU + poses) and calibrate (camera-IMU)
 //   intrinsics/  camera intrinsics and the rig's camera-to-camera poses (`splinecal intrinsics`)
-//   report/      result files and HTML reports of fit, calibrate and align
+//   report/      the result files of every command and the HTML reports (one writer)
 // (cli/, the command-line front end, sits on top and is not part of the library.)
 // docs/library.md shows a complete program. Each header's comment is its contract.
 #ifndef SPLINECAL_SPLINECAL_H_
@@ -94,12 +94,10 @@
 #include "splinecal/io/imu_units.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/number_parser.h"
-#include "splinecal/io/number_parser_avx2.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/parallel_euroc_imu.h"
 #include "splinecal/io/poses.h"
-#include "splinecal/io/row_checks.h"
 #include "splinecal/io/spline_csv.h"
 #include "splinecal/io/static_recording.h"
 #include "splinecal/io/target_yaml.h"
@@ -117,7 +115,6 @@
 #include "splinecal/detect/bag_image.h"
 #include "splinecal/detect/detect_bag.h"
 #include "splinecal/detect/detect_folders.h"
-#include "splinecal/detect/detect_report.h"
 #include "splinecal/detect/gray_image.h"
 #include "splinecal/detect/image_file.h"
 #include "splinecal/detect/saddle_point.h"
@@ -126,13 +123,10 @@
 // estimation/
 #include "splinecal/estimation/bias_costs.h"
 #include "splinecal/estimation/bias_spline.h"
-#include "splinecal/estimation/compact_frame_cost.h"
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/estimation/gravity_tangent.h"
-#include "splinecal/estimation/imu_autodiff_costs.h"
-#include "splinecal/estimation/imu_costs.h"
-#include "splinecal/estimation/imu_model_costs.h"
 #include "splinecal/estimation/imu_model_observability.h"
+#include "splinecal/estimation/imu_model_parameters.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/imu_noise_mode.h"
 #include "splinecal/estimation/interval_manifold.h"
@@ -140,8 +134,6 @@
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/estimation/options.h"
-#include "splinecal/estimation/pose_block_jacobian.h"
-#include "splinecal/estimation/pose_cost.h"
 #include "splinecal/estimation/pose_fit.h"
 #include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/estimation/solve_rounds.h"
@@ -179,7 +171,6 @@
 #include "splinecal/calib/camchain_prior.h"
 #include "splinecal/calib/camera_selection.h"
 #include "splinecal/calib/fit.h"
-#include "splinecal/calib/target_scale_cost.h"
 
 // intrinsics/
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
@@ -197,9 +188,11 @@
 
 // report/
 #include "splinecal/report/align_report.h"
+#include "splinecal/report/allan_report.h"
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/command_outputs.h"
 #include "splinecal/report/correct_report.h"
+#include "splinecal/report/detect_report.h"
 #include "splinecal/report/evaluate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"
@@ -207,5 +200,6 @@
 #include "splinecal/report/intrinsics_report.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
+#include "splinecal/report/simulate_report.h"
 
 #endif  // SPLINECAL_SPLINECAL_H_

@@ -10,7 +10,7 @@
 #include <thread>
 #include <utility>
 
-#include "sensor_units.h"
+#include "splinecal/allan/detail/sensor_units.h"
 #include "splinecal/error.h"
 #include "splinecal/string_printf.h"
 

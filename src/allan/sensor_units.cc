@@ -1,4 +1,4 @@
-#include "sensor_units.h"
+#include "splinecal/allan/detail/sensor_units.h"
 
 namespace splinecal {
 namespace internal {

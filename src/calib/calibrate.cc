@@ -14,7 +14,7 @@
 #include "splinecal/camera/observation_gates.h"
 
 namespace splinecal {
-namespace calibrate_internal {
+namespace internal {
 namespace {
 
 // Stops a solve (SOLVER_TERMINATE_SUCCESSFULLY) at the first iteration for which stop(summary)
@@ -134,7 +134,7 @@ void CalibrationProblem::BuildProblem() {
     std::unique_ptr<TargetFrameCostFunction> rows =
         FrameCost(residual, sigma_px_, options_.huber_px);
     // A global-shutter frame goes to Ceres compacted: same steps, ~35x fewer rows
-    // (estimation/compact_frame_cost.h).
+    // (estimation/detail/compact_frame_cost.h).
     const bool global_shutter = !options_.rolling_shutter && cameras_[frame.cam].line_delay == 0.0;
     std::unique_ptr<ceres::CostFunction> cost;
     if (global_shutter && CompactFrameCostFunction::SavesRows(*rows)) {
@@ -499,9 +499,9 @@ bool CalibrationProblem::ReleaseLineDelays() {
   return any;
 }
 
-}  // namespace calibrate_internal
+}  // namespace internal
 
-using calibrate_internal::CalibrationProblem;
+using internal::CalibrationProblem;
 
 const char* ParameterModeName(ParameterMode mode) {
   switch (mode) {

@@ -13,9 +13,9 @@
 
 namespace splinecal {
 
-using calibrate_internal::LayoutFor;
-using calibrate_internal::MakeTargetFrames;
-using calibrate_internal::TargetFrame;
+using internal::LayoutFor;
+using internal::MakeTargetFrames;
+using internal::TargetFrame;
 
 namespace {
 

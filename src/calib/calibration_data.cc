@@ -13,7 +13,7 @@
 #include "splinecal/string_printf.h"
 
 namespace splinecal {
-namespace calibrate_internal {
+namespace internal {
 
 // The median frame period of one camera [s] (0.05 when it has fewer than 2 frames).
 std::vector<double> FramePeriods(const std::vector<ObservationFrame>& frames, size_t num_cameras) {
@@ -293,5 +293,5 @@ std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations
   return landmarks;
 }
 
-}  // namespace calibrate_internal
+}  // namespace internal
 }  // namespace splinecal

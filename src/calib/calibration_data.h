@@ -19,7 +19,7 @@
 #include "splinecal/spline/se3_spline.h"
 
 namespace splinecal {
-namespace calibrate_internal {
+namespace internal {
 
 // The initial spline extends this far beyond the camera's time span into the IMU data [ns].
 constexpr int64_t kImuMarginNs = 200'000'000;
@@ -94,7 +94,7 @@ std::vector<Landmark> MakeLandmarks(const std::vector<Observation>& observations
                                     const SE3Splined& spline,
                                     std::vector<std::string>* warnings);
 
-}  // namespace calibrate_internal
+}  // namespace internal
 }  // namespace splinecal
 
 #endif  // SPLINECAL_SRC_CALIB_CALIBRATION_DATA_H_

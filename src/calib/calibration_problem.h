@@ -27,12 +27,12 @@
 #include "calibration_warnings.h"
 #include "splinecal/calib/camchain_prior.h"
 #include "splinecal/calib/fit.h"
-#include "splinecal/calib/target_scale_cost.h"
+#include "splinecal/calib/detail/target_scale_cost.h"
 #include "splinecal/camera/pnp.h"
 #include "splinecal/error.h"
-#include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/detail/compact_frame_cost.h"
 #include "splinecal/estimation/gravity_manifold.h"
-#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/detail/imu_costs.h"
 #include "splinecal/estimation/imu_model_observability.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/interval_manifold.h"
@@ -48,20 +48,20 @@
 
 namespace splinecal {
 
-using calibrate_internal::AddStandardDeviationWarnings;
-using calibrate_internal::CheckInputs;
-using calibrate_internal::CheckRotationExcitation;
-using calibrate_internal::CheckTargetSeen;
-using calibrate_internal::FramePeriods;
-using calibrate_internal::ImuBetween;
-using calibrate_internal::Landmark;
-using calibrate_internal::MakeLandmarks;
-using calibrate_internal::MakeTargetFrames;
-using calibrate_internal::ObservationsInsideImu;
-using calibrate_internal::SpanOfFrames;
-using calibrate_internal::TargetFrame;
+using internal::AddStandardDeviationWarnings;
+using internal::CheckInputs;
+using internal::CheckRotationExcitation;
+using internal::CheckTargetSeen;
+using internal::FramePeriods;
+using internal::ImuBetween;
+using internal::Landmark;
+using internal::MakeLandmarks;
+using internal::MakeTargetFrames;
+using internal::ObservationsInsideImu;
+using internal::SpanOfFrames;
+using internal::TargetFrame;
 
-namespace calibrate_internal {
+namespace internal {
 
 
 // Time windows of the reprojection residuals reach this far beyond the current exposure range
@@ -168,8 +168,8 @@ class CalibrationProblem {
   const std::vector<double*>& control_blocks() const { return spline_->control_blocks(); }
   ceres::Problem& problem() { return spline_->problem(); }
 
-  ReprojectionSettings Settings(int cam, double sigma, double huber) const {
-    ReprojectionSettings s;
+  ReprojectionOptions Settings(int cam, double sigma, double huber) const {
+    ReprojectionOptions s;
     s.camera = &camchain_[cam].camera;
     s.layout = layout_;
     s.model = spline_->trajectory_model();
@@ -296,7 +296,7 @@ class CalibrationProblem {
   std::vector<LandmarkResidual> landmark_residuals_;
 };
 
-}  // namespace calibrate_internal
+}  // namespace internal
 }  // namespace splinecal
 
 #endif  // SPLINECAL_SRC_CALIB_CALIBRATION_PROBLEM_H_

@@ -11,7 +11,7 @@
 #include "splinecal/imu/imu_rate.h"
 
 namespace splinecal {
-namespace calibrate_internal {
+namespace internal {
 
 MarginalCovarianceOptions CalibrationProblem::CovarianceOptionsForProblem() {
   MarginalCovarianceOptions covariance_options;
@@ -44,7 +44,7 @@ bool CalibrationProblem::TargetScaleStd(double* std_out) {
 }
 
 void CalibrationProblem::HoldTargetScale() {
-  // r(s p_t; T) = r(p_t; T / s) (calib/target_scale_cost.h): the same pixels at s = 1.
+  // r(s p_t; T) = r(p_t; T / s) (calib/detail/target_scale_cost.h): the same pixels at s = 1.
   const double s = target_scale_;
   for (double* block : control_blocks()) {
     for (int i = 0; i < 3; ++i) block[i] /= s;
@@ -344,5 +344,5 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
             });
 }
 
-}  // namespace calibrate_internal
+}  // namespace internal
 }  // namespace splinecal

@@ -7,7 +7,7 @@
 #include "splinecal/string_printf.h"
 
 namespace splinecal {
-namespace calibrate_internal {
+namespace internal {
 
 namespace {
 
@@ -70,5 +70,5 @@ void AddStandardDeviationWarnings(const CalibrateOptions& options,
   }
 }
 
-}  // namespace calibrate_internal
+}  // namespace internal
 }  // namespace splinecal

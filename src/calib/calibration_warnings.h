@@ -8,7 +8,7 @@
 #include "splinecal/estimation/imu_noise_estimate.h"
 
 namespace splinecal {
-namespace calibrate_internal {
+namespace internal {
 
 // Appends to result->warnings, from the stds, estimates, std_inflation and robust_clusters that
 // `result` already holds (the cameras' calibration: the estimates).
@@ -16,7 +16,7 @@ void AddStandardDeviationWarnings(const CalibrateOptions& options,
                                   const ImuNoiseEstimate& noise,
                                   CalibrationResult* result);
 
-}  // namespace calibrate_internal
+}  // namespace internal
 }  // namespace splinecal
 
 #endif  // SPLINECAL_SRC_CALIB_CALIBRATION_WARNINGS_H_

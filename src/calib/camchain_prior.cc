@@ -5,7 +5,7 @@
 #include <Eigen/Cholesky>
 #include <utility>
 
-#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/detail/pose_block_jacobian.h"
 #include "splinecal/lie/se3_manifold.h"
 
 namespace splinecal {

@@ -24,10 +24,10 @@
 #include "splinecal/estimation/bias_costs.h"
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/vio/hand_eye.h"
-#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/detail/imu_costs.h"
 #include "splinecal/estimation/imu_noise_estimate.h"
 #include "splinecal/estimation/interval_manifold.h"
-#include "splinecal/estimation/pose_cost.h"
+#include "splinecal/estimation/detail/pose_cost.h"
 #include "splinecal/estimation/solver_progress.h"
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/estimation/solve_rounds.h"
@@ -446,10 +446,9 @@ void FitProblem::Impl::AddPoseResiduals() {
     data.shared = spline_problem->evaluation_callback();
     data.model = options.model.trajectory;
     pose_segments.push_back(data.segment_index);
-    const bool analytic = options.residuals.differentiation == Differentiation::kAnalytic;
-    ceres::CostFunction* cost = analytic
-                                    ? static_cast<ceres::CostFunction*>(new PoseCostFunction(data))
-                                    : NewAutoDiffPoseCost(data);
+    const ReplacementCosts& replacement = options.residuals.replacement;
+    ceres::CostFunction* cost = replacement.pose ? replacement.pose(data)
+                                                 : new PoseCostFunction(data);
     const int i = data.segment_index;
     problem()->AddResidualBlock(cost,
                               nullptr,

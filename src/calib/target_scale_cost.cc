@@ -1,4 +1,4 @@
-#include "splinecal/calib/target_scale_cost.h"
+#include "splinecal/calib/detail/target_scale_cost.h"
 
 #include <Eigen/Core>
 #include <array>

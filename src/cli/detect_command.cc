@@ -12,7 +12,7 @@
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/detect/detect_bag.h"
 #include "splinecal/detect/detect_folders.h"
-#include "splinecal/detect/detect_report.h"
+#include "splinecal/report/detect_report.h"
 #include "splinecal/error.h"
 #include "splinecal/io/bag_messages.h"
 #include "splinecal/io/image_folder.h"
@@ -144,7 +144,7 @@ int RunDetect() {
                                          : DetectFolders(in.folders, in.target, options);
   for (const std::string& warning : result.warnings) Progress("detect: warning: " + warning);
 
-  output.WriteFiles(DetectOutputFiles(result, in.target, FLAGS_target));
+  output.WriteFiles(DetectOutputFiles(result, in.target, FLAGS_target, FLAGS_effort));
   output.Commit();
   if (!Quiet()) std::fputs(DetectSummaryText(result).c_str(), stderr);
   return 0;

@@ -2,7 +2,7 @@
 // analytic one (sim/trajectories.h) or a recorded one (--trajectory-file), turned into spline
 // control poses by a least-squares fit (estimation/pose_fit.h); the IMU readings are the spline's
 // IMU model plus Kalibr noise. Writes a EuRoC folder (mav0/imu0, mav0/state_groundtruth_estimate0),
-// spline.csv, imu.yaml and result.yaml (sim/simulation_result.h) to --out. See docs/simulate.md.
+// spline.csv, imu.yaml and result.yaml (report/command_outputs.h) to --out. See docs/simulate.md.
 #include <gflags/gflags.h>
 
 #include <cmath>

@@ -62,8 +62,4 @@ bool BiasRandomWalkCostFunction::Evaluate(double const* const* parameters,
   return true;
 }
 
-BiasRandomWalkResidual::BiasRandomWalkResidual(double knot_spacing_s, double random_walk_density)
-    : weights(BiasRandomWalkSqrtInformation() / (random_walk_density * std::sqrt(knot_spacing_s))) {
-}
-
 }  // namespace splinecal

@@ -1,4 +1,4 @@
-#include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/detail/compact_frame_cost.h"
 
 #include <Eigen/Core>
 #include <Eigen/Householder>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "splinecal/camera/camera_model.h"
-#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/detail/pose_block_jacobian.h"
 
 namespace splinecal {
 
@@ -18,7 +18,7 @@ namespace {
 constexpr int kMaxCompactRows = 6 + 6 + kNumIntrinsics + 1;
 
 // Writes the tangent Jacobian of a pose block, lifted to its 7 ambient columns
-// (estimation/pose_block_jacobian.h).
+// (estimation/detail/pose_block_jacobian.h).
 void WritePoseBlock(const Eigen::MatrixXd& J_tangent, const double* block, double* jacobian) {
   if (jacobian == nullptr) return;
   internal::LiftPoseJacobian(J_tangent, internal::MakePoseBlockLift(block), jacobian);

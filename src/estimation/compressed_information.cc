@@ -9,12 +9,12 @@
 #include <unordered_map>
 
 #include "information_factor.h"
-#include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/detail/compact_frame_cost.h"
 #include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/run_tasks.h"
 
 namespace splinecal {
-namespace estimation_internal {
+namespace internal {
 
 namespace {
 
@@ -491,5 +491,5 @@ bool CompressedInformation::LabelTraces(std::map<int, double>* traces) const {
   return true;
 }
 
-}  // namespace estimation_internal
+}  // namespace internal
 }  // namespace splinecal

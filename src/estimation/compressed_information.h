@@ -24,7 +24,7 @@
 #include <vector>
 
 namespace splinecal {
-namespace estimation_internal {
+namespace internal {
 
 // The label of a residual block (>= 0), or -1 to leave it out of the information entirely.
 using ResidualLabel = std::function<int(ceres::ResidualBlockId)>;
@@ -144,7 +144,7 @@ class CompressedInformation {
   std::unique_ptr<ceres::Problem> compressed_;
 };
 
-}  // namespace estimation_internal
+}  // namespace internal
 }  // namespace splinecal
 
 #endif  // SPLINECAL_SRC_ESTIMATION_COMPRESSED_INFORMATION_H_

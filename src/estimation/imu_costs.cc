@@ -1,6 +1,6 @@
-// The one instantiation of the analytic IMU costs (estimation/imu_costs.h declares them extern):
+// The one instantiation of the analytic IMU costs (estimation/detail/imu_costs.h declares them extern):
 // both bias models, one sample per block and one segment per block.
-#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/detail/imu_costs.h"
 
 namespace splinecal {
 

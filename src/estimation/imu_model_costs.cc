@@ -1,8 +1,7 @@
-#include "splinecal/estimation/imu_model_costs.h"
+#include "splinecal/estimation/detail/imu_model_costs.h"
 
 #include <ceres/dynamic_autodiff_cost_function.h>
 
-#include "splinecal/estimation/imu_autodiff_costs.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/imu/matrix_parameters.h"
 #include "splinecal/lie/so3.h"

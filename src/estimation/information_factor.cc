@@ -10,7 +10,7 @@
 #include "splinecal/error.h"
 
 namespace splinecal {
-namespace estimation_internal {
+namespace internal {
 namespace {
 
 // Pivots below this fraction of their diagonal entry are rounding, not information: H is
@@ -143,5 +143,5 @@ Eigen::MatrixXd InformationFactor::InverseOn(const std::vector<int>& indices) co
   return Z;
 }
 
-}  // namespace estimation_internal
+}  // namespace internal
 }  // namespace splinecal

@@ -33,7 +33,7 @@
 #include <vector>
 
 namespace splinecal {
-namespace estimation_internal {
+namespace internal {
 
 // The order in which to eliminate num_blocks parameter blocks whose couplings are given as
 // cliques (the block ids every residual group touches; each id in [0, num_blocks)): approximate
@@ -72,7 +72,7 @@ class InformationFactor {
   Eigen::VectorXd inverse_diagonal_;
 };
 
-}  // namespace estimation_internal
+}  // namespace internal
 }  // namespace splinecal
 
 #endif  // SPLINECAL_SRC_ESTIMATION_INFORMATION_FACTOR_H_

@@ -17,7 +17,7 @@
 
 namespace splinecal {
 
-using estimation_internal::CompressedInformation;
+using internal::CompressedInformation;
 
 MarginalCovariance ComputeMarginalCovariance(ceres::Problem* problem,
                                              const std::vector<const double*>& blocks,

@@ -1,4 +1,4 @@
-#include "splinecal/estimation/pose_cost.h"
+#include "splinecal/estimation/detail/pose_cost.h"
 
 #include "splinecal/lie/so3.h"
 

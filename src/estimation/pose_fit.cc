@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "splinecal/error.h"
-#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/detail/pose_block_jacobian.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
@@ -102,7 +102,7 @@ class SegmentPoseCost : public ceres::CostFunction {
 //   d Omega_k / d d_k = Jr^-1(Omega_k),   d Omega_k / d d_{k-1} = -Jl^-1(Omega_k),
 // so d r / d d_{i-1} = -w Jl^-1(Omega_i), d r / d d_i = w (Jr^-1(Omega_i) + Jl^-1(Omega_{i+1})),
 // d r / d d_{i+1} = -w Jr^-1(Omega_{i+1}), lifted to the ambient blocks
-// (estimation/pose_block_jacobian.h). Analytic: its automatic differentiation through three
+// (estimation/detail/pose_block_jacobian.h). Analytic: its automatic differentiation through three
 // SE(3) logarithms was most of a pose fit's Jacobian time (docs/performance.md, 711d43c).
 class SmoothnessPriorCost : public ceres::SizedCostFunction<6, 7, 7, 7> {
  public:

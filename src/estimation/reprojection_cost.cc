@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/detail/pose_block_jacobian.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/se3_spline.h"
 #include "splinecal/spline/segment_jacobians.h"
@@ -79,7 +79,7 @@ namespace {
 class WindowKnots {
  public:
   // pose_indices: the residual's control poses (sorted, unique), parameters[0 ..] their blocks.
-  WindowKnots(const ReprojectionSettings& settings,
+  WindowKnots(const ReprojectionOptions& settings,
               const std::vector<int>& pose_indices,
               double const* const* parameters,
               bool with_jacobians)
@@ -118,7 +118,7 @@ class WindowKnots {
   }
 
  private:
-  const ReprojectionSettings& settings_;
+  const ReprojectionOptions& settings_;
   const std::vector<int>& pose_indices_;
   double const* const* parameters_;
   bool with_jacobians_;
@@ -148,7 +148,7 @@ struct StateMemo {
 };
 
 // Evaluates the body state at t_s (seconds since t0, IMU clock) from the window.
-bool StateAt(const ReprojectionSettings& settings,
+bool StateAt(const ReprojectionOptions& settings,
              WindowKnots* knots,
              double t_s,
              ExposureState* state,
@@ -195,7 +195,7 @@ const ControlPoseJacobian<6>& PoseJacobianAt(TrajectoryModel model,
 
 // Solves the exposure time of X_w = (x_w, w) in a frame at t_frame_s + shift (IMU clock) and
 // projects it there. On success `state` and `projection` belong to the solution.
-bool SolveAndProject(const ReprojectionSettings& settings,
+bool SolveAndProject(const ReprojectionOptions& settings,
                      WindowKnots* knots,
                      const SE3d& T_c_s,
                      double t_exposure_base_s,
@@ -259,7 +259,7 @@ std::vector<int> WindowIndices(const ControlPoseWindow& window) {
 }  // namespace
 }  // namespace internal
 
-TargetFrameCostFunction::TargetFrameCostFunction(const ReprojectionSettings& settings,
+TargetFrameCostFunction::TargetFrameCostFunction(const ReprojectionOptions& settings,
                                                  const ControlPoseWindow& window,
                                                  double t_frame_s,
                                                  std::vector<TargetCornerObservation> corners)
@@ -286,7 +286,7 @@ bool TargetFrameCostFunction::Evaluate(double const* const* parameters,
   const SE3d T_w_t = PoseFromBlock(parameters[n + 3]);
   if (!(line_delay >= 0.0) || !std::isfinite(shift)) return false;
   // With estimated intrinsics the camera of this evaluation is the block's.
-  ReprojectionSettings settings = settings_;
+  ReprojectionOptions settings = settings_;
   Camera estimated;
   if (settings_.estimate_intrinsics) {
     estimated = *settings_.camera;
@@ -437,7 +437,7 @@ bool TargetFrameCostFunction::LinearizeGlobalShutter(double const* const* parame
   return true;
 }
 
-LandmarkCostFunction::LandmarkCostFunction(const ReprojectionSettings& settings,
+LandmarkCostFunction::LandmarkCostFunction(const ReprojectionOptions& settings,
                                            std::vector<int> pose_indices,
                                            const LandmarkObservation& observation)
     : settings_(settings), pose_indices_(std::move(pose_indices)), observation_(observation) {

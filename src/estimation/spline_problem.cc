@@ -1,6 +1,7 @@
 #include "splinecal/estimation/spline_problem.h"
 
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +10,8 @@
 
 #include "splinecal/error.h"
 #include "splinecal/estimation/bias_costs.h"
-#include "splinecal/estimation/imu_autodiff_costs.h"
-#include "splinecal/estimation/imu_costs.h"
+#include "splinecal/estimation/detail/imu_costs.h"
+#include "splinecal/estimation/detail/imu_model_costs.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/imu/spline_body_motion.h"
 
@@ -38,7 +39,10 @@ SplineProblem::SplineProblem(const KnotLayout& layout,
   }
   gyro_bias_values_.assign(3 * static_cast<size_t>(bias_.num_points()), 0.0);
   accel_bias_values_.assign(3 * static_cast<size_t>(bias_.num_points()), 0.0);
-  if (options_.differentiation == Differentiation::kAnalytic && options_.share_knot_caches) {
+  CHECK_EQ(static_cast<bool>(options_.replacement.gyro),
+           static_cast<bool>(options_.replacement.accel))
+      << "ReplacementCosts: gyro and accel go together";
+  if (!options_.replacement.gyro && options_.share_knot_caches) {
     callback_ =
         std::make_unique<SplineEvaluationCallback>(control_blocks_, layout_.t0_ns, layout_.dt_ns);
   }
@@ -155,7 +159,7 @@ void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
                                     double sigma_gyro,
                                     double sigma_accel) {
   const int nb = bias_.points_per_segment();
-  const bool analytic = options_.differentiation == Differentiation::kAnalytic;
+  const bool analytic = !options_.replacement.gyro;
   const double dt_s = layout_.dt_s();
   const double duration_s =
       imu.size() > 1 ? 1e-9 * static_cast<double>(imu.back().t_ns - imu.front().t_ns) : 0.0;
@@ -203,7 +207,7 @@ void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
     accel_blocks.push_back(gravity_.data());
 
     if (imu_model_kind_ != ImuModelKind::kCalibrated) {
-      // Kalibr's model (estimation/imu_model_costs.h): the gyro reads f_b through A, so it takes
+      // Kalibr's model (estimation/detail/imu_model_costs.h): the gyro reads f_b through A, so it takes
       // gravity too.
       const std::vector<double*> model = ImuModelBlocks();
       gyro_blocks.push_back(gravity_.data());
@@ -219,11 +223,12 @@ void SplineProblem::AddImuResiduals(const std::vector<ImuSample>& imu,
     } else if (!analytic) {
       for (size_t s = 0; s < gyro_samples.size(); ++s) {
         kinds_[problem_->AddResidualBlock(
-            NewAutoDiffGyroCost(nb, gyro_segment, gyro_samples[s]), nullptr, gyro_blocks)] =
+            options_.replacement.gyro(nb, gyro_segment, gyro_samples[s]), nullptr, gyro_blocks)] =
             ImuResidualKind::kGyro;
-        kinds_[problem_->AddResidualBlock(
-            NewAutoDiffAccelCost(nb, accel_segment, accel_samples[s]), nullptr, accel_blocks)] =
-            ImuResidualKind::kAccel;
+        kinds_[problem_->AddResidualBlock(options_.replacement.accel(
+                                              nb, accel_segment, accel_samples[s]),
+                                          nullptr,
+                                          accel_blocks)] = ImuResidualKind::kAccel;
       }
     } else if (options_.layout == ImuResidualLayout::kPerSample) {
       for (size_t s = 0; s < gyro_samples.size(); ++s) {

@@ -12,7 +12,7 @@ VarianceComponents EstimateVarianceComponents(ceres::Problem* problem,
                                               const VarianceComponentOptions& options,
                                               const std::map<int, double>& group_ranks) {
   VarianceComponents result;
-  const estimation_internal::CompressedInformation information(
+  const internal::CompressedInformation information(
       problem, group_of, {}, options.num_threads);
   if (information.evaluation_failed()) return result;
   std::map<int, double> traces;

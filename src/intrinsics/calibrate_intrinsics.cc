@@ -109,7 +109,7 @@ class IntrinsicsSolver {
       if (!problem_->HasParameterBlock(pose)) {
         problem_->AddParameterBlock(pose, kPoseBlockSize, new SE3Manifold);
       }
-      RigViewSettings settings;
+      RigViewOptions settings;
       settings.model = state_.cameras[n];
       settings.has_extrinsic = n > 0;
       settings.sigma_px = state_.sigma_px[n];

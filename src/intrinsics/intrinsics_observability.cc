@@ -91,7 +91,7 @@ IntrinsicsObservability AnalyseObservability(const std::string& camera_name,
   IntrinsicsObservability result;
   const int n = static_cast<int>(active.size());
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
-  RigViewSettings settings;
+  RigViewOptions settings;
   settings.model = camera;
   settings.sigma_px = sigma_px;
   IntrinsicsVector intrinsics = camera.intrinsics();

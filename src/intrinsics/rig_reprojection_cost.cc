@@ -5,13 +5,13 @@
 #include <limits>
 #include <utility>
 
-#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/detail/pose_block_jacobian.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/lie/so3.h"
 
 namespace splinecal {
 
-RigViewCostFunction::RigViewCostFunction(const RigViewSettings& settings,
+RigViewCostFunction::RigViewCostFunction(const RigViewOptions& settings,
                                          std::vector<TargetCornerObservation> corners)
     : settings_(settings), corners_(std::move(corners)) {
   set_num_residuals(2 * static_cast<int>(corners_.size()));

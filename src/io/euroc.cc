@@ -4,10 +4,10 @@
 #include <cinttypes>
 #include <cmath>
 
+#include "row_checks.h"
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_rate.h"
 #include "splinecal/io/imu_units.h"
-#include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/string_printf.h"
 

@@ -1,6 +1,6 @@
 #include "splinecal/io/number_parser.h"
 
-#include "splinecal/io/number_parser_avx2.h"
+#include "splinecal/io/detail/number_parser_avx2.h"
 
 namespace splinecal {
 namespace internal {

@@ -7,8 +7,8 @@
 #include <tuple>
 #include <vector>
 
+#include "row_checks.h"
 #include "splinecal/error.h"
-#include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/string_printf.h"
 

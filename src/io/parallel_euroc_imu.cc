@@ -18,7 +18,7 @@
 #include <thread>
 
 #include "splinecal/io/number_parser.h"
-#include "splinecal/io/number_parser_avx2.h"
+#include "splinecal/io/detail/number_parser_avx2.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/run_tasks.h"
 
@@ -158,7 +158,7 @@ struct Sse2Fields {
 };
 
 #if defined(SPLINECAL_HAS_AVX2_PARSER)
-// The same with AVX2 (io/number_parser_avx2.h): the six fields' digits first, then the six
+// The same with AVX2 (io/detail/number_parser_avx2.h): the six fields' digits first, then the six
 // roundings in two groups of four.
 struct Avx2Fields {
   SPLINECAL_AVX2_TARGET static inline uint64_t Separators(const char* p) {

@@ -2,8 +2,8 @@
 
 #include <cinttypes>
 
+#include "row_checks.h"
 #include "splinecal/error.h"
-#include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/string_printf.h"
 

@@ -1,4 +1,4 @@
-#include "splinecal/io/row_checks.h"
+#include "row_checks.h"
 
 #include <algorithm>
 #include <cinttypes>

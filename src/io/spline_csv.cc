@@ -5,8 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "row_checks.h"
 #include "splinecal/error.h"
-#include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/spline/trajectory_model.h"
 #include "splinecal/string_printf.h"

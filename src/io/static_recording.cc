@@ -7,10 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include "row_checks.h"
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_rate.h"
 #include "splinecal/io/parallel_euroc_imu.h"
-#include "splinecal/io/row_checks.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/string_printf.h"
 

@@ -12,6 +12,7 @@
 
 #include "allan/static_series.h"
 #include "splinecal/error.h"
+#include "splinecal/report/allan_report.h"
 #include "testing/strict_yaml.h"
 
 namespace splinecal {

@@ -2,7 +2,9 @@
 // only areas of lower layers, so no two areas include each other (directly or around a longer
 // circle). The layers are the ones include/splinecal/splinecal.h lists; a new area goes into
 // kLayers at the place its includes allow, and an include that points upwards fails here with
-// the file and line that adds it.
+// the file and line that adds it. The installed API is the public headers: the umbrella includes
+// each of them, and none includes an internal one (include/splinecal/<area>/detail/, cli/), which
+// the install leaves out (CMakeLists.txt).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -48,7 +50,14 @@ struct IncludeEdge {
   int line = 0;
   std::string from_area;
   std::string to_area;
+  std::string included;  // the included header below include/splinecal/ ("io/detail/x.h")
 };
+
+// A header of the library's internals, not installed: <area>/detail/*.h (shared by src/ and the
+// tests) and the command line's cli/*.h.
+bool IsInternalHeader(const std::string& relative) {
+  return relative.find("/detail/") != std::string::npos || relative.rfind("cli/", 0) == 0;
+}
 
 // The area of a path below include/splinecal/ or src/: its first folder ("" for the root).
 std::string AreaOf(const fs::path& relative) {
@@ -56,7 +65,8 @@ std::string AreaOf(const fs::path& relative) {
 }
 
 std::vector<IncludeEdge> CollectIncludes(const fs::path& source_dir) {
-  static const std::regex kInclude(R"re(^\s*#\s*include\s+"splinecal/(?:([a-z_]+)/)?[^"/]+")re");
+  static const std::regex kInclude(
+      R"re(^\s*#\s*include\s+"splinecal/((?:([a-z_]+)/)?(?:detail/)?[^"/]+)")re");
   std::vector<IncludeEdge> edges;
   for (const fs::path& root : {source_dir / "include" / "splinecal", source_dir / "src"}) {
     for (const auto& entry : fs::recursive_directory_iterator(root)) {
@@ -74,7 +84,7 @@ std::vector<IncludeEdge> CollectIncludes(const fs::path& source_dir) {
         std::smatch match;
         if (!std::regex_search(text, match, kInclude)) continue;
         edges.push_back({fs::relative(entry.path(), source_dir).string(), line, from_area,
-                         match[1].matched ? match[1].str() : std::string()});
+                         match[2].matched ? match[2].str() : std::string(), match[1].str()});
       }
     }
   }
@@ -115,13 +125,14 @@ TEST(Layering, AreasIncludeOnlyLowerLayers) {
   }
 }
 
-// The umbrella header is the public API a user reads: every library header is in it, area by area
-// in layer order (cli/ is the front end, not the library).
+// The umbrella header is the public API a user reads: every public header is in it, area by area
+// in layer order, and no internal one (detail/; cli/ is the front end, not the library).
 TEST(Layering, UmbrellaHeaderIncludesEveryLibraryHeaderInLayerOrder) {
   const fs::path include_dir = fs::path(testing::SourceDir()) / "include" / "splinecal";
   std::ifstream umbrella(include_dir / "splinecal.h");
   ASSERT_TRUE(umbrella.good());
-  static const std::regex kInclude(R"re(^#include "splinecal/(([a-z_]+)/)?([a-z_0-9]+\.h)")re");
+  static const std::regex kInclude(
+      R"re(^#include "splinecal/(([a-z_]+)/)?((?:detail/)?[a-z_0-9]+\.h)")re");
   std::set<std::string> listed;
   int previous_layer = 0;
   std::string text;
@@ -130,15 +141,39 @@ TEST(Layering, UmbrellaHeaderIncludesEveryLibraryHeaderInLayerOrder) {
     if (!std::regex_search(text, match, kInclude)) continue;
     const std::string area = match[2].matched ? match[2].str() : std::string();
     listed.insert(match[1].str() + match[3].str());
+    EXPECT_FALSE(IsInternalHeader(match[1].str() + match[3].str()))
+        << text << ": an internal header in the public API";
     EXPECT_GE(LayerOf(area), previous_layer) << text << " comes after a higher layer";
     previous_layer = std::max(previous_layer, LayerOf(area));
   }
   for (const auto& entry : fs::recursive_directory_iterator(include_dir)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".h") continue;
     const std::string relative = fs::relative(entry.path(), include_dir).string();
-    if (relative == "splinecal.h" || relative.rfind("cli/", 0) == 0) continue;
+    if (relative == "splinecal.h" || IsInternalHeader(relative)) continue;
     EXPECT_EQ(listed.count(relative), 1u) << relative << " is missing from splinecal.h";
   }
+}
+
+// The install copies the public headers only, so a public header that includes an internal one
+// would not compile in an installed tree (tests/consumer builds programs against one).
+TEST(Layering, PublicHeadersIncludeNoInternalHeader) {
+  int public_includes = 0;
+  for (const IncludeEdge& e : CollectIncludes(testing::SourceDir())) {
+    const std::string prefix = "include/splinecal/";
+    if (e.file.rfind(prefix, 0) != 0 || IsInternalHeader(e.file.substr(prefix.size()))) continue;
+    ++public_includes;
+    EXPECT_FALSE(IsInternalHeader(e.included))
+        << e.file << ":" << e.line << ": a public header includes the internal "
+        << e.included << " (move it to detail/, or the included header out of it)";
+  }
+  EXPECT_GT(public_includes, 200);  // the test reads the tree, not nothing
+}
+
+TEST(Layering, InternalHeadersAreTold) {
+  EXPECT_TRUE(IsInternalHeader("io/detail/number_parser_avx2.h"));
+  EXPECT_TRUE(IsInternalHeader("cli/common_flags.h"));
+  EXPECT_FALSE(IsInternalHeader("io/number_parser.h"));
+  EXPECT_FALSE(IsInternalHeader("splinecal.h"));
 }
 
 using AreaGraph = std::map<std::string, std::set<std::string>>;

@@ -27,7 +27,7 @@
 #include "splinecal/lie/so3.h"
 
 namespace splinecal {
-namespace testdata {
+namespace testing {
 
 enum class Truth { kDiscrete, kContinuous };
 
@@ -196,7 +196,7 @@ inline AnalyticTrajectory YawOnlyTrajectory() {
   return AnalyticTrajectory("yaw_only", position, rpy);
 }
 
-}  // namespace testdata
+}  // namespace testing
 }  // namespace splinecal
 
 #endif  // SPLINECAL_TESTS_CALIB_ALIGN_TEST_DATA_H_

@@ -101,10 +101,10 @@ TEST_P(CamchainPriorTest, ResidualIsTheMahalanobisDistanceAndJacobiansMatch) {
       CHECK(cost.Evaluate(p.data(), out.data(), nullptr));
       return out;
     };
-    testutil::RiddersOptions options;
+    testing::RiddersOptions options;
     options.initial_step = 1e-3;
     const Eigen::MatrixXd numeric =
-        testutil::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
+        testing::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
     const double largest = analytic.cwiseAbs().maxCoeff();
     ASSERT_GT(largest, 0.0);
     EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff() / largest, kRelativeTolerance)

@@ -12,6 +12,7 @@
 #include "splinecal/error.h"
 #include "splinecal/spline/trajectory_model.h"
 #include "splinecal/units.h"
+#include "testing/autodiff_costs.h"
 #include "testing/rotations.h"
 #include "testing/trajectory_models.h"
 
@@ -226,7 +227,7 @@ TEST(Fit, AutoDiffPerSampleUnsharedAndSchurPathsReachTheSameSolution) {
   options.covariance.compute = false;
   const FitResult reference = Fit(data.imu, data.poses, options);
   std::vector<FitOptions> variants(4, options);
-  variants[0].residuals.differentiation = Differentiation::kAutoDiff;
+  variants[0].residuals.replacement = testing::AutoDiffReplacementCosts();
   variants[1].residuals.layout = ImuResidualLayout::kPerSample;
   variants[2].residuals.share_knot_caches = false;
   variants[3].solver.linear_solver = LinearSolver::kSparseSchur;

@@ -1,4 +1,4 @@
-#include "splinecal/calib/target_scale_cost.h"
+#include "splinecal/calib/detail/target_scale_cost.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "calib/camera_test_scene.h"
-#include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/detail/compact_frame_cost.h"
 #include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "testing/numeric_diff.h"
@@ -81,7 +81,7 @@ class TargetScaleCostTest : public ::testing::Test {
   }
 
   testing::CameraTestScene scene_;
-  ReprojectionSettings settings_;
+  ReprojectionOptions settings_;
   SE3Manifold manifold_;
 };
 
@@ -129,9 +129,10 @@ TEST_F(TargetScaleCostTest, ScaledTranslationsSeeTheScaledTargetAndJacobiansMatc
       CHECK(cost.Evaluate(p.data(), out.data(), nullptr));
       return out;
     };
-    testutil::RiddersOptions options;
+    testing::RiddersOptions options;
     options.initial_step = pose ? 1e-3 : 1e-3 * std::max(1e-6, std::abs(x0[0]));
-    const Eigen::MatrixXd numeric = testutil::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
+    const Eigen::MatrixXd numeric =
+        testing::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
     const Eigen::MatrixXd analytic = J.middleCols(column, tangent);
     column += tangent;
     const double largest = std::max(analytic.cwiseAbs().maxCoeff(), 1e-12);
@@ -141,7 +142,7 @@ TEST_F(TargetScaleCostTest, ScaledTranslationsSeeTheScaledTargetAndJacobiansMatc
 }
 
 TEST_F(TargetScaleCostTest, CompactFrameKeepsTheNormalEquations) {
-  // Global shutter: calibrate compacts the frame (estimation/compact_frame_cost.h) and wraps the
+  // Global shutter: calibrate compacts the frame (estimation/detail/compact_frame_cost.h) and wraps the
   // compact form; J^T J and J^T r must be the scaled rows', and rows() must be those rows.
   const double t_frame = 0.62;
   scene_.line_delay = 0.0;

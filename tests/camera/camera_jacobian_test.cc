@@ -1,5 +1,5 @@
 // The analytic Jacobians of Camera::Project and Camera::Unproject against automatic
-// differentiation through Camera::ProjectT and against central differences, for every model at
+// differentiation through testing::ProjectT and against central differences, for every model at
 // points on the optical axis, 1e-9 rad off it, mid field and at the edge of the field (beyond 90
 // degrees for the wide-angle models); and the series branches near singular points against the
 // closed forms just outside them.
@@ -15,6 +15,7 @@
 #include "camera/camera_test_models.h"
 #include "splinecal/camera/camera_model.h"
 #include "testing/numeric_diff.h"
+#include "testing/project_t.h"
 
 namespace splinecal {
 namespace {
@@ -81,7 +82,7 @@ bool AutodiffProject(const Camera& camera,
   const IntrinsicsVector k = camera.intrinsics();
   for (int i = 0; i < kNumIntrinsics; ++i) intrinsics[i] = Jet(k(i), 3 + i);
   Eigen::Matrix<Jet, 2, 1> uv_jet;
-  if (!Camera::ProjectT(camera.projection, camera.distortion, intrinsics, p_jet, &uv_jet)) {
+  if (!testing::ProjectT(camera.projection, camera.distortion, intrinsics, p_jet, &uv_jet)) {
     return false;
   }
   for (int r = 0; r < 2; ++r) {
@@ -114,11 +115,11 @@ TEST(CameraJacobians, ProjectMatchesCentralDifferences) {
       Eigen::Matrix<double, 2, 3> J_p;
       Eigen::Matrix<double, 2, kNumIntrinsics> J_k;
       ASSERT_TRUE(c.camera.Project(p, nullptr, &J_p, &J_k)) << c.label;
-      const Eigen::MatrixXd J_p_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_p_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::Vector3d& q) { return PixelOf(c.camera, k, q); },
           p,
           kFiniteDifferenceStep);
-      const Eigen::MatrixXd J_k_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_k_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::VectorXd& moved) { return PixelOf(c.camera, moved, p); },
           k,
           kFiniteDifferenceStep);
@@ -142,14 +143,14 @@ TEST(CameraJacobians, UnprojectJacobiansMatchCentralDifferences) {
       // Steps: 1e-3 px on uv; the ray is O(1..10) with third derivatives O(1e-6) per px^3, so
       // central differences are good to ~1e-12 (rounding eps |ray| / h ~ 1e-12 too). The
       // entries are ~1/f ~ 1e-3: the tolerance is relative to the largest, not to 1.
-      const Eigen::MatrixXd J_uv_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_uv_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::Vector2d& q) { return RayOf(c.camera, k, q); }, uv, 1e-3);
       EXPECT_LT((J_uv - J_uv_num).cwiseAbs().maxCoeff(), 1e-6 * J_uv.cwiseAbs().maxCoeff())
           << Where(c, p) << "\n"
           << J_uv << "\nvs\n"
           << J_uv_num;
       // 1e-6 on the intrinsics: rounding eps |ray| / h ~ 1e-9 against entries up to O(1).
-      const Eigen::MatrixXd J_k_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_k_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::VectorXd& moved) { return RayOf(c.camera, moved, uv); }, k, 1e-6);
       ExpectJacobianNear(J_k, J_k_num, 1e-6, Where(c, p) + ", d ray / d intrinsics");
     }
@@ -227,7 +228,7 @@ TEST(CameraJacobians, FovWithTinyWMatchesAutodiffAndCentralDifferences) {
   ExpectJacobianNear(J_k, J_k_auto, kAutodiffTolerance, "fov, tiny w, d uv / d intrinsics");
   // d uv / d w at w = 3e-6: fu x 2 w (1/12 - r^2/3) ~ 1e-4 px/rad; central differences in w
   // with a step of 1e-7 (below w, so both sides stay in the series branch).
-  const Eigen::MatrixXd J_num = testutil::CentralDifferenceJacobian(
+  const Eigen::MatrixXd J_num = testing::CentralDifferenceJacobian(
       [&](const Eigen::VectorXd& moved) { return PixelOf(camera, moved, p); },
       camera.intrinsics(),
       1e-7);

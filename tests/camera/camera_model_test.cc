@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "camera/camera_test_models.h"
+#include "testing/project_t.h"
 
 namespace splinecal {
 namespace {
@@ -283,7 +284,7 @@ TEST(Camera, ProjectTAgreesOnTheValidRegion) {
       Eigen::Vector2d uv, uv_t;
       const bool analytic = c.camera.Project(p, &uv);
       const bool templated =
-          Camera::ProjectT(c.camera.projection, c.camera.distortion, k.data(), p, &uv_t);
+          testing::ProjectT(c.camera.projection, c.camera.distortion, k.data(), p, &uv_t);
       EXPECT_EQ(analytic, templated) << c.label << " at " << theta << " deg";
       if (analytic && templated) {
         EXPECT_LT((uv - uv_t).norm(), 1e-9) << c.label;

@@ -49,6 +49,7 @@ TEST(DetectCommand, FindsEveryCornerOfTheBundledStereoFrame) {
 
   EXPECT_EQ(testing::ExpectStrictYamlFilesIn(out), 1);
   const YamlDocument result(out + "/result.yaml");
+  EXPECT_EQ(result.String("effort"), "default");  // the detector option that was used
   for (const std::string cam : {"cam0", "cam1"}) {
     EXPECT_EQ(result.Numbers("cameras/" + cam + "/resolution"), (std::vector<double>{752, 480}));
     EXPECT_EQ(result.Integer("cameras/" + cam + "/images_read"), 1);
@@ -153,6 +154,7 @@ TEST(DetectCommand, EveryEffortFindsTheEurocGridAtTheSameCorners) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     found.push_back(ReadObservationsCsv(out + "/observations.csv"));
     ASSERT_EQ(found.back().size(), 144u) << effort;
+    EXPECT_EQ(YamlDocument(out + "/result.yaml").String("effort"), effort);
   }
   for (size_t e = 1; e < found.size(); ++e) {
     for (size_t i = 0; i < found[0].size(); ++i) {

@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "testing/autodiff_costs.h"
+
 namespace splinecal {
 namespace {
 
@@ -71,8 +73,8 @@ TEST(BiasRandomWalkCostFunction, AnalyticMatchesAutoDiffAndGradientChecker) {
   for (auto& ci : c) ci = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
   const double* parameters[4] = {c[0].data(), c[1].data(), c[2].data(), c[3].data()};
   const BiasRandomWalkCostFunction analytic(1.0, 2e-3);
-  ceres::AutoDiffCostFunction<BiasRandomWalkResidual, 9, 3, 3, 3, 3> autodiff(
-      new BiasRandomWalkResidual(1.0, 2e-3));
+  ceres::AutoDiffCostFunction<testing::BiasRandomWalkResidual, 9, 3, 3, 3, 3> autodiff(
+      new testing::BiasRandomWalkResidual(1.0, 2e-3));
   std::array<std::array<double, 27>, 4> J_a;
   std::array<std::array<double, 27>, 4> J_b;
   double* jacobians_a[4] = {J_a[0].data(), J_a[1].data(), J_a[2].data(), J_a[3].data()};

@@ -87,7 +87,7 @@ TEST(RetractGravity, ZeroStepIsTheIdentityAndTheDerivativeIsNormTimesBasis) {
   for (const Eigen::Vector3d& direction : Directions()) {
     const Eigen::Vector3d g = 9.81 * direction.normalized();
     EXPECT_LT((RetractGravity(g, Eigen::Vector2d::Zero()) - g).norm(), 1e-14);
-    const Eigen::Matrix<double, 3, 2> J = testutil::CentralDifferenceJacobian(
+    const Eigen::Matrix<double, 3, 2> J = testing::CentralDifferenceJacobian(
         [&](const Eigen::Vector2d& w) -> Eigen::Vector3d { return RetractGravity(g, w); },
         Eigen::Vector2d::Zero());
     EXPECT_LT((J - 9.81 * GravityTangentBasis(g)).norm(), 1e-8) << g.transpose();

@@ -1,6 +1,4 @@
-#include "splinecal/estimation/imu_costs.h"
-
-#include "splinecal/estimation/imu_autodiff_costs.h"
+#include "splinecal/estimation/detail/imu_costs.h"
 
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
@@ -16,6 +14,7 @@
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/trajectory_model.h"
+#include "testing/autodiff_costs.h"
 
 namespace splinecal {
 namespace {
@@ -162,7 +161,7 @@ TEST(GyroCostFunction, AnalyticMatchesAutoDiffForBothBiasModels) {
       const std::unique_ptr<ceres::CostFunction> analytic =
           MakeCost<GyroCostFunction>(bias_blocks, segment, sample);
       std::unique_ptr<ceres::CostFunction> autodiff(
-          NewAutoDiffGyroCost(bias_blocks, segment, sample));
+          testing::NewAutoDiffGyroCost(bias_blocks, segment, sample));
       const std::vector<double*> p = blocks.Pointers(bias_blocks, false);
       ExpectSame(Evaluate(*analytic, p), Evaluate(*autodiff, p), kAutoDiffTolerance);
     }
@@ -178,7 +177,7 @@ TEST(AccelCostFunction, AnalyticMatchesAutoDiffForBothBiasModels) {
       const std::unique_ptr<ceres::CostFunction> analytic =
           MakeCost<AccelCostFunction>(bias_blocks, segment, sample);
       std::unique_ptr<ceres::CostFunction> autodiff(
-          NewAutoDiffAccelCost(bias_blocks, segment, sample));
+          testing::NewAutoDiffAccelCost(bias_blocks, segment, sample));
       const std::vector<double*> p = blocks.Pointers(bias_blocks, true);
       ExpectSame(Evaluate(*analytic, p), Evaluate(*autodiff, p), kAutoDiffTolerance);
     }
@@ -299,7 +298,7 @@ TEST(AccelCostFunction, SplitModelMatchesAutoDiffAndPassesGradientChecker) {
       const std::unique_ptr<ceres::CostFunction> coupled =
           MakeCost<AccelCostFunction>(bias_blocks, coupled_segment, sample);
       std::unique_ptr<ceres::CostFunction> autodiff(
-          NewAutoDiffAccelCost(bias_blocks, segment, sample));
+          testing::NewAutoDiffAccelCost(bias_blocks, segment, sample));
       const std::vector<double*> p = blocks.Pointers(bias_blocks, true);
       const Evaluation split = Evaluate(*analytic, p);
       ExpectSame(split, Evaluate(*autodiff, p), kAutoDiffTolerance);

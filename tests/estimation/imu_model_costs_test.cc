@@ -1,4 +1,4 @@
-#include "splinecal/estimation/imu_model_costs.h"
+#include "splinecal/estimation/detail/imu_model_costs.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "splinecal/estimation/imu_autodiff_costs.h"
-#include "splinecal/estimation/imu_costs.h"
+#include "testing/autodiff_costs.h"
+#include "splinecal/estimation/detail/imu_costs.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/trajectory_evaluation.h"
@@ -141,9 +141,9 @@ TEST(ImuModelCosts, AtNominalEqualTheAnalyticCalibratedCosts) {
     const Evaluation a = Evaluate(*accel, f.AccelBlocks(nb, gyro_segment.kind));
     for (size_t k = 0; k < gyro_segment.samples.size(); ++k) {
       std::unique_ptr<ceres::CostFunction> g_ref(
-          NewAutoDiffGyroCost(nb, gyro_segment.segment, gyro_segment.samples[k]));
+          testing::NewAutoDiffGyroCost(nb, gyro_segment.segment, gyro_segment.samples[k]));
       std::unique_ptr<ceres::CostFunction> a_ref(
-          NewAutoDiffAccelCost(nb, accel_segment.segment, accel_segment.samples[k]));
+          testing::NewAutoDiffAccelCost(nb, accel_segment.segment, accel_segment.samples[k]));
       std::vector<double*> gyro_blocks = f.Common(nb, true);
       gyro_blocks.pop_back();  // the calibrated gyro does not read gravity
       const Evaluation g0 = Evaluate(*g_ref, gyro_blocks);

@@ -14,7 +14,7 @@
 #include "splinecal/error.h"
 
 namespace splinecal {
-namespace estimation_internal {
+namespace internal {
 namespace {
 
 // The normal equations of a spline problem in miniature: `poses` 6-column control-pose blocks,
@@ -180,5 +180,5 @@ TEST(InformationFactor, RefusesSingularAndIndefiniteMatrices) {
 }
 
 }  // namespace
-}  // namespace estimation_internal
+}  // namespace internal
 }  // namespace splinecal

@@ -1,4 +1,4 @@
-#include "splinecal/estimation/pose_cost.h"
+#include "splinecal/estimation/detail/pose_cost.h"
 
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
@@ -12,6 +12,7 @@
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/trajectory_evaluation.h"
 #include "splinecal/spline/trajectory_model.h"
+#include "testing/autodiff_costs.h"
 #include "testing/trajectory_models.h"
 
 namespace splinecal {
@@ -119,7 +120,7 @@ TEST_P(PoseCostFunction, AnalyticMatchesAutoDiffAtLargeResiduals) {
         PoseResidualData data = MakeData(t_s - offset, 4, residual_size);
         data.model = GetParam();
         const splinecal::PoseCostFunction analytic(data);
-        std::unique_ptr<ceres::CostFunction> autodiff(NewAutoDiffPoseCost(data));
+        std::unique_ptr<ceres::CostFunction> autodiff(testing::NewAutoDiffPoseCost(data));
         const Evaluation a = Evaluate(analytic, &blocks);
         const Evaluation b = Evaluate(*autodiff, &blocks);
         EXPECT_LE(MaxRelativeDifference(a.residuals.data(), b.residuals.data(), 6),

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "calib/camera_test_scene.h"
-#include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/detail/compact_frame_cost.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "testing/numeric_diff.h"
 
@@ -118,7 +118,7 @@ class ReprojectionCostTest : public ::testing::Test {
         return r;
       };
       Eigen::MatrixXd numeric;
-      testutil::RiddersOptions options;
+      testing::RiddersOptions options;
       options.initial_step =
           1e-3 *
           std::max(1e-6,
@@ -141,7 +141,7 @@ class ReprojectionCostTest : public ::testing::Test {
         }
         numeric = level[5];
       } else {
-        numeric = testutil::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
+        numeric = testing::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
       }
       const double scale = std::max(analytic.cwiseAbs().maxCoeff(), 1e-12);
       EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff() / scale, kRelativeJacobianTolerance)
@@ -200,7 +200,7 @@ class ReprojectionCostTest : public ::testing::Test {
   }
 
   testing::CameraTestScene scene_;
-  ReprojectionSettings settings_;
+  ReprojectionOptions settings_;
   SE3Manifold pose_manifold_;
 };
 
@@ -238,7 +238,7 @@ TEST_F(ReprojectionCostTest, TargetJacobiansGlobalShutter) {
 
 TEST_F(ReprojectionCostTest, TargetJacobiansWithEstimatedIntrinsicsAndAHeldChain) {
   // `calibrate --estimate-intrinsics` with a camera held to a reference camera
-  // (ReprojectionSettings::estimate_intrinsics, T_cam_cref): the intrinsics block's Jacobian
+  // (ReprojectionOptions::estimate_intrinsics, T_cam_cref): the intrinsics block's Jacobian
   // goes through the rolling-shutter correction like every other partial.
   const double t_frame = 0.45;
   settings_.huber_px = 1.5;
@@ -337,7 +337,7 @@ void ExpectSameNormalEquations(const NormalEquations& got, const NormalEquations
 }
 
 TEST_F(ReprojectionCostTest, CompactFrameHasTheRowsNormalEquations) {
-  // estimation/compact_frame_cost.h: Ceres must take the same steps on the compact frame. Huber
+  // estimation/detail/compact_frame_cost.h: Ceres must take the same steps on the compact frame. Huber
   // active on part of the corners; the line delay held at 0 (no Jacobian), as in calibrate.
   // Both trajectory models: the compact form takes the pose Jacobian of the model it is given.
   for (TrajectoryModel model : {TrajectoryModel::kSE3, TrajectoryModel::kSplitSO3R3}) {
@@ -514,7 +514,7 @@ TEST_F(LandmarkCostTest, JacobiansGlobalShutter) {
   ExpectJacobiansMatch(cost, LandmarkBlocks(indices, &rho));
 }
 
-// The split SO(3) x R^3 trajectory model (ReprojectionSettings::model): the forward model against
+// The split SO(3) x R^3 trajectory model (ReprojectionOptions::model): the forward model against
 // the independent reference pixel on the split spline, and every Jacobian block (target frame,
 // rolling shutter and Huber active; a landmark over two segments). The compact form:
 // CompactFrameHasTheRowsNormalEquations.
@@ -531,7 +531,7 @@ TEST_F(ReprojectionCostTest, SplitModelTargetResidualsAndJacobians) {
   ASSERT_TRUE(zero.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));
   for (double r : residuals) EXPECT_LT(std::abs(r) * settings_.sigma_px, kModelTolerancePx);
   // The coupled model sees the same pixels elsewhere: the setting is used.
-  ReprojectionSettings coupled = settings_;
+  ReprojectionOptions coupled = settings_;
   coupled.model = TrajectoryModel::kSE3;
   const TargetFrameCostFunction other(coupled, window, t_frame, exact);
   ASSERT_TRUE(other.Evaluate(blocks.parameters.data(), residuals.data(), nullptr));

@@ -42,7 +42,7 @@ const SE3Splined& LivelySpline() {
 }
 
 ImuCalibration ConsumerImu(ImuModelKind model) {
-  ImuCalibration imu = testutil::MountedImu(model);
+  ImuCalibration imu = testing::MountedImu(model);
   imu.time_offset_s = 0.0;  // correct keeps the IMU's stamps: compare on one clock
   return imu;
 }

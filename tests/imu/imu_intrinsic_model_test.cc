@@ -18,7 +18,7 @@
 namespace splinecal {
 namespace {
 
-using testutil::RelativelyNear;
+using testing::RelativelyNear;
 
 // Automatic differentiation is exact up to rounding; the analytic Jacobians evaluate other
 // formulas for the same derivatives of O(1..100) outputs: 1e-9 relative to max(1, |J|).
@@ -188,7 +188,7 @@ INSTANTIATE_TEST_SUITE_P(AllModels,
 // Equation (1) of rigid_body_point.h against physics: the second time derivative (central
 // differences) of a point fixed on the spline's body, rotated into the body.
 TEST(SpecificForceAtPoint, EqualsTheSecondDerivativeOfAPointOnTheBody) {
-  const SE3Splined spline(testutil::RandomControlPoses(8, 3), 0, testutil::kTestDtNs);
+  const SE3Splined spline(testing::RandomControlPoses(8, 3), 0, testing::kTestDtNs);
   const Eigen::Vector3d r_b(0.05, -0.12, 0.3);
   const Eigen::Vector3d g_w = GravityWorld();
   // Step 1e-4 s on a spline with dt = 0.2 s: truncation ~h^2 |p''''| / 12 ~ 1e-7 m/s^2, rounding
@@ -208,7 +208,7 @@ TEST(SpecificForceAtPoint, EqualsTheSecondDerivativeOfAPointOnTheBody) {
 
 // At nominal parameters every model is imu_model.h's PredictImu, the one-IMU model.
 TEST(ImuIntrinsicModel, NominalParametersReduceToPredictImu) {
-  const SE3Splined spline(testutil::RandomControlPoses(8, 4), 0, testutil::kTestDtNs);
+  const SE3Splined spline(testing::RandomControlPoses(8, 4), 0, testing::kTestDtNs);
   const Segment<double> seg = spline.SegmentAt(0.47);
   const BodyMotion<double> m = SplineBodyMotion(spline, seg, GravityWorld());
   Eigen::Vector3d gyro_ref, accel_ref;

@@ -22,7 +22,7 @@
 namespace splinecal {
 namespace {
 
-using testutil::RelativelyNear;
+using testing::RelativelyNear;
 
 // Jacobians vs central differences (h = 1e-5) of O(1..100) outputs: errors ~1e-10 absolute.
 constexpr double kNumericJacobianTolerance = 1e-6;
@@ -34,9 +34,9 @@ constexpr double kRoundingTolerance = 1e-12;
 constexpr int kNumPoses = 8;
 
 SE3Splined MakeRandomSpline(uint32_t seed, TrajectoryModel model = TrajectoryModel::kSE3) {
-  return SE3Splined(testutil::RandomControlPoses(kNumPoses, seed),
-                    testutil::kEurocLikeT0Ns,
-                    testutil::kTestDtNs,
+  return SE3Splined(testing::RandomControlPoses(kNumPoses, seed),
+                    testing::kEurocLikeT0Ns,
+                    testing::kTestDtNs,
                     model);
 }
 
@@ -55,7 +55,7 @@ const Eigen::Vector3d kAccelBias(-0.1, 0.05, 0.2);
 
 TEST(PredictImu, LevelImuAtRestReadsPlusGOnZ) {
   const std::vector<SE3d> poses(5, SE3d(SO3d(), Eigen::Vector3d(1, 2, 3)));
-  const SE3Splined spline(poses, testutil::kEurocLikeT0Ns, testutil::kTestDtNs);
+  const SE3Splined spline(poses, testing::kEurocLikeT0Ns, testing::kTestDtNs);
   Eigen::Vector3d gyro, accel;
   PredictImu(spline,
              spline.SegmentAtNs(spline.start_time_ns() + 12345),
@@ -72,7 +72,7 @@ TEST(PredictImu, LevelImuAtRestReadsPlusGOnZ) {
 TEST(PredictImu, UpsideDownImuAtRestReadsMinusG) {
   const SO3d flipped = SO3d::Exp(Eigen::Vector3d(kPi, 0, 0));
   const std::vector<SE3d> poses(5, SE3d(flipped, Eigen::Vector3d::Zero()));
-  const SE3Splined spline(poses, 0, testutil::kTestDtNs);
+  const SE3Splined spline(poses, 0, testing::kTestDtNs);
   Eigen::Vector3d accel;
   PredictImu(spline,
              spline.SegmentAt(0.3),
@@ -114,7 +114,7 @@ std::array<Eigen::MatrixXd, 4> NumericControlJacobians(const SE3Splined& spline,
   std::array<Eigen::MatrixXd, 4> J;
   for (int k = 0; k < 4; ++k) {
     const int index = seg.first_index() + k;
-    J[k] = testutil::CentralDifferenceJacobian(
+    J[k] = testing::CentralDifferenceJacobian(
         [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
           SE3Splined perturbed = spline;
           perturbed.SetControlPose(index, spline.control_pose(index) * SE3d::Exp(Vector6d(d)));
@@ -164,7 +164,7 @@ TEST(PredictAccelWithJacobian, MatchesNumericRightPerturbation) {
       for (int k = 0; k < 4; ++k) {
         EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kNumericJacobianTolerance)) << t << k;
       }
-      const Eigen::MatrixXd J_gw_num = testutil::CentralDifferenceJacobian(
+      const Eigen::MatrixXd J_gw_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::VectorXd& g) -> Eigen::VectorXd {
             Eigen::Vector3d a;
             PredictImu(spline, seg, Eigen::Vector3d(g), kGyroBias, kAccelBias, nullptr, &a);

@@ -44,17 +44,17 @@ void ExpectWithinStd(const IntrinsicsCameraResult& result, const Camera& truth, 
 }
 
 TEST(CalibrateIntrinsics, StereoRadTanRigFromTheSweepWithinThreeStd) {
-  testutil::IntrinsicsScene scene;
-  Camera cam1 = testutil::EurocCam0();
+  testing::IntrinsicsScene scene;
+  Camera cam1 = testing::EurocCam0();
   cam1.fu = 457.6;
   cam1.fv = 456.1;
   cam1.pu = 380.0;
   cam1.pv = 255.2;
-  scene.cameras = {testutil::EurocCam0(), cam1};
+  scene.cameras = {testing::EurocCam0(), cam1};
   scene.T_cn_c0 = {SE3d(),
                    SE3d(SO3d::Exp(Eigen::Vector3d(0.002, -0.004, 0.001)),
                         Eigen::Vector3d(-0.110, 0.0004, -0.0009))};
-  const std::vector<Observation> observations = testutil::SimulateIntrinsicsViews(scene, 7);
+  const std::vector<Observation> observations = testing::SimulateIntrinsicsViews(scene, 7);
   const IntrinsicsResult result =
       CalibrateIntrinsics(observations,
                           scene.target,
@@ -79,8 +79,8 @@ TEST(CalibrateIntrinsics, StereoRadTanRigFromTheSweepWithinThreeStd) {
 }
 
 TEST(CalibrateIntrinsics, FrontoParallelViewsNameTheFocalLengths) {
-  testutil::IntrinsicsScene scene;
-  scene.cameras = {testutil::EurocCam0()};
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
   scene.cameras[0].distortion = DistortionModel::kNone;
   scene.cameras[0].distortion_coeffs.setZero();
   scene.T_cn_c0 = {SE3d()};
@@ -91,7 +91,7 @@ TEST(CalibrateIntrinsics, FrontoParallelViewsNameTheFocalLengths) {
   spec.camera = scene.cameras[0];
   spec.initial_values = true;
   const IntrinsicsResult result = CalibrateIntrinsics(
-      testutil::SimulateIntrinsicsViews(scene, 3), scene.target, {spec}, QuietOptions());
+      testing::SimulateIntrinsicsViews(scene, 3), scene.target, {spec}, QuietOptions());
   ASSERT_FALSE(result.warnings.empty());
   const std::string all = ::testing::PrintToString(result.warnings);
   EXPECT_THAT(all, HasSubstr("fu"));
@@ -100,14 +100,14 @@ TEST(CalibrateIntrinsics, FrontoParallelViewsNameTheFocalLengths) {
 }
 
 TEST(CalibrateIntrinsics, TargetOnlyInTheCentreNamesTheDistortion) {
-  testutil::IntrinsicsScene scene;
-  scene.cameras = {testutil::EurocCam0()};
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
   scene.T_cn_c0 = {SE3d()};
   scene.spread = 0.0;
   scene.min_distance_m = 2.5;
   scene.max_distance_m = 3.0;
   scene.views = 30;
-  const IntrinsicsResult result = CalibrateIntrinsics(testutil::SimulateIntrinsicsViews(scene, 5),
+  const IntrinsicsResult result = CalibrateIntrinsics(testing::SimulateIntrinsicsViews(scene, 5),
                                                       scene.target,
                                                       {SpecOf(scene.cameras[0])},
                                                       QuietOptions());
@@ -117,8 +117,8 @@ TEST(CalibrateIntrinsics, TargetOnlyInTheCentreNamesTheDistortion) {
 }
 
 TEST(CalibrateIntrinsics, TooFewViewsAreNamed) {
-  testutil::IntrinsicsScene scene;
-  scene.cameras = {testutil::EurocCam0()};
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
   scene.T_cn_c0 = {SE3d()};
   // One view of a pinhole camera: its homography gives two constraints on four intrinsics
   // [Zhang00]. (With strong distortion even one tilted view carries information on all.)
@@ -129,18 +129,18 @@ TEST(CalibrateIntrinsics, TooFewViewsAreNamed) {
   spec.camera = scene.cameras[0];
   spec.initial_values = true;
   const IntrinsicsResult result = CalibrateIntrinsics(
-      testutil::SimulateIntrinsicsViews(scene, 11), scene.target, {spec}, QuietOptions());
+      testing::SimulateIntrinsicsViews(scene, 11), scene.target, {spec}, QuietOptions());
   const std::string all = ::testing::PrintToString(result.warnings);
   EXPECT_THAT(all, HasSubstr("do not determine"));
   EXPECT_THAT(all, HasSubstr("only 1 view(s)"));
 }
 
 TEST(CalibrateIntrinsics, RepeatedViewsAreSetAsideAndCounted) {
-  testutil::IntrinsicsScene scene;
-  scene.cameras = {testutil::EurocCam0()};
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
   scene.T_cn_c0 = {SE3d()};
   scene.views = 20;
-  std::vector<Observation> observations = testutil::SimulateIntrinsicsViews(scene, 13);
+  std::vector<Observation> observations = testing::SimulateIntrinsicsViews(scene, 13);
   // The first view again, 10 times, each 1 ms later than the last view: a camera held still.
   const int64_t first = observations.front().t_ns;
   const int64_t last = observations.back().t_ns;
@@ -163,11 +163,11 @@ TEST(CalibrateIntrinsics, RepeatedViewsAreSetAsideAndCounted) {
 }
 
 TEST(CalibrateIntrinsics, AnOutlierCornerIsRejected) {
-  testutil::IntrinsicsScene scene;
-  scene.cameras = {testutil::EurocCam0()};
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
   scene.T_cn_c0 = {SE3d()};
   scene.views = 20;
-  std::vector<Observation> observations = testutil::SimulateIntrinsicsViews(scene, 17);
+  std::vector<Observation> observations = testing::SimulateIntrinsicsViews(scene, 17);
   observations[40].uv += Eigen::Vector2d(12.0, -9.0);  // a mislabelled corner
   const IntrinsicsResult result =
       CalibrateIntrinsics(observations, scene.target, {SpecOf(scene.cameras[0])}, QuietOptions());
@@ -176,12 +176,12 @@ TEST(CalibrateIntrinsics, AnOutlierCornerIsRejected) {
 }
 
 TEST(CalibrateIntrinsics, ACameraWithoutAModelIsAnError) {
-  testutil::IntrinsicsScene scene;
-  scene.cameras = {testutil::EurocCam0(), testutil::EurocCam0()};
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0(), testing::EurocCam0()};
   scene.T_cn_c0 = {SE3d(), SE3d(SO3d(), Eigen::Vector3d(-0.11, 0, 0))};
   scene.views = 5;
   try {
-    CalibrateIntrinsics(testutil::SimulateIntrinsicsViews(scene, 1),
+    CalibrateIntrinsics(testing::SimulateIntrinsicsViews(scene, 1),
                         scene.target,
                         {SpecOf(scene.cameras[0])},
                         QuietOptions());
@@ -203,9 +203,9 @@ namespace {
 // eucm's NEES over 20 seeds is 132 of 120 dof; at 4 std 0.4%. The covariance itself is
 // checked by the NEES over 20 seeds, intrinsics_nees_slow_test.cc.)
 TEST(CalibrateIntrinsics, EveryModelFromTheSweepWithinThreeStd) {
-  for (const testutil::ModelCase& c : testutil::AllModelCases()) {
+  for (const testing::ModelCase& c : testing::AllModelCases()) {
     SCOPED_TRACE(c.name);
-    const std::vector<Observation> observations = testutil::SimulateIntrinsicsViews(c.scene, 21);
+    const std::vector<Observation> observations = testing::SimulateIntrinsicsViews(c.scene, 21);
     IntrinsicsCameraSpec spec;
     ASSERT_TRUE(ParseCameraModelName(c.name, &spec.camera.projection, &spec.camera.distortion));
     spec.camera.width = c.scene.cameras[0].width;

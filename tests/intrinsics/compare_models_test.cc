@@ -16,7 +16,7 @@ namespace {
 using ::testing::HasSubstr;
 
 TEST(CompareModels, TheTrueModelFitsBestOnTheSameCorners) {
-  const testutil::ModelCase ds = testutil::AllModelCases()[7];
+  const testing::ModelCase ds = testing::AllModelCases()[7];
   ASSERT_EQ(ds.name, "ds-none");
   const Camera& truth = ds.scene.cameras[0];
   IntrinsicsCameraSpec spec;
@@ -27,7 +27,7 @@ TEST(CompareModels, TheTrueModelFitsBestOnTheSameCorners) {
   IntrinsicsOptions options;
   options.solver.max_iterations = 100;
   const IntrinsicsResult result = CalibrateIntrinsics(
-      testutil::SimulateIntrinsicsViews(ds.scene, 3), ds.scene.target, {spec}, options);
+      testing::SimulateIntrinsicsViews(ds.scene, 3), ds.scene.target, {spec}, options);
   const std::vector<ModelFit> fits = CompareModels(result, ds.scene.target, {spec}, options);
   ASSERT_EQ(fits.size(), 3u);
   EXPECT_EQ(fits[0].model, "pinhole-radtan");

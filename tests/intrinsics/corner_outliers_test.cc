@@ -115,7 +115,7 @@ Eigen::Vector2d SteepBorderMisfit(const Eigen::Vector2d& uv) {
 }
 
 TEST(CornerOutliers, ASteepMisfitAtTheImageCornersStaysAGrossDetectionErrorGoes) {
-  const Camera camera = testutil::EurocCam0();
+  const Camera camera = testing::EurocCam0();
   const CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 0.3);

@@ -32,7 +32,7 @@ IntrinsicsOptions ExactOptions() {
 void ExpectExactAgainstOpenCv(const std::string& model, int cam_id) {
   const CalibrationTarget target =
       ReadTargetYaml(testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"));
-  const std::vector<Observation> observations = testutil::RoundedToFloat(testutil::EveryNthFrame(
+  const std::vector<Observation> observations = testing::RoundedToFloat(testing::EveryNthFrame(
       ReadObservationsCsv(testing::SharedDataPath("euroc_imu_april/observations.csv")), cam_id, 8));
   IntrinsicsCameraSpec spec;
   ASSERT_TRUE(ParseCameraModelName(model, &spec.camera.projection, &spec.camera.distortion));
@@ -40,13 +40,13 @@ void ExpectExactAgainstOpenCv(const std::string& model, int cam_id) {
   spec.camera.height = 480;
   const IntrinsicsOptions options = ExactOptions();
   const IntrinsicsResult result = CalibrateIntrinsics(observations, target, {spec}, options);
-  const testutil::OpenCvCalibration cv = testutil::CalibrateWithOpenCv(
+  const testing::OpenCvCalibration cv = testing::CalibrateWithOpenCv(
       observations, target, spec.camera.distortion, 752, 480, options.min_corners);
   const IntrinsicsCameraResult& ours = result.cameras[0];
   // The same corners on both sides: every view and every corner used.
   ASSERT_EQ(ours.views_used, cv.views);
   ASSERT_EQ(ours.corners_used, cv.corners);
-  const double ours_sq = testutil::SumOfSquares(result.residuals);
+  const double ours_sq = testing::SumOfSquares(result.residuals);
   ::testing::Test::RecordProperty("sum_sq_ours_opencv",
                                   std::to_string(ours_sq) + " " + std::to_string(cv.sum_sq_px2));
   // No larger than OpenCV's, up to 1e-9 relative: both stop where a step changes the cost by
@@ -57,7 +57,7 @@ void ExpectExactAgainstOpenCv(const std::string& model, int cam_id) {
   const IntrinsicsVector b = cv.camera.intrinsics();
   for (int j = 0; j < 4; ++j) EXPECT_NEAR(a(j), b(j), 0.05) << "fu fv pu pv entry " << j;
   // The distortion, in pixels: the two calibrations map no ray of the image 0.05 px apart.
-  EXPECT_LT(testutil::LargestPixelDifference(ours.camera, cv.camera), 0.05);
+  EXPECT_LT(testing::LargestPixelDifference(ours.camera, cv.camera), 0.05);
 }
 
 TEST(IntrinsicsExactLeastSquares, RadTanCam0NoWorseThanOpenCvCalibrateCamera) {

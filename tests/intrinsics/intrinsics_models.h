@@ -10,7 +10,7 @@
 #include "intrinsics/intrinsics_simulation.h"
 
 namespace splinecal {
-namespace testutil {
+namespace testing {
 
 struct ModelCase {
   std::string name;
@@ -88,7 +88,7 @@ inline std::vector<ModelCase> AllModelCases() {
   return cases;
 }
 
-}  // namespace testutil
+}  // namespace testing
 }  // namespace splinecal
 
 #endif  // SPLINECAL_TESTS_INTRINSICS_INTRINSICS_MODELS_H_

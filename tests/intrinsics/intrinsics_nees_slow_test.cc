@@ -18,7 +18,7 @@ namespace {
 constexpr int kSeeds = 20;
 
 TEST(IntrinsicsNees, EveryModelInItsNinetyFivePercentBand) {
-  for (const testutil::ModelCase& c : testutil::AllModelCases()) {
+  for (const testing::ModelCase& c : testing::AllModelCases()) {
     SCOPED_TRACE(c.name);
     double nees = 0.0;
     int dof = 0;
@@ -32,7 +32,7 @@ TEST(IntrinsicsNees, EveryModelInItsNinetyFivePercentBand) {
       options.solver.function_tolerance = 1e-16;
       options.solver.parameter_tolerance = 1e-14;
       const IntrinsicsResult result = CalibrateIntrinsics(
-          testutil::SimulateIntrinsicsViews(c.scene, 100 + seed), c.scene.target, {spec}, options);
+          testing::SimulateIntrinsicsViews(c.scene, 100 + seed), c.scene.target, {spec}, options);
       const IntrinsicsCameraResult& camera = result.cameras[0];
       if (c.name == "omni-radtan") {
         // Mei's xi and radtan's k1 both bend rays radially: even on this 512 x 512 fisheye the

@@ -33,7 +33,7 @@ TEST(IntrinsicsOpenCvChessboard, ExactLeastSquaresMatchesOpenCvCalibrateCamera) 
     }
   }
   ASSERT_EQ(observations.size(), 13u * 54u);
-  observations = testutil::RoundedToFloat(observations);
+  observations = testing::RoundedToFloat(observations);
   IntrinsicsCameraSpec spec;
   spec.camera.distortion = DistortionModel::kRadTan;
   spec.camera.width = 640;
@@ -46,10 +46,10 @@ TEST(IntrinsicsOpenCvChessboard, ExactLeastSquaresMatchesOpenCvCalibrateCamera) 
   const IntrinsicsCameraResult& camera = result.cameras[0];
   EXPECT_EQ(camera.views_used, 13);
   EXPECT_EQ(camera.corners_used, 13 * 54);
-  const testutil::OpenCvCalibration cv = testutil::CalibrateWithOpenCv(
+  const testing::OpenCvCalibration cv = testing::CalibrateWithOpenCv(
       observations, board, DistortionModel::kRadTan, 640, 480, exact.min_corners);
   ASSERT_EQ(cv.corners, 13 * 54);
-  const double ours_sq = testutil::SumOfSquares(result.residuals);
+  const double ours_sq = testing::SumOfSquares(result.residuals);
   // The same problem on the same corners: no larger than OpenCV's sum of squares, up to 1e-9
   // relative (both stop on a relative cost change ~1e-10..1e-15; 1e-9 of 27 px^2 is far below
   // what an intrinsic 0.001 px off the minimum adds).
@@ -63,7 +63,7 @@ TEST(IntrinsicsOpenCvChessboard, ExactLeastSquaresMatchesOpenCvCalibrateCamera) 
   for (int j = kDistortionCoeffsIndex; j < kDistortionCoeffsIndex + 4; ++j) {
     EXPECT_NEAR(a(j), b(j), 1e-4) << "distortion entry " << j;
   }
-  EXPECT_LT(testutil::LargestPixelDifference(camera.camera, cv.camera), 0.05);
+  EXPECT_LT(testing::LargestPixelDifference(camera.camera, cv.camera), 0.05);
   // OpenCV 4.6's own result on these images (SOURCE.md, its detector's corners): within 1 px.
   EXPECT_NEAR(camera.camera.fu, 533.052, 1.0);
   EXPECT_NEAR(camera.camera.fv, 533.182, 1.0);
@@ -76,7 +76,7 @@ TEST(IntrinsicsOpenCvChessboard, ExactLeastSquaresMatchesOpenCvCalibrateCamera) 
   // 0.1 px of the exact answer everywhere in the image.
   const IntrinsicsResult robust =
       CalibrateIntrinsics(observations, board, {spec}, IntrinsicsOptions());
-  EXPECT_LT(testutil::LargestPixelDifference(robust.cameras[0].camera, camera.camera), 0.1);
+  EXPECT_LT(testing::LargestPixelDifference(robust.cameras[0].camera, camera.camera), 0.1);
 }
 
 }  // namespace

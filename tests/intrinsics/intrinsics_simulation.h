@@ -14,7 +14,7 @@
 #include "splinecal/lie/se3.h"
 
 namespace splinecal {
-namespace testutil {
+namespace testing {
 
 struct IntrinsicsScene {
   std::vector<Camera> cameras;  // the truth
@@ -95,7 +95,7 @@ inline Camera EurocCam0() {
   return camera;
 }
 
-}  // namespace testutil
+}  // namespace testing
 }  // namespace splinecal
 
 #endif  // SPLINECAL_TESTS_INTRINSICS_INTRINSICS_SIMULATION_H_

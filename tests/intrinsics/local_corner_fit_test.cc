@@ -25,7 +25,7 @@ struct ProjectedView {
 // EuRoC's 6 x 6 AprilGrid, 0.9 m away, shifted so that it reaches into the image's top-right
 // corner, where the distortion bends most; corners outside the image dropped (63 stay).
 ProjectedView ViewIntoTheImageCorner() {
-  const Camera camera = testutil::EurocCam0();
+  const Camera camera = testing::EurocCam0();
   const CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
   const SE3d T_c_t(SO3d(), Eigen::Vector3d(0.5, -0.9, 0.9));
   ProjectedView view;

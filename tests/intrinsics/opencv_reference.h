@@ -20,7 +20,7 @@
 #include "splinecal/camera/target.h"
 
 namespace splinecal {
-namespace testutil {
+namespace testing {
 
 // Rounds every pixel to float. OpenCV's calibrateCamera converts its inputs to float
 // (collectCalibrationData); giving both solvers the same rounded corners makes their sums of
@@ -159,7 +159,7 @@ inline double LargestPixelDifference(const Camera& a, const Camera& b) {
   return largest;
 }
 
-}  // namespace testutil
+}  // namespace testing
 }  // namespace splinecal
 
 #endif  // SPLINECAL_TESTS_INTRINSICS_OPENCV_REFERENCE_H_

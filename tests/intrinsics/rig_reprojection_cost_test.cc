@@ -32,12 +32,12 @@ std::vector<TargetCornerObservation> Corners(const Camera& camera,
 }
 
 void CheckGradients(bool has_extrinsic) {
-  const Camera camera = testutil::EurocCam0();
+  const Camera camera = testing::EurocCam0();
   const SE3d T_c0_t(SO3d::Exp(Eigen::Vector3d(2.9, 0.2, -0.1)), Eigen::Vector3d(-0.2, -0.1, 0.9));
   const SE3d T_cn_c0 = has_extrinsic ? SE3d(SO3d::Exp(Eigen::Vector3d(0.01, -0.02, 0.005)),
                                             Eigen::Vector3d(-0.11, 0.001, 0.002))
                                      : SE3d();
-  RigViewSettings settings;
+  RigViewOptions settings;
   settings.model = camera;
   settings.has_extrinsic = has_extrinsic;
   settings.sigma_px = 0.5;
@@ -113,7 +113,7 @@ TEST(RigViewCostFunction, JacobiansWithTheExtrinsicMatchNumericDifferentiation) 
 }
 
 TEST(RigViewErrors, AreThePixelDifferences) {
-  const Camera camera = testutil::EurocCam0();
+  const Camera camera = testing::EurocCam0();
   const SE3d T(SO3d::Exp(Eigen::Vector3d(3.0, 0.1, 0.0)), Eigen::Vector3d(-0.2, -0.2, 1.0));
   const std::vector<TargetCornerObservation> corners = Corners(camera, T, 0.2);
   const std::vector<Eigen::Vector2d> errors = RigViewErrors(camera, T, corners);

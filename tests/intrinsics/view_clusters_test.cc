@@ -73,8 +73,8 @@ TEST(ViewClusters, TheBoardsSideAndTheImageEdgeDoNotChangeTheCluster) {
 // EuRoC's cam0 with radtan's k3 = `k3` (pinhole-radtan fits k1 k2 p1 p2 only), 200 views from
 // 0.5-0.8 m, fitted as pinhole-radtan: where each std comes from.
 IntrinsicsCameraResult FitWithK3(double k3) {
-  testutil::IntrinsicsScene scene;
-  scene.cameras = {testutil::EurocCam0()};
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
   scene.cameras[0].distortion_coeffs(4) = k3;
   scene.T_cn_c0 = {SE3d()};
   scene.views = 200;
@@ -86,7 +86,7 @@ IntrinsicsCameraResult FitWithK3(double k3) {
   spec.camera.height = 480;
   IntrinsicsOptions options;
   options.solver.num_threads = 1;
-  return CalibrateIntrinsics(testutil::SimulateIntrinsicsViews(scene, 11), scene.target, {spec},
+  return CalibrateIntrinsics(testing::SimulateIntrinsicsViews(scene, 11), scene.target, {spec},
                              options)
       .cameras[0];
 }

@@ -10,7 +10,7 @@
 #include <random>
 #include <string>
 
-#include "splinecal/io/number_parser_avx2.h"
+#include "splinecal/io/detail/number_parser_avx2.h"
 
 namespace splinecal {
 namespace internal {

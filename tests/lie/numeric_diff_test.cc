@@ -32,7 +32,7 @@ Eigen::Matrix<double, 2, 3> TestFunctionJacobian(const Eigen::Vector3d& x) {
 
 TEST(NumericDiff, CentralDifferenceMatchesAnalytic) {
   const Eigen::Vector3d x(0.3, -0.7, 1.2);
-  const Eigen::MatrixXd numeric = testutil::CentralDifferenceJacobian(
+  const Eigen::MatrixXd numeric = testing::CentralDifferenceJacobian(
       [](const Eigen::Vector3d& v) -> Eigen::Vector2d { return TestFunction(v); }, x);
   ASSERT_EQ(numeric.rows(), 2);
   ASSERT_EQ(numeric.cols(), 3);
@@ -42,10 +42,10 @@ TEST(NumericDiff, CentralDifferenceMatchesAnalytic) {
 TEST(NumericDiff, RiddersIsMoreAccurateThanCentral) {
   const Eigen::Vector3d x(0.3, -0.7, 1.2);
   Eigen::VectorXd error;
-  const Eigen::MatrixXd numeric = testutil::RiddersJacobian(
+  const Eigen::MatrixXd numeric = testing::RiddersJacobian(
       [](const Eigen::Vector3d& v) -> Eigen::Vector2d { return TestFunction(v); },
       x,
-      testutil::RiddersOptions(),
+      testing::RiddersOptions(),
       &error);
   EXPECT_LT((numeric - TestFunctionJacobian(x)).norm(), kRiddersTolerance);
   ASSERT_EQ(error.size(), 3);
@@ -55,9 +55,9 @@ TEST(NumericDiff, RiddersIsMoreAccurateThanCentral) {
 TEST(NumericDiff, CentralDifferenceWithMinusOnGroupValuedFunction) {
   // g(phi) = Exp(phi): with the right minus its Jacobian is Jr(phi).
   const Eigen::Vector3d phi(0.4, -1.1, 0.8);
-  const Eigen::MatrixXd numeric = testutil::CentralDifferenceJacobianWithMinus(
+  const Eigen::MatrixXd numeric = testing::CentralDifferenceJacobianWithMinus(
       [](const Eigen::Vector3d& p) { return SO3d::Exp(p); },
-      [](const SO3d& a, const SO3d& b) { return testutil::RightMinus(a, b); },
+      [](const SO3d& a, const SO3d& b) { return testing::RightMinus(a, b); },
       phi);
   EXPECT_LT((numeric - RightJacobianSO3(phi)).norm(), kCentralTolerance);
 }
@@ -69,15 +69,15 @@ TEST(NumericDiff, RightPerturbationJacobianOfPointTransform) {
   Eigen::Matrix<double, 3, 6> analytic;
   analytic << pose.so3().matrix(), -pose.so3().matrix() * Hat(p);
   const auto f = [&](const SE3d& t) -> Eigen::Vector3d { return t * p; };
-  EXPECT_LT((testutil::RightPerturbationJacobian(f, pose) - analytic).norm(), kCentralTolerance);
-  EXPECT_LT((testutil::RightPerturbationJacobianRidders(f, pose) - analytic).norm(),
+  EXPECT_LT((testing::RightPerturbationJacobian(f, pose) - analytic).norm(), kCentralTolerance);
+  EXPECT_LT((testing::RightPerturbationJacobianRidders(f, pose) - analytic).norm(),
             kRiddersTolerance);
 }
 
 TEST(NumericDiff, RightPerturbationJacobianOnSO3) {
   // d Log(R Exp(d)) / d d at 0 = Jr^-1(Log R).
   const SO3d r = SO3d::Exp(Eigen::Vector3d(1.0, -0.5, 2.0));
-  const Eigen::MatrixXd numeric = testutil::RightPerturbationJacobian(
+  const Eigen::MatrixXd numeric = testing::RightPerturbationJacobian(
       [](const SO3d& x) -> Eigen::Vector3d { return x.Log(); }, r);
   EXPECT_LT((numeric - RightJacobianInverseSO3(r.Log())).norm(), kCentralTolerance);
 }

@@ -157,7 +157,7 @@ TEST(SE3Manifold, AutodiffThroughBlockTimesPlusJacobianIsRightPerturbationJacobi
     Eigen::Matrix<double, 7, 6, Eigen::RowMajor> plus_jacobian;
     ASSERT_TRUE(manifold.PlusJacobian(x.data(), plus_jacobian.data()));
 
-    const Eigen::MatrixXd numeric = testutil::RightPerturbationJacobian(
+    const Eigen::MatrixXd numeric = testing::RightPerturbationJacobian(
         [&](const SE3d& pose) -> Eigen::Vector3d { return pose.inverse() * p_w; }, T_w_s);
     // Analytic: d (Exp(-d) T^-1 p) / d d = [-I, Hat(T^-1 p)].
     Eigen::Matrix<double, 3, 6> analytic;

@@ -199,7 +199,7 @@ TEST(SE3, RightJacobianMatchesCentralDifference) {
   // Jr(xi) d ~ Log(Exp(xi)^-1 Exp(xi + d)).
   for (const Vector6d& xi : JacobianTestTwists()) {
     const SE3d pose_inv = SE3d::Exp(xi).inverse();
-    const Matrix6d numeric = testutil::CentralDifferenceJacobian(
+    const Matrix6d numeric = testing::CentralDifferenceJacobian(
         [&](const Vector6d& x) -> Vector6d { return (pose_inv * SE3d::Exp(x)).Log(); }, xi);
     EXPECT_LT((RightJacobianSE3(xi) - numeric).norm(), kNumericTolerance) << xi.transpose();
   }
@@ -209,7 +209,7 @@ TEST(SE3, LeftJacobianMatchesCentralDifference) {
   // Jl(xi) d ~ Log(Exp(xi + d) Exp(xi)^-1).
   for (const Vector6d& xi : JacobianTestTwists()) {
     const SE3d pose_inv = SE3d::Exp(xi).inverse();
-    const Matrix6d numeric = testutil::CentralDifferenceJacobian(
+    const Matrix6d numeric = testing::CentralDifferenceJacobian(
         [&](const Vector6d& x) -> Vector6d { return (SE3d::Exp(x) * pose_inv).Log(); }, xi);
     EXPECT_LT((LeftJacobianSE3(xi) - numeric).norm(), kNumericTolerance) << xi.transpose();
   }
@@ -221,9 +221,9 @@ TEST(SE3, InverseJacobiansMatchCentralDifference) {
   for (const Vector6d& xi : RandomTwists(100, 3.0, 18)) {
     const SE3d pose = SE3d::Exp(xi);
     const Vector6d zero = Vector6d::Zero();
-    const Matrix6d right = testutil::CentralDifferenceJacobian(
+    const Matrix6d right = testing::CentralDifferenceJacobian(
         [&](const Vector6d& d) -> Vector6d { return (pose * SE3d::Exp(d)).Log(); }, zero);
-    const Matrix6d left = testutil::CentralDifferenceJacobian(
+    const Matrix6d left = testing::CentralDifferenceJacobian(
         [&](const Vector6d& d) -> Vector6d { return (SE3d::Exp(d) * pose).Log(); }, zero);
     EXPECT_LT((RightJacobianInverseSE3(xi) - right).norm(), kNumericTolerance);
     EXPECT_LT((LeftJacobianInverseSE3(xi) - left).norm(), kNumericTolerance);

@@ -229,7 +229,7 @@ TEST(SO3, RightJacobianMatchesCentralDifference) {
   // Jr(phi) d ~ Log(Exp(phi)^-1 Exp(phi + d)).
   for (const Eigen::Vector3d& phi : JacobianTestVectors()) {
     const SO3d r_inv = SO3d::Exp(phi).inverse();
-    const Eigen::Matrix3d numeric = testutil::CentralDifferenceJacobian(
+    const Eigen::Matrix3d numeric = testing::CentralDifferenceJacobian(
         [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return (r_inv * SO3d::Exp(p)).Log(); },
         phi);
     EXPECT_LT((RightJacobianSO3(phi) - numeric).norm(), kNumericTolerance) << phi.transpose();
@@ -240,7 +240,7 @@ TEST(SO3, LeftJacobianMatchesCentralDifference) {
   // Jl(phi) d ~ Log(Exp(phi + d) Exp(phi)^-1).
   for (const Eigen::Vector3d& phi : JacobianTestVectors()) {
     const SO3d r_inv = SO3d::Exp(phi).inverse();
-    const Eigen::Matrix3d numeric = testutil::CentralDifferenceJacobian(
+    const Eigen::Matrix3d numeric = testing::CentralDifferenceJacobian(
         [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return (SO3d::Exp(p) * r_inv).Log(); },
         phi);
     EXPECT_LT((LeftJacobianSO3(phi) - numeric).norm(), kNumericTolerance) << phi.transpose();
@@ -253,10 +253,10 @@ TEST(SO3, InverseJacobiansMatchCentralDifference) {
   for (const Eigen::Vector3d& phi : RandomRotationVectors(100, 3.0, 8)) {
     const SO3d r = SO3d::Exp(phi);
     const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-    const Eigen::Matrix3d right = testutil::CentralDifferenceJacobian(
+    const Eigen::Matrix3d right = testing::CentralDifferenceJacobian(
         [&](const Eigen::Vector3d& d) -> Eigen::Vector3d { return (r * SO3d::Exp(d)).Log(); },
         zero);
-    const Eigen::Matrix3d left = testutil::CentralDifferenceJacobian(
+    const Eigen::Matrix3d left = testing::CentralDifferenceJacobian(
         [&](const Eigen::Vector3d& d) -> Eigen::Vector3d { return (SO3d::Exp(d) * r).Log(); },
         zero);
     EXPECT_LT((RightJacobianInverseSO3(phi) - right).norm(), kNumericTolerance);

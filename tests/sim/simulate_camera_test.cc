@@ -72,7 +72,7 @@ TEST_F(SimulateCamerasTest, NoiseFreeObservationsAreTheReprojectionModel) {
   // for time: the simulator solves on the spline, the cost on the parameter blocks).
   const CameraSimulationResult r = SimulateCameras(spline_, rig_, kStartNs, kEndNs, options_);
   const std::vector<ObservationFrame> frames = GroupIntoFrames(r.observations);
-  ReprojectionSettings settings;
+  ReprojectionOptions settings;
   settings.camera = &rig_[0].camera;
   settings.layout = spline_.layout();
   std::vector<std::array<double, 7>> blocks(spline_.num_control_poses());

@@ -33,8 +33,8 @@ const SE3Splined& CourseSpline() {
   return *spline;
 }
 
-using testutil::ConsumerImu;
-using testutil::MountedImu;
+using testing::ConsumerImu;
+using testing::MountedImu;
 
 SimulationOptions NoiseFree(const ImuCalibration& imu) {
   SimulationOptions options;

@@ -1,4 +1,4 @@
-#include "splinecal/sim/simulation_result.h"
+#include "splinecal/report/simulate_report.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -23,7 +23,7 @@ using reference::KnotMode;
 using reference::Query;
 using reference::ResidualJacobians;
 using reference::SplitSpline;
-using testutil::RelativelyNear;
+using testing::RelativelyNear;
 
 // Central differences with h = 1e-5 on O(1..100) functions: ~1e-8 relative (numeric_diff.h).
 constexpr double kNumericTolerance = 1e-7;
@@ -65,10 +65,10 @@ Eigen::MatrixXd ControlBlocks(const ResidualJacobians& J) {
 class ReferenceSplitSplineTest : public ::testing::TestWithParam<KnotMode> {
  protected:
   ReferenceSplitSplineTest()
-      : points_(FromPoses(testutil::RandomControlPoses(kNumControlPoints, 7))) {}
+      : points_(FromPoses(testing::RandomControlPoses(kNumControlPoints, 7))) {}
 
   SplitSpline Make(const ControlPoints& c) const {
-    return SplitSpline(c.R, c.p, testutil::kEurocLikeT0Ns, testutil::kTestDtNs, GetParam());
+    return SplitSpline(c.R, c.p, testing::kEurocLikeT0Ns, testing::kTestDtNs, GetParam());
   }
 
   // Times in every segment, both ends included.
@@ -76,11 +76,11 @@ class ReferenceSplitSplineTest : public ::testing::TestWithParam<KnotMode> {
     std::vector<int64_t> times;
     for (int i = 1; i <= kNumControlPoints - 3; ++i) {
       for (double u : {0.0, 0.37, 0.81}) {
-        times.push_back(testutil::kEurocLikeT0Ns + i * testutil::kTestDtNs +
-                        static_cast<int64_t>(u * testutil::kTestDtNs));
+        times.push_back(testing::kEurocLikeT0Ns + i * testing::kTestDtNs +
+                        static_cast<int64_t>(u * testing::kTestDtNs));
       }
     }
-    times.push_back(testutil::kEurocLikeT0Ns + (kNumControlPoints - 2) * testutil::kTestDtNs);
+    times.push_back(testing::kEurocLikeT0Ns + (kNumControlPoints - 2) * testing::kTestDtNs);
     return times;
   }
 
@@ -97,7 +97,7 @@ TEST_P(ReferenceSplitSplineTest, GyroJacobiansMatchNumericDerivatives) {
     Eigen::Vector3d r;
     ResidualJacobians J;
     spline.GyroResidual(q, measured, b_g, &r, &J);
-    const Eigen::MatrixXd J_num = testutil::CentralDifferenceJacobian(
+    const Eigen::MatrixXd J_num = testing::CentralDifferenceJacobian(
         [&](const Eigen::VectorXd& x) -> Eigen::Vector3d {
           Eigen::Vector3d out;
           Make(Perturbed(points_, first, x)).GyroResidual(q, measured, b_g, &out, nullptr);
@@ -120,7 +120,7 @@ TEST_P(ReferenceSplitSplineTest, AccelJacobiansMatchNumericDerivatives) {
     Eigen::Vector3d r;
     ResidualJacobians J;
     spline.AccelResidual(q, measured, b_a, g_w, &r, &J);
-    const Eigen::MatrixXd J_num = testutil::CentralDifferenceJacobian(
+    const Eigen::MatrixXd J_num = testing::CentralDifferenceJacobian(
         [&](const Eigen::VectorXd& x) -> Eigen::Vector3d {
           Eigen::Vector3d out;
           Make(Perturbed(points_, first, x)).AccelResidual(q, measured, b_a, g_w, &out, nullptr);
@@ -128,7 +128,7 @@ TEST_P(ReferenceSplitSplineTest, AccelJacobiansMatchNumericDerivatives) {
         },
         Eigen::VectorXd::Zero(24));
     EXPECT_TRUE(RelativelyNear(ControlBlocks(J), J_num, kNumericTolerance)) << t_ns;
-    const Eigen::MatrixXd J_g_num = testutil::CentralDifferenceJacobian(
+    const Eigen::MatrixXd J_g_num = testing::CentralDifferenceJacobian(
         [&](const Eigen::Vector3d& g) -> Eigen::Vector3d {
           Eigen::Vector3d out;
           spline.AccelResidual(q, measured, b_a, g, &out, nullptr);
@@ -143,8 +143,8 @@ TEST_P(ReferenceSplitSplineTest, AccelJacobiansMatchNumericDerivatives) {
 // The SO(3) part is splinecal's: same rotation, same body angular velocity, whatever the
 // translations (the coupled spline's rotation does not depend on them).
 TEST_P(ReferenceSplitSplineTest, RotationAndAngularVelocityEqualSplinecals) {
-  const std::vector<SE3d> poses = testutil::RandomControlPoses(kNumControlPoints, 7);
-  const SE3Splined coupled(poses, testutil::kEurocLikeT0Ns, testutil::kTestDtNs);
+  const std::vector<SE3d> poses = testing::RandomControlPoses(kNumControlPoints, 7);
+  const SE3Splined coupled(poses, testing::kEurocLikeT0Ns, testing::kTestDtNs);
   const SplitSpline split = Make(points_);
   for (int64_t t_ns : Times()) {
     const Query q = split.QueryAtNs(t_ns);

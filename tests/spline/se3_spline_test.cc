@@ -20,7 +20,7 @@
 namespace splinecal {
 namespace {
 
-using testutil::RelativelyNear;
+using testing::RelativelyNear;
 
 // Time derivatives vs central differences in time (h = 1e-5 s against dt = 0.2 s): truncation
 // ~ h^2/6 |f'''| relative ~1e-9, rounding eps |f| / h ~ 1e-11 relative. The brief's bar: 1e-6.
@@ -35,9 +35,9 @@ constexpr double kRoundingTolerance = 1e-11;
 constexpr int kNumPoses = 8;
 
 SE3Splined MakeRandomSpline(uint32_t seed, double min_angle = 0.1, double max_angle = 1.0) {
-  return SE3Splined(testutil::RandomControlPoses(kNumPoses, seed, min_angle, max_angle),
-                    testutil::kEurocLikeT0Ns,
-                    testutil::kTestDtNs);
+  return SE3Splined(testing::RandomControlPoses(kNumPoses, seed, min_angle, max_angle),
+                    testing::kEurocLikeT0Ns,
+                    testing::kTestDtNs);
 }
 
 // Relative times [s] spread over every segment, including knots and both ends.
@@ -101,14 +101,14 @@ TEST(SE3Spline, RejectsKnotTimesOverflowingInt64) {
 }
 
 TEST(SE3Spline, ExposesWhatAWriterNeeds) {
-  const std::vector<SE3d> poses = testutil::RandomControlPoses(6, 3);
-  const SE3Splined spline(poses, testutil::kEurocLikeT0Ns, testutil::kTestDtNs);
+  const std::vector<SE3d> poses = testing::RandomControlPoses(6, 3);
+  const SE3Splined spline(poses, testing::kEurocLikeT0Ns, testing::kTestDtNs);
   EXPECT_EQ(spline.num_control_poses(), 6);
   EXPECT_EQ(spline.num_segments(), 3);
-  EXPECT_EQ(spline.t0_ns(), testutil::kEurocLikeT0Ns);
-  EXPECT_EQ(spline.dt_ns(), testutil::kTestDtNs);
+  EXPECT_EQ(spline.t0_ns(), testing::kEurocLikeT0Ns);
+  EXPECT_EQ(spline.dt_ns(), testing::kTestDtNs);
   EXPECT_DOUBLE_EQ(spline.dt(), 0.2);
-  EXPECT_EQ(spline.knot_time_ns(3), testutil::kEurocLikeT0Ns + 3 * testutil::kTestDtNs);
+  EXPECT_EQ(spline.knot_time_ns(3), testing::kEurocLikeT0Ns + 3 * testing::kTestDtNs);
   EXPECT_EQ(spline.start_time_ns(), spline.knot_time_ns(1));
   EXPECT_EQ(spline.end_time_ns(), spline.knot_time_ns(4));
   ASSERT_EQ(spline.control_poses().size(), 6u);
@@ -293,7 +293,7 @@ TEST(SE3Spline, IsC2ContinuousAcrossKnots) {
 
 TEST(SE3Spline, EqualControlPosesGiveZeroRates) {
   std::mt19937 rng(7);
-  const SE3d pose = SE3d::Exp(testutil::RandomTwist(&rng, 0.5, 2.0, 3.0));
+  const SE3d pose = SE3d::Exp(testing::RandomTwist(&rng, 0.5, 2.0, 3.0));
   const SE3Splined spline(std::vector<SE3d>(6, pose), 0, 50000000);
   for (double t : SampleTimes(spline)) {
     const State s = EvaluateAt(spline, t);
@@ -311,12 +311,12 @@ TEST(SE3Spline, EqualControlPosesGiveZeroRates) {
 TEST(SE3Spline, OneParameterSubgroupHasConstantBodyTwist) {
   std::mt19937 rng(8);
   for (int trial = 0; trial < 5; ++trial) {
-    const Vector6d xi = testutil::RandomTwist(&rng, 0.5, 3.0, 2.0);  // [m/s; rad/s]
+    const Vector6d xi = testing::RandomTwist(&rng, 0.5, 3.0, 2.0);  // [m/s; rad/s]
     const int64_t dt_ns = 100000000;
     const double dt = 0.1;
     std::vector<SE3d> poses;
     for (int i = 0; i < 7; ++i) poses.push_back(SE3d::Exp((i * dt) * xi));
-    const SE3Splined spline(poses, testutil::kEurocLikeT0Ns, dt_ns);
+    const SE3Splined spline(poses, testing::kEurocLikeT0Ns, dt_ns);
     for (double t : SampleTimes(spline)) {
       const State s = EvaluateAt(spline, t);
       const Eigen::Matrix3d R = s.T_w_s.rotationMatrix();
@@ -371,7 +371,7 @@ TEST(SE3Spline, PureTranslationIsScalarCubicBSpline) {
 
 TEST(SE3Spline, SetControlPoseRefreshesCaches) {
   SE3Splined spline = MakeRandomSpline(31);
-  const std::vector<SE3d> other = testutil::RandomControlPoses(kNumPoses, 32);
+  const std::vector<SE3d> other = testing::RandomControlPoses(kNumPoses, 32);
   for (int i = 0; i < kNumPoses; ++i) spline.SetControlPose(i, other[i]);
   const SE3Splined fresh(other, spline.t0_ns(), spline.dt_ns());
   for (double t : SampleTimes(spline)) {
@@ -387,9 +387,9 @@ TEST(SE3Spline, SetControlPoseRefreshesCaches) {
 TEST(SE3Spline, LargeRotationsBetweenControlPoses) {
   // Steps of 2.5-3.0 rad (Log stays below pi): values still match the definition and the rates
   // the central differences.
-  const SE3Splined spline(testutil::RandomControlPoses(kNumPoses, 41, 2.5, 3.0),
-                          testutil::kEurocLikeT0Ns,
-                          testutil::kTestDtNs);
+  const SE3Splined spline(testing::RandomControlPoses(kNumPoses, 41, 2.5, 3.0),
+                          testing::kEurocLikeT0Ns,
+                          testing::kTestDtNs);
   for (double t : InteriorTimes(spline)) {
     const State s = EvaluateAt(spline, t);
     const Eigen::Vector3d v_numeric =
@@ -414,7 +414,7 @@ std::array<Eigen::MatrixXd, 4> NumericControlJacobians(const SE3Splined& spline,
   std::array<Eigen::MatrixXd, 4> J;
   for (int k = 0; k < 4; ++k) {
     const int index = segment.first_index() + k;
-    J[k] = testutil::CentralDifferenceJacobian(
+    J[k] = testing::CentralDifferenceJacobian(
         [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
           SE3Splined perturbed = spline;
           perturbed.SetControlPose(index, spline.control_pose(index) * SE3d::Exp(Vector6d(d)));
@@ -536,7 +536,7 @@ namespace {
 // The named accessors return exactly what the one-pass Evaluate writes for that output.
 TEST(SE3Spline, NamedAccessorsEqualEvaluate) {
   const SE3Splined spline(
-      testutil::RandomControlPoses(8, 17), testutil::kEurocLikeT0Ns, testutil::kTestDtNs);
+      testing::RandomControlPoses(8, 17), testing::kEurocLikeT0Ns, testing::kTestDtNs);
   for (double t = spline.start_time(); t <= spline.end_time(); t += 0.0731) {
     const Segment<double> segment = spline.SegmentAt(t);
     SE3d T_w_s;

@@ -17,7 +17,7 @@
 namespace splinecal {
 namespace {
 
-using testutil::RelativelyNear;
+using testing::RelativelyNear;
 
 // The scaled exponential and lie/se3.h's Exp evaluate the same closed forms in a different
 // order: agreement to a few ulps of O(1..10) entries.
@@ -68,7 +68,7 @@ TEST(ScaledExp, MatchesLieExpOfScaledTwist) {
     for (double b : {0.0, 1.0 / 6.0, 0.5, 5.0 / 6.0, 1.0}) {
       Vector6d omega;
       omega.head<3>() = Eigen::Vector3d(0.7, -1.3, 2.1);
-      omega.tail<3>() = angle * testutil::RandomUnitVector(&rng);
+      omega.tail<3>() = angle * testing::RandomUnitVector(&rng);
       const KnotDelta<double> delta = DeltaOf(omega);
       internal::ScaledExp<double> A;
       internal::ComputeScaledExp(delta, b, true, false, &A);
@@ -93,7 +93,7 @@ TEST(ScaledRightJacobian, MatchesLieRightJacobianSE3) {
     for (double b : {0.0, 1.0 / 6.0, 0.5, 1.0}) {
       Vector6d omega;
       omega.head<3>() = Eigen::Vector3d(-0.4, 1.1, 0.9);
-      omega.tail<3>() = angle * testutil::RandomUnitVector(&rng);
+      omega.tail<3>() = angle * testing::RandomUnitVector(&rng);
       const KnotDelta<double> delta = DeltaOf(omega);
       const KnotDeltaJacobians cache = MakeKnotDeltaJacobians(delta);
       internal::ScaledExp<double> A;
@@ -116,7 +116,7 @@ TEST(KnotDeltaJacobians, MatchLieInverseJacobians) {
   for (double angle : TestAngles()) {
     Vector6d omega;
     omega.head<3>() = Eigen::Vector3d(1.5, 0.2, -0.8);
-    omega.tail<3>() = angle * testutil::RandomUnitVector(&rng);
+    omega.tail<3>() = angle * testing::RandomUnitVector(&rng);
     const KnotDelta<double> delta = DeltaOf(omega);
     const Vector6d omega_cached = (Vector6d() << delta.rho, delta.phi).finished();
     const KnotDeltaJacobians J = MakeKnotDeltaJacobians(delta);
@@ -132,7 +132,7 @@ TEST(KnotDeltaJacobians, MatchLieInverseJacobians) {
 }
 
 TEST(MakeKnotDelta, CachesOmegaAndInvariants) {
-  const std::vector<SE3d> poses = testutil::RandomControlPoses(2, 4);
+  const std::vector<SE3d> poses = testing::RandomControlPoses(2, 4);
   const KnotDelta<double> delta = MakeKnotDelta(poses[0], poses[1]);
   const Vector6d omega = (poses[0].inverse() * poses[1]).Log();
   EXPECT_EQ(delta.rho, omega.head<3>());
@@ -146,7 +146,7 @@ TEST(MakeKnotDelta, CachesOmegaAndInvariants) {
 // A SegmentKnotData built from the four poses of a segment gives the spline's values and
 // Jacobians: the same code path as a cost function that receives four pose blocks.
 TEST(SegmentKnotData, MatchesSplineSegment) {
-  const std::vector<SE3d> poses = testutil::RandomControlPoses(7, 5);
+  const std::vector<SE3d> poses = testing::RandomControlPoses(7, 5);
   const SE3Splined spline(poses, 0, 100000000);
   const Segment<double> segment = spline.SegmentAt(0.33);
   const int f = segment.first_index();
@@ -167,7 +167,7 @@ TEST(SegmentKnotData, MatchesSplineSegment) {
 
 TEST(SegmentKnotData, CompilesAndEvaluatesWithJets) {
   using Jet = ceres::Jet<double, 6>;
-  const std::vector<SE3d> poses = testutil::RandomControlPoses(4, 6);
+  const std::vector<SE3d> poses = testing::RandomControlPoses(4, 6);
   const SegmentKnotData<Jet> data(
       poses[0].cast<Jet>(), poses[1].cast<Jet>(), poses[2].cast<Jet>(), poses[3].cast<Jet>());
   EXPECT_EQ(data.knots().jacobians, nullptr);

@@ -15,7 +15,7 @@
 #include "splinecal/lie/types.h"
 
 namespace splinecal {
-namespace testutil {
+namespace testing {
 
 // A EuRoC-like t0 (V1_01_easy starts near 1.4037e18 ns): doubles cannot hold it to the ns.
 inline constexpr int64_t kEurocLikeT0Ns = 1403715273262142976;
@@ -77,7 +77,7 @@ template <typename A, typename B>
          << bd;
 }
 
-}  // namespace testutil
+}  // namespace testing
 }  // namespace splinecal
 
 #endif  // SPLINECAL_TESTS_SPLINE_SPLINE_TEST_UTIL_H_

@@ -23,7 +23,7 @@
 namespace splinecal {
 namespace {
 
-using testutil::RelativelyNear;
+using testing::RelativelyNear;
 
 // Central differences (h = 1e-5) on outputs of O(1..100): errors ~1e-10 absolute; 1e-6 relative
 // leaves margin and still catches any wrong term (those are O(1) relative).
@@ -37,9 +37,9 @@ constexpr double kSameModelTolerance = 1e-12;
 constexpr int kNumPoses = 8;
 
 SE3Splined MakeRandomSplit(uint32_t seed, double min_angle, double max_angle) {
-  return SE3Splined(testutil::RandomControlPoses(kNumPoses, seed, min_angle, max_angle),
-                    testutil::kEurocLikeT0Ns,
-                    testutil::kTestDtNs,
+  return SE3Splined(testing::RandomControlPoses(kNumPoses, seed, min_angle, max_angle),
+                    testing::kEurocLikeT0Ns,
+                    testing::kTestDtNs,
                     TrajectoryModel::kSplitSO3R3);
 }
 
@@ -68,7 +68,7 @@ std::array<Eigen::MatrixXd, 4> NumericControlJacobians(const SE3Splined& spline,
   std::array<Eigen::MatrixXd, 4> J;
   for (int k = 0; k < 4; ++k) {
     const int index = segment.first_index() + k;
-    J[k] = testutil::CentralDifferenceJacobian(
+    J[k] = testing::CentralDifferenceJacobian(
         [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
           return output(Perturbed(spline, index, d));
         },
@@ -187,12 +187,12 @@ TEST(SplitJacobian, PoseAndSpecificForceMatchRiddersExtrapolation) {
     PredictAccelWithJacobian(spline, seg, g_w, zero, &accel, &J_accel);
     for (int k = 0; k < 4; ++k) {
       const int index = seg.first_index() + k;
-      const Eigen::MatrixXd J_pose_num = testutil::RiddersJacobian(
+      const Eigen::MatrixXd J_pose_num = testing::RiddersJacobian(
           [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
             return (T_w_s.inverse() * Perturbed(spline, index, d).Pose(seg)).Log();
           },
           Eigen::VectorXd::Zero(6));
-      const Eigen::MatrixXd J_accel_num = testutil::RiddersJacobian(
+      const Eigen::MatrixXd J_accel_num = testing::RiddersJacobian(
           [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
             Eigen::Vector3d gyro, a;
             PredictImu(Perturbed(spline, index, d), seg, g_w, zero, zero, &gyro, &a);

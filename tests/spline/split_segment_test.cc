@@ -22,7 +22,7 @@
 namespace splinecal {
 namespace {
 
-using testutil::RelativelyNear;
+using testing::RelativelyNear;
 
 // Time derivatives vs central differences in time (h = 1e-5 s against dt = 0.2 s): truncation
 // h^2/6 |f'''| ~ 1e-9 relative, rounding eps |f| / h ~ 1e-11 relative.
@@ -36,11 +36,11 @@ constexpr int kNumPoses = 8;
 
 SE3Splined MakeSplit(const std::vector<SE3d>& poses) {
   return SE3Splined(
-      poses, testutil::kEurocLikeT0Ns, testutil::kTestDtNs, TrajectoryModel::kSplitSO3R3);
+      poses, testing::kEurocLikeT0Ns, testing::kTestDtNs, TrajectoryModel::kSplitSO3R3);
 }
 
 SE3Splined MakeRandomSplit(uint32_t seed, double min_angle = 0.1, double max_angle = 1.0) {
-  return MakeSplit(testutil::RandomControlPoses(kNumPoses, seed, min_angle, max_angle));
+  return MakeSplit(testing::RandomControlPoses(kNumPoses, seed, min_angle, max_angle));
 }
 
 // Times in every segment, both ends and knots included.
@@ -103,7 +103,7 @@ TEST(SplitSegment, PoseMatchesTheDefinitionWrittenWithSo3ExpAndLog) {
 }
 
 TEST(SplitSegment, OrientationAndAngularRatesAreTheCoupledSplinesBitForBit) {
-  const std::vector<SE3d> poses = testutil::RandomControlPoses(kNumPoses, 5);
+  const std::vector<SE3d> poses = testing::RandomControlPoses(kNumPoses, 5);
   const SE3Splined split = MakeSplit(poses);
   const SE3Splined coupled(poses, split.t0_ns(), split.dt_ns());
   EXPECT_EQ(coupled.model(), TrajectoryModel::kSE3);
@@ -176,7 +176,7 @@ TEST(SplitSegment, IsC2ContinuousAcrossKnots) {
 // With equal rotations both models reduce to the cubic B-spline of the positions (the coupled
 // spline's Omega_k is then [R^T dp_k; 0], se3_spline_test.cc PureTranslationIsScalarCubicBSpline).
 TEST(SplitSegment, EqualRotationsGiveTheCoupledSplinesPositions) {
-  std::vector<SE3d> poses = testutil::RandomControlPoses(kNumPoses, 13);
+  std::vector<SE3d> poses = testing::RandomControlPoses(kNumPoses, 13);
   const SO3d R = poses[0].so3();
   for (SE3d& T : poses) T = SE3d(R, T.translation());
   const SE3Splined split = MakeSplit(poses);

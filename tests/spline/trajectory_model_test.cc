@@ -38,15 +38,15 @@ TEST(TrajectoryModel, UnknownNamesAreRefusedAndLeaveTheValue) {
 
 TEST(TrajectoryModel, SplineDefaultsToTheCoupledModel) {
   const SE3Splined spline(
-      testutil::RandomControlPoses(6, 1), testutil::kEurocLikeT0Ns, testutil::kTestDtNs);
+      testing::RandomControlPoses(6, 1), testing::kEurocLikeT0Ns, testing::kTestDtNs);
   EXPECT_EQ(spline.model(), TrajectoryModel::kSE3);
 }
 
 // SE3Spline's evaluations and Jacobians are the model's own functions on its knot caches.
 TEST(TrajectoryModel, SplineEvaluatesWithItsModel) {
-  const std::vector<SE3d> poses = testutil::RandomControlPoses(6, 2);
+  const std::vector<SE3d> poses = testing::RandomControlPoses(6, 2);
   for (TrajectoryModel model : {TrajectoryModel::kSE3, TrajectoryModel::kSplitSO3R3}) {
-    const SE3Splined spline(poses, testutil::kEurocLikeT0Ns, testutil::kTestDtNs, model);
+    const SE3Splined spline(poses, testing::kEurocLikeT0Ns, testing::kTestDtNs, model);
     EXPECT_EQ(spline.model(), model);
     const bool split = model == TrajectoryModel::kSplitSO3R3;
     for (double t = spline.start_time(); t <= spline.end_time(); t += 0.0731) {
@@ -77,9 +77,9 @@ TEST(TrajectoryModel, SplineEvaluatesWithItsModel) {
 
 // Copies and SetControlPose keep the model.
 TEST(TrajectoryModel, CopiesAndUpdatesKeepTheModel) {
-  SE3Splined spline(testutil::RandomControlPoses(6, 3),
-                    testutil::kEurocLikeT0Ns,
-                    testutil::kTestDtNs,
+  SE3Splined spline(testing::RandomControlPoses(6, 3),
+                    testing::kEurocLikeT0Ns,
+                    testing::kTestDtNs,
                     TrajectoryModel::kSplitSO3R3);
   spline.SetControlPose(2, SE3d());
   spline.SetControlPoses(spline.control_poses());

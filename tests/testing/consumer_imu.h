@@ -9,7 +9,7 @@
 #include "splinecal/lie/so3.h"
 
 namespace splinecal {
-namespace testutil {
+namespace testing {
 
 // A consumer-grade IMU at the body origin (Rehder et al., ICRA 2016's magnitudes): scale errors
 // of ~1%, misalignments of ~0.5 deg, g-sensitivity ~1e-3 (rad/s)/(m/s^2), the gyro frame ~1 deg
@@ -36,7 +36,7 @@ inline ImuCalibration MountedImu(ImuModelKind model) {
   return imu;
 }
 
-}  // namespace testutil
+}  // namespace testing
 }  // namespace splinecal
 
 #endif  // SPLINECAL_TESTS_TESTING_CONSUMER_IMU_H_

@@ -6,21 +6,21 @@
 //   // f: R^n -> R^m, any callable taking a vector and returning an Eigen vector. It may take
 //   // `const Eigen::VectorXd&` or a fixed size (`const Eigen::Vector3d&`): the VectorXd argument
 //   // converts implicitly. Fixed-size results assign to a fixed-size matrix.
-//   const Eigen::Matrix3d J_num = testutil::CentralDifferenceJacobian(
+//   const Eigen::Matrix3d J_num = testing::CentralDifferenceJacobian(
 //       [&](const Eigen::Vector3d& v) -> Eigen::Vector3d { return R * v; }, v0);
 //
 //   // More accurate (typically 1e-12 relative for smooth f), about 10x the evaluations:
 //   Eigen::VectorXd error;
-//   const Eigen::MatrixXd J_r = testutil::RiddersJacobian(f, x0, {}, &error);
+//   const Eigen::MatrixXd J_r = testing::RiddersJacobian(f, x0, {}, &error);
 //
 //   // d f(T Exp(d)) / d d at d = 0 (T an SO3d or SE3d; f takes the group element):
-//   const Eigen::MatrixXd J_p_T = testutil::RightPerturbationJacobian(
+//   const Eigen::MatrixXd J_p_T = testing::RightPerturbationJacobian(
 //       [&](const SE3d& T_w_s) -> Eigen::Vector3d { return T_w_s * p_s; }, T_w_s);
 //
 //   // A group-valued function g (e.g. a spline pose): differentiate its right-tangent change
 //   //   Log(g(x0)^-1 g(x))   (central differences of this are O(h^2) accurate)
 //   const SE3d g0 = g(x0);
-//   const Eigen::MatrixXd J_g_x = testutil::CentralDifferenceJacobian(
+//   const Eigen::MatrixXd J_g_x = testing::CentralDifferenceJacobian(
 //       [&](const Eigen::VectorXd& x) { return RightMinus(g(x), g0); }, x0);
 //
 // Step sizes are absolute (in the units of x). Choose them for the scale of your inputs.
@@ -36,7 +36,7 @@
 #include <vector>
 
 namespace splinecal {
-namespace testutil {
+namespace testing {
 
 // Default central-difference step: the truncation error h^2/6 |f'''| and the rounding error
 // eps |f| / h balance near h = cbrt(eps) ~ 6e-6 for |f|, |f'''| ~ 1; 1e-5 gives about 1e-10
@@ -191,7 +191,7 @@ Eigen::MatrixXd RightPerturbationJacobianRidders(const F& f,
       error_estimate);
 }
 
-}  // namespace testutil
+}  // namespace testing
 }  // namespace splinecal
 
 #endif  // SPLINECAL_TESTS_TESTING_NUMERIC_DIFF_H_

@@ -46,14 +46,14 @@ Figures RunMonteCarlo(const MonteCarloCase& c) {
   Figures f;
   double sum_sq_difference = 0.0;
   for (int run = 0; run < c.runs; ++run) {
-    testdata::ScenarioOptions options;
-    options.T_cam_imu = testdata::EurocCam0TCamImu();
+    testing::ScenarioOptions options;
+    options.T_cam_imu = testing::EurocCam0TCamImu();
     options.duration_s = c.duration_s;
     options.seed = 1000 + run;
     options.imu_noise = true;  // EuRoC ADIS16448 densities
     options.camera_translation_std_m = c.camera_position_std_m;
     options.camera_rotation_std_rad = c.camera_rotation_std_rad;
-    const testdata::Scenario s = testdata::MakeScenario(RandomTrajectory(run + 1), options);
+    const testing::Scenario s = testing::MakeScenario(RandomTrajectory(run + 1), options);
 
     AlignOptions align_options;
     align_options.T_cam_imu = options.T_cam_imu;

@@ -50,20 +50,20 @@ constexpr double kGyroBiasTolerance = 1e-9;  // [rad/s]
 constexpr double kVelocityTolerance = 1e-8;  // [m/s]
 constexpr double kRotationTolerance = 1e-9;  // [rad]
 
-testdata::ScenarioOptions DefaultOptions() {
-  testdata::ScenarioOptions options;
-  options.T_cam_imu = testdata::EurocCam0TCamImu();
+testing::ScenarioOptions DefaultOptions() {
+  testing::ScenarioOptions options;
+  options.T_cam_imu = testing::EurocCam0TCamImu();
   return options;
 }
 
-AlignOptions AlignOptionsFor(const testdata::ScenarioOptions& scenario) {
+AlignOptions AlignOptionsFor(const testing::ScenarioOptions& scenario) {
   AlignOptions options;
   options.gravity_m_s2 = scenario.gravity;
   options.T_cam_imu = scenario.T_cam_imu;
   return options;
 }
 
-void ExpectRecovered(const AlignResult& result, const testdata::Scenario& truth) {
+void ExpectRecovered(const AlignResult& result, const testing::Scenario& truth) {
   ASSERT_TRUE(result.success) << result.message;
   EXPECT_LT(AngleDeg(result.gravity_c0, truth.gravity_c0), kGravityToleranceDeg);
   EXPECT_NEAR(result.gravity_c0.norm(), truth.gravity_c0.norm(), 1e-12);
@@ -88,8 +88,8 @@ void ExpectRecovered(const AlignResult& result, const testdata::Scenario& truth)
 }
 
 TEST(Align, NoiseFreeRecoversScaleGravityAndGyroBias) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   ASSERT_EQ(scenario.camera_poses.size(), 101u);
   const AlignResult result = Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
   ExpectRecovered(result, scenario);
@@ -112,11 +112,11 @@ TEST(Align, NoiseFreeRecoversScaleGravityAndGyroBias) {
 
 TEST(Align, NoiseFreeRandomTrajectories) {
   for (uint64_t seed = 1; seed <= 5; ++seed) {
-    testdata::ScenarioOptions options = DefaultOptions();
+    testing::ScenarioOptions options = DefaultOptions();
     options.seed = seed;
     options.scale = 0.1 + seed;
     options.gyro_bias = Eigen::Vector3d(0.01, -0.02, 0.005) * static_cast<double>(seed);
-    const testdata::Scenario scenario = testdata::MakeScenario(RandomTrajectory(seed), options);
+    const testing::Scenario scenario = testing::MakeScenario(RandomTrajectory(seed), options);
     const AlignResult result = Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
     SCOPED_TRACE(seed);
     ExpectRecovered(result, scenario);
@@ -128,11 +128,11 @@ TEST(Align, NoiseFreeGravityAlongPlusAndMinusZOfC0) {
   const AnalyticTrajectory trajectory = Figure8Trajectory();
   const SO3d R_w_s0 = trajectory.Evaluate(0.0).T_w_s.so3();
   for (double sign : {1.0, -1.0}) {
-    testdata::ScenarioOptions options = DefaultOptions();
+    testing::ScenarioOptions options = DefaultOptions();
     // R_c_s = R_w_s0 makes R_w_c0 = I (gravity -z in c0); a half turn about x flips it.
     const SO3d flip = sign > 0 ? SO3d() : SO3d::Exp(Eigen::Vector3d(kPi, 0.0, 0.0));
     options.T_cam_imu = SE3d(flip * R_w_s0, Eigen::Vector3d(0.02, -0.06, 0.01));
-    const testdata::Scenario scenario = testdata::MakeScenario(trajectory, options);
+    const testing::Scenario scenario = testing::MakeScenario(trajectory, options);
     ASSERT_LT((scenario.gravity_c0 - Eigen::Vector3d(0, 0, -sign * 9.81)).norm(), 1e-12);
     SCOPED_TRACE(sign);
     ExpectRecovered(Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options)), scenario);
@@ -140,8 +140,8 @@ TEST(Align, NoiseFreeGravityAlongPlusAndMinusZOfC0) {
 }
 
 TEST(Align, NoiseFreeEstimatesRotationExtrinsic) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   AlignOptions align_options = AlignOptionsFor(options);
   align_options.estimate_rotation_extrinsic = true;
   // Only the translation is known; the rotation starts from identity.
@@ -155,8 +155,8 @@ TEST(Align, NoiseFreeEstimatesRotationExtrinsic) {
 }
 
 TEST(Align, TimeshiftMovesCameraStampsIntoImuTime) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   // The camera clock runs 5 ms behind: t_imu = t_cam + 0.005.
   for (StampedPose& pose : scenario.camera_poses) pose.t_ns -= 5000000;
   AlignOptions align_options = AlignOptionsFor(options);
@@ -168,9 +168,9 @@ TEST(Align, TimeshiftMovesCameraStampsIntoImuTime) {
 
 // Real IMUs follow the continuous trajectory: the midpoint scheme's O(h^2) error remains.
 TEST(Align, ContinuousTimeDataWithinDiscretisationError) {
-  testdata::ScenarioOptions options = DefaultOptions();
-  options.truth = testdata::Truth::kContinuous;
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  testing::ScenarioOptions options = DefaultOptions();
+  options.truth = testing::Truth::kContinuous;
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   const AlignResult result = Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
   ASSERT_TRUE(result.success) << result.message;
   const double gravity_error_deg = AngleDeg(result.gravity_c0, scenario.gravity_c0);
@@ -185,8 +185,8 @@ TEST(Align, ContinuousTimeDataWithinDiscretisationError) {
 }
 
 TEST(Align, StartsRelativeToFirstPoseAndIgnoresPosesOutsideImu) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   // Express every pose in another frame (the input's first pose is then not the identity) and
   // add poses before and after the IMU data.
   const SE3d T_x_c0(SO3d::Exp(Eigen::Vector3d(0.3, -1.0, 2.0)), Eigen::Vector3d(5.0, 1.0, -2.0));
@@ -208,9 +208,9 @@ TEST(Align, StartsRelativeToFirstPoseAndIgnoresPosesOutsideImu) {
 }
 
 TEST(Align, RefusesConstantVelocityWithoutRotation) {
-  testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario =
-      testdata::MakeScenario(testdata::ConstantVelocityTrajectory(), options);
+  testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario =
+      testing::MakeScenario(testing::ConstantVelocityTrajectory(), options);
   const AlignResult result = Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
   EXPECT_FALSE(result.success);
   EXPECT_THAT(result.message, HasSubstr("not enough excitation"));
@@ -219,8 +219,8 @@ TEST(Align, RefusesConstantVelocityWithoutRotation) {
 }
 
 TEST(Align, RefusesNegativeScale) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   // Mirrored positions (e.g. a sign error in an SfM export): the best fit has scale < 0.
   for (StampedPose& pose : scenario.camera_poses) pose.p = -pose.p;
   AlignOptions align_options = AlignOptionsFor(options);
@@ -232,8 +232,8 @@ TEST(Align, RefusesNegativeScale) {
 }
 
 TEST(Align, RefusesGravityNormFarFromKnown) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   AlignOptions align_options = AlignOptionsFor(options);
   align_options.gravity_m_s2 = 8.0;  // the data were made with 9.81
   const AlignResult result = Align(scenario.imu, scenario.camera_poses, align_options);
@@ -243,9 +243,9 @@ TEST(Align, RefusesGravityNormFarFromKnown) {
 }
 
 TEST(Align, RefusesRotationAboutOneAxisWhenEstimatingExtrinsic) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario =
-      testdata::MakeScenario(testdata::YawOnlyTrajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario =
+      testing::MakeScenario(testing::YawOnlyTrajectory(), options);
   AlignOptions align_options = AlignOptionsFor(options);
   // With the extrinsic given, yaw-only motion aligns fine.
   ExpectRecovered(Align(scenario.imu, scenario.camera_poses, align_options), scenario);
@@ -258,8 +258,8 @@ TEST(Align, RefusesRotationAboutOneAxisWhenEstimatingExtrinsic) {
 }
 
 TEST(Align, ThrowsWhenTooFewCameraPosesInsideImu) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   std::vector<StampedPose> poses(scenario.camera_poses.begin(), scenario.camera_poses.begin() + 2);
   EXPECT_THROW(Align(scenario.imu, poses, AlignOptionsFor(options)), Error);
   std::vector<StampedPose> late = scenario.camera_poses;
@@ -344,14 +344,14 @@ TEST(Align, RealEurocGroundTruthAsCamera) {
 // errors above it) and the upper end is the honest one (overconfidence fails).
 TEST(Align, NoisyWellConditionedScaleNeesInsideItsBand) {
   constexpr int kDraws = 120;
-  testdata::ScenarioOptions options = DefaultOptions();
+  testing::ScenarioOptions options = DefaultOptions();
   options.imu_noise = true;
   options.camera_translation_std_m = 0.005;
   options.camera_rotation_std_rad = 0.002;
   double nees = 0.0;
   for (uint64_t seed = 1; seed <= kDraws; ++seed) {
     options.seed = seed;
-    const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+    const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
     const AlignResult result =
         Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
     SCOPED_TRACE(seed);
@@ -418,8 +418,8 @@ TEST(Align, RealImuAprilWithoutAccelBiasIsNotASuccess) {
 // ---------------------------------------------------------------------------------------------
 
 TEST(AlignmentProblem, FreeGravityNoiseFreeHasTheKnownNorm) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   const AlignResult result = Align(scenario.imu, scenario.camera_poses, AlignOptionsFor(options));
   ASSERT_TRUE(result.success);
   EXPECT_LT(AngleDeg(result.free_gravity_c0, scenario.gravity_c0), kGravityToleranceDeg);
@@ -427,7 +427,7 @@ TEST(AlignmentProblem, FreeGravityNoiseFreeHasTheKnownNorm) {
   EXPECT_NEAR(result.free_scale / scenario.scale, 1.0, kScaleRelativeTolerance);
 }
 
-std::vector<AlignmentFrame> FramesOf(const testdata::Scenario& scenario) {
+std::vector<AlignmentFrame> FramesOf(const testing::Scenario& scenario) {
   std::vector<AlignmentFrame> frames;
   for (const StampedPose& pose : scenario.camera_poses) {
     AlignmentFrame frame;
@@ -441,11 +441,11 @@ std::vector<AlignmentFrame> FramesOf(const testdata::Scenario& scenario) {
 
 // The O(n) block-tridiagonal solve against a dense solve of the same normal equations.
 TEST(AlignmentProblem, BlockSolveMatchesDenseSolve) {
-  testdata::ScenarioOptions options = DefaultOptions();
+  testing::ScenarioOptions options = DefaultOptions();
   options.duration_s = 2.0;
   options.imu_noise = true;
   options.camera_translation_std_m = 0.01;
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   const AlignmentProblem problem(scenario.imu,
                                  FramesOf(scenario),
                                  options.T_cam_imu,
@@ -494,8 +494,8 @@ TEST(AlignmentProblem, BlockSolveMatchesDenseSolve) {
 }
 
 TEST(AlignmentProblem, RefineGravityConvergesFromFarStart) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   const AlignmentProblem problem(scenario.imu,
                                  FramesOf(scenario),
                                  options.T_cam_imu,
@@ -542,7 +542,7 @@ TEST(GravityAlignedRotation, MapsGravityDownWithoutYaw) {
 // ---------------------------------------------------------------------------------------------
 // The command line, end to end.
 
-void WriteAlignInputs(const testdata::Scenario& scenario,
+void WriteAlignInputs(const testing::Scenario& scenario,
                       const testing::TempDir& dir,
                       const SE3d& T_cam_imu) {
   std::ostringstream imu;
@@ -563,8 +563,8 @@ void WriteAlignInputs(const testdata::Scenario& scenario,
 }
 
 TEST(AlignCommand, WritesResultAndAlignedPoses) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, options.T_cam_imu);
   const testing::ToolResult run = testing::RunTool({"align",
@@ -603,8 +603,8 @@ TEST(AlignCommand, WritesResultAndAlignedPoses) {
 }
 
 TEST(AlignCommand, EstimatesRotationExtrinsicWhenAsked) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario = testdata::MakeScenario(Figure8Trajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, SE3d(SO3d(), options.T_cam_imu.translation()));
   const testing::ToolResult run = testing::RunTool({"align",
@@ -628,9 +628,9 @@ TEST(AlignCommand, EstimatesRotationExtrinsicWhenAsked) {
 }
 
 TEST(AlignCommand, FailedCheckExitsTwoWithoutOutput) {
-  const testdata::ScenarioOptions options = DefaultOptions();
-  const testdata::Scenario scenario =
-      testdata::MakeScenario(testdata::ConstantVelocityTrajectory(), options);
+  const testing::ScenarioOptions options = DefaultOptions();
+  const testing::Scenario scenario =
+      testing::MakeScenario(testing::ConstantVelocityTrajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, options.T_cam_imu);
   const testing::ToolResult run = testing::RunTool({"align",

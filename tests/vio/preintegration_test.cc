@@ -188,14 +188,14 @@ TEST(Preintegrate, BiasJacobiansMatchNumericDerivatives) {
       const auto dp_of = [&](const Eigen::Vector3d& bg, const Eigen::Vector3d& ba) {
         return Preintegrate(imu, t0, t1, bg, ba, nullptr).delta_p;
       };
-      const Eigen::Matrix3d J_dR_bg = testutil::CentralDifferenceJacobian(dR_of_bg, c.bg);
-      const Eigen::Matrix3d J_dv_bg = testutil::CentralDifferenceJacobian(
+      const Eigen::Matrix3d J_dR_bg = testing::CentralDifferenceJacobian(dR_of_bg, c.bg);
+      const Eigen::Matrix3d J_dv_bg = testing::CentralDifferenceJacobian(
           [&](const Eigen::Vector3d& bg) -> Eigen::Vector3d { return dv_of(bg, c.ba); }, c.bg);
-      const Eigen::Matrix3d J_dv_ba = testutil::CentralDifferenceJacobian(
+      const Eigen::Matrix3d J_dv_ba = testing::CentralDifferenceJacobian(
           [&](const Eigen::Vector3d& ba) -> Eigen::Vector3d { return dv_of(c.bg, ba); }, c.ba);
-      const Eigen::Matrix3d J_dp_bg = testutil::CentralDifferenceJacobian(
+      const Eigen::Matrix3d J_dp_bg = testing::CentralDifferenceJacobian(
           [&](const Eigen::Vector3d& bg) -> Eigen::Vector3d { return dp_of(bg, c.ba); }, c.bg);
-      const Eigen::Matrix3d J_dp_ba = testutil::CentralDifferenceJacobian(
+      const Eigen::Matrix3d J_dp_ba = testing::CentralDifferenceJacobian(
           [&](const Eigen::Vector3d& ba) -> Eigen::Vector3d { return dp_of(c.bg, ba); }, c.ba);
       // Central differences with h = 1e-5 on O(1) functions: ~1e-10 error (numeric_diff.h).
       constexpr double kTolerance = 1e-8;

@@ -108,17 +108,6 @@ AllanResult ComputeAllan(StaticRecording&& recording, const AllanOptions& option
 // The smallest number of samples that gives `count` averaging times with these options.
 int64_t MinimumSamplesForAveragingTimes(int count, int taus_per_decade, double max_tau_fraction);
 
-// allan.csv: "#tau_s", one Allan deviation column per axis, then the low and high ends of each
-// axis's confidence interval (gyro in rad/s, accel in m/s^2), 17 significant digits; then
-// "stride" and "terms": which start indices each averaging time used (the same for every axis).
-std::string AllanCsvText(const AllanResult& result);
-// result.yaml: Kalibr keys at the top, then gyroscope: {x: {...}, ...}, accelerometer: {...}.
-std::string AllanResultYamlText(const AllanResult& result);
-// imu.yaml (Kalibr), with the keys of the sensors present.
-std::string AllanImuYamlText(const AllanResult& result);
-// allan.svg: log-log deviation per axis with error bars and the fitted lines.
-std::string AllanSvgText(const AllanResult& result);
-
 }  // namespace splinecal
 
 #endif  // SPLINECAL_ALLAN_ALLAN_H_

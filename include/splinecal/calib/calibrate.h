@@ -4,7 +4,7 @@
 //
 // The problem (docs/conventions.md for frames, units, T_cam_imu, the time offset, line_delay):
 //
-//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (estimation/imu_costs.h)
+//   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2        every IMU sample (estimation/detail/imu_costs.h)
 //           + sum_m |r_rw,m|^2                         bias random walk (estimation/bias_costs.h)
 //           + sum_f sum_c rho(|r_c,f|^2)               target corners, per frame
 //           + sum_o rho(|r_o|^2)                       landmark observations
@@ -163,7 +163,7 @@ struct CalibrateOptions {
   // Kalibr's IMU model (--imu-model; imu/imu_model_kind.h, docs/imu_models.md). kCalibrated is
   // the analytic IMU residuals; another model adds its parameters (M_a, M_g, A, C_gyro_i; ry_i,
   // rz_i with the size effect) to the problem, starting at nominal, and its residuals are
-  // differentiated automatically (estimation/imu_model_costs.h).
+  // differentiated automatically (estimation/detail/imu_model_costs.h).
   ImuModelKind imu_model = ImuModelKind::kCalibrated;
   // For the reports only: the command line these options came from (empty: the library's
   // caller did not say).
@@ -225,7 +225,7 @@ struct ImuResidualRecord {
 
 // Standard deviations of an estimated IMU model, per entry (NaN where not a parameter or not
 // computed): M_a, M_g (lower triangles), A, the rotation vector phi of C_gyro_i = Exp(phi)
-// (estimation/imu_model_costs.h), per axis [deg], ry_i, rz_i [m].
+// (estimation/detail/imu_model_costs.h), per axis [deg], ry_i, rz_i [m].
 struct ImuModelStd {
   Eigen::Matrix3d M_a = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
   Eigen::Matrix3d M_g = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());

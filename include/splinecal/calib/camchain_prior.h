@@ -12,7 +12,7 @@
 //   T_cn_imu Exp(a):    E Exp(Adj(T_cnm1_imu) a)    ->  d xi / d a =  Jr^-1(xi) Adj(T_cnm1_imu)
 //   T_cnm1_imu Exp(b):  E Exp(-Adj(T_cnm1_imu) b)   ->  d xi / d b = -Jr^-1(xi) Adj(T_cnm1_imu)
 // (Exp(-b) T^-1 = T^-1 Exp(-Adj(T) b)), lifted to the ambient pose blocks exactly
-// (estimation/pose_block_jacobian.h); the intrinsics' Jacobian is L^-1 on their columns.
+// (estimation/detail/pose_block_jacobian.h); the intrinsics' Jacobian is L^-1 on their columns.
 #ifndef SPLINECAL_CALIB_CAMCHAIN_PRIOR_H_
 #define SPLINECAL_CALIB_CAMCHAIN_PRIOR_H_
 

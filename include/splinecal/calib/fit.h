@@ -13,7 +13,7 @@
 // over the control poses T_i of the spline T_w_s(t) (IMU clock; uniform knots, SE3Manifold),
 // the biases (constant or a bias spline), g_w (|g_w| fixed, GravityManifold), the time offset
 // t_imu = t_pose + time_offset (optional) and the extrinsic T_m_s (optional). Residuals:
-// estimation/imu_costs.h (sigma = Kalibr density * sqrt(rate)), estimation/pose_cost.h
+// estimation/detail/imu_costs.h (sigma = Kalibr density * sqrt(rate)), estimation/detail/pose_cost.h
 // (pose_sigma_m, pose_sigma_rad), estimation/bias_costs.h (random walk).
 //
 // Initialisation (docs/fit.md, "Initialisation"): control poses by least squares on the poses

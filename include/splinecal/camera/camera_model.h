@@ -21,7 +21,7 @@
 //   eucm-none       eucm [alpha beta fu fv pu pv]          none []
 //   ds-none         ds [xi alpha fu fv pu pv]              none []
 //
-// Intrinsics vector (the layout of every intrinsics Jacobian and of ProjectT), 11 entries:
+// Intrinsics vector (the layout of every intrinsics Jacobian), 11 entries:
 //   [fu fv pu pv | m0 m1 | d0 d1 d2 d3 d4]
 //   (m0, m1) = omni (xi, 0), eucm (alpha, beta), ds (xi, alpha), pinhole (0, 0);
 //   d = radtan (k1 k2 p1 p2 k3), equidistant (k1 k2 k3 k4 0), fov (w 0 0 0 0), none 0.
@@ -53,9 +53,6 @@
 // d uv / d p_c):
 //   d (x, y) / d uv          = A^-1
 //   d (x, y) / d intrinsics  = -A^-1 d uv / d intrinsics.
-//
-// ProjectT is the same projection for any scalar (ceres::Jet for automatic differentiation); it
-// shares the valid-region test (internal::ProjectionDenominator) with Project.
 //
 // References: camera/projection.h and camera/distortion.h; docs/conventions.md has the table
 // with the formulas.
@@ -162,26 +159,6 @@ struct Camera {
   // The same at the point (x, y, 1) (normalised pinhole coordinates).
   bool IsDistortionMonotonic(double x, double y) const {
     return IsDistortionMonotonic(Eigen::Vector3d(x, y, 1.0));
-  }
-
-  // The same projection for any scalar (ceres::Jet in automatic differentiation): intrinsics
-  // points at kNumIntrinsics entries in the layout above. False outside the valid region.
-  template <typename T>
-  static bool ProjectT(ProjectionModel projection,
-                       DistortionModel distortion,
-                       const T* intrinsics,
-                       const Eigen::Matrix<T, 3, 1>& p_c,
-                       Eigen::Matrix<T, 2, 1>* uv) {
-    T den;
-    if (!internal::ProjectionDenominator(
-            projection, intrinsics + kProjectionParamsIndex, p_c, &den)) {
-      return false;
-    }
-    const Eigen::Matrix<T, 2, 1> md = internal::Distort(
-        distortion, intrinsics + kDistortionCoeffsIndex, p_c.x() / den, p_c.y() / den);
-    (*uv)(0) = intrinsics[0] * md(0) + intrinsics[2];
-    (*uv)(1) = intrinsics[1] * md(1) + intrinsics[3];
-    return true;
   }
 };
 

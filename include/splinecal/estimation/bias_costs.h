@@ -71,26 +71,6 @@ class BiasRandomWalkCostFunction : public ceres::SizedCostFunction<9, 3, 3, 3, 3
   Eigen::Matrix<double, 9, 12> jacobian_;
 };
 
-// The same residual for ceres::AutoDiffCostFunction<BiasRandomWalkResidual, 9, 3, 3, 3, 3>.
-struct BiasRandomWalkResidual {
-  BiasRandomWalkResidual(double knot_spacing_s, double random_walk_density);
-
-  template <typename T>
-  bool operator()(const T* c0, const T* c1, const T* c2, const T* c3, T* residual) const {
-    const T* c[4] = {c0, c1, c2, c3};
-    for (int m = 0; m < 3; ++m) {
-      for (int a = 0; a < 3; ++a) {
-        T sum = T(0.0);
-        for (int j = 0; j < 4; ++j) sum += T(weights(m, j)) * c[j][a];
-        residual[3 * m + a] = sum;
-      }
-    }
-    return true;
-  }
-
-  Eigen::Matrix<double, 3, 4> weights;  // S / (sigma_rw sqrt(db))
-};
-
 }  // namespace splinecal
 
 #endif  // SPLINECAL_ESTIMATION_BIAS_COSTS_H_

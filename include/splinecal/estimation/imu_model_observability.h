@@ -1,4 +1,4 @@
-// Which parameters of an IMU model (estimation/imu_model_costs.h) a recording determines.
+// Which parameters of an IMU model (estimation/detail/imu_model_costs.h) a recording determines.
 //
 // The model's parameters are only determined by motion that excites them (Yang et al., RSS 2020,
 // list the degenerate motions): M_g's column c needs rotation about the gyro's axis c, M_a's and

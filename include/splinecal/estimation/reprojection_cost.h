@@ -20,7 +20,7 @@
 // robustified per point inside the cost function by Huber's loss with threshold huber_px
 // (below).
 //
-// T_w_s(t) follows ReprojectionSettings::model (spline/trajectory_model.h): the pose, its
+// T_w_s(t) follows ReprojectionOptions::model (spline/trajectory_model.h): the pose, its
 // control-pose Jacobian J_T_k and the body twist xi are that model's; nothing else depends on it.
 //
 // Jacobians (RIGHT perturbation everywhere, lie/se3.h; tangent [rho; phi]). At fixed tau, with
@@ -42,7 +42,7 @@
 // multiplied by M; the line delay gets M dG/d line_delay + g_dot v / D; the time shift's
 // partial is d uv / dt (plus the landmark's reference-time term).
 // Control-pose, extrinsic and target-pose Jacobians are lifted to the ambient blocks
-// {px, py, pz, qx, qy, qz, qw} exactly by estimation/pose_block_jacobian.h, so
+// {px, py, pz, qx, qy, qz, qw} exactly by estimation/detail/pose_block_jacobian.h, so
 // ceres::GradientChecker agrees with them through SE3Manifold.
 //
 // Robust loss inside the cost function. Several points share one residual block (a frame's
@@ -78,7 +78,7 @@
 namespace splinecal {
 
 // What every reprojection residual of one camera shares.
-struct ReprojectionSettings {
+struct ReprojectionOptions {
   const Camera* camera = nullptr;  // not owned
   KnotLayout layout;  // only dt and n matter: residual times are seconds since t0
   TrajectoryModel model = TrajectoryModel::kSE3;  // the pose spline's
@@ -109,11 +109,11 @@ struct TargetCornerObservation {
 // Every target corner of one frame: 2 rows per corner.
 // Parameter blocks: window.num_poses control poses (7 each, first_index first), T_cam_imu (7),
 // time offset (1) [s], line_delay (1) [s/row], T_w_t (7), and with
-// ReprojectionSettings::estimate_intrinsics the intrinsics (kNumIntrinsics).
+// ReprojectionOptions::estimate_intrinsics the intrinsics (kNumIntrinsics).
 class TargetFrameCostFunction : public ceres::CostFunction {
  public:
   // t_frame_s: the frame stamp (camera clock) in seconds since the spline's t0.
-  TargetFrameCostFunction(const ReprojectionSettings& settings,
+  TargetFrameCostFunction(const ReprojectionOptions& settings,
                           const ControlPoseWindow& window,
                           double t_frame_s,
                           std::vector<TargetCornerObservation> corners);
@@ -146,7 +146,7 @@ class TargetFrameCostFunction : public ceres::CostFunction {
                               GlobalShutterLinearization* out) const;
 
  private:
-  ReprojectionSettings settings_;
+  ReprojectionOptions settings_;
   ControlPoseWindow window_;
   double t_frame_s_;
   std::vector<TargetCornerObservation> corners_;
@@ -165,7 +165,7 @@ struct LandmarkObservation {
 // contain both windows), T_cam_imu (7), time offset (1), line_delay (1), rho (1) [1/m].
 class LandmarkCostFunction : public ceres::CostFunction {
  public:
-  LandmarkCostFunction(const ReprojectionSettings& settings,
+  LandmarkCostFunction(const ReprojectionOptions& settings,
                        std::vector<int> pose_indices,
                        const LandmarkObservation& observation);
 
@@ -179,7 +179,7 @@ class LandmarkCostFunction : public ceres::CostFunction {
   const std::vector<int>& pose_indices() const { return pose_indices_; }
 
  private:
-  ReprojectionSettings settings_;
+  ReprojectionOptions settings_;
   std::vector<int> pose_indices_;
   LandmarkObservation observation_;
 };

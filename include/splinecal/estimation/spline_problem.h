@@ -5,7 +5,7 @@
 // points (estimation/bias_spline.h) and gravity g_w (GravityManifold, |g_w| fixed) -- the
 // ceres::Problem over them, and the evaluation callback that refreshes the spline's knot caches
 // once per evaluation point (estimation/spline_evaluation_callback.h). It adds the IMU residuals
-// (estimation/imu_costs.h, docs/conventions.md "IMU model") and the bias random-walk prior
+// (estimation/detail/imu_costs.h, docs/conventions.md "IMU model") and the bias random-walk prior
 // (estimation/bias_costs.h):
 //
 //   minimise  sum_k |r_gyro,k|^2 + |r_accel,k|^2  +  sum_m |r_rw,m|^2  +  what the caller adds.
@@ -38,7 +38,7 @@
 
 #include "splinecal/estimation/bias_spline.h"
 #include "splinecal/estimation/gravity_manifold.h"
-#include "splinecal/estimation/imu_model_costs.h"
+#include "splinecal/estimation/imu_model_parameters.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/imu/imu_model.h"
@@ -53,21 +53,34 @@
 
 namespace splinecal {
 
+// The residuals' inputs (estimation/detail/imu_costs.h, estimation/detail/pose_cost.h).
+struct ImuResidualSegment;
+struct ImuResidualSample;
+struct PoseResidualData;
+
 // How the IMU residuals are handed to Ceres (the same objective either way).
 enum class ImuResidualLayout {
   kPerSegment,  // one gyro and one accel block per spline segment (default, fastest)
   kPerSample,   // one gyro and one accel block per IMU sample
 };
 
-enum class Differentiation {
-  kAnalytic,  // estimation/imu_costs.h, estimation/pose_cost.h analytic Jacobians (default)
-  kAutoDiff,  // their ceres::AutoDiffCostFunction twins, one block per sample (tests, bench)
+// Cost functions built in place of the analytic residuals (estimation/detail/imu_costs.h,
+// estimation/detail/pose_cost.h), one block per IMU sample or pose; the caller of a factory owns
+// what it returns. The tests and the benchmark give the automatic-differentiation twins
+// (tests/testing/autodiff_costs.h) to compare whole problems with the analytic ones: the library
+// itself holds no automatic differentiation of these residuals. gyro and accel go together.
+struct ReplacementCosts {
+  // bias_blocks: 1 (constant biases) or 4 (the bias spline's segment).
+  std::function<ceres::CostFunction*(
+      int bias_blocks, const ImuResidualSegment& segment, const ImuResidualSample& sample)>
+      gyro, accel;
+  std::function<ceres::CostFunction*(const PoseResidualData& data)> pose;  // fit's poses
 };
 
 // Implementation choices that do not change the objective (tests and benchmarks compare them).
 struct ResidualOptions {
   ImuResidualLayout layout = ImuResidualLayout::kPerSegment;
-  Differentiation differentiation = Differentiation::kAnalytic;
+  ReplacementCosts replacement;  // empty: the analytic costs
   // Share the knot caches between residuals through the evaluation callback (analytic only).
   bool share_knot_caches = true;
 };
@@ -136,7 +149,7 @@ class SplineProblem {
   // Kalibr's IMU model of the residuals (imu/imu_model_kind.h). kCalibrated, the default, is the
   // analytic residuals of estimation/imu_costs.h; another model makes its parameters
   // (ImuModelParameters, at their current values) blocks of the problem at Reset() and
-  // AddImuResiduals adds estimation/imu_model_costs.h's residuals, one gyro and one accel block
+  // AddImuResiduals adds estimation/detail/imu_model_costs.h's residuals, one gyro and one accel block
   // per segment. Call Reset() after changing it.
   void SetImuModel(ImuModelKind kind) { imu_model_kind_ = kind; }
   ImuModelKind imu_model_kind() const { return imu_model_kind_; }

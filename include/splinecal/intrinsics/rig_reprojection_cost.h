@@ -18,7 +18,7 @@
 //   T_cn_c0 -> T_cn_c0 Exp(d): d x_c / d d = R_cn_c0 [I, -[x_c0]x],   x_c0 = T_c0_t p_t
 //   intrinsics:                d uv / d intrinsics from the camera model, analytic
 // chained through J_pi = d uv / d x_c and Huber's 2x2 factor; pose blocks are lifted to their
-// ambient {px, py, pz, qx, qy, qz, qw} blocks exactly (estimation/pose_block_jacobian.h).
+// ambient {px, py, pz, qx, qy, qz, qw} blocks exactly (estimation/detail/pose_block_jacobian.h).
 // A corner that does not project (outside the model's valid region) contributes a zero residual
 // and zero Jacobian rows, and is counted by the caller's outlier pass.
 #ifndef SPLINECAL_INTRINSICS_RIG_REPROJECTION_COST_H_
@@ -34,7 +34,7 @@
 
 namespace splinecal {
 
-struct RigViewSettings {
+struct RigViewOptions {
   Camera model;                // the camera model (projection, distortion, size); its values unused
   bool has_extrinsic = false;  // camera n > 0: a T_cn_c0 block follows the target pose
   double sigma_px = 1.0;       // pixel noise std [px]
@@ -47,7 +47,7 @@ struct RigViewSettings {
 // residuals have alone (the intrinsics, shared by every view, would make one huge group).
 class RigViewCostFunction : public ceres::CostFunction {
  public:
-  RigViewCostFunction(const RigViewSettings& settings,
+  RigViewCostFunction(const RigViewOptions& settings,
                       std::vector<TargetCornerObservation> corners);
 
   bool Evaluate(double const* const* parameters,
@@ -57,7 +57,7 @@ class RigViewCostFunction : public ceres::CostFunction {
   const std::vector<TargetCornerObservation>& corners() const { return corners_; }
 
  private:
-  RigViewSettings settings_;
+  RigViewOptions settings_;
   std::vector<TargetCornerObservation> corners_;
 };
 

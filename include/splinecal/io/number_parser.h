@@ -102,7 +102,6 @@ inline bool DecimalToDouble(uint64_t w, int q, bool negative, double* value) {
 }
 
 #if defined(__SSE2__)
-namespace number_parser_detail {
 
 // 32 bytes loaded at kRamp + k are 0 before index 32 - k and 0xFF from there on.
 struct Ramp {
@@ -150,12 +149,9 @@ inline bool DigitsValue(__m128i d_lo, __m128i d_hi, uint64_t* w) {
   return true;
 }
 
-}  // namespace number_parser_detail
-
 // The field [begin, end) when it is "[-]digits.digits" (at least one digit on each side, at most
 // 19 significant digits, at most kFieldWindow characters), as std::from_chars reads it.
 inline bool ParseDecimalField(const char* begin, const char* end, double* value) {
-  using namespace number_parser_detail;
   const int n = static_cast<int>(end - begin);
   if (n < 3 || n > kFieldWindow) return false;
   const __m128i zero_char = _mm_set1_epi8('0');
@@ -197,7 +193,6 @@ inline bool ParseDecimalField(const char* begin, const char* end, double* value)
 
 // The field [begin, end) when it is 1 to 19 digits (no sign) below 2^63.
 inline bool ParseInt64Field(const char* begin, const char* end, int64_t* value) {
-  using namespace number_parser_detail;
   const int n = static_cast<int>(end - begin);
   if (n < 1 || n > 19) return false;
   const __m128i zero_char = _mm_set1_epi8('0');

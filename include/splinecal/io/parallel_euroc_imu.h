@@ -6,7 +6,7 @@
 // arrays (a first pass counts each share's line ends).
 //
 // A row in the common spelling ("t,gx,gy,gz,ax,ay,az" and a line end) is read field by field once
-// its commas are found (io/number_parser.h, or io/number_parser_avx2.h where the processor has
+// its commas are found (io/number_parser.h, or io/detail/number_parser_avx2.h where the processor has
 // AVX2); any other line goes through the TextFileReader path's primitives (io/text_file.h:
 // DataLineContent, the number parser ParseNumberPrefix), with the plausibility limits
 // kMaxAngularRate and kMaxAcceleration for both. Nothing here reports an error: anything unusual
@@ -36,7 +36,7 @@ struct EurocImuColumns {
 // How the file is read (tests choose; the defaults are for use).
 struct ParallelReadOptions {
   int64_t share_bytes = int64_t{8} << 20;  // the size of the shares (tests make many small ones)
-  bool avx2 = true;  // the AVX2 field reader where the processor has it (io/number_parser_avx2.h)
+  bool avx2 = true;  // the AVX2 field reader where the processor has it (io/detail/number_parser_avx2.h)
 };
 
 // Readings are multiplied by gyro_scale / accel_scale (both positive) and must stay within the

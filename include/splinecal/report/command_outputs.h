@@ -12,9 +12,11 @@
 #include "splinecal/calib/fit.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/io/output_dir.h"
+#include "splinecal/report/allan_report.h"
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/intrinsics_report.h"
+#include "splinecal/report/simulate_report.h"
 #include "splinecal/sim/simulation_result.h"
 #include "splinecal/vio/align.h"
 

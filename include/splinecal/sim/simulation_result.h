@@ -1,7 +1,6 @@
-// result.yaml of `splinecal simulate` (docs/simulate.md, "Outputs"): what was simulated (the
-// trajectory, time range, rate, seed, gravity, noise densities, initial and final biases), how
-// well the spline fits the trajectory, and with cameras their truth (sim/simulate_camera.h,
-// WriteCameraSimulationTruth).
+// One run of `splinecal simulate` (docs/simulate.md): its settings and what it produced, and the
+// pipeline that produces it. Its files are written by report/simulate_report.h and
+// report/command_outputs.h.
 #ifndef SPLINECAL_SIM_SIMULATION_RESULT_H_
 #define SPLINECAL_SIM_SIMULATION_RESULT_H_
 
@@ -44,13 +43,6 @@ struct SimulationRun {
 void RunSimulation(const SimulationTrajectory& trajectory,
                    const PoseFitOptions& fit_options,
                    SimulationRun* run);
-
-std::string SimulationResultYaml(const SimulationRun& run);
-
-// Whether the run has a model other than `calibrated` or several IMUs: then it writes their
-// truth, Kalibr's imu-*.yaml layout (io/imu_models_yaml.h), as imu_models.yaml.
-bool HasImuModels(const SimulationRun& run);
-std::string SimulationImuModelsYaml(const SimulationRun& run);
 
 }  // namespace splinecal
 

@@ -14,42 +14,22 @@
 // m_a, m_g, a: imu/matrix_parameters.h's layouts. C_gyro_i = Exp(phi_gyro_i) (a rotation vector
 // about the nominal identity: Euclidean, so its standard deviation is in radians per axis). The
 // IMU is the reference one (C_i_b = I, r_b = 0: the spline's frame is its accelerometer frame).
-#ifndef SPLINECAL_ESTIMATION_IMU_MODEL_COSTS_H_
-#define SPLINECAL_ESTIMATION_IMU_MODEL_COSTS_H_
+#ifndef SPLINECAL_ESTIMATION_DETAIL_IMU_MODEL_COSTS_H_
+#define SPLINECAL_ESTIMATION_DETAIL_IMU_MODEL_COSTS_H_
 
 #include <ceres/cost_function.h>
 
 #include <array>
 #include <vector>
 
-#include "splinecal/estimation/imu_costs.h"
-#include "splinecal/imu/imu_intrinsics.h"
+#include "splinecal/estimation/detail/imu_costs.h"
+#include "splinecal/estimation/imu_model_parameters.h"
 #include "splinecal/imu/imu_model_kind.h"
 
 namespace splinecal {
 
 // Parameters per DynamicAutoDiffCostFunction pass.
 inline constexpr int kImuModelStride = 8;
-
-// The values of the model's parameter blocks, nominal by default (the `calibrated` model).
-struct ImuModelParameters {
-  std::array<double, kLowerTriangularParameters> m_a = {1.0, 0.0, 1.0, 0.0, 0.0, 1.0};
-  std::array<double, kLowerTriangularParameters> m_g = {1.0, 0.0, 1.0, 0.0, 0.0, 1.0};
-  std::array<double, kFullMatrixParameters> a = {};
-  std::array<double, 3> phi_gyro_i = {};
-  std::array<double, 3> ry_i = {};
-  std::array<double, 3> rz_i = {};
-
-  // As ImuIntrinsics (C_i_b = I, r_b = 0).
-  template <typename T>
-  static ImuIntrinsics<T> Intrinsics(const T* m_a,
-                                     const T* m_g,
-                                     const T* a,
-                                     const T* phi_gyro_i,
-                                     const T* ry_i,
-                                     const T* rz_i);
-  ImuIntrinsicsd Intrinsics() const;
-};
 
 // The segment's samples and how many bias points each block list carries (1 or 4).
 struct ImuModelSegment {
@@ -67,4 +47,4 @@ ceres::CostFunction* NewImuModelAccelCost(const ImuModelSegment& segment);
 
 }  // namespace splinecal
 
-#endif  // SPLINECAL_ESTIMATION_IMU_MODEL_COSTS_H_
+#endif  // SPLINECAL_ESTIMATION_DETAIL_IMU_MODEL_COSTS_H_

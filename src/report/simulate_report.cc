@@ -1,4 +1,4 @@
-#include "splinecal/sim/simulation_result.h"
+#include "splinecal/report/simulate_report.h"
 
 #include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/yaml_writer.h"

@@ -1,4 +1,4 @@
-#include "splinecal/detect/detect_report.h"
+#include "splinecal/report/detect_report.h"
 
 #include <algorithm>
 #include <memory>
@@ -16,7 +16,8 @@ namespace splinecal {
 
 std::string DetectResultYamlText(const DetectFoldersResult& result,
                                  const CalibrationTarget& target,
-                                 const std::string& target_path) {
+                                 const std::string& target_path,
+                                 const std::string& effort) {
   YamlWriter yaml;
   yaml.Comment("splinecal detect: target corners found in the images (docs/detect.md)");
   yaml.BeginMap("target");
@@ -25,6 +26,7 @@ std::string DetectResultYamlText(const DetectFoldersResult& result,
   yaml.Scalar("points", static_cast<int64_t>(target.points.size()));
   yaml.EndMap();
   yaml.Scalar("observations", "observations.csv");
+  yaml.Scalar("effort", effort);
   yaml.Scalar("threads", result.threads);
   yaml.Scalar("wall_time_s", result.wall_time_s);
   yaml.BeginMap("cameras");
@@ -110,7 +112,8 @@ int TagColumnsTheCornersFit(const std::vector<Observation>& observations,
 
 std::vector<OutputFile> DetectOutputFiles(const DetectFoldersResult& result,
                                           const CalibrationTarget& target,
-                                          const std::string& target_path) {
+                                          const std::string& target_path,
+                                 const std::string& effort) {
   if (result.observations.empty()) {
     int64_t read = 0;
     for (const CameraDetectionSummary& camera : result.cameras) read += camera.images_read;
@@ -139,7 +142,7 @@ std::vector<OutputFile> DetectOutputFiles(const DetectFoldersResult& result,
   std::ostringstream csv;
   WriteObservationsCsv(result.observations, &csv);
   return {{"observations.csv", csv.str()},
-          {"result.yaml", DetectResultYamlText(result, target, target_path)}};
+          {"result.yaml", DetectResultYamlText(result, target, target_path, effort)}};
 }
 
 std::function<void(int, const ImageFrame&, const GrayImage&, const TargetDetection&)>

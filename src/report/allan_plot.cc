@@ -1,13 +1,15 @@
-// allan.svg (allan/allan.h): the measured curves with the decisions marked. Each identified term
-// is a thick line over the averaging times that decided it; an unidentified white noise or random
-// walk is drawn as its upper bound, dotted; the model fit is a thin grey line.
+// allan.svg (report/allan_report.h): the measured curves with the decisions marked. Each
+// identified term is a thick line over the averaging times that decided it; an unidentified white
+// noise or random walk is drawn as its upper bound, dotted; the model fit is a thin grey line.
+#include "splinecal/report/allan_report.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "sensor_units.h"
 #include "splinecal/allan/allan.h"
+#include "splinecal/allan/detail/sensor_units.h"
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/string_printf.h"
 

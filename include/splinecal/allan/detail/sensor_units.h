@@ -1,6 +1,7 @@
-// The units of a sensor's Allan outputs (result.yaml, imu.yaml, allan.svg), internal to allan/.
-#ifndef SPLINECAL_SRC_ALLAN_SENSOR_UNITS_H_
-#define SPLINECAL_SRC_ALLAN_SENSOR_UNITS_H_
+// The units of a sensor's Allan outputs (result.yaml, imu.yaml, allan.svg): internal to allan/ and
+// report/allan_report.h, which writes them.
+#ifndef SPLINECAL_ALLAN_DETAIL_SENSOR_UNITS_H_
+#define SPLINECAL_ALLAN_DETAIL_SENSOR_UNITS_H_
 
 #include "splinecal/allan/noise_fit.h"
 #include "splinecal/imu/static_recording.h"
@@ -31,4 +32,4 @@ inline const char* const kAxisLetters[] = {"x", "y", "z"};
 }  // namespace internal
 }  // namespace splinecal
 
-#endif  // SPLINECAL_SRC_ALLAN_SENSOR_UNITS_H_
+#endif  // SPLINECAL_ALLAN_DETAIL_SENSOR_UNITS_H_

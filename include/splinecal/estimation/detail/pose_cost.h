@@ -1,6 +1,7 @@
 // The pose residual of `splinecal fit`: one pose T_w_m of the pose source (motion capture,
 // ground truth, simulator) against the spline T_w_s(t) of the IMU, with the time offset and the
-// extrinsic between them. Analytic Jacobians and an automatic-differentiation twin.
+// extrinsic between them, with analytic Jacobians (their automatic-differentiation twin is the
+// tests' oracle, tests/testing/autodiff_costs.h).
 //
 // (estimation/pose_fit.h has a segment pose cost for fitting control poses to poses; it has no time
 // offset, no extrinsic and no sigma weights, hence this one.)
@@ -34,9 +35,9 @@
 //                                                X = T_m_s^-1; J_T,k: spline/segment_jacobians.h)
 //   time offset:    e = Ad(T_m_s) xi dtau,      xi = [v_s; w_s] = vee(T^-1 dT/dt), the body twist
 //   extrinsic:      e = -Ad(T_m_s) delta        (T_m_s Exp(delta): X -> Exp(-delta) X)
-// and pose blocks are lifted to the ambient block exactly (estimation/pose_block_jacobian.h).
-#ifndef SPLINECAL_ESTIMATION_POSE_COST_H_
-#define SPLINECAL_ESTIMATION_POSE_COST_H_
+// and pose blocks are lifted to the ambient block exactly (estimation/detail/pose_block_jacobian.h).
+#ifndef SPLINECAL_ESTIMATION_DETAIL_POSE_COST_H_
+#define SPLINECAL_ESTIMATION_DETAIL_POSE_COST_H_
 
 #include <ceres/cost_function.h>
 #include <ceres/sized_cost_function.h>
@@ -44,7 +45,7 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/detail/pose_block_jacobian.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/se3_manifold.h"
@@ -84,45 +85,6 @@ class PoseCostFunction : public ceres::SizedCostFunction<6, 7, 7, 7, 7, 1, 7> {
   PoseResidualData data_;
 };
 
-// Functor for ceres::AutoDiffCostFunction<PoseResidual, 6, 7, 7, 7, 7, 1, 7> (the time offset
-// passes through u as a Jet).
-struct PoseResidual {
-  explicit PoseResidual(const PoseResidualData& data_in) : data(data_in) {}
-
-  template <typename T>
-  bool operator()(const T* p0,
-                  const T* p1,
-                  const T* p2,
-                  const T* p3,
-                  const T* time_offset,
-                  const T* T_m_s_block,
-                  T* residual) const {
-    const SegmentKnotData<T> knots(PoseFromBlock(p0),
-                                   PoseFromBlock(p1),
-                                   PoseFromBlock(p2),
-                                   PoseFromBlock(p3),
-                                   /*with_jacobians=*/false);
-    const T u = (T(data.t_s) + time_offset[0]) / T(data.dt_s) - T(double(data.segment_index));
-    const Segment<T> segment = MakeSegment(data.segment_index, u, data.dt_s);
-    SE3<T> T_w_s;
-    EvaluateSegment<T>(data.model, knots.knots(), segment, &T_w_s);
-    const SE3<T> T_pred = T_w_s * PoseFromBlock(T_m_s_block).inverse();
-    const SE3<T> T_meas = data.T_w_m.cast<T>();
-    const Vector3<T> dp = T_pred.translation() - T_meas.translation();
-    const Vector3<T> phi = (T_meas.so3().inverse() * T_pred.so3()).Log();
-    for (int a = 0; a < 3; ++a) {
-      residual[a] = dp[a] / T(data.sigma_m);
-      residual[3 + a] = phi[a] / T(data.sigma_rad);
-    }
-    return true;
-  }
-
-  PoseResidualData data;
-};
-
-// The autodiff twin as a cost function (caller owns it).
-ceres::CostFunction* NewAutoDiffPoseCost(const PoseResidualData& data);
-
 }  // namespace splinecal
 
-#endif  // SPLINECAL_ESTIMATION_POSE_COST_H_
+#endif  // SPLINECAL_ESTIMATION_DETAIL_POSE_COST_H_

@@ -1,6 +1,6 @@
 // Checks shared by the table readers of io/ (internal: not part of the public API).
-#ifndef SPLINECAL_IO_ROW_CHECKS_H_
-#define SPLINECAL_IO_ROW_CHECKS_H_
+#ifndef SPLINECAL_SRC_IO_ROW_CHECKS_H_
+#define SPLINECAL_SRC_IO_ROW_CHECKS_H_
 
 #include <cstdint>
 #include <string>
@@ -57,4 +57,4 @@ class TimestampChecker {
 }  // namespace internal
 }  // namespace splinecal
 
-#endif  // SPLINECAL_IO_ROW_CHECKS_H_
+#endif  // SPLINECAL_SRC_IO_ROW_CHECKS_H_

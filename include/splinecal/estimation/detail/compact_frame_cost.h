@@ -19,8 +19,8 @@
 // Whatever needs the rows themselves (the variance components' row counts, reprojection errors)
 // reads rows(): estimation/compressed_information.cc does. Only for a line delay held at 0 (the
 // line delay block constant): Evaluate fails otherwise.
-#ifndef SPLINECAL_ESTIMATION_COMPACT_FRAME_COST_H_
-#define SPLINECAL_ESTIMATION_COMPACT_FRAME_COST_H_
+#ifndef SPLINECAL_ESTIMATION_DETAIL_COMPACT_FRAME_COST_H_
+#define SPLINECAL_ESTIMATION_DETAIL_COMPACT_FRAME_COST_H_
 
 #include <ceres/cost_function.h>
 
@@ -58,4 +58,4 @@ class CompactFrameCostFunction : public ceres::CostFunction, public CompactResid
 
 }  // namespace splinecal
 
-#endif  // SPLINECAL_ESTIMATION_COMPACT_FRAME_COST_H_
+#endif  // SPLINECAL_ESTIMATION_DETAIL_COMPACT_FRAME_COST_H_

@@ -1,11 +1,14 @@
-// The text files of `splinecal allan --out DIR` (allan/allan.h): allan.csv, result.yaml, imu.yaml.
+// The text files of `splinecal allan --out DIR` (report/allan_report.h): allan.csv, result.yaml,
+// imu.yaml.
+#include "splinecal/report/allan_report.h"
+
 #include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "sensor_units.h"
 #include "splinecal/allan/allan.h"
+#include "splinecal/allan/detail/sensor_units.h"
 #include "splinecal/imu/noise.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/yaml_writer.h"

@@ -8,7 +8,7 @@
 // divided by s. Scaling translations is an automorphism of SE(3) that commutes with Exp and Log,
 // so the spline of the scaled control poses is the scaled spline, in both trajectory models
 // (spline/trajectory_model.h), with the same exposure times (the pixels do not change). With a
-// held camera chain (ReprojectionSettings::T_cam_cref) the chain's translation scales with the
+// held camera chain (ReprojectionOptions::T_cam_cref) the chain's translation scales with the
 // target too: it came from a camera calibration with the same target.
 //
 // Jacobians from the unscaled frame's ambient pose Jacobians J' (translation columns J'_t, at
@@ -16,15 +16,15 @@
 // and d r / d s = -(1/s) sum_poses J'_t t'. The frame may be compact (estimation/
 // compact_frame_cost.h): the composition keeps J^T J and J^T r of the rows, and rows() gives the
 // scaled rows for whatever reads them.
-#ifndef SPLINECAL_CALIB_TARGET_SCALE_COST_H_
-#define SPLINECAL_CALIB_TARGET_SCALE_COST_H_
+#ifndef SPLINECAL_CALIB_DETAIL_TARGET_SCALE_COST_H_
+#define SPLINECAL_CALIB_DETAIL_TARGET_SCALE_COST_H_
 
 #include <ceres/cost_function.h>
 
 #include <memory>
 #include <vector>
 
-#include "splinecal/estimation/compact_frame_cost.h"
+#include "splinecal/estimation/detail/compact_frame_cost.h"
 
 namespace splinecal {
 
@@ -52,4 +52,4 @@ class TargetScaleCostFunction : public ceres::CostFunction, public CompactResidu
 
 }  // namespace splinecal
 
-#endif  // SPLINECAL_CALIB_TARGET_SCALE_COST_H_
+#endif  // SPLINECAL_CALIB_DETAIL_TARGET_SCALE_COST_H_

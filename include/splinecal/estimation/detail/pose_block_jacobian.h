@@ -17,8 +17,8 @@
 // J_ambient * PlusJacobian(x) gives back J_tangent (MinusJacobian * PlusJacobian = I). No
 // shortcut through a fake "identity" manifold Jacobian: ceres::GradientChecker and numeric
 // differentiation agree with these Jacobians.
-#ifndef SPLINECAL_ESTIMATION_POSE_BLOCK_JACOBIAN_H_
-#define SPLINECAL_ESTIMATION_POSE_BLOCK_JACOBIAN_H_
+#ifndef SPLINECAL_ESTIMATION_DETAIL_POSE_BLOCK_JACOBIAN_H_
+#define SPLINECAL_ESTIMATION_DETAIL_POSE_BLOCK_JACOBIAN_H_
 
 #include <Eigen/Core>
 
@@ -67,4 +67,4 @@ void LiftRotationOnlyPoseJacobian(const Eigen::MatrixBase<Derived>& J_phi,
 }  // namespace internal
 }  // namespace splinecal
 
-#endif  // SPLINECAL_ESTIMATION_POSE_BLOCK_JACOBIAN_H_
+#endif  // SPLINECAL_ESTIMATION_DETAIL_POSE_BLOCK_JACOBIAN_H_

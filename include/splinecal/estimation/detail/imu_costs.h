@@ -1,6 +1,6 @@
 // The IMU residuals of `splinecal fit` and `calibrate`, with analytic Jacobians (their
 // automatic-differentiation twins, for the tests and the benchmark, are in
-// estimation/imu_autodiff_costs.h).
+// tests/testing/autodiff_costs.h).
 //
 // Model (docs/conventions.md "IMU model", imu/imu_model.h, [seed000 eqs. (9)-(10)]): at an IMU time
 // t in pose-spline segment i (u = (t - t_i) / dt),
@@ -22,7 +22,7 @@
 //
 // Jacobians. The spline Jacobians (spline/segment_jacobians.h, imu/imu_model.h) are in the RIGHT
 // tangent of each control pose (T Exp(d), d = [rho; phi]); they are lifted to the ambient block
-// exactly (estimation/pose_block_jacobian.h), so every cost function here keeps Ceres' contract
+// exactly (estimation/detail/pose_block_jacobian.h), so every cost function here keeps Ceres' contract
 // (jacobians == nullptr: residuals only; jacobians[i] == nullptr: skip block i; layout
 // jacobians[i][r * size_i + c]) and passes ceres::GradientChecker through SE3Manifold and
 // GravityManifold. d r_g / d b_g,j = weight_j I / sigma_g, d r_a / d g_w = -R_w_s^T / sigma_a.
@@ -40,8 +40,8 @@
 // their Jacobians from the spline the callback rebuilt once for this evaluation point, instead
 // of recomputing them per residual (estimation/spline_evaluation_callback.h); otherwise, or when
 // its parameters differ from the callback's, it computes them from its own pose blocks.
-#ifndef SPLINECAL_ESTIMATION_IMU_COSTS_H_
-#define SPLINECAL_ESTIMATION_IMU_COSTS_H_
+#ifndef SPLINECAL_ESTIMATION_DETAIL_IMU_COSTS_H_
+#define SPLINECAL_ESTIMATION_DETAIL_IMU_COSTS_H_
 
 #include <ceres/cost_function.h>
 #include <ceres/sized_cost_function.h>
@@ -51,7 +51,7 @@
 #include <optional>
 #include <vector>
 
-#include "splinecal/estimation/pose_block_jacobian.h"
+#include "splinecal/estimation/detail/pose_block_jacobian.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/lie/se3_manifold.h"
@@ -317,6 +317,28 @@ class AccelSegmentCostFunction : public ceres::CostFunction {
 
 namespace internal {
 
+// The segment of four pose blocks in scalar T, without Jacobian caches: for costs
+// differentiated automatically (detail/imu_model_costs.h and the tests' autodiff twins).
+template <typename T>
+SegmentKnotData<T> KnotDataFromBlocks(const T* const* poses) {
+  return SegmentKnotData<T>(PoseFromBlock(poses[0]),
+                            PoseFromBlock(poses[1]),
+                            PoseFromBlock(poses[2]),
+                            PoseFromBlock(poses[3]),
+                            /*with_jacobians=*/false);
+}
+
+// The sample's bias: its B-spline weights times the segment's kBiasBlocks bias points.
+template <typename T, int kBiasBlocks>
+Vector3<T> WeightedBiasT(const ImuResidualSample& sample, const T* const* bias_blocks) {
+  Vector3<T> bias = Vector3<T>::Zero();
+  for (int j = 0; j < kBiasBlocks; ++j) {
+    bias += T(sample.bias_weights[j]) * Eigen::Map<const Vector3<T>>(bias_blocks[j]);
+  }
+  return bias;
+}
+
+
 // The rows of `num_samples` samples of one segment, 3 per sample, stacked: the segment's knot
 // data is prepared once and kSampleRows (GyroSampleRows or AccelSampleRows, a compile-time
 // constant so that it inlines) writes each sample's residual and Jacobian rows.
@@ -391,4 +413,4 @@ extern template class AccelSegmentCostFunction<4>;
 
 }  // namespace splinecal
 
-#endif  // SPLINECAL_ESTIMATION_IMU_COSTS_H_
+#endif  // SPLINECAL_ESTIMATION_DETAIL_IMU_COSTS_H_

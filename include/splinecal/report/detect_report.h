@@ -1,7 +1,7 @@
 // What `splinecal detect` writes besides observations.csv: result.yaml, one entry per camera
 // (docs/detect.md shows one), and the one-line summary per camera it prints.
-#ifndef SPLINECAL_DETECT_DETECT_REPORT_H_
-#define SPLINECAL_DETECT_DETECT_REPORT_H_
+#ifndef SPLINECAL_REPORT_DETECT_REPORT_H_
+#define SPLINECAL_REPORT_DETECT_REPORT_H_
 
 #include <functional>
 #include <string>
@@ -13,12 +13,14 @@
 
 namespace splinecal {
 
-// result.yaml: the target, the threads and wall time, then `cameras:` with camN entries holding
-// images (the folder), resolution: [w, h], images_listed, images_read, images_with_target,
-// corners, tags_rejected and detection_time_s; then the warnings.
+// result.yaml: the target, the detector's effort (its name, detect/target_detector.h), the
+// threads and wall time, then `cameras:` with camN entries holding images (the folder),
+// resolution: [w, h], images_listed, images_read, images_with_target, corners, tags_rejected and
+// detection_time_s; then the warnings.
 std::string DetectResultYamlText(const DetectFoldersResult& result,
                                  const CalibrationTarget& target,
-                                 const std::string& target_path);
+                                 const std::string& target_path,
+                                 const std::string& effort);
 
 // The files `splinecal detect --out` writes, as the command line and Python's detect(images=...,
 // out=...) both write them: observations.csv (io/observations_csv.h) and result.yaml. Throws
@@ -27,7 +29,8 @@ std::string DetectResultYamlText(const DetectFoldersResult& result,
 // (camera/target_layout_check.h) when the corners contradict the target's columns or spacing.
 std::vector<OutputFile> DetectOutputFiles(const DetectFoldersResult& result,
                                           const CalibrationTarget& target,
-                                          const std::string& target_path);
+                                          const std::string& target_path,
+                                 const std::string& effort);
 
 // A DetectFoldersOptions::on_detection callback for `--draw`: stages
 // overlays/camN/<t_ns>.png in `output` for every frame with corners (workers call it
@@ -40,4 +43,4 @@ std::string DetectSummaryText(const DetectFoldersResult& result);
 
 }  // namespace splinecal
 
-#endif  // SPLINECAL_DETECT_DETECT_REPORT_H_
+#endif  // SPLINECAL_REPORT_DETECT_REPORT_H_
