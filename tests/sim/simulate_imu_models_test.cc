@@ -12,6 +12,7 @@
 #include "splinecal/imu/spline_body_motion.h"
 #include "splinecal/lie/so3.h"
 #include "splinecal/sim/simulate_imu.h"
+#include "splinecal/report/simulate_report.h"
 #include "splinecal/sim/simulation_result.h"
 #include "splinecal/sim/trajectories.h"
 #include "testing/consumer_imu.h"
