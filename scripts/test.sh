@@ -4,7 +4,8 @@
 #   scripts/test.sh              Release build in build/, every test (slow Monte-Carlo included)
 #   scripts/test.sh --sanitize   ASan + UBSan build in build-sanitize/: the library and the C++
 #                                tests; slow and arithmetic tests, Python module and consumer
-#                                test left out
+#                                test left out, and the fast tests labelled sanitize_skip
+#                                (tests/sanitize_skip.cmake says which and why)
 #   scripts/test.sh --fast       leaves out the tests labelled slow
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,7 +27,7 @@ for arg in "$@"; do
       cmake_args=(-DCMAKE_BUILD_TYPE=Sanitize "-DCMAKE_CXX_FLAGS_SANITIZE=-O2 -g0"
                   -DSPLINECAL_SANITIZE=ON -DSPLINECAL_SLOW_TESTS=OFF -DSPLINECAL_PYTHON=OFF
                   -DSPLINECAL_CONSUMER_TEST=OFF -DSPLINECAL_ARITHMETIC_TESTS=OFF)
-      ctest_args+=(-LE slow)
+      ctest_args+=(-LE "slow|sanitize_skip")
       export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
       export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
       ;;

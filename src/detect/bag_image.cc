@@ -1,6 +1,5 @@
 #include "splinecal/detect/bag_image.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "image_decoders.h"
@@ -125,9 +124,7 @@ GrayImage BagImageToGray(const ImageMessage& image, const std::string& where) {
 }
 
 std::string EncodeGrayPng(const GrayImageView& image) {
-  std::vector<uint8_t> bytes;
-  if (!cv::imencode(".png", BorrowMat(image), bytes)) throw Error("PNG encoding failed");
-  return std::string(bytes.begin(), bytes.end());
+  return EncodePng(image.data, image.width, image.height, 1, image.stride);
 }
 
 }  // namespace splinecal

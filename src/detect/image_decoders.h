@@ -4,6 +4,7 @@
 #ifndef SPLINECAL_SRC_DETECT_IMAGE_DECODERS_H_
 #define SPLINECAL_SRC_DETECT_IMAGE_DECODERS_H_
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -21,6 +22,13 @@ inline constexpr int64_t kMaxImagePixels = 100'000'000;
 // the decoder does not support.
 GrayImage DecodePng(const std::vector<uint8_t>& bytes, const std::string& path);
 GrayImage DecodeJpeg(const std::vector<uint8_t>& bytes, const std::string& path);
+
+// The bytes of a PNG file of 8-bit pixels: grey (channels 1) or OpenCV's blue-green-red order
+// (channels 3), rows `stride` bytes apart. Encoded with libpng rather than OpenCV's image codecs,
+// whose library loads about 140 shared libraries at every start of a program linked with it
+// (docs/reliability.md, "Process start"). Throws splinecal::Error on failure.
+std::string EncodePng(const uint8_t* pixels, int width, int height, int channels,
+                      std::ptrdiff_t stride);
 
 }  // namespace splinecal
 

@@ -4,7 +4,6 @@
 #include <fstream>
 #include <system_error>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "image_decoders.h"
@@ -63,13 +62,17 @@ void WriteOverlayPng(const GrayImageView& image,
   }
   cv::putText(colour, caption, cv::Point(8, 8 + static_cast<int>(24 * scale)),
               cv::FONT_HERSHEY_SIMPLEX, 1.4 * scale, cv::Scalar(255, 128, 0), 1, cv::LINE_AA);
-  bool written = false;
+  std::string bytes;
   try {
-    written = cv::imwrite(path, colour);
-  } catch (const cv::Exception& e) {
-    throw Error(path, 0, "cannot write the overlay: " + e.err);
+    bytes = EncodePng(colour.data, colour.cols, colour.rows, 3,
+                      static_cast<std::ptrdiff_t>(colour.step[0]));
+  } catch (const Error& e) {
+    throw Error(path, 0, std::string("cannot write the overlay: ") + e.what());
   }
-  if (!written) throw Error(path, 0, "cannot write the overlay");
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) throw Error(path, 0, "cannot write the overlay");
 }
 
 }  // namespace splinecal

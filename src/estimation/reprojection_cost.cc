@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -87,10 +88,15 @@ class WindowKnots {
         pose_indices_(pose_indices),
         parameters_(parameters),
         with_jacobians_(with_jacobians) {
-    const int span = pose_indices_.back() - pose_indices_.front() + 1;
-    local_.resize(span);
-    views_.resize(span);
-    ready_.assign(span, false);
+    // Knots are computed for the segments an evaluation visits (a landmark's reference and
+    // observing segments, a few more in a rolling-shutter Newton solve), each kept in a deque,
+    // whose elements never move (SegmentKnotData holds views into itself). The cache used to be
+    // a vector over every control pose from the first index to the last, allocated and zeroed on
+    // each Evaluate (2.5 kB per pose, and a landmark's two windows can lie seconds apart: about
+    // 400 kB for an 8 s recording at 0.05 s knots). Under AddressSanitizer, whose allocator maps
+    // and unmaps such blocks on every call, that made landmark calibrations about 30 to 60 times
+    // slower than in Release (docs/reliability.md, "The sanitizer tests").
+    entry_.assign(std::max(0, static_cast<int>(pose_indices_.size()) - 3), -1);
   }
 
   // The slot (parameter block index) of control pose `index`, or -1 when it is not held.
@@ -108,13 +114,13 @@ class WindowKnots {
         pose_indices_[slot + 3] != first + 3) {
       return nullptr;
     }
-    const int cache = first - pose_indices_.front();
-    if (!ready_[cache]) {
-      views_[cache] = internal::SegmentKnotsFor(
-          settings_.shared, first, parameters_ + slot, with_jacobians_, &local_[cache]);
-      ready_[cache] = true;
+    if (entry_[slot] < 0) {
+      local_.emplace_back();
+      views_.push_back(internal::SegmentKnotsFor(
+          settings_.shared, first, parameters_ + slot, with_jacobians_, &local_.back()));
+      entry_[slot] = static_cast<int>(views_.size()) - 1;
     }
-    return &views_[cache];
+    return &views_[entry_[slot]];
   }
 
  private:
@@ -122,10 +128,9 @@ class WindowKnots {
   const std::vector<int>& pose_indices_;
   double const* const* parameters_;
   bool with_jacobians_;
-  // Sized once: SegmentKnotData holds views into itself and must not move.
-  std::vector<std::optional<SegmentKnotData<double>>> local_;
-  std::vector<SegmentKnots<double>> views_;
-  std::vector<bool> ready_;
+  std::vector<int> entry_;  // per slot that starts a segment: its index in views_, or -1
+  std::deque<std::optional<SegmentKnotData<double>>> local_;
+  std::deque<SegmentKnots<double>> views_;
 };
 
 // The state at an exposure time: what the last row evaluation of the Newton solve saw.
