@@ -1,30 +1,19 @@
 #include "splinecal/estimation/detail/imu_model_costs.h"
 
-#include <ceres/dynamic_autodiff_cost_function.h>
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <vector>
 
+#include "splinecal/estimation/detail/imu_model_intrinsics.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
+#include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/matrix_parameters.h"
 #include "splinecal/lie/so3.h"
-#include "splinecal/spline/trajectory_evaluation.h"
+#include "splinecal/spline/angular_acceleration_jacobian.h"
+#include "splinecal/spline/segment_jacobians.h"
 
 namespace splinecal {
-
-template <typename T>
-ImuIntrinsics<T> ImuModelParameters::Intrinsics(const T* m_a,
-                                                const T* m_g,
-                                                const T* a,
-                                                const T* phi_gyro_i,
-                                                const T* ry_i,
-                                                const T* rz_i) {
-  ImuIntrinsics<T> p;
-  p.M_a = LowerTriangularFromParameters(m_a);
-  p.M_g = LowerTriangularFromParameters(m_g);
-  p.A = FullMatrixFromParameters(a);
-  p.C_gyro_i = SO3<T>::Exp(Eigen::Map<const Vector3<T>>(phi_gyro_i)).matrix();
-  p.ry_i = Eigen::Map<const Vector3<T>>(ry_i);
-  p.rz_i = Eigen::Map<const Vector3<T>>(rz_i);
-  return p;
-}
 
 ImuIntrinsicsd ImuModelParameters::Intrinsics() const {
   return Intrinsics(m_a.data(), m_g.data(), a.data(), phi_gyro_i.data(), ry_i.data(), rz_i.data());
@@ -32,118 +21,241 @@ ImuIntrinsicsd ImuModelParameters::Intrinsics() const {
 
 namespace {
 
-// (predicted - measured) / sigma of every sample of the segment, predicted by
-// predict(motion, bias): blocks 0..3 are the control poses, then the segment's bias points,
-// then g_w.
-template <typename T, typename Predict>
-void SegmentResiduals(const ImuModelSegment& s,
-                      T const* const* blocks,
-                      const Predict& predict,
-                      T* residuals) {
-  const SegmentKnotData<T> data = internal::KnotDataFromBlocks(blocks);
-  const Vector3<T> g_w = Eigen::Map<const Vector3<T>>(blocks[4 + s.bias_blocks]);
-  const T inv_sigma = T(1.0 / s.segment.sigma);
-  for (size_t k = 0; k < s.samples.size(); ++k) {
-    const ImuResidualSample& sample = s.samples[k];
-    const Segment<T> seg = MakeSegment(s.segment.segment_index, T(sample.u), s.segment.dt_s);
-    BodyMotion<T> motion;
-    Matrix3<T> R_w_s;
-    Vector3<T> a_s;
-    internal::EvaluateSegmentBody(
-        s.segment.model, data.knots(), seg, nullptr, &R_w_s, &motion.w_b, &motion.dw_b, nullptr, &a_s);
-    motion.f_b = a_s - R_w_s.transpose() * g_w;
-    const Vector3<T> bias = s.bias_blocks == 1 ? internal::WeightedBiasT<T, 1>(sample, blocks + 4)
-                                               : internal::WeightedBiasT<T, 4>(sample, blocks + 4);
-    const Vector3<T> predicted = predict(motion, bias);
-    for (int r = 0; r < 3; ++r) {
-      residuals[3 * k + r] = (predicted[r] - T(sample.measured[r])) * inv_sigma;
+template <int kCols>
+using RowMajorRows = Eigen::Map<Eigen::Matrix<double, 3, kCols, Eigen::RowMajor>>;
+
+// The spline's motion at one sample: w_b, dw_b and f_b = R_w_b^T (a_w - g_w) with, on request,
+// their Jacobians w.r.t. the control poses (right tangent) and d f_b / d g_w = -R_w_b^T.
+struct SampleMotion {
+  BodyMotion<double> motion;
+  internal::SegmentTrace<double> angular;  // the SO(3) forward pass (rates, acceleration)
+  ControlPoseJacobian<3> J_f;
+  Eigen::Matrix3d J_f_gw;
+};
+
+void EvaluateMotion(const ImuModelSegment& s,
+                    const SegmentKnots<double>& knots,
+                    const Segment<double>& seg,
+                    const Eigen::Vector3d& g_w,
+                    bool f_pose_jacobian,
+                    SampleMotion* m) {
+  PredictAccelWithJacobian(s.segment.model,
+                           knots,
+                           seg,
+                           g_w,
+                           Eigen::Vector3d::Zero(),
+                           &m->motion.f_b,
+                           f_pose_jacobian ? &m->J_f : nullptr,
+                           &m->J_f_gw);
+  internal::TraceRequest request;
+  request.rates = true;
+  request.acceleration = true;
+  internal::ForwardPass(knots, seg, request, &m->angular);
+  m->motion.w_b = m->angular.w[2];
+  m->motion.dw_b = m->angular.aw[2];
+}
+
+// d prediction / d control pose k (3x6, right tangent) = J_w J_w_k + J_dw J_dw_k + J_f J_f_k,
+// every term whose model Jacobian is exactly zero skipped (the reference IMU's r_b = 0 zeroes
+// the accelerometer's w_b and dw_b without the size effect; A = 0 the gyro's f_b).
+void PoseJacobians(const SegmentKnots<double>& knots,
+                   const Segment<double>& seg,
+                   const SampleMotion& m,
+                   const Eigen::Matrix3d& J_w,
+                   const Eigen::Matrix3d& J_dw,
+                   const Eigen::Matrix3d& J_f,
+                   std::array<Eigen::Matrix<double, 3, 6>, kSplineOrder>* out) {
+  const bool use_w = !J_w.isZero(0.0);
+  const bool use_dw = !J_dw.isZero(0.0);
+  const bool use_f = !J_f.isZero(0.0);
+  ControlPoseJacobian<3> J_ws;
+  ControlPoseJacobian<3> J_dws;
+  if (use_w) EvaluateAngularVelocityJacobian(knots, seg, nullptr, &J_ws);
+  if (use_dw) AngularAccelerationJacobian(knots, seg, m.angular, &J_dws);
+  for (int k = 0; k < kSplineOrder; ++k) {
+    Eigen::Matrix<double, 3, 6>& J = (*out)[k];
+    if (use_f) {
+      J.noalias() = J_f * m.J_f.blocks[k];
+    } else {
+      J.setZero();
+    }
+    // The angular blocks' translation columns are zero.
+    if (use_w) J.rightCols<3>().noalias() += J_w * J_ws.blocks[k].rightCols<3>();
+    if (use_dw) J.rightCols<3>().noalias() += J_dw * J_dws.blocks[k].rightCols<3>();
+  }
+}
+
+void WriteBias(int bias_blocks,
+               const ImuResidualSample& sample,
+               double inv_sigma,
+               double** bias_jacobians,
+               int row) {
+  if (bias_blocks == 1) {
+    internal::WriteBiasJacobians<1>(sample, inv_sigma, bias_jacobians, row);
+  } else {
+    internal::WriteBiasJacobians<4>(sample, inv_sigma, bias_jacobians, row);
+  }
+}
+
+// The gyro (kGyro) or accelerometer residuals of one segment under Kalibr's model, with the
+// analytic Jacobians: the spline's motion Jacobians (spline/segment_jacobians.h steps 4 and 5,
+// spline/angular_acceleration_jacobian.h) chained through the model's
+// (imu/imu_intrinsic_model.h). Blocks as the header lists.
+template <bool kGyro>
+class ImuModelCostFunction : public ceres::CostFunction {
+ public:
+  explicit ImuModelCostFunction(const ImuModelSegment& segment) : s_(segment) {
+    CHECK(!s_.samples.empty());
+    CHECK(s_.bias_blocks == 1 || s_.bias_blocks == 4) << "bias_blocks must be 1 or 4";
+    set_num_residuals(3 * static_cast<int>(s_.samples.size()));
+    std::vector<int>& sizes = *mutable_parameter_block_sizes();
+    sizes.assign(kSplineOrder, kPoseBlockSize);
+    for (int j = 0; j < s_.bias_blocks; ++j) sizes.push_back(3);
+    sizes.push_back(3);  // g_w
+    if (kGyro) {
+      sizes.insert(sizes.end(), {kLowerTriangularParameters, kFullMatrixParameters, 3});
+    } else {
+      sizes.push_back(kLowerTriangularParameters);
+      if (SizeEffect()) sizes.insert(sizes.end(), {3, 3});
     }
   }
-}
 
-// Blocks: poses 0..3, gyro bias points, g_w, m_g, a, phi_gyro_i.
-struct GyroModelResidual {
-  explicit GyroModelResidual(const ImuModelSegment& s) : s(s) {}
-  template <typename T>
-  bool operator()(T const* const* blocks, T* residuals) const {
-    const int nb = s.bias_blocks;
-    const ImuModelParameters nominal;
-    const std::array<T, 3> zero = {T(0.0), T(0.0), T(0.0)};
-    std::array<T, kLowerTriangularParameters> m_a;
-    for (int j = 0; j < kLowerTriangularParameters; ++j) m_a[j] = T(nominal.m_a[j]);
-    const ImuIntrinsics<T> p = ImuModelParameters::Intrinsics<T>(
-        m_a.data(), blocks[5 + nb], blocks[6 + nb], blocks[7 + nb], zero.data(), zero.data());
-    SegmentResiduals(
-        s, blocks,
-        [&](const BodyMotion<T>& motion, const Vector3<T>& bias) {
-          Vector3<T> gyro;
-          PredictImuReadings<T>(s.kind, p, motion, bias, Vector3<T>::Zero(), &gyro, nullptr);
-          return gyro;
-        },
-        residuals);
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    const int nb = s_.bias_blocks;
+    const int model = kSplineOrder + nb + 1;  // first model block
+    const bool pose_jacobians = internal::AnyPoseJacobian(jacobians);
+    internal::SegmentEvaluation evaluation;
+    internal::PrepareSegmentEvaluation(s_.segment, parameters, pose_jacobians, &evaluation);
+    const ImuIntrinsicsd p = Intrinsics(parameters + model);
+    const Eigen::Map<const Eigen::Vector3d> g_w(parameters[kSplineOrder + nb]);
+    // The gyro reads f_b only through A.
+    const bool f_pose_jacobian = pose_jacobians && (!kGyro || !p.A.isZero(0.0));
+    // d C_gyro_i / d phi: C_gyro_i = Exp(phi) moves as C_gyro_i Exp(Jr(phi) dphi).
+    const Eigen::Matrix3d Jr_gyro =
+        kGyro ? RightJacobianSO3(Eigen::Map<const Eigen::Vector3d>(parameters[model + 2]))
+              : Eigen::Matrix3d::Identity();
+    const double inv_sigma = 1.0 / s_.segment.sigma;
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < s_.samples.size(); ++k) {
+      const ImuResidualSample& sample = s_.samples[k];
+      const int row = 3 * static_cast<int>(k);
+      const Segment<double> seg = MakeSegment(s_.segment.segment_index, sample.u, s_.segment.dt_s);
+      SampleMotion m;
+      EvaluateMotion(s_, evaluation.knots, seg, g_w, f_pose_jacobian, &m);
+      const Eigen::Vector3d bias =
+          nb == 1 ? internal::WeightedBias<1>(sample, parameters + kSplineOrder)
+                  : internal::WeightedBias<4>(sample, parameters + kSplineOrder);
+      Eigen::Vector3d predicted;
+      ImuGyroJacobians Jg;
+      ImuAccelJacobians Ja;
+      if (kGyro) {
+        PredictImuReadings(s_.kind,
+                           p,
+                           m.motion,
+                           bias,
+                           zero,
+                           &predicted,
+                           nullptr,
+                           jacobians != nullptr ? &Jg : nullptr,
+                           nullptr);
+      } else {
+        PredictImuReadings(s_.kind,
+                           p,
+                           m.motion,
+                           zero,
+                           bias,
+                           nullptr,
+                           &predicted,
+                           nullptr,
+                           jacobians != nullptr ? &Ja : nullptr);
+      }
+      Eigen::Map<Eigen::Vector3d>(residuals + row) = (predicted - sample.measured) * inv_sigma;
+      if (jacobians == nullptr) continue;
+      const Eigen::Matrix3d& J_f = kGyro ? Jg.f_b : Ja.f_b;
+      if (pose_jacobians) {
+        std::array<Eigen::Matrix<double, 3, 6>, kSplineOrder> J_pose;
+        PoseJacobians(evaluation.knots,
+                      seg,
+                      m,
+                      kGyro ? Jg.w_b : Ja.w_b,
+                      kGyro ? Jg.dw_b : Ja.dw_b,
+                      J_f,
+                      &J_pose);
+        for (int c = 0; c < kSplineOrder; ++c) {
+          if (jacobians[c] == nullptr) continue;
+          internal::LiftPoseJacobian(
+              J_pose[c] * inv_sigma, evaluation.lifts[c], jacobians[c] + kPoseBlockSize * row);
+        }
+      }
+      WriteBias(nb, sample, inv_sigma, jacobians + kSplineOrder, row);
+      if (double* J = jacobians[kSplineOrder + nb]; J != nullptr) {
+        RowMajorRows<3>(J + 3 * row) = (J_f * m.J_f_gw) * inv_sigma;
+      }
+      double* const* J_model = jacobians + model;
+      if (kGyro) {
+        if (J_model[0] != nullptr) {
+          RowMajorRows<kLowerTriangularParameters>(J_model[0] + kLowerTriangularParameters * row) =
+              Jg.M_g * inv_sigma;
+        }
+        if (J_model[1] != nullptr) {
+          RowMajorRows<kFullMatrixParameters>(J_model[1] + kFullMatrixParameters * row) =
+              Jg.A * inv_sigma;
+        }
+        if (J_model[2] != nullptr) {
+          RowMajorRows<3>(J_model[2] + 3 * row) = (Jg.phi_gyro_i * Jr_gyro) * inv_sigma;
+        }
+      } else {
+        if (J_model[0] != nullptr) {
+          RowMajorRows<kLowerTriangularParameters>(J_model[0] + kLowerTriangularParameters * row) =
+              Ja.M_a * inv_sigma;
+        }
+        if (SizeEffect() && J_model[1] != nullptr) {
+          RowMajorRows<3>(J_model[1] + 3 * row) = Ja.ry_i * inv_sigma;
+        }
+        if (SizeEffect() && J_model[2] != nullptr) {
+          RowMajorRows<3>(J_model[2] + 3 * row) = Ja.rz_i * inv_sigma;
+        }
+      }
+    }
     return true;
   }
-  ImuModelSegment s;
-};
 
-// Blocks: poses 0..3, accel bias points, g_w, m_a (, ry_i, rz_i).
-struct AccelModelResidual {
-  explicit AccelModelResidual(const ImuModelSegment& s) : s(s) {}
-  template <typename T>
-  bool operator()(T const* const* blocks, T* residuals) const {
-    const int nb = s.bias_blocks;
-    const bool size_effect = s.kind == ImuModelKind::kScaleMisalignmentSizeEffect;
-    const ImuModelParameters nominal;
-    const std::array<T, 3> zero = {T(0.0), T(0.0), T(0.0)};
-    std::array<T, kLowerTriangularParameters> m_g;
-    std::array<T, kFullMatrixParameters> a;
-    for (int j = 0; j < kLowerTriangularParameters; ++j) m_g[j] = T(nominal.m_g[j]);
-    for (T& v : a) v = T(0.0);
-    const ImuIntrinsics<T> p = ImuModelParameters::Intrinsics<T>(
-        blocks[5 + nb], m_g.data(), a.data(), zero.data(),
-        size_effect ? blocks[6 + nb] : zero.data(), size_effect ? blocks[7 + nb] : zero.data());
-    SegmentResiduals(
-        s, blocks,
-        [&](const BodyMotion<T>& motion, const Vector3<T>& bias) {
-          Vector3<T> accel;
-          PredictImuReadings<T>(s.kind, p, motion, Vector3<T>::Zero(), bias, nullptr, &accel);
-          return accel;
-        },
-        residuals);
-    return true;
+ private:
+  bool SizeEffect() const { return s_.kind == ImuModelKind::kScaleMisalignmentSizeEffect; }
+
+  // The model's parameters from its blocks, the others nominal.
+  ImuIntrinsicsd Intrinsics(double const* const* blocks) const {
+    ImuModelParameters values;
+    const auto copy = [](const double* from, auto* to) {
+      std::copy(from, from + to->size(), to->begin());
+    };
+    if (kGyro) {
+      copy(blocks[0], &values.m_g);
+      copy(blocks[1], &values.a);
+      copy(blocks[2], &values.phi_gyro_i);
+    } else {
+      copy(blocks[0], &values.m_a);
+      if (SizeEffect()) {
+        copy(blocks[1], &values.ry_i);
+        copy(blocks[2], &values.rz_i);
+      }
+    }
+    return values.Intrinsics();
   }
-  ImuModelSegment s;
+
+  ImuModelSegment s_;
 };
-
-template <typename Functor>
-ceres::CostFunction* NewCost(const ImuModelSegment& segment, const std::vector<int>& sizes) {
-  auto* cost = new ceres::DynamicAutoDiffCostFunction<Functor, kImuModelStride>(
-      new Functor(segment));
-  for (int size : sizes) cost->AddParameterBlock(size);
-  cost->SetNumResiduals(3 * static_cast<int>(segment.samples.size()));
-  return cost;
-}
-
-std::vector<int> PoseAndBiasSizes(const ImuModelSegment& segment) {
-  std::vector<int> sizes(4, kPoseBlockSize);
-  for (int j = 0; j < segment.bias_blocks; ++j) sizes.push_back(3);
-  sizes.push_back(3);  // g_w
-  return sizes;
-}
 
 }  // namespace
 
 ceres::CostFunction* NewImuModelGyroCost(const ImuModelSegment& segment) {
-  std::vector<int> sizes = PoseAndBiasSizes(segment);
-  sizes.insert(sizes.end(), {kLowerTriangularParameters, kFullMatrixParameters, 3});
-  return NewCost<GyroModelResidual>(segment, sizes);
+  return new ImuModelCostFunction<true>(segment);
 }
 
 ceres::CostFunction* NewImuModelAccelCost(const ImuModelSegment& segment) {
-  std::vector<int> sizes = PoseAndBiasSizes(segment);
-  sizes.push_back(kLowerTriangularParameters);
-  if (segment.kind == ImuModelKind::kScaleMisalignmentSizeEffect) sizes.insert(sizes.end(), {3, 3});
-  return NewCost<AccelModelResidual>(segment, sizes);
+  return new ImuModelCostFunction<false>(segment);
 }
 
 }  // namespace splinecal

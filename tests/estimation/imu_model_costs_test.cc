@@ -5,12 +5,15 @@
 #include <array>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "testing/autodiff_costs.h"
+#include "testing/autodiff_imu_model_costs.h"
 #include "splinecal/estimation/detail/imu_costs.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "splinecal/spline/angular_acceleration_jacobian.h"
 #include "splinecal/spline/trajectory_evaluation.h"
 
 namespace splinecal {
@@ -107,9 +110,14 @@ struct Fixture {
   }
 };
 
-ImuModelSegment MakeModelSegment(ImuModelKind kind, int nb, double sigma, bool gyro) {
+ImuModelSegment MakeModelSegment(ImuModelKind kind,
+                                 int nb,
+                                 double sigma,
+                                 bool gyro,
+                                 TrajectoryModel model = TrajectoryModel::kSE3) {
   ImuModelSegment s;
   s.kind = kind;
+  s.segment.model = model;
   s.segment.segment_index = 2;
   s.segment.dt_s = kDtS;
   s.segment.sigma = sigma;
@@ -224,55 +232,179 @@ TEST(ImuModelCosts, ModelJacobiansMatchTheAnalyticModel) {
   }
 }
 
+// d f / d block i by central differences in the block's tangent (poses: SE3Manifold's right
+// perturbation; other blocks Euclidean), with f(blocks) any vector function of the blocks.
+template <typename F>
+Eigen::MatrixXd NumericBlockJacobian(const F& f,
+                                     std::vector<double*>* blocks,
+                                     size_t i,
+                                     int ambient,
+                                     bool pose) {
+  const SE3Manifold se3;
+  const int tangent = pose ? 6 : ambient;
+  const std::vector<double> original((*blocks)[i], (*blocks)[i] + ambient);
+  constexpr double kStep = 1e-6;
+  Eigen::MatrixXd J;
+  for (int c = 0; c < tangent; ++c) {
+    Eigen::VectorXd r[2];
+    for (int side = 0; side < 2; ++side) {
+      Eigen::VectorXd delta = Eigen::VectorXd::Zero(tangent);
+      delta[c] = side == 0 ? kStep : -kStep;
+      if (pose) {
+        se3.Plus(original.data(), delta.data(), (*blocks)[i]);
+      } else {
+        for (int k = 0; k < ambient; ++k) (*blocks)[i][k] = original[k] + delta[k];
+      }
+      r[side] = f(*blocks);
+    }
+    std::copy(original.begin(), original.end(), (*blocks)[i]);
+    if (c == 0) J.resize(r[0].size(), tangent);
+    J.col(c) = (r[0] - r[1]) / (2.0 * kStep);
+  }
+  return J;
+}
+
+// The ambient Jacobian of block i in its tangent (poses times SE3Manifold's PlusJacobian).
+Eigen::MatrixXd TangentJacobian(const Eigen::MatrixXd& J, const double* block, bool pose) {
+  if (!pose) return J;
+  Eigen::Matrix<double, 7, 6, Eigen::RowMajor> plus;
+  SE3Manifold().PlusJacobian(block, plus.data());
+  return J * plus;
+}
+
+// The new link of the chain: the body angular acceleration's Jacobian w.r.t. the control poses
+// (spline/angular_acceleration_jacobian.h) against central differences at several u (both ends
+// of the segment included).
+TEST(ImuModelCosts, AngularAccelerationJacobianMatchesNumericDifferentiation) {
+  Fixture f(6);
+  std::vector<double*> poses = f.Common(1, true);
+  poses.resize(4);
+  for (double u : {0.0, 0.23, 0.5, 0.91, 1.0}) {
+    const Segment<double> seg = splinecal::MakeSegment(2, u, kDtS);
+    const auto dw_of = [&](const std::vector<double*>& blocks) {
+      const SegmentKnotData<double> data = internal::KnotDataFromBlocks<double>(blocks.data());
+      Eigen::Vector3d dw;
+      EvaluateAngularAccelerationJacobian(data.knots(), seg, &dw, nullptr);
+      return Eigen::VectorXd(dw);
+    };
+    const SegmentKnotData<double> data(PoseFromBlock(poses[0]), PoseFromBlock(poses[1]),
+                                       PoseFromBlock(poses[2]), PoseFromBlock(poses[3]));
+    ControlPoseJacobian<3> J_dw;
+    Eigen::Vector3d dw;
+    EvaluateAngularAccelerationJacobian(data.knots(), seg, &dw, &J_dw);
+    EXPECT_GT(dw.norm(), 1.0);  // a lively segment: ~10 rad/s^2 and more
+    for (size_t k = 0; k < 4; ++k) {
+      const Eigen::MatrixXd J_num = NumericBlockJacobian(dw_of, &poses, k, 7, true);
+      EXPECT_LE(RelativeError(J_dw.blocks[k], J_num), kNumericTolerance)
+          << "u " << u << " block " << k;
+    }
+  }
+}
+
+struct Case {
+  ImuModelKind kind;
+  int nb;
+  TrajectoryModel model;
+};
+
+std::vector<Case> AllCases() {
+  std::vector<Case> cases;
+  for (ImuModelKind kind :
+       {ImuModelKind::kScaleMisalignment, ImuModelKind::kScaleMisalignmentSizeEffect}) {
+    for (int nb : {1, 4}) {
+      for (TrajectoryModel model : {TrajectoryModel::kSE3, TrajectoryModel::kSplitSO3R3}) {
+        cases.push_back({kind, nb, model});
+      }
+    }
+  }
+  return cases;
+}
+
+// The analytic costs against their automatic-differentiation twins (the oracle,
+// testing/autodiff_imu_model_costs.h), away from nominal (C_gyro_i's rotation vector non-zero, so
+// that its Jr(phi) is exercised): every residual and every Jacobian block, both models, both
+// trajectory models, both bias layouts.
+TEST(ImuModelCosts, AnalyticEqualsAutoDiff) {
+  for (const Case& c : AllCases()) {
+    Fixture f(8);
+    f.Perturb(/*rotate_gyro=*/true);
+    for (bool is_gyro : {true, false}) {
+      const ImuModelSegment segment =
+          MakeModelSegment(c.kind, c.nb, is_gyro ? 0.01 : 0.1, is_gyro, c.model);
+      const std::unique_ptr<ceres::CostFunction> analytic(
+          is_gyro ? NewImuModelGyroCost(segment) : NewImuModelAccelCost(segment));
+      const std::unique_ptr<ceres::CostFunction> autodiff(
+          is_gyro ? testing::NewAutoDiffImuModelGyroCost(segment)
+                  : testing::NewAutoDiffImuModelAccelCost(segment));
+      const std::vector<double*> blocks =
+          is_gyro ? f.GyroBlocks(c.nb) : f.AccelBlocks(c.nb, c.kind);
+      const Evaluation e = Evaluate(*analytic, blocks);
+      const Evaluation o = Evaluate(*autodiff, blocks);
+      const std::string name = std::string(is_gyro ? "gyro" : "accel") + " " +
+                               ImuModelName(c.kind) + " nb " + std::to_string(c.nb) + " " +
+                               TrajectoryModelName(c.model);
+      EXPECT_LE(RelativeError(e.residuals, o.residuals), kExactTolerance) << name;
+      ASSERT_EQ(e.jacobians.size(), o.jacobians.size());
+      for (size_t b = 0; b < blocks.size(); ++b) {
+        EXPECT_LE(RelativeError(e.jacobians[b], o.jacobians[b]), kExactTolerance)
+            << name << " block " << b;
+      }
+    }
+  }
+}
+
 // Every block, poses through their manifold, against central differences: the chain from the
 // angular acceleration dw_b (size effect) to the control poses included.
 TEST(ImuModelCosts, JacobiansMatchNumericDifferentiation) {
-  const SE3Manifold se3;
-  for (int nb : {1, 4}) {
+  for (const Case& c : AllCases()) {
     Fixture f(5);
     f.Perturb(/*rotate_gyro=*/true);
-    const ImuModelKind kind = ImuModelKind::kScaleMisalignmentSizeEffect;
-    const std::unique_ptr<ceres::CostFunction> gyro(
-        NewImuModelGyroCost(MakeModelSegment(kind, nb, 0.01, true)));
-    const std::unique_ptr<ceres::CostFunction> accel(
-        NewImuModelAccelCost(MakeModelSegment(kind, nb, 0.1, false)));
     for (bool is_gyro : {true, false}) {
-      const ceres::CostFunction& cost = is_gyro ? *gyro : *accel;
-      std::vector<double*> blocks = is_gyro ? f.GyroBlocks(nb) : f.AccelBlocks(nb, kind);
-      const Evaluation e = Evaluate(cost, blocks);
+      const std::unique_ptr<ceres::CostFunction> cost(
+          is_gyro ? NewImuModelGyroCost(MakeModelSegment(c.kind, c.nb, 0.01, true, c.model))
+                  : NewImuModelAccelCost(MakeModelSegment(c.kind, c.nb, 0.1, false, c.model)));
+      std::vector<double*> blocks = is_gyro ? f.GyroBlocks(c.nb) : f.AccelBlocks(c.nb, c.kind);
+      const Evaluation e = Evaluate(*cost, blocks);
+      const auto residuals = [&](const std::vector<double*>& b) {
+        Eigen::VectorXd r(cost->num_residuals());
+        cost->Evaluate(b.data(), r.data(), nullptr);
+        return r;
+      };
       for (size_t i = 0; i < blocks.size(); ++i) {
-        const int ambient = cost.parameter_block_sizes()[i];
         const bool pose = i < 4;
-        const int tangent = pose ? 6 : ambient;
-        Eigen::MatrixXd plus = Eigen::MatrixXd::Identity(ambient, tangent);
-        if (pose) {
-          Eigen::Matrix<double, 7, 6, Eigen::RowMajor> pj;
-          se3.PlusJacobian(blocks[i], pj.data());
-          plus = pj;
-        }
-        const Eigen::MatrixXd J = e.jacobians[i] * plus;
-        Eigen::MatrixXd J_numeric(cost.num_residuals(), tangent);
-        const std::vector<double> original(blocks[i], blocks[i] + ambient);
-        constexpr double kStep = 1e-6;
-        for (int c = 0; c < tangent; ++c) {
-          Eigen::VectorXd r[2];
-          for (int side = 0; side < 2; ++side) {
-            Eigen::VectorXd delta = Eigen::VectorXd::Zero(tangent);
-            delta[c] = side == 0 ? kStep : -kStep;
-            if (pose) {
-              se3.Plus(original.data(), delta.data(), blocks[i]);
-            } else {
-              for (int k = 0; k < ambient; ++k) blocks[i][k] = original[k] + delta[k];
-            }
-            r[side].resize(cost.num_residuals());
-            cost.Evaluate(blocks.data(), r[side].data(), nullptr);
-          }
-          std::copy(original.begin(), original.end(), blocks[i]);
-          J_numeric.col(c) = (r[0] - r[1]) / (2.0 * kStep);
-        }
-        EXPECT_LE(RelativeError(J, J_numeric), kNumericTolerance)
-            << (is_gyro ? "gyro" : "accel") << " block " << i << " nb " << nb;
+        const Eigen::MatrixXd J_num = NumericBlockJacobian(
+            residuals, &blocks, i, cost->parameter_block_sizes()[i], pose);
+        EXPECT_LE(RelativeError(TangentJacobian(e.jacobians[i], blocks[i], pose), J_num),
+                  kNumericTolerance)
+            << (is_gyro ? "gyro" : "accel") << " " << ImuModelName(c.kind) << " block " << i
+            << " nb " << c.nb << " " << TrajectoryModelName(c.model);
       }
+    }
+  }
+}
+
+// Ceres' contract: residuals alone (jacobians == nullptr) and a subset of blocks (the others
+// nullptr) give the same numbers as the full evaluation.
+TEST(ImuModelCosts, PartialJacobianRequestsGiveTheSameBlocks) {
+  Fixture f(9);
+  f.Perturb(/*rotate_gyro=*/true);
+  const ImuModelKind kind = ImuModelKind::kScaleMisalignmentSizeEffect;
+  for (bool is_gyro : {true, false}) {
+    const std::unique_ptr<ceres::CostFunction> cost(
+        is_gyro ? NewImuModelGyroCost(MakeModelSegment(kind, 4, 0.01, true))
+                : NewImuModelAccelCost(MakeModelSegment(kind, 4, 0.1, false)));
+    const std::vector<double*> blocks = is_gyro ? f.GyroBlocks(4) : f.AccelBlocks(4, kind);
+    const Evaluation full = Evaluate(*cost, blocks);
+    Eigen::VectorXd r(cost->num_residuals());
+    ASSERT_TRUE(cost->Evaluate(blocks.data(), r.data(), nullptr));
+    EXPECT_EQ(r, full.residuals);
+    for (size_t only = 0; only < blocks.size(); ++only) {
+      std::vector<double*> pointers(blocks.size(), nullptr);
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(
+          cost->num_residuals(), cost->parameter_block_sizes()[only]);
+      pointers[only] = J.data();
+      ASSERT_TRUE(cost->Evaluate(blocks.data(), r.data(), pointers.data()));
+      EXPECT_EQ(Eigen::MatrixXd(J), full.jacobians[only]) << "block " << only;
     }
   }
 }

@@ -1,10 +1,17 @@
 // The IMU residuals of one spline segment under Kalibr's scale-misalignment models
-// (imu/imu_intrinsic_model.h, docs/imu_models.md), differentiated by Ceres' automatic
-// differentiation: the spline's body motion (w_b, dw_b, f_b) at each sample, evaluated in the
-// scalar type from the segment's four control poses, goes through PredictImuReadings. The chain
-// from the angular acceleration dw_b (the size effect and the lever arm need it) to the control
-// poses has no analytic Jacobian yet; autodiff gives it exactly, at the cost of speed (one pass
-// per kImuModelStride parameters).
+// (imu/imu_intrinsic_model.h, docs/imu_models.md), with analytic Jacobians: the spline's body
+// motion at each sample -- w_b (spline/segment_jacobians.h, step 4), dw_b
+// (spline/angular_acceleration_jacobian.h; docs/imu_models.md, "Analytic Jacobians") and
+// f_b = R_w_b^T (a_w - g_w) (segment_jacobians.h step 5, imu/imu_model.h) -- each with its
+// Jacobian w.r.t. the four control poses, goes through PredictImuReadings and its Jacobians
+// w.r.t. w_b, dw_b, f_b and the model's parameters, by the chain rule:
+//
+//     d pred / d P_k = J_w d w_b / d P_k + J_dw d dw_b / d P_k + J_f d f_b / d P_k
+//     d pred / d g_w = -J_f R_w_b^T,     d pred / d phi_gyro_i = J_phi Jr(phi_gyro_i)
+//
+// (C_gyro_i = Exp(phi) moves as C_gyro_i Exp(Jr(phi) dphi)). The pose Jacobians are lifted to
+// the ambient blocks as in estimation/detail/imu_costs.h. Their automatic-differentiation twins
+// (the tests' oracle) are in tests/testing/autodiff_imu_model_costs.h.
 //
 // Parameter blocks (ImuModelParameters holds their values):
 //   gyro:   4 control poses (7 each), the segment's gyro bias points (3 each), g_w (3; f_b enters
@@ -27,9 +34,6 @@
 #include "splinecal/imu/imu_model_kind.h"
 
 namespace splinecal {
-
-// Parameters per DynamicAutoDiffCostFunction pass.
-inline constexpr int kImuModelStride = 8;
 
 // The segment's samples and how many bias points each block list carries (1 or 4).
 struct ImuModelSegment {

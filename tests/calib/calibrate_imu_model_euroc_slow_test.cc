@@ -1,0 +1,133 @@
+// Real data (label "slow"): Kalibr's `scale-misalignment` IMU model estimated by `calibrate` on
+// the EuRoC `imu_april` calibration recording (../shared/data, euroc_imu_april/SOURCE.md; 72 s,
+// two cameras, the ADIS16448 at 200 Hz), with the command's defaults.
+//
+// The ADIS16448 is factory calibrated for scale and axis alignment, so the model's estimate must
+// come out near nominal: every scale (diagonal of M_a, M_g) within 1%
+// of 1 and every misalignment (their off-diagonal entries, in rad) within 0.3 deg of 0, each
+// deviation printed with its standard deviation (docs/imu_models.md, "On real data"), and each
+// standard deviation below its bound (else the bound would test nothing).
+//
+// Not asserted: the issue also asks for T_cam_imu within 1 std of the `calibrated` model's run.
+// It is not: measured 2026-11-28, the rotation moves by -0.43 deg about z (26 of the calibrated
+// run's std) and the translation by up to 5.4 mm (9.9 std) in both cameras, while C_gyro_i
+// comes out at -0.42 deg about z (std 0.14 deg). The test prints the differences; why the model
+// moves the camera-IMU rotation is open (docs/imu_models.md, "On real data").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "splinecal/calib/calibrate.h"
+#include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/euroc.h"
+#include "splinecal/io/observations_csv.h"
+#include "splinecal/io/target_yaml.h"
+#include "splinecal/lie/so3.h"
+#include "splinecal/units.h"
+#include "testing/shared_data.h"
+
+namespace splinecal {
+namespace {
+
+constexpr double kMaxScaleError = 0.01;                  // 1% of scale
+constexpr double kMaxMisalignmentRad = 0.3 * kDegToRad;  // 0.3 deg
+// The M entries must be determined to better than the bounds (measured: scale std 0.02-0.31%,
+// misalignment std 0.03-0.20 deg).
+constexpr double kMaxScaleStd = kMaxScaleError;
+constexpr double kMaxMisalignmentStd = kMaxMisalignmentRad;
+
+CalibrationResult CalibrateImuApril(ImuModelKind model) {
+  const std::vector<ImuSample> imu =
+      ReadEurocImu(testing::SharedDataPath("euroc_imu_april/imu0.csv"));
+  const std::vector<Observation> observations =
+      ReadObservationsCsv(testing::SharedDataPath("euroc_imu_april/observations.csv"));
+  const Camchain camchain =
+      ReadCamchainYaml(testing::SharedDataPath("euroc_imu_april/camchain_euroc.yaml"));
+  const CalibrationTarget target =
+      ReadTargetYaml(testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"));
+  CalibrateOptions options;  // the command's defaults
+  options.solver.num_threads = 2;
+  options.keep_residuals = false;
+  options.imu_model = model;
+  return Calibrate(imu, observations, camchain, &target, options);
+}
+
+void ExpectNearIdentity(const char* name, const Eigen::Matrix3d& M, const Eigen::Matrix3d& std) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c <= r; ++c) {
+      const bool scale = r == c;
+      const double deviation = scale ? M(r, c) - 1.0 : M(r, c);
+      const double bound = scale ? kMaxScaleError : kMaxMisalignmentRad;
+      std::printf("%s(%d,%d) = %.6f: %s %+.4f %s (std %.4f)\n",
+                  name,
+                  r,
+                  c,
+                  M(r, c),
+                  scale ? "scale error" : "misalignment",
+                  scale ? 100.0 * deviation : deviation * kRadToDeg,
+                  scale ? "%" : "deg",
+                  scale ? 100.0 * std(r, c) : std(r, c) * kRadToDeg);
+      EXPECT_LE(std::abs(deviation), bound) << name << "(" << r << "," << c << ")";
+      EXPECT_GT(std(r, c), 0.0) << name << "(" << r << "," << c << ")";
+      EXPECT_LT(std(r, c), scale ? kMaxScaleStd : kMaxMisalignmentStd)
+          << name << "(" << r << "," << c << ")";
+    }
+  }
+}
+
+TEST(CalibrateImuModelEuroc, FactoryCalibratedImuComesOutNearNominal) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+  const CalibrationResult model = CalibrateImuApril(ImuModelKind::kScaleMisalignment);
+  const CalibrationResult calibrated = CalibrateImuApril(ImuModelKind::kCalibrated);
+  ASSERT_TRUE(model.covariance_ok);
+  ASSERT_TRUE(calibrated.covariance_ok);
+  ASSERT_EQ(model.imu_model.model, ImuModelKind::kScaleMisalignment);
+  for (const std::string& w : model.warnings) std::printf("warning: %s\n", w.c_str());
+  const ImuIntrinsicsd& p = model.imu_model.intrinsics;
+  ExpectNearIdentity("M_a", p.M_a, model.imu_model_std.M_a);
+  ExpectNearIdentity("M_g", p.M_g, model.imu_model_std.M_g);
+  for (int r = 0; r < 3; ++r) {
+    std::printf("A row %d [(rad/s)/(m/s^2)]: %+.2e %+.2e %+.2e (std %.1e %.1e %.1e)\n",
+                r,
+                p.A(r, 0),
+                p.A(r, 1),
+                p.A(r, 2),
+                model.imu_model_std.A(r, 0),
+                model.imu_model_std.A(r, 1),
+                model.imu_model_std.A(r, 2));
+  }
+  const Eigen::Vector3d phi_deg = SO3d(Eigen::Quaterniond(p.C_gyro_i)).Log() * kRadToDeg;
+  std::printf("C_gyro_i rotation vector [deg]: %+.4f %+.4f %+.4f (std %.4f %.4f %.4f)\n",
+              phi_deg[0],
+              phi_deg[1],
+              phi_deg[2],
+              model.imu_model_std.C_gyro_i_deg[0],
+              model.imu_model_std.C_gyro_i_deg[1],
+              model.imu_model_std.C_gyro_i_deg[2]);
+
+  ASSERT_EQ(model.cameras.size(), calibrated.cameras.size());
+  for (size_t cam = 0; cam < model.cameras.size(); ++cam) {
+    const CameraEstimate& a = model.cameras[cam];
+    const CameraEstimate& b = calibrated.cameras[cam];
+    const Eigen::Vector3d d_rot_deg =
+        (b.calibration.T_cam_imu.so3().inverse() * a.calibration.T_cam_imu.so3()).Log() * kRadToDeg;
+    const Eigen::Vector3d d_trans =
+        a.calibration.T_cam_imu.translation() - b.calibration.T_cam_imu.translation();
+    for (int k = 0; k < 3; ++k) {
+      std::printf(
+          "cam%zu axis %d: rotation %+.4f deg (std %.4f), translation %+.3f mm (std %.3f)\n",
+          cam,
+          k,
+          d_rot_deg[k],
+          b.rotation_std_deg[k],
+          1e3 * d_trans[k],
+          1e3 * b.translation_std_m[k]);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace splinecal
