@@ -38,6 +38,7 @@
 #include "splinecal/lie/types.h"
 
 // spline/
+#include "splinecal/spline/angular_acceleration_jacobian.h"
 #include "splinecal/spline/basis.h"
 #include "splinecal/spline/knot_layout.h"
 #include "splinecal/spline/se3_spline.h"

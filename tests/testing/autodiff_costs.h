@@ -23,8 +23,27 @@
 namespace splinecal {
 namespace testing {
 
-using internal::KnotDataFromBlocks;
-using internal::WeightedBiasT;
+// The segment of four pose blocks in scalar T, without Jacobian caches: the autodiff twins
+// need none.
+template <typename T>
+SegmentKnotData<T> KnotDataFromBlocks(const T* const* poses) {
+  return SegmentKnotData<T>(PoseFromBlock(poses[0]),
+                            PoseFromBlock(poses[1]),
+                            PoseFromBlock(poses[2]),
+                            PoseFromBlock(poses[3]),
+                            /*with_jacobians=*/false);
+}
+
+// The sample's bias: its B-spline weights times the segment's kBiasBlocks bias points.
+template <typename T, int kBiasBlocks>
+Vector3<T> WeightedBiasT(const ImuResidualSample& sample, const T* const* bias_blocks) {
+  Vector3<T> bias = Vector3<T>::Zero();
+  for (int j = 0; j < kBiasBlocks; ++j) {
+    bias += T(sample.bias_weights[j]) * Eigen::Map<const Vector3<T>>(bias_blocks[j]);
+  }
+  return bias;
+}
+
 
 // Functor for ceres::AutoDiffCostFunction<GyroResidual<k>, 3, 7, 7, 7, 7, 3 (x k)>.
 template <int kBiasBlocks>

@@ -19,6 +19,7 @@
 #include "splinecal/estimation/imu_model_parameters.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/spline/trajectory_evaluation.h"
+#include "testing/autodiff_costs.h"
 
 namespace splinecal {
 namespace testing {
@@ -31,7 +32,7 @@ void ImuModelSegmentResiduals(const ImuModelSegment& s,
                               T const* const* blocks,
                               const Predict& predict,
                               T* residuals) {
-  const SegmentKnotData<T> data = internal::KnotDataFromBlocks(blocks);
+  const SegmentKnotData<T> data = testing::KnotDataFromBlocks(blocks);
   const Vector3<T> g_w = Eigen::Map<const Vector3<T>>(blocks[4 + s.bias_blocks]);
   const T inv_sigma = T(1.0 / s.segment.sigma);
   for (size_t k = 0; k < s.samples.size(); ++k) {
@@ -50,8 +51,8 @@ void ImuModelSegmentResiduals(const ImuModelSegment& s,
                                   nullptr,
                                   &a_s);
     motion.f_b = a_s - R_w_s.transpose() * g_w;
-    const Vector3<T> bias = s.bias_blocks == 1 ? internal::WeightedBiasT<T, 1>(sample, blocks + 4)
-                                               : internal::WeightedBiasT<T, 4>(sample, blocks + 4);
+    const Vector3<T> bias = s.bias_blocks == 1 ? testing::WeightedBiasT<T, 1>(sample, blocks + 4)
+                                               : testing::WeightedBiasT<T, 4>(sample, blocks + 4);
     const Vector3<T> predicted = predict(motion, bias);
     for (int r = 0; r < 3; ++r) {
       residuals[3 * k + r] = (predicted[r] - T(sample.measured[r])) * inv_sigma;

@@ -162,8 +162,8 @@ struct CalibrateOptions {
   bool keep_residuals = true;  // per-observation and per-IMU-sample residuals in the result
   // Kalibr's IMU model (--imu-model; imu/imu_model_kind.h, docs/imu_models.md). kCalibrated is
   // the analytic IMU residuals; another model adds its parameters (M_a, M_g, A, C_gyro_i; ry_i,
-  // rz_i with the size effect) to the problem, starting at nominal, and its residuals are
-  // differentiated automatically (estimation/detail/imu_model_costs.h).
+  // rz_i with the size effect) to the problem, starting at nominal, with analytic residuals
+  // (estimation/detail/imu_model_costs.h).
   ImuModelKind imu_model = ImuModelKind::kCalibrated;
   // For the reports only: the command line these options came from (empty: the library's
   // caller did not say).

@@ -147,7 +147,7 @@ class SplineProblem {
   SplineEvaluationCallback* evaluation_callback() const { return callback_.get(); }
 
   // Kalibr's IMU model of the residuals (imu/imu_model_kind.h). kCalibrated, the default, is the
-  // analytic residuals of estimation/imu_costs.h; another model makes its parameters
+  // analytic residuals of estimation/detail/imu_costs.h; another model makes its parameters
   // (ImuModelParameters, at their current values) blocks of the problem at Reset() and
   // AddImuResiduals adds estimation/detail/imu_model_costs.h's residuals, one gyro and one accel block
   // per segment. Call Reset() after changing it.

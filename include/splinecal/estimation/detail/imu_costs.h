@@ -317,28 +317,6 @@ class AccelSegmentCostFunction : public ceres::CostFunction {
 
 namespace internal {
 
-// The segment of four pose blocks in scalar T, without Jacobian caches: for costs
-// differentiated automatically (detail/imu_model_costs.h and the tests' autodiff twins).
-template <typename T>
-SegmentKnotData<T> KnotDataFromBlocks(const T* const* poses) {
-  return SegmentKnotData<T>(PoseFromBlock(poses[0]),
-                            PoseFromBlock(poses[1]),
-                            PoseFromBlock(poses[2]),
-                            PoseFromBlock(poses[3]),
-                            /*with_jacobians=*/false);
-}
-
-// The sample's bias: its B-spline weights times the segment's kBiasBlocks bias points.
-template <typename T, int kBiasBlocks>
-Vector3<T> WeightedBiasT(const ImuResidualSample& sample, const T* const* bias_blocks) {
-  Vector3<T> bias = Vector3<T>::Zero();
-  for (int j = 0; j < kBiasBlocks; ++j) {
-    bias += T(sample.bias_weights[j]) * Eigen::Map<const Vector3<T>>(bias_blocks[j]);
-  }
-  return bias;
-}
-
-
 // The rows of `num_samples` samples of one segment, 3 per sample, stacked: the segment's knot
 // data is prepared once and kSampleRows (GyroSampleRows or AccelSampleRows, a compile-time
 // constant so that it inlines) writes each sample's residual and Jacobian rows.
