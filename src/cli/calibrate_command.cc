@@ -320,7 +320,7 @@ Command CalibrateCommand() {
           "splinecal calibrate (--imu FILE[,FILE...]\n"
           "    | --bag FILE [--imu-topic T[,T...]] [--bag-time header|receive])\n"
           "    --observations FILE --camchain FILE [--target FILE]\n"
-          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
+          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE[,FILE...]] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
           "    [--intrinsics held|prior|free] [--camera-chain held|prior|free] [--target-scale check|free|held]\n"
           "    [--imu-model calibrated|scale-misalignment|scale-misalignment-size-effect]\n"
           "    [--hold-camera-chain] [--estimate-intrinsics]\n"
@@ -350,8 +350,8 @@ Command CalibrateCommand() {
            {"cameras", ""},
            {"initial_poses", ""},
            {"imu_yaml",
-            "IMU noise densities, Kalibr imu.yaml [path]; weights the IMU residuals "
-            "(default: ADIS16448). Several IMUs: one for all, or one per IMU, comma-separated"},
+            "IMU noise densities, Kalibr imu.yaml [path], weighting the IMU residuals; several "
+            "IMUs: one for all, or one per IMU, comma-separated (default: ADIS16448)"},
            {"imu_noise", ""},
            {"rolling_shutter", ""},
            {"intrinsics", ""},
