@@ -16,6 +16,7 @@
 #include "splinecal/imu/imu_model_kind.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/camchain_yaml_covariance.h"
+#include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/report/command_outputs.h"
 
@@ -23,6 +24,42 @@ namespace splinecal {
 namespace python {
 
 namespace {
+
+// The IMUs of a rig (docs/calibrate.md, "Several IMUs"): a list or tuple of sources (paths or
+// {t_ns, gyro, accel}), or a path text "a.csv,b.csv" as --imu takes it; one source otherwise.
+std::vector<py::object> ImuSources(py::handle imu) {
+  std::vector<py::object> sources;
+  if (py::isinstance<py::list>(imu) || py::isinstance<py::tuple>(imu)) {
+    for (py::handle item : imu) sources.push_back(py::reinterpret_borrow<py::object>(item));
+  } else if (py::isinstance<py::str>(imu) && imu.cast<std::string>().find(',') != std::string::npos) {
+    for (const std::string& path : SplitCommaList(imu.cast<std::string>(), "imu", "path")) {
+      sources.push_back(py::str(path));
+    }
+  } else {
+    sources.push_back(py::reinterpret_borrow<py::object>(imu));
+  }
+  return sources;
+}
+
+// One entry per IMU of a comma list (or a list) given once for all or once per IMU, as the
+// command's --imu-yaml and --imu-model (a str split at commas, a path, or a list of str or paths);
+// ValueError naming the keyword otherwise.
+std::vector<std::string> PerImu(py::handle value, const std::string& name, size_t num_imus) {
+  std::vector<std::string> entries;
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    for (py::handle item : value) entries.push_back(PathArgument(item, name));  // str or PathLike
+  } else if (py::isinstance<py::str>(value)) {
+    entries = SplitCommaList(value.cast<std::string>(), name, "entry");
+  } else {
+    entries = {PathArgument(value, name)};
+  }
+  if (entries.empty() || (entries.size() != 1 && entries.size() != num_imus)) {
+    throw py::value_error(name + ": " + std::to_string(entries.size()) + " entries for " +
+                          std::to_string(num_imus) + " IMU(s): give one for all or one per IMU");
+  }
+  entries.resize(num_imus, entries.front());
+  return entries;
+}
 
 py::dict CalibrateFunction(py::handle imu,
                            py::handle observations,
@@ -53,13 +90,35 @@ py::dict CalibrateFunction(py::handle imu,
                            py::handle bag,
                            const std::string& imu_topic,
                            const std::string& bag_time) {
-  const EstimateArguments arguments{
-      knot_spacing, gravity, imu_yaml, imu_noise, accel_unit, gyro_unit, threads, trajectory};
+  // Several IMUs: imu (or the bag's imu_topic) lists them, the first the reference; imu_yaml and
+  // imu_model give one entry for all or one per IMU (the command's lists).
+  const std::vector<py::object> imu_sources =
+      bag.is_none() ? ImuSources(imu) : std::vector<py::object>{py::reinterpret_borrow<py::object>(imu)};
+  const std::vector<std::string> topics = SplitCommaList(imu_topic, "imu_topic", "topic");
+  const size_t num_imus = bag.is_none() ? imu_sources.size() : topics.size();
+  const std::vector<std::string> yamls =
+      imu_yaml.is_none() ? std::vector<std::string>(num_imus) : PerImu(imu_yaml, "imu_yaml", num_imus);
+  const std::vector<std::string> models = PerImu(py::str(imu_model), "imu_model", num_imus);
+  const EstimateArguments arguments{knot_spacing,
+                                    gravity,
+                                    yamls[0].empty() ? py::object(py::none()) : py::str(yamls[0]),
+                                    imu_noise,
+                                    accel_unit,
+                                    gyro_unit,
+                                    threads,
+                                    trajectory};
   CalibrateOptions options;
   ApplyEstimateArguments(arguments, &options.model, &options.solver);
   options.rolling_shutter = rolling_shutter;
-  if (!ParseImuModelKind(imu_model, &options.imu_model)) {
-    throw py::value_error("imu_model: '" + imu_model + "' is not one of " + ImuModelNames());
+  for (size_t i = 0; i < num_imus; ++i) {
+    ImuModelKind kind = ImuModelKind::kCalibrated;
+    if (!ParseImuModelKind(models[i], &kind)) {
+      throw py::value_error("imu_model: '" + models[i] + "' is not one of " + ImuModelNames());
+    }
+    if (i == 0) options.imu_model = kind;
+    if (i > 0 && kind != ImuModelKind::kCalibrated) {
+      throw py::value_error("imu_model: the IMUs after the first support only 'calibrated' so far");
+    }
   }
   options.estimate_time_offset = !no_time_offset;
   options.intrinsics = ParseParameterMode(
@@ -79,10 +138,10 @@ py::dict CalibrateFunction(py::handle imu,
   }
 
   CalibrateReportInputs inputs;
-  const BagImuArguments bag_arguments{bag, imu_topic, bag_time};
   RequiredArgument(observations, "observations");
   RequiredArgument(camchain, "camchain");
-  inputs.imu_path = ImuSourceName(imu, bag_arguments);
+  const BagImuArguments first_bag{bag, topics.front(), bag_time};
+  inputs.imu_path = ImuSourceName(imu_sources.front(), first_bag);
   inputs.observations_path = AsPath(observations).value_or("");
   inputs.camchain_path = PathArgument(camchain, "camchain");
   inputs.target_path = target.is_none() ? "" : PathArgument(target, "target");
@@ -106,7 +165,16 @@ py::dict CalibrateFunction(py::handle imu,
                            &points,
                            &options);
   const std::vector<ImuSample> samples =
-      ImuInUnits(imu, bag_arguments, arguments.accel_unit, arguments.gyro_unit);
+      ImuInUnits(imu_sources.front(), first_bag, arguments.accel_unit, arguments.gyro_unit);
+  for (size_t i = 1; i < num_imus; ++i) {
+    const BagImuArguments bag_i{bag, bag.is_none() ? "" : topics[i], bag_time};
+    py::handle source = bag.is_none() ? py::handle(imu_sources[i]) : py::handle(py::none());
+    FurtherImu further;
+    further.name = ImuSourceName(source, bag_i, "imu" + std::to_string(i));
+    further.samples = ImuInUnits(source, bag_i, arguments.accel_unit, arguments.gyro_unit);
+    further.noise = yamls[i].empty() ? ImuNoise::Adis16448() : ReadImuYaml(yamls[i]);
+    options.further_imus.push_back(std::move(further));
+  }
   std::vector<StampedPose> initial;
   if (!initial_poses.is_none()) initial = StampedPoses(initial_poses, "initial_poses");
 
@@ -160,7 +228,9 @@ landmarks only, which needs initial_poses: a EuRoC ground truth / TUM path or {t
 cameras: "0,2" or [0, 2] (default: all); intrinsics, camera_chain: "held", "prior" or "free"
 ("": the camchain decides, docs/calibrate.md); target_scale: "check", "free" or "held";
 imu_model: Kalibr's "calibrated", "scale-misalignment" or "scale-misalignment-size-effect"
-(docs/imu_models.md). out: a folder to write the command's files to (camchain-imucam.yaml,
+(docs/imu_models.md). Several IMUs of one rig (docs/calibrate.md, "Several IMUs"): imu a list of
+sources or "a.csv,b.csv" (with bag: imu_topic "/imu0,/imu1"), the first the reference; imu_yaml
+and imu_model one for all or one per IMU (a list or comma-separated). out: a folder to write the command's files to (camchain-imucam.yaml,
 result.yaml, reprojection_errors.csv, spline.csv, report.html; imu_models.yaml with a model).
 Returns result.yaml's keys plus se3_spline (SE3Spline). Ctrl-C stops the solve
 (KeyboardInterrupt).)");

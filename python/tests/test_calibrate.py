@@ -84,3 +84,29 @@ def test_calibrate_refuses_as_the_command_does(tmp_path):
     assert message == "splinecal calibrate: " + str(error.value)
     with pytest.raises(ValueError, match="initial_poses"):
         splinecal.calibrate("imu.csv", observations, camchain)
+
+
+def test_calibrate_several_imus_equals_the_command_line(tmp_path):
+    """Several IMUs (docs/calibrate.md, "Several IMUs"): imu as a list equals --imu a,b, and
+    result.yaml's imu1 section comes back; lists of other lengths are refused naming the keyword."""
+    sim = tmp_path / "sim"
+    run_tool("simulate", "--trajectory", "calibration", "--duration", 5,
+             "--camchain", CALIBRATION / "camchain_truth.yaml",
+             "--target", CALIBRATION / "aprilgrid.yaml", "--seed", 2,
+             "--imu-intrinsics", DATA / "imu_models" / "rig_three_imus.yaml", "--out", sim)
+    imus = [sim / "mav0/imu0/data.csv", sim / "mav0/imu1/data.csv"]
+    inputs = dict(observations=sim / "observations.csv",
+                  camchain=CALIBRATION / "camchain_guess.yaml",
+                  target=CALIBRATION / "aprilgrid.yaml")
+    run_tool("calibrate", f"--imu={imus[0]},{imus[1]}",
+             *[f"--{k}={v}" for k, v in inputs.items()],
+             "--imu-yaml", sim / "imu.yaml", "--out", tmp_path / "out")
+    expected = load_yaml(tmp_path / "out" / "result.yaml")
+    result = splinecal.calibrate(imu=imus, **inputs, imu_yaml=[sim / "imu.yaml"] * 2)
+    result.pop("se3_spline")
+    for key in WALL_TIMES:
+        result[key] = expected[key]
+    assert_same(result, expected, tol=TOLERANCE)
+    assert result["imu1"]["model"] == "calibrated"
+    with pytest.raises(ValueError, match="imu_yaml: 3 entries for 2 IMU"):
+        splinecal.calibrate(imu=imus, **inputs, imu_yaml=[sim / "imu.yaml"] * 3)

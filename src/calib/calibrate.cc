@@ -125,6 +125,7 @@ void CalibrationProblem::BuildProblem() {
   if (target_scale_free_) problem().AddParameterBlock(&target_scale_, 1);
   spline_->AddImuResiduals(imu_, imu_noise_->gyro_sigma(), imu_noise_->accel_sigma());
   spline_->AddBiasRandomWalkResiduals(imu_noise_->densities());
+  if (further_) further_->AddToProblem(spline_.get());
   frame_residuals_.clear();
   for (size_t f = 0; f < target_frames_.size(); ++f) {
     const TargetFrame& frame = target_frames_[f];
@@ -344,6 +345,10 @@ CalibrationResult CalibrationProblem::Run() {
   target_scale_free_ = has_target_ && options_.target_scale != TargetScaleMode::kHeld;
   result.target_scale_mode = has_target_ ? options_.target_scale : TargetScaleMode::kHeld;
   if (options_.imu_model != ImuModelKind::kCalibrated) HoldUndeterminedImuModelParameters(&result);
+  if (further_) {
+    further_->Initialise(Spline(), spline_->gravity_w(), &result.warnings);
+    further_->HoldUndeterminedLeverArms(Spline(), options_.max_lever_arm_std_m, &result.warnings);
+  }
   SolveUntilStable(&rounds, solver, &result);
   if (target_scale_free_) {
     // The check (calibrate.h): the scale with everything else free, then held at 1.
@@ -435,6 +440,8 @@ void CalibrationProblem::SolveUntilStable(SolveRounds* solve_rounds,
     if (noise_change > kSigmaChangeForNewRound) again = true;
     const bool windows_valid = !guard.triggered() && WindowsStillValid();
     if (!windows_valid) again = true;
+    // A further IMU's time offset that left its residuals' segments (further_imus.h).
+    if (further_ && further_->NeedRebuild()) again = true;
     // Later rounds: windows sized to the estimate with room to grow.
     for (size_t c = 0; c < cameras_.size(); ++c) {
       const int rows = camchain_[c].camera.height - 1;
@@ -593,6 +600,7 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
                             const CalibrateOptions& given_options,
                             const CalibrationInitialGuess* guess) {
   CheckInputs(imu, all_observations, camchain, given_options);
+  CheckFurtherImus(given_options.further_imus, ImuRateHz(imu));
   CheckObservationInputs(all_observations, target, camchain);  // target layout, image sizes
   std::vector<std::string> warnings;
   const std::vector<Observation> observations =

@@ -25,6 +25,7 @@
 
 #include "calibration_data.h"
 #include "calibration_warnings.h"
+#include "further_imus.h"
 #include "splinecal/calib/camchain_prior.h"
 #include "splinecal/calib/fit.h"
 #include "splinecal/calib/detail/target_scale_cost.h"
@@ -49,6 +50,7 @@
 namespace splinecal {
 
 using internal::AddStandardDeviationWarnings;
+using internal::CheckFurtherImus;
 using internal::CheckInputs;
 using internal::CheckRotationExcitation;
 using internal::CheckTargetSeen;
@@ -118,6 +120,10 @@ class CalibrationProblem {
           options.rolling_shutter ? std::max(0.0, init.line_delay_s) : init.line_delay_s;
     }
     PoseToBlock(SE3d(), T_w_t_.data());
+    if (!options.further_imus.empty()) {
+      further_ = std::make_unique<FurtherImus>(options.further_imus, layout_, spline_->bias_spline(),
+                                               options.model.trajectory, options.max_time_offset_s);
+    }
     imu_ = ImuBetween(imu,
                       layout_.t0_ns + layout_.dt_ns,
                       layout_.t0_ns + static_cast<int64_t>(n - 2) * layout_.dt_ns);
@@ -283,6 +289,7 @@ class CalibrationProblem {
   double sigma_px_ = 1.0;
 
   std::unique_ptr<SplineProblem> spline_;  // control poses, biases, gravity
+  std::unique_ptr<FurtherImus> further_;   // the rig's further IMUs (nullptr: one IMU)
   std::vector<CameraState> cameras_;
   // Every landmark's inverse depth stays >= 0 (estimation/interval_manifold.h).
   std::shared_ptr<ceres::Manifold> rho_manifold_ =

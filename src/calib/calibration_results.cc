@@ -93,6 +93,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     wanted.push_back(block);
     num_camera += problem().ParameterBlockTangentSize(block);
   }
+  if (further_) further_->AddCovarianceBlocks(&problem(), &wanted, &offset, &num_camera);
   const int num_bias_points = spline_->bias_spline().num_points();
   for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->gyro_bias(m));
   for (int m = 0; m < num_bias_points; ++m) wanted.push_back(spline_->accel_bias(m));
@@ -146,6 +147,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     result->target_scale_std = std::sqrt(std::max(0.0, block(&target_scale_, 1)(0, 0)));
   }
   if (!model_blocks.empty()) ImuModelStdFrom(cov, offset, &result->imu_model_std);
+  if (further_) further_->StdFrom(cov, offset, &result->further_imus);
   const Eigen::VectorXd bias_std = cov.diagonal().tail(6).cwiseMax(0.0).cwiseSqrt();
   result->gyro_bias_std = bias_std.head<3>();
   result->accel_bias_std = bias_std.tail<3>();
@@ -252,6 +254,7 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
   }
   result->imu_model.model = spline_->imu_model_kind();
   result->imu_model.intrinsics = spline_->imu_model()->Intrinsics();
+  if (further_) further_->Collect(*spline_, &result->further_imus);
   result->cameras.resize(cameras_.size());
   result->camera_chain = chain_mode_;
   for (size_t c = 0; c < cameras_.size(); ++c) {

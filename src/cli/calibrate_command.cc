@@ -6,6 +6,7 @@
 #include <gflags/gflags.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -23,6 +24,9 @@
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_model_kind.h"
+#include "splinecal/imu/imu_rate.h"
+#include "splinecal/io/bag_imu.h"
+#include "splinecal/string_printf.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/camchain_yaml_covariance.h"
 #include "splinecal/io/euroc.h"
@@ -68,7 +72,8 @@ DEFINE_string(imu_model,
               "calibrated | scale-misalignment | scale-misalignment-size-effect: Kalibr's IMU "
               "model (--imu-models); the last two also estimate M_a, M_g, A, C_gyro_i (and the "
               "accelerometer axes' lever arms ry_i, rz_i), written to imu_models.yaml and "
-              "result.yaml's imu_model (docs/imu_models.md)");
+              "result.yaml's imu_model (docs/imu_models.md). Several IMUs: one for all or one "
+              "per IMU, comma-separated (the IMUs after the first: calibrated only)");
 DEFINE_string(target_scale,
               "check",
               "check | free | held: the target's scale against the IMU (the accelerometer "
@@ -108,6 +113,73 @@ std::string CommandLineText() {
   return text;
 }
 
+// The rig's IMUs (docs/calibrate.md, "Several IMUs"): --imu a.csv,b.csv or --bag with
+// --imu-topic t0,t1; --imu-yaml and --imu-model give one entry for every IMU or one per IMU. The
+// first is the reference (`imu`, options->model.noise, options->imu_model); each further one
+// becomes a FurtherImu.
+void ReadRigImus(std::vector<ImuSample>* imu, CalibrateOptions* options) {
+  const std::optional<BagImuSource> bag = BagImuFlags();
+  const std::vector<std::string> sources =
+      bag ? ListFlag("imu-topic", FLAGS_imu_topic) : ListFlag("imu", FLAGS_imu);
+  const size_t n = sources.size();
+  const std::vector<std::string> yamls = ListFlag("imu-yaml", FLAGS_imu_yaml);
+  const std::vector<std::string> models = ListFlag("imu-model", FLAGS_imu_model);
+  const std::string listed = bag ? "--imu-topic lists " : "--imu lists ";
+  if (yamls.size() > 1 && yamls.size() != n) {
+    throw Error("--imu-yaml: " + std::to_string(yamls.size()) + " files for " + std::to_string(n) +
+                " IMU(s) (" + listed + std::to_string(n) + "): give one for all or one per IMU");
+  }
+  if (models.size() != 1 && models.size() != n) {
+    throw Error("--imu-model: " + std::to_string(models.size()) + " models for " +
+                std::to_string(n) + " IMU(s) (" + listed + std::to_string(n) +
+                "): give one for all or one per IMU");
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const std::string& model_name = models[models.size() == 1 ? 0 : i];
+    ImuModelKind kind = ImuModelKind::kCalibrated;
+    if (!ParseImuModelKind(model_name, &kind)) {
+      throw Error("--imu-model: '" + model_name + "' is not one of " + ImuModelNames());
+    }
+    if (i == 0) {
+      options->imu_model = kind;
+    } else if (kind != ImuModelKind::kCalibrated) {
+      throw Error("--imu-model: the IMUs after the first support only 'calibrated' so far, got '" +
+                  model_name + "' for IMU " + std::to_string(i) + " (" + sources[i] +
+                  "); give one model per IMU, e.g. " + models[0] + ",calibrated");
+    }
+  }
+  const ImuReadOptions read = ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true);
+  double reference_rate_hz = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    std::vector<ImuSample> samples;
+    std::string name = sources[i];
+    if (bag) {
+      BagImuSource source = *bag;
+      source.topic = sources[i];
+      name = source.Name();
+      samples = ReadBagImu(source, read);
+    } else {
+      samples = ReadEurocImu(sources[i], read);
+    }
+    const ImuNoise noise =
+        yamls.empty() ? ImuNoise::Adis16448() : ReadImuYaml(yamls[yamls.size() == 1 ? 0 : i]);
+    // The library refuses another rate too (calib/calibrate.h); here the message names the file.
+    const double rate_hz = ImuRateHz(samples);
+    if (i == 0) {
+      *imu = std::move(samples);
+      options->model.noise = noise;
+      reference_rate_hz = rate_hz;
+      continue;
+    }
+    if (std::abs(rate_hz / reference_rate_hz - 1.0) > 0.01) {
+      throw Error(name + ": IMU samples at " + StringPrintf("%.6g", rate_hz) + " Hz, the reference " +
+                  sources[0] + " at " + StringPrintf("%.6g", reference_rate_hz) +
+                  " Hz: every IMU must have the reference's rate (resample it first)");
+    }
+    options->further_imus.push_back({name, std::move(samples), noise});
+  }
+}
+
 // What calibrate reads and checks before the initial guess and the solve
 // (Command::read_inputs); Calibrate() checks the rest (time ranges, motion) before it allocates.
 struct CalibrateInputs {
@@ -136,9 +208,6 @@ CalibrateInputs ReadCalibrateInputs() {
   options.model.knot_spacing_s = KnotSpacingFlag(/*can_choose=*/true);
   options.model.trajectory = TrajectoryModelFlag();
   options.rolling_shutter = FLAGS_rolling_shutter;
-  if (!ParseImuModelKind(FLAGS_imu_model, &options.imu_model)) {
-    throw Error("--imu-model: '" + FLAGS_imu_model + "' is not one of " + ImuModelNames());
-  }
   options.estimate_time_offset = !FLAGS_no_time_offset;
   options.pixel_sigma_px = NonNegativeFlag("pixel-sigma", FLAGS_pixel_sigma);
   options.huber_px = NonNegativeFlag("huber", FLAGS_huber);
@@ -155,7 +224,6 @@ CalibrateInputs ReadCalibrateInputs() {
   options.min_corners_per_frame = FLAGS_min_corners;
   options.solver.num_threads = ThreadsFlag();
   options.solver.progress = [](const std::string& line) { Progress(line); };
-  if (!FLAGS_imu_yaml.empty()) options.model.noise = ReadImuYaml(FLAGS_imu_yaml);
   options.model.imu_noise = ImuNoiseModeFlag();
 
   in.camchain = ReadCamchainYaml(camchain_path);
@@ -177,7 +245,7 @@ CalibrateInputs ReadCalibrateInputs() {
                            &in.camchain,
                            &in.observations,
                            &options);
-  in.imu = ReadImuFlags(/*takes_imu_yaml=*/true);
+  ReadRigImus(&in.imu, &options);
   if (!FLAGS_initial_poses.empty()) in.initial_poses = ReadPoses(FLAGS_initial_poses);
   return in;
 }
@@ -228,16 +296,31 @@ int RunCalibrate() {
   return 0;
 }
 
+// --imu, --bag, --imu-topic, --bag-time with calibrate's lists of IMUs.
+std::vector<FlagDoc> RigImuFlags() {
+  std::vector<FlagDoc> flags = ImuInputFlags();
+  for (FlagDoc& flag : flags) {
+    if (flag.name == "imu") {
+      flag.help = "IMU samples, EuRoC imu0/data.csv [path]; several IMUs of one rig: "
+                  "comma-separated, the first the reference (docs/calibrate.md); or --bag";
+    } else if (flag.name == "imu_topic") {
+      flag.help = "The IMU's ROS topic (sensor_msgs/Imu) in --bag; several IMUs: "
+                  "comma-separated, the first the reference";
+    }
+  }
+  return flags;
+}
+
 }  // namespace
 
 Command CalibrateCommand() {
   return {"calibrate",
           "camera-IMU calibration in continuous time: T_cam_imu, time offset, rolling-shutter "
           "line delay",
-          "splinecal calibrate (--imu FILE\n"
-          "    | --bag FILE [--imu-topic T] [--bag-time header|receive])\n"
+          "splinecal calibrate (--imu FILE[,FILE...]\n"
+          "    | --bag FILE [--imu-topic T[,T...]] [--bag-time header|receive])\n"
           "    --observations FILE --camchain FILE [--target FILE]\n"
-          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
+          "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE[,FILE...]] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
           "    [--intrinsics held|prior|free] [--camera-chain held|prior|free] [--target-scale check|free|held]\n"
           "    [--imu-model calibrated|scale-misalignment|scale-misalignment-size-effect]\n"
           "    [--hold-camera-chain] [--estimate-intrinsics]\n"
@@ -256,7 +339,7 @@ Command CalibrateCommand() {
           "--initial-poses does (e.g. `splinecal align` on SLAM poses). Writes\n"
           "camchain-imucam.yaml (Kalibr's keys), result.yaml with standard deviations and\n"
           "warnings, report.html, spline.csv and reprojection_errors.csv. See docs/calibrate.md.",
-          WithFlags(ImuInputFlags(), {
+          WithFlags(RigImuFlags(), {
            {"observations", ""},
            {"camchain",
             "Camera rig, Kalibr camchain.yaml: intrinsics, distortion, resolution; "
@@ -267,8 +350,8 @@ Command CalibrateCommand() {
            {"cameras", ""},
            {"initial_poses", ""},
            {"imu_yaml",
-            "IMU noise densities, Kalibr imu.yaml [path]; weights the IMU residuals "
-            "(default: ADIS16448)"},
+            "IMU noise densities, Kalibr imu.yaml [path], weighting the IMU residuals; several "
+            "IMUs: one for all, or one per IMU, comma-separated (default: ADIS16448)"},
            {"imu_noise", ""},
            {"rolling_shutter", ""},
            {"intrinsics", ""},

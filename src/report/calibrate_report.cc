@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "splinecal/io/yaml_writer.h"
+#include "splinecal/lie/so3.h"
 #include "splinecal/plot/plot_decimation.h"
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/html_page.h"
@@ -313,6 +314,61 @@ void WriteImuModelYaml(const CalibrationResult& r, YamlWriter* yaml) {
   yaml->EndMap();
 }
 
+// The further IMUs (several IMUs), imu1, imu2, ...: Kalibr's T_i_b and time_offset with their
+// stds (C_i_b's in its right tangent, b axes; r_b per axis), the biases and residuals.
+void WriteFurtherImusYaml(const CalibrationResult& r, YamlWriter* yaml) {
+  for (size_t i = 0; i < r.further_imus.size(); ++i) {
+    const FurtherImuEstimate& e = r.further_imus[i];
+    const ImuIntrinsicsd& p = e.calibration.intrinsics;
+    Eigen::Matrix4d T_i_b = Eigen::Matrix4d::Identity();
+    T_i_b.topLeftCorner<3, 3>() = p.C_i_b;
+    T_i_b.topRightCorner<3, 1>() = -p.C_i_b * p.r_b;  // T_i_b = [C_i_b, -C_i_b r_b]
+    yaml->BeginMap("imu" + std::to_string(i + 1));
+    yaml->Scalar("name", e.name);
+    yaml->Scalar("model", ImuModelName(e.calibration.model));
+    yaml->Matrix("T_i_b", T_i_b);
+    yaml->Vector("C_i_b_std_deg", e.rotation_std_deg);
+    yaml->Vector("r_b", p.r_b);
+    yaml->Vector("r_b_std_m", e.r_b_std_m);
+    yaml->Scalar("lever_arm_held", e.lever_arm_held);
+    yaml->Scalar("time_offset", e.calibration.time_offset_s);
+    yaml->Scalar("time_offset_std_s", e.time_offset_std_s);
+    yaml->Scalar("initial_time_offset", e.initial_time_offset_s);
+    yaml->Vector("gyro_bias", e.gyro_bias);
+    yaml->Vector("accel_bias", e.accel_bias);
+    yaml->Scalar("gyro_rms", e.gyro_rms);
+    yaml->Scalar("accel_rms", e.accel_rms);
+    yaml->Scalar("num_samples", e.num_samples);
+    yaml->Scalar("rate_hz", e.rate_hz);
+    yaml->Scalar("gyroscope_noise_density", e.noise.gyroscope_noise_density);
+    yaml->Scalar("gyroscope_random_walk", e.noise.gyroscope_random_walk);
+    yaml->Scalar("accelerometer_noise_density", e.noise.accelerometer_noise_density);
+    yaml->Scalar("accelerometer_random_walk", e.noise.accelerometer_random_walk);
+    yaml->EndMap();
+  }
+}
+
+// The further IMUs' lines of the summary and the report.
+std::string FurtherImusText(const CalibrationResult& r) {
+  std::string text;
+  for (size_t i = 0; i < r.further_imus.size(); ++i) {
+    const FurtherImuEstimate& e = r.further_imus[i];
+    const Eigen::Vector3d phi = SO3d::FromMatrix(e.calibration.intrinsics.C_i_b).Log() * kRadToDeg;
+    const Eigen::Vector3d r_b = 1e3 * e.calibration.intrinsics.r_b;
+    text += StringPrintf("imu%zu (%s): C_i_b rotation vector [%.4f %.4f %.4f] deg, std [%.4f %.4f %.4f] deg\n",
+                         i + 1, e.name.c_str(), phi.x(), phi.y(), phi.z(), e.rotation_std_deg.x(),
+                         e.rotation_std_deg.y(), e.rotation_std_deg.z());
+    text += StringPrintf("  r_b [%.2f %.2f %.2f] mm, std [%.2f %.2f %.2f] mm%s\n", r_b.x(), r_b.y(),
+                         r_b.z(), 1e3 * e.r_b_std_m.x(), 1e3 * e.r_b_std_m.y(),
+                         1e3 * e.r_b_std_m.z(), e.lever_arm_held ? " (held)" : "");
+    text += StringPrintf("  time_offset %.6f ms, std %.6f ms\n", 1e3 * e.calibration.time_offset_s,
+                         1e3 * e.time_offset_std_s);
+    text += StringPrintf("  gyro RMS %.3e rad/s, accel RMS %.3e m/s^2 over %d samples\n",
+                         e.gyro_rms, e.accel_rms, e.num_samples);
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptions& options) {
@@ -369,6 +425,7 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("target_scale_used", r.target_scale_used);
   if (!options.command_line.empty()) yaml.Scalar("command_line", options.command_line);
   if (r.imu_model.model != ImuModelKind::kCalibrated) WriteImuModelYaml(r, &yaml);
+  WriteFurtherImusYaml(r, &yaml);
   if (r.cameras.size() > 1) {
     yaml.BeginMap("cameras");
     for (size_t c = 0; c < r.cameras.size(); ++c) {
@@ -409,6 +466,9 @@ std::string CalibrateReportHtml(const CalibrationResult& r,
   page.Append(RunHtml(r, options));
   page.Append(EstimatesTable(r, options));
   page.Append(IntrinsicsTable(r));
+  if (!r.further_imus.empty()) {
+    page.Append("<h2>Further IMUs</h2>\n<pre>" + FurtherImusText(r) + "</pre>\n");
+  }
   page.ListSection("Warnings", r.warnings);
   page.FigureSection("Reprojection", ReprojectionErrorFigure(ReprojectionDataOf(r), max_points));
   ReprojectionImageFigure by_position = MakeReprojectionImageFigure(ReprojectionDataOf(r), max_points);
@@ -458,6 +518,7 @@ std::string CalibrateSummaryText(const CalibrationResult& result) {
                        result.accel_rms,
                        result.pixel_sigma_px,
                        result.pixel_sigma_estimated ? " (estimated)" : "");
+  text += FurtherImusText(result);
   if (std::isfinite(result.target_scale)) {
     text += StringPrintf("target scale against the IMU %.4f (std %.4f)%s\n",
                          result.target_scale,

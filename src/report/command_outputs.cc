@@ -82,8 +82,11 @@ std::vector<OutputFile> CalibrateOutputFiles(const CalibrationResult& result,
       {"report.html", CalibrateReportHtml(result, options, inputs)}};
   // Kalibr's imu-*.yaml (io/imu_models_yaml.h) when an IMU model was estimated: the file
   // `splinecal correct` applies to raw readings.
-  if (result.imu_model.model != ImuModelKind::kCalibrated) {
-    files.push_back({"imu_models.yaml", ImuModelsYamlText({result.imu_model})});
+  // With several IMUs: imu0 the reference, then each further IMU (T_i_b, time_offset).
+  if (result.imu_model.model != ImuModelKind::kCalibrated || !result.further_imus.empty()) {
+    std::vector<ImuCalibration> imus = {result.imu_model};
+    for (const FurtherImuEstimate& e : result.further_imus) imus.push_back(e.calibration);
+    files.push_back({"imu_models.yaml", ImuModelsYamlText(imus)});
   }
   return files;
 }

@@ -17,6 +17,8 @@
 #include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/yaml_document.h"
+#include "splinecal/lie/so3.h"
+#include "splinecal/units.h"
 #include "splinecal/string_printf.h"
 #include "testing/html_ids.h"
 #include "testing/run_tool.h"
@@ -64,6 +66,19 @@ class CalibrateCommand : public ::testing::Test {
             out};
   }
 
+  // `args` with --quiet (no progress lines before the error) must fail with exit code 2 and one
+  // line holding `message`, and write nothing into `out`.
+  static void ExpectRefused(std::vector<std::string> args,
+                            const std::string& out,
+                            const std::string& message) {
+    args.push_back("--quiet");
+    const testing::ToolResult r = testing::RunTool(args);
+    EXPECT_EQ(r.exit_code, 2) << message;
+    EXPECT_EQ(testing::CountLines(r.err), 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(message));
+    EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml")) << message;
+  }
+
   testing::TempDir dir_;
   std::string imu_, observations_, camchain_, target_;
 };
@@ -105,6 +120,73 @@ TEST_F(CalibrateCommand, ImuModelWritesKalibrsImuFileAndTheStds) {
   EXPECT_EQ(testing::CountLines(bad.err), 1) << bad.err;
   EXPECT_THAT(bad.err, HasSubstr("--imu-model: 'scale' is not one of calibrated,"));
   EXPECT_FALSE(std::filesystem::exists(dir_.File("bad")));
+}
+
+// Several IMUs (docs/calibrate.md, "Several IMUs"): a second IMU that reads the reference's
+// samples turned by C (gyro' = C gyro, accel' = C accel: mounted at the same origin, turned, on
+// the same clock). imu_models.yaml has imu0 and imu1 with T_i_b, read back by its reader;
+// result.yaml has imu1 with the stds; C comes back to well within 0.05 deg (both IMUs carry the
+// same noise, so nothing but the solver's tolerance separates them).
+TEST_F(CalibrateCommand, SeveralImusWriteEachImu) {
+  const SO3d C = SO3d::Exp(Eigen::Vector3d(0.2, -0.4, 1.0));
+  std::vector<ImuSample> turned = ReadEurocImu(imu_);
+  for (ImuSample& sample : turned) {
+    sample.gyro = C * sample.gyro;
+    sample.accel = C * sample.accel;
+  }
+  std::ostringstream text;
+  WriteEurocImu(turned, &text);
+  const std::string imu1 = dir_.Write("imu1/data.csv", text.str());
+  const std::string out = dir_.File("out_imus");
+  std::vector<std::string> args = Args(out);
+  args[2] = imu_ + "," + imu1;
+  const testing::ToolResult r = testing::RunTool(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("imu1 ("));
+  const std::vector<ImuCalibration> imus = ReadImuModelsYaml(out + "/imu_models.yaml");
+  ASSERT_EQ(imus.size(), 2u);
+  const double angle_deg =
+      (C.inverse() * SO3d::FromMatrix(imus[1].intrinsics.C_i_b)).Log().norm() * kRadToDeg;
+  EXPECT_LT(angle_deg, 0.05);
+  EXPECT_LT(imus[1].intrinsics.r_b.norm(), 0.005);
+  EXPECT_LT(std::abs(imus[1].time_offset_s), 2e-4);
+  const YAML::Node imu1_node = testing::LoadStrictYamlFile(out + "/result.yaml")["imu1"];
+  ASSERT_TRUE(imu1_node);
+  EXPECT_GT(imu1_node["time_offset_std_s"].as<double>(), 0.0);
+  EXPECT_GT(imu1_node["C_i_b_std_deg"][0].as<double>(), 0.0);
+  EXPECT_EQ(imu1_node["model"].as<std::string>(), "calibrated");
+}
+
+// Several IMUs, refused with one line and nothing written: lists of different lengths, another
+// rate, a model the further IMUs do not have yet.
+TEST_F(CalibrateCommand, SeveralImusBadInputExitsTwo) {
+  std::vector<ImuSample> half;
+  const std::vector<ImuSample> all = ReadEurocImu(imu_);
+  for (size_t k = 0; k < all.size(); k += 2) half.push_back(all[k]);
+  std::ostringstream text;
+  WriteEurocImu(half, &text);
+  const std::string slow = dir_.Write("imu_100hz/data.csv", text.str());
+  const std::string yaml = dir_.Write("imu.yaml",
+                                      "accelerometer_noise_density: 2.0e-3\n"
+                                      "accelerometer_random_walk: 3.0e-3\n"
+                                      "gyroscope_noise_density: 1.7e-4\n"
+                                      "gyroscope_random_walk: 2.0e-5\nupdate_rate: 200.0\n");
+  const std::string out = dir_.File("bad_imus");
+  auto expect_refused = [&](const std::vector<std::string>& extra, const std::string& imu,
+                            const std::string& message) {
+    std::vector<std::string> args = Args(out);
+    args[2] = imu;
+    args.insert(args.end() - 2, extra.begin(), extra.end());
+    ExpectRefused(args, out, message);
+  };
+  const std::string two = imu_ + "," + imu_;
+  expect_refused({"--imu-yaml", yaml + "," + yaml + "," + yaml}, two,
+                 "--imu-yaml: 3 files for 2 IMU(s) (--imu lists 2)");
+  expect_refused({"--imu-model", "calibrated,calibrated,calibrated"}, two,
+                 "--imu-model: 3 models for 2 IMU(s)");
+  expect_refused({"--imu-model", "scale-misalignment"}, two,
+                 "the IMUs after the first support only 'calibrated' so far");
+  expect_refused({}, imu_ + "," + slow, "imu_100hz/data.csv: IMU samples at 100 Hz, the reference");
 }
 
 TEST_F(CalibrateCommand, WritesKalibrCamchainResultAndReport) {
@@ -177,12 +259,7 @@ TEST_F(CalibrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
   auto expect_refused = [&](size_t index, const std::string& value, const std::string& message) {
     std::vector<std::string> args = Args(out);
     args[index] = value;
-    args.push_back("--quiet");
-    const testing::ToolResult r = testing::RunTool(args);
-    EXPECT_EQ(r.exit_code, 2) << message;
-    EXPECT_EQ(testing::CountLines(r.err), 1) << r.err;
-    EXPECT_THAT(r.err, HasSubstr(message));
-    EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml")) << message;
+    ExpectRefused(args, out, message);
   };
   // A corrupt observation row.
   expect_refused(4, dir_.Write("bad.csv", "#t_ns,cam_id,point_id,u,v\n1,0,2,3\n"), "bad.csv:2");

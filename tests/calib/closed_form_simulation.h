@@ -15,7 +15,9 @@
 // tau = line_delay * v(tau) (docs/conventions.md "Camera, time offset, rolling shutter"), solved by
 // fixed-point iteration (the map's slope is line_delay * dv/dt, a few percent for real motion).
 //
-// Trajectory time: (t_ns - start_ns) * 1e-9 s, IMU clock.
+// Trajectory time: (t_ns - start_ns) * 1e-9 s, IMU clock. SimulationOptions::imu puts a further
+// IMU of a rig at its pose T_i_b, clock offset and model: its reading stamped t is
+// PredictImuReadings of the motion at t + time_offset (imu/imu_intrinsics.h).
 #ifndef SPLINECAL_TESTS_CALIB_CLOSED_FORM_SIMULATION_H_
 #define SPLINECAL_TESTS_CALIB_CLOSED_FORM_SIMULATION_H_
 
@@ -27,6 +29,7 @@
 
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/observations.h"
+#include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/imu/imu_sample.h"
 #include "splinecal/sim/noise_generator.h"
 #include "splinecal/sim/simulate_camera.h"
@@ -47,13 +50,35 @@ inline std::vector<ImuSample> SimulateImuFromTrajectory(const AnalyticTrajectory
   noise.update_rate_hz = options.imu_rate_hz;
   ImuNoiseGenerator generator(noise, options.gyro_bias, options.accel_bias, options.seed);
   const Eigen::Vector3d g_w(0.0, 0.0, -options.gravity_m_s2);
+  // options.imu at its default (the reference IMU) keeps the readings above bit for bit.
+  const ImuIntrinsicsd nominal;
+  const bool at_origin = options.imu.model == ImuModelKind::kCalibrated &&
+                         options.imu.time_offset_s == 0.0 &&
+                         options.imu.intrinsics.C_i_b == nominal.C_i_b &&
+                         options.imu.intrinsics.r_b == nominal.r_b;
   std::vector<ImuSample> imu;
   for (int64_t t_ns : ImuTimestamps(start_ns, end_ns, options.imu_rate_hz)) {
-    const TrajectoryState state = trajectory.Evaluate(1e-9 * static_cast<double>(t_ns - start_ns));
+    const double t_s = 1e-9 * static_cast<double>(t_ns - start_ns) + options.imu.time_offset_s;
+    const TrajectoryState state = trajectory.Evaluate(t_s);
     ImuSample sample;
     sample.t_ns = t_ns;
     sample.gyro = state.w_s;
     sample.accel = state.T_w_s.so3().inverse() * (state.a_w - g_w);
+    if (!at_origin) {
+      // The IMU at options.imu's pose, clock offset and model (imu/imu_intrinsic_model.h). dw_b
+      // by central differences of the exact w_b with h = 1e-5 s: truncation h^2 |d3w/dt3| / 6 <
+      // 1e-8 rad/s^2 for periods >= 0.8 s and rates <= 2 rad/s, rounding ~1e-16 x 2 / h = 2e-11:
+      // far below the gyro's noise (~1e-3 rad/s per sample) times any lever arm here.
+      constexpr double kH = 1e-5;
+      BodyMotion<double> motion;
+      motion.w_b = state.w_s;
+      motion.dw_b = (trajectory.Evaluate(t_s + kH).w_s - trajectory.Evaluate(t_s - kH).w_s) /
+                    (2.0 * kH);
+      motion.f_b = sample.accel;
+      PredictImuReadings<double>(options.imu.model, options.imu.intrinsics, motion,
+                                 Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), &sample.gyro,
+                                 &sample.accel);
+    }
     if (options.noise_free) {
       sample.gyro += options.gyro_bias;
       sample.accel += options.accel_bias;

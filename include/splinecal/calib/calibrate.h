@@ -91,6 +91,16 @@ const char* ParameterModeName(ParameterMode mode);  // "held", "prior", "free"
 enum class TargetScaleMode { kCheck, kFree, kHeld };
 const char* TargetScaleModeName(TargetScaleMode mode);  // "check", "free", "held"
 
+// A further IMU of the rig (several IMUs; docs/calibrate.md "Several IMUs"): every IMU after the
+// first, which is the reference (the spline's frame b). Its pose T_i_b (C_i_b, lever arm r_b),
+// time offset and biases are estimated with Kalibr's `calibrated` model
+// (estimation/detail/further_imu_cost.h); it must have the reference's rate within 1%.
+struct FurtherImu {
+  std::string name;                // for messages and results (its file or topic)
+  std::vector<ImuSample> samples;  // its own clock: t_reference = t_stamp + time_offset
+  ImuNoise noise;                  // its Kalibr densities, weighting its residuals as given
+};
+
 struct CalibrateOptions {
   // Knots every 0.05 s (0: chosen from the data), gravity magnitude, IMU noise, bias spline.
   SplineModelOptions model = [] {
@@ -165,6 +175,14 @@ struct CalibrateOptions {
   // rz_i with the size effect) to the problem, starting at nominal, with analytic residuals
   // (estimation/detail/imu_model_costs.h).
   ImuModelKind imu_model = ImuModelKind::kCalibrated;
+  // The rig's further IMUs (FurtherImu; empty: one IMU). Their initial guess: C_i_b by aligning
+  // their gyro with the initial spline's angular velocity (closed-form Kabsch), the time offset
+  // from the gyro-rate correlation (vio/time_offset_correlation.h, within max_time_offset_s),
+  // r_b = 0. A lever arm the motion does not determine (std above max_lever_arm_std_m, from the
+  // accelerometer's information at the initial guess: too little rotation) is held at 0 with a
+  // warning.
+  std::vector<FurtherImu> further_imus;
+  double max_lever_arm_std_m = 0.01;
   // For the reports only: the command line these options came from (empty: the library's
   // caller did not say).
   std::string command_line;
@@ -235,6 +253,30 @@ struct ImuModelStd {
   Eigen::Vector3d rz_i = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
+// A further IMU's estimate (CalibrateOptions::further_imus, same order).
+struct FurtherImuEstimate {
+  std::string name;
+  // model kCalibrated; intrinsics.C_i_b, intrinsics.r_b; time_offset_s (imu/imu_intrinsics.h).
+  ImuCalibration calibration;
+  // Standard deviations: C_i_b's rotation in its right tangent C_i_b Exp(phi) (b axes) [deg],
+  // r_b per axis [m] (NaN when held), the time offset [s]; NaN when not computed.
+  Eigen::Vector3d rotation_std_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d r_b_std_m = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  double time_offset_std_s = std::numeric_limits<double>::quiet_NaN();
+  bool lever_arm_held = false;  // held at 0 (too little rotation to determine it)
+  // Initial guess of the time offset (gyro-rate correlation) [s] and of C_i_b.
+  double initial_time_offset_s = 0.0;
+  Eigen::Matrix3d initial_C_i_b = Eigen::Matrix3d::Identity();
+  // Biases: constant, or the time average of the bias spline over its samples.
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();
+  double gyro_rms = 0.0;   // per-axis RMS of predicted - measured [rad/s]
+  double accel_rms = 0.0;  // [m/s^2]
+  int num_samples = 0;     // the samples used (inside the spline for any time offset in range)
+  double rate_hz = 0.0;
+  ImuNoise noise;          // the densities that weighted it
+};
+
 struct CalibrationResult {
   std::vector<CameraEstimate> cameras;
   Camchain camchain;  // the estimated camchain (intrinsics as given)
@@ -288,6 +330,8 @@ struct CalibrationResult {
   // C_i_b = I, r_b = 0, time_offset 0) and its standard deviations (NaN for kCalibrated).
   ImuCalibration imu_model;
   ImuModelStd imu_model_std;
+  // The further IMUs (CalibrateOptions::further_imus; empty with one IMU).
+  std::vector<FurtherImuEstimate> further_imus;
 
   SolveSummary solve;  // rounds: the time windows were rebuilt or the pixel noise re-estimated
   // The largest factor by which a reported std exceeds the noise model's (the cluster-robust

@@ -1,0 +1,137 @@
+// Simulated round trips of `calibrate` with several IMUs on one rig (CalibrateOptions::
+// further_imus), shared by calibrate_imus_test.cc and calibrate_imus_slow_test.cc: the
+// closed-form trajectory (calib/calibrate_test_scenario.h with closed_form: no spline represents
+// it exactly, as on real data), 8 s, 200 Hz ADIS16448-like noise on every IMU, fixed seeds. Each
+// further IMU is mounted at a known T_i_b with a known clock offset
+// (calib/closed_form_simulation.h): its rotation, lever arm and time offset must come back within
+// 3 reported standard deviations, and those standard deviations must be small enough to mean
+// something (the bounds below).
+#ifndef SPLINECAL_TESTS_CALIB_SEVERAL_IMUS_ROUND_TRIP_H_
+#define SPLINECAL_TESTS_CALIB_SEVERAL_IMUS_ROUND_TRIP_H_
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "calib/calibrate_test_checks.h"
+#include "calib/calibrate_test_scenario.h"
+#include "calib/closed_form_simulation.h"
+#include "splinecal/calib/calibrate.h"
+#include "splinecal/lie/so3.h"
+#include "splinecal/units.h"
+
+namespace splinecal {
+namespace testing {
+
+// Within 3 reported standard deviations, per axis (a 3-sigma bound of a Gaussian: 1 in 370 by
+// chance per entry; 7 entries per IMU with a fixed seed).
+constexpr double kRoundTripSigmas = 3.0;
+// The stds must mean something: a rotation to better than 0.1 deg (the camera's T_cam_imu
+// warning threshold, CalibrateOptions::warn_rotation_std_deg), a lever arm to better than 5 mm
+// (warn_translation_std_m) and a time offset to better than 0.5 ms (half the camera's 1 ms
+// warning: the IMUs share a rate, so their offset is known far better than a camera's frame).
+constexpr double kMaxRotationStdDeg = 0.1;
+constexpr double kMaxLeverArmStdM = 0.005;
+constexpr double kMaxTimeOffsetStdS = 0.0005;
+
+struct MountedImu {
+  SO3d C_i_b;
+  Eigen::Vector3d r_b;
+  double time_offset_s;
+  Eigen::Vector3d gyro_bias;
+  Eigen::Vector3d accel_bias;
+  uint64_t seed;
+};
+
+inline FurtherImu Simulate(const testing::CalibrationScenario& s, double duration_s, const MountedImu& m) {
+  SimulationOptions o;
+  o.noise = ImuNoise::Adis16448();
+  o.gyro_bias = m.gyro_bias;
+  o.accel_bias = m.accel_bias;
+  o.seed = m.seed;
+  o.imu.intrinsics.C_i_b = m.C_i_b.matrix();
+  o.imu.intrinsics.r_b = m.r_b;
+  o.imu.time_offset_s = m.time_offset_s;
+  FurtherImu imu;
+  imu.name = "imu seed " + std::to_string(m.seed);
+  imu.noise = ImuNoise::Adis16448();
+  imu.samples = testing::SimulateImuFromTrajectory(
+      *s.trajectory, s.start_ns, s.start_ns + std::llround(duration_s * 1e9), o);
+  return imu;
+}
+
+inline void ExpectRoundTrip(const std::vector<MountedImu>& mounted) {
+  constexpr double kDurationS = 8.0;
+  testing::ScenarioOptions o;
+  o.closed_form = true;
+  o.duration_s = kDurationS;
+  o.line_delay_s = 0.0;
+  const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
+  CalibrateOptions options = testing::FastOptions();
+  options.keep_residuals = false;
+  for (const MountedImu& m : mounted) options.further_imus.push_back(Simulate(s, kDurationS, m));
+  const CalibrationResult r = Calibrate(s.imu, s.observations, s.start, &s.target, options);
+  ASSERT_TRUE(r.covariance_ok);
+  ASSERT_EQ(r.further_imus.size(), mounted.size());
+  for (size_t i = 0; i < mounted.size(); ++i) {
+    const FurtherImuEstimate& e = r.further_imus[i];
+    const MountedImu& m = mounted[i];
+    EXPECT_FALSE(e.lever_arm_held);
+    // C_i_b's error in its right tangent (the std's): C_true^T C_est = Exp(phi).
+    const Eigen::Vector3d phi =
+        (m.C_i_b.inverse() * SO3d::FromMatrix(e.calibration.intrinsics.C_i_b)).Log();
+    const Eigen::Vector3d dr = e.calibration.intrinsics.r_b - m.r_b;
+    const double dt = e.calibration.time_offset_s - m.time_offset_s;
+    std::printf("imu%zu: rotation error [%+.4f %+.4f %+.4f] deg std [%.4f %.4f %.4f]\n", i + 1,
+                phi.x() * kRadToDeg, phi.y() * kRadToDeg, phi.z() * kRadToDeg,
+                e.rotation_std_deg.x(), e.rotation_std_deg.y(), e.rotation_std_deg.z());
+    std::printf("  lever arm error [%+.2f %+.2f %+.2f] mm std [%.2f %.2f %.2f] mm\n", 1e3 * dr.x(),
+                1e3 * dr.y(), 1e3 * dr.z(), 1e3 * e.r_b_std_m.x(), 1e3 * e.r_b_std_m.y(),
+                1e3 * e.r_b_std_m.z());
+    std::printf("  time offset error %+.4f ms std %.4f ms (initial guess %.4f ms, truth %.4f ms)\n",
+                1e3 * dt, 1e3 * e.time_offset_std_s, 1e3 * e.initial_time_offset_s,
+                1e3 * m.time_offset_s);
+    std::printf("  gyro RMS %.3e rad/s, accel RMS %.3e m/s^2, %d samples\n", e.gyro_rms,
+                e.accel_rms, e.num_samples);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_LT(e.rotation_std_deg[a], kMaxRotationStdDeg) << "imu" << i + 1 << " axis " << a;
+      EXPECT_LE(std::abs(phi[a]) * kRadToDeg, kRoundTripSigmas * e.rotation_std_deg[a])
+          << "imu" << i + 1 << " axis " << a;
+      EXPECT_LT(e.r_b_std_m[a], kMaxLeverArmStdM) << "imu" << i + 1 << " axis " << a;
+      EXPECT_LE(std::abs(dr[a]), kRoundTripSigmas * e.r_b_std_m[a]) << "imu" << i + 1 << " axis " << a;
+    }
+    EXPECT_LT(e.time_offset_std_s, kMaxTimeOffsetStdS) << "imu" << i + 1;
+    EXPECT_LE(std::abs(dt), kRoundTripSigmas * e.time_offset_std_s) << "imu" << i + 1;
+  }
+  // The camera still calibrates against the reference IMU.
+  const testing::Errors e = testing::ErrorsOf(r.cameras[0].calibration, s.truth[0]);
+  testing::Print("several IMUs", r, e);
+  const CameraEstimate& c = r.cameras[0];
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(std::abs(e.rotation_deg[a]), kRoundTripSigmas * c.rotation_std_deg[a]) << a;
+    EXPECT_LT(std::abs(e.translation_m[a]), kRoundTripSigmas * c.translation_std_m[a]) << a;
+  }
+}
+
+// A second IMU turned by ~75 deg, 11 cm from the reference, 2 ms late.
+inline const MountedImu kImu1 = {SO3d::Exp(Eigen::Vector3d(0.3, -0.5, 1.2)),
+                          Eigen::Vector3d(0.05, -0.10, 0.02),
+                          0.002,
+                          Eigen::Vector3d(-0.003, 0.002, 0.001),
+                          Eigen::Vector3d(-0.04, 0.06, -0.02),
+                          11};
+// A third one upside down (~180 deg about x), 7 cm away, 3.5 ms early.
+inline const MountedImu kImu2 = {SO3d::Exp(Eigen::Vector3d(3.0, 0.2, -0.1)),
+                          Eigen::Vector3d(-0.03, 0.04, -0.05),
+                          -0.0035,
+                          Eigen::Vector3d(0.001, 0.004, -0.002),
+                          Eigen::Vector3d(0.03, -0.05, 0.08),
+                          12};
+
+}  // namespace testing
+}  // namespace splinecal
+
+#endif  // SPLINECAL_TESTS_CALIB_SEVERAL_IMUS_ROUND_TRIP_H_
