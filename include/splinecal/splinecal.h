@@ -142,6 +142,7 @@
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/estimation/spline_problem.h"
 #include "splinecal/estimation/variance_components.h"
+#include "splinecal/estimation/view_clusters.h"
 
 // vio/
 #include "splinecal/vio/align.h"
@@ -185,7 +186,6 @@
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/intrinsics/time_blocks.h"
-#include "splinecal/intrinsics/view_clusters.h"
 
 // report/
 #include "splinecal/report/align_report.h"

@@ -144,7 +144,7 @@ void CalibrationProblem::BuildProblem() {
       cost = std::move(rows);
     }
     cost = ScaledFrameCost(std::move(cost), residual);
-    problem().AddResidualBlock(cost.release(), nullptr, Blocks(residual));
+    residual.id = problem().AddResidualBlock(cost.release(), nullptr, Blocks(residual));
     frame_residuals_.push_back(residual);
   }
   landmark_residuals_.clear();

@@ -146,6 +146,7 @@ class CalibrationProblem {
   struct FrameResidual {
     int frame = 0;
     ControlPoseWindow window;
+    ceres::ResidualBlockId id = nullptr;  // its block in problem() (the covariance's clusters)
   };
   struct LandmarkResidual {
     int landmark = 0;
@@ -271,6 +272,10 @@ class CalibrationProblem {
   // Options for ComputeMarginalCovariance: the IMU noise's groups and time clusters, each
   // camchain prior as model noise (kModelNoiseCluster).
   MarginalCovarianceOptions CovarianceOptionsForProblem();
+  // Turns the time windows of `options` into the clusters of the second cluster-robust
+  // covariance, over kinds of view (calibration_results.cc); the number of occupied view
+  // clusters, 0 (options unchanged) when none or too few.
+  int ViewKindClusters(MarginalCovarianceOptions* options);
   void Collect(CalibrationResult* result);
 
   std::vector<ImuSample> imu_;

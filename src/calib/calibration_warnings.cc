@@ -27,8 +27,11 @@ void AddStandardDeviationWarnings(const CalibrateOptions& options,
         "x the noise model's (IMU white noise measured at " + StringPrintf("%.2g", ratio[0]) +
         "x (gyro) and " + StringPrintf("%.2g", ratio[1]) +
         "x (accelerometer) the given densities; the cluster-robust scatter over " +
-        std::to_string(result->robust_clusters) +
-        " time windows): likely vibration above the spline's bandwidth, a knot spacing too "
+        std::to_string(result->robust_clusters) + " time windows" +
+        (result->view_clusters > 0
+             ? " and " + std::to_string(result->view_clusters) + " kinds of target view"
+             : std::string()) +
+        "): likely vibration above the spline's bandwidth, a knot spacing too "
         "coarse for the motion, or sensor errors the model lacks (docs/calibrate.md, \"How much "
         "to trust the numbers\")");
   }

@@ -23,7 +23,7 @@
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/intrinsics/time_blocks.h"
-#include "splinecal/intrinsics/view_clusters.h"
+#include "splinecal/estimation/view_clusters.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/median.h"
 #include "splinecal/string_printf.h"
@@ -505,7 +505,7 @@ void FillCameraResults(IntrinsicsSolver* solver,
       for (int i = 0; i < size; ++i) {
         if (inflation(i) > 1.0 + 1e-9) source[i] = "time blocks";
       }
-      if (robust) {
+      if (robust && options.covariance.view_clusters) {
         // The second sandwich, over kinds of view (view_clusters.h); each std is the larger.
         MarginalCovarianceOptions view_options = cov_options;
         const RigState* rig = state;

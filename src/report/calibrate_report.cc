@@ -398,6 +398,7 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   // "How much to trust the numbers").
   yaml.Scalar("std_inflation", r.std_inflation);
   yaml.Scalar("robust_clusters", r.robust_clusters);
+  yaml.Scalar("view_clusters", r.view_clusters);
   yaml.Scalar("gyro_rms", r.gyro_rms);
   yaml.Scalar("accel_rms", r.accel_rms);
   yaml.Scalar("num_imu_samples", r.num_imu_samples);

@@ -5,7 +5,7 @@
 #include <map>
 
 #include "splinecal/intrinsics/intrinsics_observability.h"
-#include "splinecal/intrinsics/view_clusters.h"
+#include "splinecal/estimation/view_clusters.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/plot/svg_plot.h"

@@ -11,10 +11,13 @@
 //   * Whole recording: camera positions within the 8 mm target of basalt, the stereo baseline
 //     within 1 mm of the published 110.074 mm and 3 of its std, and the rotation about the IMU's
 //     y and z within 3 own std of the published-camchain run.
+//   * Halves: each half runs its own chain; the rotation about the IMU's y and z and the
+//     translation x and y within 3 combined std, the RMS of the 12 normalised differences at
+//     least 0.25, and the two components not met held below their measured level.
 //   * DISABLED, not met by any model (figures beside each): the whole T_cam_imu within 3 own std
-//     of the published-camchain run, and the halves' T_cam_imu within 3 combined std. Enable them
-//     when the principal point and focal length of the intrinsics step agree with the references
-//     and between the halves within their std (docs/calibrate.md, "On EuRoC's imu_april").
+//     of the published-camchain run, and all of the halves' T_cam_imu within 3 combined std.
+//     Enable them when the principal point and focal length agree with the references and
+//     between the halves within their std (docs/calibrate.md, "On EuRoC's imu_april").
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -268,10 +271,12 @@ TEST(CalibrateOwnChain, DsNonePositionsBaselineAndRotationBesidesThePrincipalPoi
 }
 
 // Not met by any model today (2026-11-28, this test's printout): the rotation about the IMU's x
-// axis is 0.50 / 0.40 deg (cam0 / cam1) from the published-camchain run at 12.2 / 10.0 own std
-// with ds-none (pinhole-equi 12.3 / 10.0, pinhole-radtan 6.7-6.9), translation y 2.7-2.9 mm at
-// 3.5-3.7 std: the principal point this recording gives (ds-none cam0 pu 362.2 px after
-// calibrate) is 3.7 px from basalt's 365.9 (docs/calibrate.md, "Why: the principal point").
+// axis is 0.50 / 0.40 deg (cam0 / cam1) from the published-camchain run at 10.4 / 8.8 own std
+// with ds-none (12.2 / 10.0 before calibrate's covariance over kinds of view; pinhole-equi 12.3 /
+// 10.0, pinhole-radtan 6.7-6.9 then), translation y 2.7-2.9 mm at 2.9-3.3 std: the principal
+// point this recording gives (ds-none cam0 pu 362.2 px after calibrate) is 3.7 px from basalt's
+// 365.9, with every model and every processing step (docs/calibrate.md, "Why: the principal
+// point"; docs/intrinsics.md, "The principal point of this recording").
 TEST(CalibrateOwnChain, DISABLED_WholeRecordingWithinThreeStdOfThePublishedCamchainRun) {
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
   const WholeRecording w = CompareWithThePublishedCamchainRun("ds-none");
@@ -280,10 +285,33 @@ TEST(CalibrateOwnChain, DISABLED_WholeRecordingWithinThreeStdOfThePublishedCamch
   }
 }
 
+// Each component's limit below. Met: the rotation about the IMU's y and z, the translation x
+// and y (measured 2026-11-28 with ds-none: at most 2.86 combined std). Not met: the rotation
+// about the IMU's x (0.28 / 0.25 deg, cam0 / cam1, at 3.72 / 3.68 combined std) and the
+// translation z (15.2 / 14.2 mm at 4.93 / 4.45), held below 4.5 and 6 so that they cannot slide
+// back to where they were with the time windows alone (5.14 / 4.59 and 8.30 / 6.88).
+constexpr double kHalvesLimit[6] = {4.5, 3.0, 3.0, 3.0, 3.0, 6.0};
+
+// The halves with what holds today: calibrate's covariance over kinds of target view (with its
+// 1 s time windows; docs/calibrate.md, "How much to trust the numbers") takes the halves' largest
+// normalised difference from 8.30 to 4.93 and their RMS from 3.96 to 2.81.
+TEST(CalibrateOwnChain, HalvesAgreeWhereTheIntrinsicsDoNotDecide) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+  const std::vector<double> normalised = HalvesNormalisedDifferences("ds-none");
+  for (size_t i = 0; i < normalised.size(); ++i) {
+    EXPECT_LE(normalised[i], kHalvesLimit[i % 6]) << "cam" << i / 6 << " " << kComponentNames[i % 6];
+  }
+  std::printf("largest |difference|/std: %.2f, RMS %.2f\n", Largest(normalised), Rms(normalised));
+  // Honest stds make the 12 normalised differences about unit normal: their mean square is
+  // chi-square(12)/12, below 0.25^2 with probability ~1e-6; stds 4x too large put the RMS there.
+  EXPECT_GE(Rms(normalised), 0.25) << "reported standard deviations too large";
+}
+
 // Not met by any model today (2026-11-28, this test's printout): ds-none's halves differ in
-// translation z by 15.2 / 14.2 mm (cam0 / cam1) at 8.3 / 6.9 combined std, RMS 3.96
-// (pinhole-equi 15.2 / 14.3 mm at 8.3 / 7.7, RMS 4.08; pinhole-radtan 13.6 mm at 4.6-4.8 std,
-// RMS 2.69).
+// translation z by 15.2 / 14.2 mm (cam0 / cam1) at 4.93 / 4.45 combined std and about the IMU's
+// x by 0.28 / 0.25 deg at 3.72 / 3.68, RMS 2.81 (with the time windows alone, before calibrate's
+// covariance over kinds of view: 8.30 / 6.88 in translation z, RMS 3.96; pinhole-equi then 8.3 /
+// 7.7, RMS 4.08; pinhole-radtan 13.6 mm at 4.6-4.8 std, RMS 2.69).
 TEST(CalibrateOwnChain, DISABLED_HalvesAgreeWithinTheirReportedStandardDeviations) {
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
   const std::vector<double> normalised = HalvesNormalisedDifferences("ds-none");

@@ -7,7 +7,7 @@
 //
 // The goal |z| <= 3 is met by ds-none, not by pinhole-radtan. Measured with the two cluster-robust
 // covariances (time blocks, intrinsics/time_blocks.h, and kinds of view,
-// intrinsics/view_clusters.h): ds-none |z| up to 2.99 (cam1 pu), radtan up to 4.66 (cam0 fv:
+// estimation/view_clusters.h): ds-none |z| up to 2.99 (cam1 pu), radtan up to 4.66 (cam0 fv:
 // 456.24 +- 1.12 against 465.51 +- 1.64); with time blocks alone 5.17 and 5.00, with one
 // cluster per frame 7 to 13 (docs/intrinsics.md, "Error bars"). radtan's focal lengths move
 // by 8-9 px between the halves, whose views differ in distance (1.24-1.38 m against

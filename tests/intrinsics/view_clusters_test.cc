@@ -1,9 +1,9 @@
-// intrinsics/view_clusters.h: a view's cluster is its corners' image cell (3 x 3 grid) times the
+// estimation/view_clusters.h: a view's cluster is its corners' image cell (3 x 3 grid) times the
 // quadrant its target tilts towards; the normal's sign (which side of the board faces the camera)
 // does not matter. And in CalibrateIntrinsics: on simulated views the covariance over view
 // clusters is not taken when the model is exact, and is when the lens has a distortion the model
 // lacks.
-#include "splinecal/intrinsics/view_clusters.h"
+#include "splinecal/estimation/view_clusters.h"
 
 #include <gtest/gtest.h>
 

@@ -335,9 +335,11 @@ struct CalibrationResult {
 
   SolveSummary solve;  // rounds: the time windows were rebuilt or the pixel noise re-estimated
   // The largest factor by which a reported std exceeds the noise model's (the cluster-robust
-  // covariance over robust_clusters time windows; 1: the noise model explains the scatter).
+  // covariances over robust_clusters time windows and over view_clusters kinds of target view,
+  // estimation/view_clusters.h; 1: the noise model explains the scatter).
   double std_inflation = 1.0;
   int robust_clusters = 0;
+  int view_clusters = 0;  // 0: that covariance not computed (too few kinds of view)
   double covariance_time_s = 0.0;
   double initialisation_time_s = 0.0;
   bool covariance_ok = false;

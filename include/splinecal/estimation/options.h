@@ -55,6 +55,10 @@ struct CovarianceOptions {
   // one (estimation/marginal_covariance.h), so that model error and correlated noise the data
   // shows enter the error bars. Where it applies (calibrate, fit), it uses the Schur backend.
   double robust_window_s = 1.0;
+  // With robust_window_s > 0 (intrinsics, calibrate): also the cluster-robust covariance over
+  // kinds of target view (estimation/view_clusters.h), for model error that depends on the view;
+  // each std is then the largest of the noise model's and the two sandwiches' where significant.
+  bool view_clusters = true;
 };
 
 // Throws splinecal::Error, in plain words, for model values no estimate can use.

@@ -42,7 +42,7 @@
 //      and, where significant (ReportedCovarianceOf), two cluster-robust ones: over time blocks
 //      whose length the residuals' autocorrelation chooses (intrinsics/time_blocks.h: errors
 //      that nearby frames share) and over kinds of view, by image region and tilt
-//      (intrinsics/view_clusters.h: model error that depends on the view).
+//      (estimation/view_clusters.h: model error that depends on the view).
 //   7. Observability: the information matrix of each camera's intrinsics with the target poses
 //      marginalised; parameters with a standard deviation above their threshold (focal lengths
 //      and principal point: kUndeterminedPixelRatio of the image width; shape and distortion

@@ -1,5 +1,7 @@
-// The view clusters of the intrinsics' second cluster-robust covariance (calibrate_intrinsics.h,
-// step 6): views grouped by where the target sits in the image and which way it tilts.
+// The view clusters of a cluster-robust covariance over kinds of view: views grouped by where
+// the target sits in the image and which way it tilts. Used by the intrinsics' second sandwich
+// (intrinsics/calibrate_intrinsics.h, step 6) and by calibrate's (calib/calibrate.h: the target
+// frames' corners re-estimate the intrinsics and carry the same view-dependent model error).
 //
 // The time blocks (time_blocks.h) see errors that nearby frames share. They cannot see a model
 // error that depends on the view: a lens the model does not quite describe, a board that is not
@@ -18,8 +20,8 @@
 // Cluster of a view: the cell of a kViewClusterCells x kViewClusterCells grid of the image that
 // holds its corners' centroid, times the quadrant of the target normal's direction in the image
 // plane (the sign of its x and y components in the camera frame): up to 36 clusters.
-#ifndef SPLINECAL_INTRINSICS_VIEW_CLUSTERS_H_
-#define SPLINECAL_INTRINSICS_VIEW_CLUSTERS_H_
+#ifndef SPLINECAL_ESTIMATION_VIEW_CLUSTERS_H_
+#define SPLINECAL_ESTIMATION_VIEW_CLUSTERS_H_
 
 #include <vector>
 
@@ -40,4 +42,4 @@ int ViewCluster(const Camera& camera,
 
 }  // namespace splinecal
 
-#endif  // SPLINECAL_INTRINSICS_VIEW_CLUSTERS_H_
+#endif  // SPLINECAL_ESTIMATION_VIEW_CLUSTERS_H_

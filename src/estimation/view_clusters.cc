@@ -1,4 +1,4 @@
-#include "splinecal/intrinsics/view_clusters.h"
+#include "splinecal/estimation/view_clusters.h"
 
 #include <algorithm>
 
