@@ -190,7 +190,7 @@ TEST(ImuModelCosts, ModelJacobiansMatchTheAnalyticModel) {
     const Evaluation a = Evaluate(*accel, f.AccelBlocks(1, kind));
     std::vector<double*> pose_blocks = f.Common(1, true);
     const SegmentKnotData<double> data =
-        testing::KnotDataFromBlocks<double>(pose_blocks.data());
+        internal::KnotDataFromBlocks<double>(pose_blocks.data());
     const ImuIntrinsicsd p = f.model.Intrinsics();
     for (size_t k = 0; k < gs.samples.size(); ++k) {
       const Segment<double> seg = splinecal::MakeSegment(2, gs.samples[k].u, kDtS);
@@ -282,7 +282,7 @@ TEST(ImuModelCosts, AngularAccelerationJacobianMatchesNumericDifferentiation) {
   for (double u : {0.0, 0.23, 0.5, 0.91, 1.0}) {
     const Segment<double> seg = splinecal::MakeSegment(2, u, kDtS);
     const auto dw_of = [&](const std::vector<double*>& blocks) {
-      const SegmentKnotData<double> data = testing::KnotDataFromBlocks<double>(blocks.data());
+      const SegmentKnotData<double> data = internal::KnotDataFromBlocks<double>(blocks.data());
       Eigen::Vector3d dw;
       EvaluateAngularAccelerationJacobian(data.knots(), seg, &dw, nullptr);
       return Eigen::VectorXd(dw);

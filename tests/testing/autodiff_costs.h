@@ -23,16 +23,7 @@
 namespace splinecal {
 namespace testing {
 
-// The segment of four pose blocks in scalar T, without Jacobian caches: the autodiff twins
-// need none.
-template <typename T>
-SegmentKnotData<T> KnotDataFromBlocks(const T* const* poses) {
-  return SegmentKnotData<T>(PoseFromBlock(poses[0]),
-                            PoseFromBlock(poses[1]),
-                            PoseFromBlock(poses[2]),
-                            PoseFromBlock(poses[3]),
-                            /*with_jacobians=*/false);
-}
+using internal::KnotDataFromBlocks;
 
 // The sample's bias: its B-spline weights times the segment's kBiasBlocks bias points.
 template <typename T, int kBiasBlocks>
@@ -43,7 +34,6 @@ Vector3<T> WeightedBiasT(const ImuResidualSample& sample, const T* const* bias_b
   }
   return bias;
 }
-
 
 // Functor for ceres::AutoDiffCostFunction<GyroResidual<k>, 3, 7, 7, 7, 7, 3 (x k)>.
 template <int kBiasBlocks>

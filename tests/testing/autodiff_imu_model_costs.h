@@ -32,7 +32,7 @@ void ImuModelSegmentResiduals(const ImuModelSegment& s,
                               T const* const* blocks,
                               const Predict& predict,
                               T* residuals) {
-  const SegmentKnotData<T> data = testing::KnotDataFromBlocks(blocks);
+  const SegmentKnotData<T> data = internal::KnotDataFromBlocks(blocks);
   const Vector3<T> g_w = Eigen::Map<const Vector3<T>>(blocks[4 + s.bias_blocks]);
   const T inv_sigma = T(1.0 / s.segment.sigma);
   for (size_t k = 0; k < s.samples.size(); ++k) {

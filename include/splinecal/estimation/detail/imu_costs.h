@@ -317,6 +317,19 @@ class AccelSegmentCostFunction : public ceres::CostFunction {
 
 namespace internal {
 
+// The segment of four pose blocks in scalar T, without Jacobian caches: for costs
+// differentiated automatically (detail/further_imu_cost.h and the tests' autodiff twins).
+template <typename T>
+SegmentKnotData<T> KnotDataFromBlocks(const T* const* poses) {
+  return SegmentKnotData<T>(PoseFromBlock(poses[0]),
+                            PoseFromBlock(poses[1]),
+                            PoseFromBlock(poses[2]),
+                            PoseFromBlock(poses[3]),
+                            /*with_jacobians=*/false);
+}
+
+// The sample's bias: its B-spline weights times the segment's kBiasBlocks bias points.
+
 // The rows of `num_samples` samples of one segment, 3 per sample, stacked: the segment's knot
 // data is prepared once and kSampleRows (GyroSampleRows or AccelSampleRows, a compile-time
 // constant so that it inlines) writes each sample's residual and Jacobian rows.
