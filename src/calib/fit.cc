@@ -740,8 +740,10 @@ void FitProblem::Impl::ComputeCovariance(FitResult* result) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
-  const ReportedCovariance honest = ReportedCovarianceOf(
-      extras ? marginal : MarginalCovariance{true, A * marginal.covariance * A.transpose()});
+  MarginalCovariance mapped;  // without the extras, the noise model's covariance through A
+  mapped.ok = true;
+  if (!extras) mapped.covariance = A * marginal.covariance * A.transpose();
+  const ReportedCovariance honest = ReportedCovarianceOf(extras ? marginal : mapped);
   result->std_inflation = honest.inflation.maxCoeff();
   result->robust_clusters = marginal.num_clusters;
   ReportFitUncertainty(options, honest.covariance, result);

