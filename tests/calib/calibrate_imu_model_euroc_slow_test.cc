@@ -15,7 +15,7 @@
 // both runs determine alike is the camera-to-gyro rotation, R_cam_imu R_g^T under the model: it
 // must agree with the calibrated run's R_cam_imu within kMaxGyroFrameStd of that run's std per
 // axis (same data, so the difference is the model's extra freedom, not noise: measured
-// 2026-11-28 0.45-1.2 std; the bound leaves room for a solver or platform difference). The
+// 2026-11-28 0.43-1.05 std; the bound leaves room for a solver or platform difference). The
 // translation moves by up to 5.4 mm (9.9 std) and is printed, not asserted
 // (docs/imu_models.md, "On real data").
 #include <gtest/gtest.h>
