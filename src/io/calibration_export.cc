@@ -5,6 +5,7 @@
 #include "export_formats.h"
 #include "splinecal/error.h"
 #include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/imu_models_yaml.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/yaml_document.h"
 
@@ -117,6 +118,12 @@ CalibrationExport ReadCalibrationForExport(const std::string& dir,
     if (imu_yaml_path.empty() && !IsFile(folder_imu_yaml) && result.Has("imu_rate_hz")) {
       calibration.imu_noise.update_rate_hz = result.PositiveNumber("imu_rate_hz");
     }
+  }
+  // calibrate --imu-model writes the model beside result.yaml; imu0 is the reference IMU, the
+  // one the exported files describe.
+  const std::string imu_models_path = dir + "/imu_models.yaml";
+  if (calibration.has_imu && IsFile(imu_models_path)) {
+    calibration.imu_model = ReadImuModelsYaml(imu_models_path).front();
   }
   return calibration;
 }

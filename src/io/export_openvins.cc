@@ -7,14 +7,31 @@
 //                             rostopic, timeshift_cam_imu (t_imu = t_cam + timeshift, Kalibr's)
 //   kalibr_imu_chain.yaml     imu0: T_i_b, Kalibr's four densities, rostopic, time_offset,
 //                             update_rate, and the IMU intrinsics of OpenVINS' "kalibr" model
-//                             (Tw, R_IMUtoGYRO, Ta, R_IMUtoACC identity, Tg zero: a calibrated IMU)
+//                             (Tw, R_IMUtoGYRO, Ta, R_IMUtoACC, Tg; below)
+//
+// OpenVINS' IMU intrinsics (its docs, "IMU Intrinsic Models"; ov_msckf's loader reads Tw, Ta,
+// R_IMUtoACC, R_IMUtoGYRO, Tg and forms Dw = Tw^-1, Da = Ta^-1) correct a reading as
+//   a_I = R_IMUtoACC^T Da (a_m - b_a)                w_I = R_IMUtoGYRO^T Dw (w_m - b_g - Tg a_I)
+// with a_I the specific force in the IMU frame I. Inverted, with I = Kalibr's accelerometer frame
+// i (the frame splinecal's T_cam_imu refers to):
+//   a_m = Ta R_IMUtoACC a_I + b_a                    w_m = Tw R_IMUtoGYRO w_I + Tg a_I + b_g,
+// and Kalibr's scale-misalignment model (docs/imu_models.md) is
+//   a_m = M_a f_i + b_a                              w_m = M_g C_gyro_i w_i + A C_gyro_i f_i + b_g,
+// so Ta = M_a, R_IMUtoACC = I, Tw = M_g, R_IMUtoGYRO = C_gyro_i, Tg = A C_gyro_i (Kalibr's A acts
+// on the specific force in the gyro frame, OpenVINS' Tg on it in the IMU frame). M_a and M_g are
+// lower triangular, so Da and Dw are too: OpenVINS' "kalibr" model (lower-triangular D'_6 and
+// R_IMUtoGYRO) holds them exactly. The size effect's lever arms have no counterpart in OpenVINS:
+// they are left out, and a comment in the file says so (docs/export.md).
 //
 // OpenVINS projects with pinhole-radtan (four coefficients) or pinhole-equi; pinhole-none is
 // radtan with zero coefficients.
 #include <Eigen/Core>
+#include <string>
 
 #include "export_formats.h"
 #include "splinecal/error.h"
+#include "splinecal/imu/imu_intrinsics.h"
+#include "splinecal/imu/imu_model_kind.h"
 #include "splinecal/io/yaml_writer.h"
 
 namespace splinecal {
@@ -61,13 +78,23 @@ std::string ImuChainText(const CalibrationExport& calibration) {
   // The camera's time offsets live in kalibr_imucam_chain.yaml; the IMU is the reference clock.
   yaml.Scalar("time_offset", 0.0);
   yaml.Scalar("update_rate", noise.update_rate_hz);
-  yaml.Comment("a calibrated IMU: no scale, misalignment or g-sensitivity");
+  const ImuCalibration& model = calibration.imu_model;
+  const ImuIntrinsicsd& p = model.intrinsics;
+  if (model.model == ImuModelKind::kCalibrated) {
+    yaml.Comment("a calibrated IMU: no scale, misalignment or g-sensitivity");
+  } else {
+    yaml.Comment(std::string("Kalibr's ") + ImuModelName(model.model) +
+                 " model: Tw = M_g, R_IMUtoGYRO = C_gyro_i, Ta = M_a, Tg = A C_gyro_i");
+  }
+  if (model.model == ImuModelKind::kScaleMisalignmentSizeEffect) {
+    yaml.Comment("the size effect's lever arms ry_i, rz_i have no OpenVINS counterpart: left out");
+  }
   yaml.Scalar("model", "kalibr");
-  yaml.Matrix("Tw", Eigen::Matrix3d::Identity());
-  yaml.Matrix("R_IMUtoGYRO", Eigen::Matrix3d::Identity());
-  yaml.Matrix("Ta", Eigen::Matrix3d::Identity());
+  yaml.Matrix("Tw", p.M_g);
+  yaml.Matrix("R_IMUtoGYRO", p.C_gyro_i);
+  yaml.Matrix("Ta", p.M_a);
   yaml.Matrix("R_IMUtoACC", Eigen::Matrix3d::Identity());
-  yaml.Matrix("Tg", Eigen::Matrix3d::Zero());
+  yaml.Matrix("Tg", p.A * p.C_gyro_i);
   yaml.EndMap();
   return kOpenCvYamlHeader + yaml.str();
 }

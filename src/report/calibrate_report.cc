@@ -11,6 +11,7 @@
 #include "splinecal/plot/plot_decimation.h"
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/html_page.h"
+#include "splinecal/report/imu_model_report.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
 #include "splinecal/spline/trajectory_model.h"
@@ -467,6 +468,7 @@ std::string CalibrateReportHtml(const CalibrationResult& r,
   page.Append(RunHtml(r, options));
   page.Append(EstimatesTable(r, options));
   page.Append(IntrinsicsTable(r));
+  page.Append(ImuModelHtml(r));
   if (!r.further_imus.empty()) {
     page.Append("<h2>Further IMUs</h2>\n<pre>" + FurtherImusText(r) + "</pre>\n");
   }
@@ -519,6 +521,7 @@ std::string CalibrateSummaryText(const CalibrationResult& result) {
                        result.accel_rms,
                        result.pixel_sigma_px,
                        result.pixel_sigma_estimated ? " (estimated)" : "");
+  text += ImuModelText(result);
   text += FurtherImusText(result);
   if (std::isfinite(result.target_scale)) {
     text += StringPrintf("target scale against the IMU %.4f (std %.4f)%s\n",

@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <regex>
 #include <set>
 #include <string>
@@ -311,9 +312,6 @@ TEST(MakeReprojectionImageFigure, NoiseAloneGivesShortVectors) {
   for (int k = 1; k < 5; ++k) EXPECT_TRUE(panel.series[k].x.empty()) << k;
 }
 
-}  // namespace
-}  // namespace splinecal
-
 namespace splinecal {
 namespace {
 
@@ -381,6 +379,76 @@ TEST(CalibrateReportHtml, RunAndIntrinsicsSections) {
   EXPECT_THAT(CalibrateSummaryText(r), HasSubstr("target scale against the IMU 1.0042 (std "
                                                  "0.0031), held at 1\n"));
   EXPECT_THAT(CalibrateSummaryText(r), HasSubstr("  intrinsics prior\n"));
+}
+
+}  // namespace
+}  // namespace splinecal
+
+// A scale-misalignment(-size-effect) estimate: every matrix with its std, one entry held (NaN
+// std with a covariance: calibrate held it at nominal).
+CalibrationResult ResultWithImuModel(ImuModelKind kind) {
+  CalibrationResult r = SmallResult(1);
+  r.covariance_ok = true;
+  r.imu_model.model = kind;
+  ImuIntrinsicsd& p = r.imu_model.intrinsics;
+  p.M_a << 1.0011, 0, 0, -0.0052, 0.9987, 0, 0.003, 0.0017, 0.9943;
+  p.M_g << 1.0048, 0, 0, -0.0007, 1.0044, 0, 0.0047, 0.0013, 0.9979;
+  p.A << 2.6e-4, 0, 0, 0, -1.1e-4, 0, 0, 0, 5e-5;
+  p.C_gyro_i = SO3d::Exp(Eigen::Vector3d(0.001, -0.002, -0.0074)).matrix();
+  p.ry_i = Eigen::Vector3d(0.0012, -0.0005, 0.0003);
+  p.rz_i = Eigen::Vector3d(-0.0004, 0.0009, 0.0021);
+  ImuModelStd& s = r.imu_model_std;
+  s.M_a << 0.0021, NAN, NAN, 0.0029, 0.002, NAN, 0.0035, 0.0033, 0.0031;
+  s.M_g << 0.0011, NAN, NAN, 0.00066, 0.0011, NAN, 0.00058, 0.00065, 0.00023;
+  s.A = Eigen::Matrix3d::Constant(4e-5);
+  s.A(2, 1) = NAN;  // held
+  s.C_gyro_i_deg = Eigen::Vector3d(0.1673, 0.169, 0.1425);
+  s.ry_i = Eigen::Vector3d(6.3e-4, 6e-4, 1.07e-3);
+  s.rz_i = Eigen::Vector3d(8.5e-4, 4.8e-4, 2.14e-3);
+  return r;
+}
+
+TEST(CalibrateSummaryText, TheImuModelEachEntryWithItsStd) {
+  const std::string text =
+      CalibrateSummaryText(ResultWithImuModel(ImuModelKind::kScaleMisalignmentSizeEffect));
+  EXPECT_THAT(text,
+              HasSubstr("IMU model scale-misalignment-size-effect (Kalibr's imu0; each entry: "
+                        "value (std))\n"));
+  // M's upper triangle is no parameter: its zeros carry no std.
+  EXPECT_THAT(text, HasSubstr("  M_a row 0: 1.001100 (0.002100), 0, 0\n"));
+  EXPECT_THAT(text, HasSubstr("  M_a row 2: 0.003000 (0.003500), 0.001700 (0.003300), "
+                              "0.994300 (0.003100)\n"));
+  EXPECT_THAT(text, HasSubstr("  M_g row 1: -0.000700 (0.000660), 1.004400 (0.001100), 0\n"));
+  EXPECT_THAT(text, HasSubstr("  A [(rad/s)/(m/s^2)] row 2: 0.000e+00 (4.000e-05), "
+                              "0.000e+00 (held), 5.000e-05 (4.000e-05)\n"));
+  EXPECT_THAT(text, HasSubstr("  C_gyro_i rotation vector [deg]: 0.0573 (0.1673), -0.1146 (0.1690), "
+                              "-0.4240 (0.1425)\n"));
+  EXPECT_THAT(text, HasSubstr("  ry_i [mm]: 1.200 (0.630), -0.500 (0.600), 0.300 (1.070)\n"));
+  EXPECT_THAT(text, HasSubstr("  rz_i [mm]: -0.400 (0.850), 0.900 (0.480), 2.100 (2.140)\n"));
+  // Without the size effect no lever arms; without a covariance no std is "held".
+  CalibrationResult sm = ResultWithImuModel(ImuModelKind::kScaleMisalignment);
+  sm.covariance_ok = false;
+  const std::string sm_text = CalibrateSummaryText(sm);
+  EXPECT_THAT(sm_text, HasSubstr("IMU model scale-misalignment (Kalibr's imu0"));
+  EXPECT_THAT(sm_text, Not(HasSubstr("ry_i")));
+  EXPECT_THAT(sm_text, HasSubstr("0.000e+00 (no std)"));
+  // The calibrated model has no section.
+  EXPECT_THAT(CalibrateSummaryText(SmallResult(1)), Not(HasSubstr("IMU model")));
+}
+
+TEST(CalibrateReportHtml, TheImuModelEachEntryWithItsStd) {
+  const std::string html = Report(ResultWithImuModel(ImuModelKind::kScaleMisalignmentSizeEffect));
+  EXPECT_THAT(html, HasSubstr("<h2>IMU model</h2>"));
+  EXPECT_THAT(html, HasSubstr("<tr><th>M_a row 1</th><td>-0.005200, 0.998700, 0</td>"
+                              "<td>std 0.002900, 0.002000, -</td></tr>"));
+  EXPECT_THAT(html, HasSubstr("<tr><th>M_g row 2</th><td>0.004700, 0.001300, 0.997900</td>"
+                              "<td>std 0.000580, 0.000650, 0.000230</td></tr>"));
+  EXPECT_THAT(html, HasSubstr("<tr><th>A [(rad/s)/(m/s^2)] row 0</th><td>2.600e-04, 0.000e+00, 0.000e+00"));
+  EXPECT_THAT(html, HasSubstr("<tr><th>C_gyro_i rotation vector [deg]</th><td>0.0573, -0.1146, "
+                              "-0.4240</td><td>std 0.1673, 0.1690, 0.1425</td></tr>"));
+  EXPECT_THAT(html, HasSubstr("<tr><th>rz_i [mm]</th><td>-0.400, 0.900, 2.100</td>"
+                              "<td>std 0.850, 0.480, 2.140</td></tr>"));
+  EXPECT_THAT(Report(SmallResult(1)), Not(HasSubstr("<h2>IMU model</h2>")));
 }
 
 }  // namespace

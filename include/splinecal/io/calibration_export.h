@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "splinecal/camera/camchain.h"
+#include "splinecal/imu/imu_intrinsics.h"
 #include "splinecal/imu/noise.h"
 #include "splinecal/io/output_dir.h"
 
@@ -51,6 +52,9 @@ struct CalibrationExport {
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   // [rad/s]
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  // [m/s^2]
   std::string imu_topic = "/imu0";
+  // The reference IMU's model (calibrate --imu-model's imu_models.yaml, its imu0; the
+  // `calibrated` model at nominal when the folder has none): openvins carries it (docs/export.md).
+  ImuCalibration imu_model;
   // cam_overlaps[i]: the cameras that saw the target at the same time as camera i (Kalibr's
   // cam_overlaps). Empty when unknown.
   std::vector<std::vector<int>> cam_overlaps;
@@ -63,6 +67,7 @@ struct CalibrationExport {
 //   output), else result.yaml's imu_noise (the densities calibrate used), else the EuRoC
 //   ADIS16448 defaults (imu_noise_source says "assumed");
 //   gyro_bias and accel_bias from result.yaml when present;
+//   imu_model from imu_models.yaml's imu0 when present;
 //   cam_overlaps from reprojection_errors.csv (calibrate) or observations.csv (cameras with an
 //   observation at the same frame time), when present.
 // Camera topics: the camchain's rostopic, else /camN/image_raw. Throws splinecal::Error naming
