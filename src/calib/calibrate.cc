@@ -398,10 +398,29 @@ void CalibrationProblem::HoldUndeterminedImuModelParameters(CalibrationResult* r
   // At the initial guess: the information of the model's parameters comes from the motion, which
   // the initial trajectory already has (estimation/imu_model_observability.h).
   BuildProblem();
+  HoldRequestedImuModelParameters();
   const std::vector<ImuModelParameter> undetermined = UndeterminedImuModelParameters(spline_.get());
   if (undetermined.empty()) return;
   for (const ImuModelParameter& p : undetermined) spline_->HoldImuModelEntry(p.block, p.index);
   result->warnings.push_back(UndeterminedImuModelWarning(undetermined));
+}
+
+void CalibrationProblem::HoldRequestedImuModelParameters() {
+  if (options_.imu_model_held.empty()) return;
+  const std::vector<ImuModelParameter> parameters = ImuModelParameterStds(spline_.get());
+  for (const std::string& name : options_.imu_model_held) {
+    bool found = false;
+    for (const ImuModelParameter& p : parameters) {
+      if (p.name == name || p.name.rfind(name + "(", 0) == 0) {
+        spline_->HoldImuModelEntry(p.block, p.index);
+        found = true;
+      }
+    }
+    if (!found) {
+      throw Error("imu_model_held: " + name + " is not a parameter of the " +
+                  ImuModelName(options_.imu_model) + " model");
+    }
+  }
 }
 
 void CalibrationProblem::SolveUntilStable(SolveRounds* solve_rounds,

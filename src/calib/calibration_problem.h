@@ -198,6 +198,8 @@ class CalibrationProblem {
   // With an IMU model: holds at nominal, with a warning, the model's parameters the recording
   // does not determine (estimation/imu_model_observability.h).
   void HoldUndeterminedImuModelParameters(CalibrationResult* result);
+  // CalibrateOptions::imu_model_held.
+  void HoldRequestedImuModelParameters();
   // Solves in rounds until nothing changes between them (time windows, noise, line delays).
   void SolveUntilStable(SolveRounds* rounds, const SolverOptions& solver, CalibrationResult* result);
   // The target scale's estimate and std with the rest free (false: covariance singular).

@@ -15,11 +15,22 @@
 // both runs determine alike is the camera-to-gyro rotation, R_cam_imu R_g^T under the model: it
 // must agree with the calibrated run's R_cam_imu within kMaxGyroFrameStd of that run's std per
 // axis (same data, so the difference is the model's extra freedom, not noise: measured
-// 2026-11-28 0.43-1.05 std; the bound leaves room for a solver or platform difference). The
-// translation moves by up to 5.4 mm (9.9 std) and is printed, not asserted
-// (docs/imu_models.md, "On real data").
+// 2026-11-28 0.43-1.05 std; the bound leaves room for a solver or platform difference).
+//
+// The translation: both runs put the body origin at the accelerometer triad's (r_b = 0; without
+// the size effect Kalibr's model has no other origin), and T_cam_imu's translation is that point
+// in the camera frame, independent of the rotation, so it is directly comparable. The full model
+// moves it by -0.1, -2.6, -5.4 mm (cam0; 0.2, 3.2, 2.9 of the model run's own std, which carries
+// the model's correlations). What moves it is the gyro's scale/misalignment M_g: holding M_g at
+// nominal (everything else of the model estimated) gives a translation within 1 std of the
+// `calibrated` run's, asserted below (measured +0.16, -0.24, +0.03 mm: 0.32, 0.38, 0.05 std);
+// holding A, C_gyro_i or M_a instead leaves the shift (DISABLED_WhatMovesTheTranslation, a study:
+// docs/imu_models.md, "On real data"). The gyro reads 0.48% and 0.44% high about x and y
+// (M_g(0,0), M_g(1,1), 3.2 and 2.7 std from 1): the `calibrated` model, which trusts the gyro's scale,
+// puts the discrepancy into the lever arm.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -46,6 +57,9 @@ constexpr double kMaxMisalignmentRad = 0.3 * kDegToRad;  // 0.3 deg
 constexpr double kMaxScaleStd = kMaxScaleError;
 constexpr double kMaxMisalignmentStd = kMaxMisalignmentRad;
 constexpr double kMaxGyroFrameStd = 2.0;
+// The bar for T_cam_imu against the `calibrated` run, met with M_g held (measured
+// 0.05-0.38 std).
+constexpr double kMaxTranslationStd = 1.0;
 
 // The rotation nearest to M (the polar decomposition's orthogonal factor, U V^T of the SVD).
 Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& M) {
@@ -53,7 +67,8 @@ Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& M) {
   return svd.matrixU() * svd.matrixV().transpose();
 }
 
-CalibrationResult CalibrateImuApril(ImuModelKind model) {
+CalibrationResult CalibrateImuApril(ImuModelKind model,
+                                    const std::vector<std::string>& held = {}) {
   const std::vector<ImuSample> imu =
       ReadEurocImu(testing::SharedDataPath("euroc_imu_april/imu0.csv"));
   const std::vector<Observation> observations =
@@ -66,6 +81,7 @@ CalibrationResult CalibrateImuApril(ImuModelKind model) {
   options.solver.num_threads = 2;
   options.keep_residuals = false;
   options.imu_model = model;
+  options.imu_model_held = held;
   return Calibrate(imu, observations, camchain, &target, options);
 }
 
@@ -134,18 +150,69 @@ TEST(CalibrateImuModelEuroc, FactoryCalibratedImuComesOutNearNominal) {
     const Eigen::Vector3d d_trans =
         a.calibration.T_cam_imu.translation() - b.calibration.T_cam_imu.translation();
     for (int k = 0; k < 3; ++k) {
+      const double var_a = a.translation_std_m[k] * a.translation_std_m[k];
+      const double var_b = b.translation_std_m[k] * b.translation_std_m[k];
       std::printf(
           "cam%zu axis %d: rotation %+.4f deg, camera to gyro %+.4f deg (std %.4f), "
-          "translation %+.3f mm (std %.3f)\n",
+          "translation %+.3f mm (std calibrated %.3f, model %.3f, difference %.3f)\n",
           cam,
           k,
           d_rot_deg[k],
           d_gyro_deg[k],
           b.rotation_std_deg[k],
           1e3 * d_trans[k],
-          1e3 * b.translation_std_m[k]);
+          1e3 * b.translation_std_m[k],
+          1e3 * a.translation_std_m[k],
+          1e3 * std::sqrt(std::max(0.0, var_a - var_b)));
       EXPECT_LE(std::abs(d_gyro_deg[k]), kMaxGyroFrameStd * b.rotation_std_deg[k])
           << "cam" << cam << " axis " << k;
+    }
+  }
+
+  // The gyro's M_g held at nominal: the translation is the calibrated run's.
+  const CalibrationResult held_m_g = CalibrateImuApril(ImuModelKind::kScaleMisalignment, {"M_g"});
+  ASSERT_TRUE(held_m_g.covariance_ok);
+  EXPECT_TRUE(std::isnan(held_m_g.imu_model_std.M_g(0, 0))) << "a held entry has no std";
+  for (size_t cam = 0; cam < held_m_g.cameras.size(); ++cam) {
+    const Eigen::Vector3d d = held_m_g.cameras[cam].calibration.T_cam_imu.translation() -
+                              calibrated.cameras[cam].calibration.T_cam_imu.translation();
+    for (int k = 0; k < 3; ++k) {
+      const double std_m = calibrated.cameras[cam].translation_std_m[k];
+      std::printf("M_g held: cam%zu axis %d translation %+.3f mm (%.2f std)\n",
+                  cam, k, 1e3 * d[k], d[k] / std_m);
+      EXPECT_LE(std::abs(d[k]), kMaxTranslationStd * std_m) << "cam" << cam << " axis " << k;
+    }
+  }
+}
+
+// A study (disabled: six calibrations, about 3 min on the shared machine; run with
+// --gtest_also_run_disabled_tests): which of the model's parameters moves the translation. Each
+// group held at nominal in turn, the rest of the model estimated; cam0's translation against the
+// `calibrated` run. Measured 2026-11-28 (docs/imu_models.md): only M_g brings it back (+0.16,
+// -0.24, +0.03 mm); with A, C_gyro_i, M_a or M_a's off-diagonals held the z shift stays -5.1 to
+// -5.5 mm and the y shift -2.3 to -2.7 mm.
+TEST(CalibrateImuModelEuroc, DISABLED_WhatMovesTheTranslation) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
+  const CalibrationResult calibrated = CalibrateImuApril(ImuModelKind::kCalibrated);
+  const std::vector<std::vector<std::string>> held_sets = {
+      {"A"}, {"C_gyro_i"}, {"M_a(1,0)", "M_a(2,0)", "M_a(2,1)"}, {"M_a"}, {"M_g"}};
+  for (const std::vector<std::string>& held : held_sets) {
+    const CalibrationResult model = CalibrateImuApril(ImuModelKind::kScaleMisalignment, held);
+    std::string names;
+    for (const std::string& n : held) names += n + " ";
+    const Eigen::Vector3d d = model.cameras[0].calibration.T_cam_imu.translation() -
+                              calibrated.cameras[0].calibration.T_cam_imu.translation();
+    const Eigen::Vector3d std_m = calibrated.cameras[0].translation_std_m;
+    std::printf("held %s: cam0 translation change %+.3f %+.3f %+.3f mm (model std %.3f %.3f %.3f)\n",
+                names.c_str(), 1e3 * d[0], 1e3 * d[1], 1e3 * d[2],
+                1e3 * model.cameras[0].translation_std_m[0],
+                1e3 * model.cameras[0].translation_std_m[1],
+                1e3 * model.cameras[0].translation_std_m[2]);
+    // Holding M_g removes the shift; holding anything else leaves the z shift beyond 3 std.
+    if (held.front() == "M_g") {
+      EXPECT_LE(d.cwiseQuotient(std_m).cwiseAbs().maxCoeff(), kMaxTranslationStd);
+    } else {
+      EXPECT_GT(std::abs(d[2]), 3.0 * std_m[2]) << names;
     }
   }
 }

@@ -175,6 +175,11 @@ struct CalibrateOptions {
   // rz_i with the size effect) to the problem, starting at nominal, with analytic residuals
   // (estimation/detail/imu_model_costs.h).
   ImuModelKind imu_model = ImuModelKind::kCalibrated;
+  // Model parameters held at nominal whatever the recording determines (no std reported), by
+  // their names in estimation/imu_model_observability.h ("A(1,2)", "C_gyro_i(z)"); a bare
+  // matrix name ("A", "M_a", "C_gyro_i") holds all its entries. For studies of what a parameter
+  // does to the rest (docs/imu_models.md, "On real data"). An unknown name throws Error.
+  std::vector<std::string> imu_model_held;
   // The rig's further IMUs (FurtherImu; empty: one IMU). Their initial guess: C_i_b by aligning
   // their gyro with the initial spline's angular velocity (closed-form Kabsch), the time offset
   // from the gyro-rate correlation (vio/time_offset_correlation.h, within max_time_offset_s),
