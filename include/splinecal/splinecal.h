@@ -197,6 +197,7 @@
 #include "splinecal/report/evaluate_report.h"
 #include "splinecal/report/fit_report.h"
 #include "splinecal/report/html_page.h"
+#include "splinecal/report/imu_model_report.h"
 #include "splinecal/report/integrate_report.h"
 #include "splinecal/report/intrinsics_report.h"
 #include "splinecal/report/report_inputs.h"
