@@ -20,6 +20,8 @@
 //     20 seeds, 5.26 / 3.59 / 1.61, every error and std nearly as at 0.05 s;
 //   - not the IMU-noise estimation: ImuNoiseMode::kGiven 6.21 / 3.76 / 2.51, the same errors;
 //     the reference IMU's measured white noise is 0.99-1.03 of the given density (seeds 1-3);
+//   - not a wrong derivative of the further IMU's residuals: their Jacobians match central
+//     differences (tests/estimation/further_imu_cost_test.cc);
 //   - not an unconverged solve: the further IMU's time offset started 0.3 ms off converged to the
 //     same estimate on every seed (8 seeds);
 //   - not the mounting: C_i_b = I 4.19 / 3.16 / 1.87; no clock offset 6.25 / 3.66 / 2.58;
