@@ -10,6 +10,7 @@
 
 #include "testing/autodiff_costs.h"
 #include "testing/autodiff_imu_model_costs.h"
+#include "testing/cost_evaluation.h"
 #include "splinecal/estimation/detail/imu_costs.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/lie/se3_manifold.h"
@@ -28,56 +29,15 @@ constexpr double kExactTolerance = 1e-9;
 constexpr double kNumericTolerance = 1e-6;
 constexpr double kDtS = 0.1;
 
-struct Evaluation {
-  Eigen::VectorXd residuals;
-  std::vector<Eigen::MatrixXd> jacobians;  // ambient, per block
-};
+using testing::Evaluate;
+using testing::Evaluation;
+using testing::RelativeError;
 
-Evaluation Evaluate(const ceres::CostFunction& cost, const std::vector<double*>& blocks) {
-  Evaluation e;
-  const int rows = cost.num_residuals();
-  e.residuals.resize(rows);
-  std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J;
-  std::vector<double*> pointers;
-  for (int size : cost.parameter_block_sizes()) J.emplace_back(rows, size);
-  for (auto& j : J) pointers.push_back(j.data());
-  EXPECT_TRUE(cost.Evaluate(blocks.data(), e.residuals.data(), pointers.data()));
-  for (auto& j : J) e.jacobians.emplace_back(j);
-  return e;
-}
-
-double RelativeError(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff());
-}
-
-// Four lively control poses (rotation steps ~0.35 rad, translation ~1 m per 0.1 s knot).
-struct Fixture {
-  std::vector<std::array<double, 7>> poses;
-  std::vector<std::array<double, 3>> gyro_bias;
-  std::vector<std::array<double, 3>> accel_bias;
-  std::array<double, 3> gravity = {0.3, -0.2, -9.8};
+// A segment's blocks (testing/cost_evaluation.h) and the model's parameters.
+struct Fixture : testing::SegmentBlocks {
   ImuModelParameters model;
 
-  explicit Fixture(uint64_t seed) {
-    std::mt19937 rng(static_cast<unsigned>(seed));
-    std::normal_distribution<double> normal(0.0, 1.0);
-    SE3d T = SE3d::Exp((Vector6d() << 1.0, -2.0, 0.5, 0.3, -1.2, 2.0).finished());
-    poses.resize(4);
-    for (auto& pose : poses) {
-      Vector6d xi;
-      for (int k = 0; k < 6; ++k) xi[k] = (k < 3 ? 1.0 : 0.35) * normal(rng);
-      T = T * SE3d::Exp(xi);
-      PoseToBlock(T, pose.data());
-    }
-    gyro_bias.resize(4);
-    accel_bias.resize(4);
-    for (int j = 0; j < 4; ++j) {
-      for (int a = 0; a < 3; ++a) {
-        gyro_bias[j][a] = 0.01 * normal(rng);
-        accel_bias[j][a] = 0.1 * normal(rng);
-      }
-    }
-  }
+  explicit Fixture(uint64_t seed) : SegmentBlocks(seed) {}
   // A miscalibrated IMU: scale 2%, misalignment 0.01, A 0.005, C_gyro_i 0.02 rad, lever arms
   // of a few cm (values of the order Rehder et al. report, magnified).
   void Perturb(bool rotate_gyro) {
