@@ -225,8 +225,8 @@ void BindCalibrate(py::module_& m) {
 EuRoC imu0/data.csv path or {t_ns, gyro, accel}; observations: an observations.csv path or
 {t_ns, cam_id, point_id, uv}; camchain and target: Kalibr YAML paths (target None: natural
 landmarks only, which needs initial_poses: a EuRoC ground truth / TUM path or {t_ns, T_w_s});
-cameras: "0,2" or [0, 2] (default: all); intrinsics, camera_chain: "held", "prior" or "free"
-("": the camchain decides, docs/calibrate.md); target_scale: "check", "free" or "held";
+cameras: "0,2" or [0, 2] (default: all); intrinsics: "held", "prior", "consider" or "free";
+camera_chain: "held", "prior" or "free" ("": the camchain decides, docs/calibrate.md); target_scale: "check", "free" or "held";
 imu_model: Kalibr's "calibrated", "scale-misalignment" or "scale-misalignment-size-effect"
 (docs/imu_models.md). Several IMUs of one rig (docs/calibrate.md, "Several IMUs"): imu a list of
 sources or "a.csv,b.csv" (with bag: imu_topic "/imu0,/imu1"), the first the reference; imu_yaml

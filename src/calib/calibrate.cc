@@ -78,7 +78,7 @@ void CalibrationProblem::BuildProblem() {
     if (!HeldToReference(c)) {
       problem().AddParameterBlock(cam.extrinsic.data(), 7, spline_->se3_manifold());
     }
-    if (EstimatesIntrinsics(c)) {
+    if (HasIntrinsicsBlock(c)) {
       // Only the entries the camera model uses vary (camera/camera_model.h).
       const std::vector<int> active = camchain_[c].camera.ActiveIntrinsics();
       std::vector<int> held;
@@ -90,6 +90,9 @@ void CalibrationProblem::BuildProblem() {
       }
       problem().AddParameterBlock(cam.intrinsics.data(), kNumIntrinsics,
                                   cam.intrinsics_manifold.get());
+      // Considered intrinsics are held in the solve; their block is there for the covariance's
+      // d theta / d c (ComputeCovariance).
+      if (!EstimatesIntrinsics(c)) problem().SetParameterBlockConstant(cam.intrinsics.data());
     }
     // Both intervals are kept by the blocks' Plus, not by Ceres' bounds
     // (estimation/interval_manifold.h: bounds would double the Jacobian evaluations).
@@ -245,7 +248,7 @@ std::vector<double*> CalibrationProblem::Blocks(const FrameResidual& r) {
                               control_blocks().begin() + r.window.last_index() + 1);
   blocks.insert(blocks.end(),
                 {ExtrinsicBlock(c), &cam.time_offset_s, &cam.line_delay, T_w_t_.data()});
-  if (EstimatesIntrinsics(c)) blocks.push_back(cam.intrinsics.data());
+  if (HasIntrinsicsBlock(c)) blocks.push_back(cam.intrinsics.data());
   if (target_scale_free_) blocks.push_back(&target_scale_);
   return blocks;
 }
@@ -537,6 +540,8 @@ const char* ParameterModeName(ParameterMode mode) {
       return "prior";
     case ParameterMode::kFree:
       return "free";
+    case ParameterMode::kConsider:
+      return "consider";
   }
   return "held";
 }
@@ -573,9 +578,11 @@ std::vector<ParameterMode> ResolveIntrinsicsModes(const CalibrateOptions& option
     } else {
       modes[c] = CovarianceOf(options, c) != nullptr ? ParameterMode::kPrior : ParameterMode::kHeld;
     }
-    if (modes[c] == ParameterMode::kPrior && CovarianceOf(options, c) == nullptr) {
-      throw Error("calibrate: an intrinsics prior needs the camchain's covariance, and cam" +
-                  std::to_string(c) +
+    const bool needs_covariance =
+        modes[c] == ParameterMode::kPrior || modes[c] == ParameterMode::kConsider;
+    if (needs_covariance && CovarianceOf(options, c) == nullptr) {
+      throw Error(std::string("calibrate: intrinsics ") + ParameterModeName(modes[c]) +
+                  " needs the camchain's covariance, and cam" + std::to_string(c) +
                   " has none (splinecal_covariance, written by `splinecal intrinsics`)");
     }
   }
@@ -593,6 +600,10 @@ ParameterMode ResolveCameraChainMode(const CalibrateOptions& options, size_t num
   ParameterMode mode = ParameterMode::kFree;
   if (options.camera_chain) {
     mode = *options.camera_chain;
+    if (mode == ParameterMode::kConsider) {
+      throw Error("calibrate: the camera chain can be held, prior or free; consider is for the "
+                  "intrinsics");
+    }
   } else if (chain_given) {
     mode = chain_covariances ? ParameterMode::kPrior : ParameterMode::kHeld;
   }
@@ -683,7 +694,8 @@ CalibrationResult Calibrate(const std::vector<ImuSample>& imu,
   const double init_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - init_start).count();
   if (any_intrinsics && (target == nullptr || !problem.landmarks()->empty())) {
-    throw Error("calibrate: estimated intrinsics (--intrinsics prior or free) need target corners "
+    throw Error("calibrate: estimated or considered intrinsics (--intrinsics prior, consider or "
+                "free) need target corners "
                 "only (landmark residuals take the intrinsics as given; --intrinsics held); the "
                 "observations have " +
                 std::to_string(problem.landmarks()->size()) + " landmark(s)");

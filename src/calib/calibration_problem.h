@@ -184,12 +184,18 @@ class CalibrationProblem {
     s.huber_px = huber;
     s.shared = spline_->evaluation_callback();
     if (HeldToReference(cam)) s.T_cam_cref = options_.camera_chain_T_cn_c0[cam];
-    s.estimate_intrinsics = EstimatesIntrinsics(cam);
+    s.estimate_intrinsics = HasIntrinsicsBlock(cam);
     return s;
   }
   // With a held camera chain every camera after the first rides on camera 0's T_cam_imu block.
   bool HeldToReference(size_t c) const { return c > 0 && chain_mode_ == ParameterMode::kHeld; }
-  bool EstimatesIntrinsics(size_t c) const { return intrinsics_modes_[c] != ParameterMode::kHeld; }
+  bool EstimatesIntrinsics(size_t c) const {
+    return intrinsics_modes_[c] == ParameterMode::kPrior ||
+           intrinsics_modes_[c] == ParameterMode::kFree;
+  }
+  // The frames' costs take the intrinsics as a block (estimated, or considered: held constant in
+  // the solve, freed for the covariance's sensitivity).
+  bool HasIntrinsicsBlock(size_t c) const { return intrinsics_modes_[c] != ParameterMode::kHeld; }
   // The prior residual of camera c (intrinsics and/or T_cn_cnm1; nullptr: none).
   std::unique_ptr<CamchainPriorCostFunction> PriorCost(size_t c, std::vector<double*>* blocks);
   // The frame's cost with the target scale's block when it is free (target_scale_cost.h).
@@ -261,6 +267,14 @@ class CalibrationProblem {
     return cam.line_delay <= 0.0 || cam.line_delay >= cam.max_line_delay;
   }
   void ComputeCovariance(CalibrationResult* result);
+  // Adds S Sigma_c S^T of the considered intrinsics (ParameterMode::kConsider;
+  // calib/consider_covariance.h) to the reported covariance `cov` of the quantities
+  // q = reported_map x of the blocks `wanted`, and sets their carried stds in `result`. False
+  // (cov unchanged) when the sensitivity cannot be computed; true when nothing is considered.
+  bool CarryConsideredIntrinsics(std::vector<const double*> wanted,
+                                 const Eigen::MatrixXd& reported_map,
+                                 Eigen::MatrixXd* cov,
+                                 CalibrationResult* result);
   // result->cameras[c].baseline_std_m (c > 0) from the reported covariance `cov` of the
   // requested blocks (first row of each at offset[block]).
   void BaselineStd(size_t c,

@@ -1,12 +1,16 @@
 #include "calibration_problem.h"
 
+#include <glog/logging.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <vector>
 
+#include "splinecal/calib/consider_covariance.h"
 #include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/estimation/view_clusters.h"
 #include "splinecal/imu/imu_rate.h"
@@ -163,8 +167,12 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     }
   }
   // Rows and columns scaled alike: the correlations stay the noise model's.
-  const Eigen::MatrixXd cov =
-      inflation.asDiagonal() * marginal.covariance * inflation.asDiagonal();
+  Eigen::MatrixXd cov = inflation.asDiagonal() * marginal.covariance * inflation.asDiagonal();
+  if (!CarryConsideredIntrinsics(wanted, A, &cov, result)) {
+    result->warnings.push_back(
+        "the considered intrinsics' uncertainty could not be carried (this recording's corners "
+        "do not determine them); the standard deviations treat them as exact");
+  }
   result->std_inflation = inflation.maxCoeff();
   result->robust_clusters = marginal.num_clusters;
   auto block = [&](const double* a, int rows) {
@@ -205,6 +213,74 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   result->gyro_bias_std = bias_std.head<3>();
   result->accel_bias_std = bias_std.tail<3>();
   AddStandardDeviationWarnings(options_, imu_noise_->estimate(), result);
+}
+
+bool CalibrationProblem::CarryConsideredIntrinsics(std::vector<const double*> wanted,
+                                                   const Eigen::MatrixXd& reported_map,
+                                                   Eigen::MatrixXd* cov,
+                                                   CalibrationResult* result) {
+  // Sigma_c: each considered camera's block of the camchain's covariance, its intrinsics rows
+  // in the order of the block's tangent (the active entries, ascending); the cameras' blocks
+  // are independent (each camchain entry carries its own). The T_cn_cnm1 rows stay with the
+  // camera chain's mode.
+  std::vector<size_t> considered;
+  std::vector<std::vector<int>> rows;  // per considered camera: its tangent's covariance rows
+  int num_c = 0;
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    if (intrinsics_modes_[c] != ParameterMode::kConsider) continue;
+    const CameraCovariance& given = *options_.camchain_covariances[c];
+    std::vector<int> r;
+    for (int j : camchain_[c].camera.ActiveIntrinsics()) {
+      const auto at = std::find(given.intrinsics.begin(), given.intrinsics.end(), j);
+      // io/camchain_yaml_covariance.h checks the names against the model's active entries.
+      CHECK(at != given.intrinsics.end()) << "cam" << c << ": intrinsic " << j << " not in the "
+                                          << "camchain's covariance";
+      r.push_back(static_cast<int>(at - given.intrinsics.begin()));
+    }
+    num_c += static_cast<int>(r.size());
+    considered.push_back(c);
+    rows.push_back(r);
+  }
+  if (considered.empty()) return true;
+  Eigen::MatrixXd Sigma_c = Eigen::MatrixXd::Zero(num_c, num_c);
+  int first = 0;
+  for (size_t k = 0; k < considered.size(); ++k) {
+    const Eigen::MatrixXd& given = options_.camchain_covariances[considered[k]]->matrix;
+    const int n = static_cast<int>(rows[k].size());
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) Sigma_c(first + i, first + j) = given(rows[k][i], rows[k][j]);
+    }
+    first += n;
+  }
+  // The joint covariance of [q; c] from the information with c free and no prior on it: the
+  // weights' (no sandwich), whose common scale cancels in S (consider_covariance.h).
+  for (size_t c : considered) {
+    problem().SetParameterBlockVariable(cameras_[c].intrinsics.data());
+    wanted.push_back(cameras_[c].intrinsics.data());
+  }
+  const int num_q = static_cast<int>(reported_map.rows());
+  Eigen::MatrixXd map = Eigen::MatrixXd::Zero(num_q + num_c, reported_map.cols() + num_c);
+  map.topLeftCorner(num_q, reported_map.cols()) = reported_map;
+  map.bottomRightCorner(num_c, num_c).setIdentity();
+  MarginalCovarianceOptions joint_options;
+  joint_options.backend = CovarianceBackend::kSchur;
+  joint_options.num_threads = options_.solver.num_threads;
+  joint_options.reported_map = map;
+  const MarginalCovariance joint = ComputeMarginalCovariance(&problem(), wanted, joint_options);
+  for (size_t c : considered) problem().SetParameterBlockConstant(cameras_[c].intrinsics.data());
+  if (!joint.ok) return false;
+  const std::optional<Eigen::MatrixXd> S = ConsiderSensitivity(joint.covariance, num_c);
+  if (!S) return false;
+  *cov = AddConsidered(*cov, *S, Sigma_c);
+  first = 0;
+  for (size_t k = 0; k < considered.size(); ++k) {
+    const std::vector<int> active = camchain_[considered[k]].camera.ActiveIntrinsics();
+    for (size_t j = 0; j < active.size(); ++j, ++first) {
+      result->cameras[considered[k]].intrinsics_std(active[j]) =
+          std::sqrt(Sigma_c(first, first));
+    }
+  }
+  return true;
 }
 
 void CalibrationProblem::ImuModelStdFrom(const Eigen::MatrixXd& cov,
@@ -321,7 +397,8 @@ void CalibrationProblem::Collect(CalibrationResult* result) {
     estimate.intrinsics_mode = intrinsics_modes_[c];
     if (EstimatesIntrinsics(c)) out.camera.set_intrinsics(cameras_[c].intrinsics);
     estimate.intrinsics_estimated = EstimatesIntrinsics(c);
-    if (intrinsics_modes_[c] == ParameterMode::kPrior) {
+    if (intrinsics_modes_[c] == ParameterMode::kPrior ||
+        intrinsics_modes_[c] == ParameterMode::kConsider) {
       const CameraCovariance& prior = *options_.camchain_covariances[c];
       for (size_t j = 0; j < prior.intrinsics.size(); ++j) {
         estimate.intrinsics_prior_std(prior.intrinsics[j]) = std::sqrt(prior.matrix(j, j));

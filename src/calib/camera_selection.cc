@@ -132,10 +132,13 @@ std::optional<ParameterMode> ParseParameterMode(const std::string& flag,
                                                 const std::string& alias_flag) {
   std::optional<ParameterMode> mode;
   if (!value.empty()) {
-    for (ParameterMode m : {ParameterMode::kHeld, ParameterMode::kPrior, ParameterMode::kFree}) {
+    for (ParameterMode m : {ParameterMode::kHeld, ParameterMode::kPrior, ParameterMode::kFree,
+                            ParameterMode::kConsider}) {
       if (value == ParameterModeName(m)) mode = m;
     }
-    if (!mode) throw Error(flag + ": expected held, prior or free, got '" + value + "'");
+    if (!mode) {
+      throw Error(flag + ": expected held, prior, consider or free, got '" + value + "'");
+    }
   }
   if (!alias) return mode;
   if (mode && *mode != alias_mode) {

@@ -56,8 +56,9 @@ DEFINE_double(pixel_sigma,
               "residuals (robustly) and solves again");
 DEFINE_string(intrinsics,
               "",
-              "held | prior | free: the cameras' intrinsics held at the camchain's, estimated "
-              "with the camchain's covariance as a prior, or estimated freely (prior and free "
+              "held | prior | consider | free: the cameras' intrinsics held at the camchain's, "
+              "estimated with the camchain's covariance as a prior, held with that covariance "
+              "carried into the other stds (consider), or estimated freely (all but held "
               "need --target and no natural landmarks). Default: prior for a camera whose "
               "camchain entry has a splinecal_covariance (`splinecal intrinsics` writes it), "
               "else held");
@@ -321,7 +322,7 @@ Command CalibrateCommand() {
           "    | --bag FILE [--imu-topic T[,T...]] [--bag-time header|receive])\n"
           "    --observations FILE --camchain FILE [--target FILE]\n"
           "    [--cameras I,J] [--initial-poses FILE] [--imu-yaml FILE[,FILE...]] [--imu-noise MODE] [--rolling-shutter] [--no-time-offset]\n"
-          "    [--intrinsics held|prior|free] [--camera-chain held|prior|free] [--target-scale check|free|held]\n"
+          "    [--intrinsics held|prior|consider|free] [--camera-chain held|prior|free] [--target-scale check|free|held]\n"
           "    [--imu-model calibrated|scale-misalignment|scale-misalignment-size-effect]\n"
           "    [--hold-camera-chain] [--estimate-intrinsics]\n"
           "    [--knot-spacing S] [--trajectory se3|split] [--pixel-sigma PX] [--huber PX]\n"

@@ -65,7 +65,8 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
     };
     yaml->Vector(key, pick(values));
     yaml->Vector(key + "_before", pick(c.intrinsics_before));
-    if (c.intrinsics_mode == ParameterMode::kPrior) {
+    if (c.intrinsics_mode == ParameterMode::kPrior ||
+        c.intrinsics_mode == ParameterMode::kConsider) {
       yaml->Vector(key + "_prior_std", pick(c.intrinsics_prior_std));
     }
     if (c.intrinsics_estimated) yaml->Vector(key + "_std", pick(c.intrinsics_std));

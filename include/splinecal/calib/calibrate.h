@@ -81,9 +81,14 @@ namespace splinecal {
 //   kPrior  estimated, with a Gaussian prior at the camchain's value: the residual
 //           L^-1 (theta - theta_0), Sigma = L L^T the camchain's covariance, joins the problem,
 //           so the standard deviations of everything else include its uncertainty;
-//   kFree   estimated from this recording alone, starting at the camchain's value.
-enum class ParameterMode { kHeld, kPrior, kFree };
-const char* ParameterModeName(ParameterMode mode);  // "held", "prior", "free"
+//   kFree   estimated from this recording alone, starting at the camchain's value;
+//   kConsider  (intrinsics only) held at the camchain's value, with the camchain's covariance
+//           Sigma_c carried into the others' ("consider" parameters, Schmidt): each reported
+//           covariance is Sigma_theta|c + S Sigma_c S^T, S = d theta / d c = -H_tt^-1 H_tc from
+//           this problem's information at the solution (calib/consider_covariance.h). The
+//           corners count once: no prior made from them joins the problem that fits them again.
+enum class ParameterMode { kHeld, kPrior, kFree, kConsider };
+const char* ParameterModeName(ParameterMode mode);  // "held", "prior", "free", "consider"
 // The target's scale s (p_t -> s p_t) against the IMU (CalibrateOptions::target_scale):
 //   kCheck  estimated, refused beyond the thresholds, then held at 1 (the default);
 //   kFree   estimated and kept in the result (metric scale from the accelerometer);
@@ -219,14 +224,14 @@ struct CameraEstimate {
   double baseline_m = std::numeric_limits<double>::quiet_NaN();
   double baseline_std_m = std::numeric_limits<double>::quiet_NaN();
   // The intrinsics: how they were treated, the camchain's values (before; `calibration` has
-  // after), the prior's std (kPrior) and the estimate's std (layout of camera/camera_model.h; NaN
-  // where held or not in the prior).
+  // after), the prior's std (kPrior, kConsider) and the estimate's std (layout of
+  // camera/camera_model.h; NaN where held or not in the prior; kConsider: the carried one).
   ParameterMode intrinsics_mode = ParameterMode::kHeld;
   IntrinsicsVector intrinsics_before = IntrinsicsVector::Zero();
   IntrinsicsVector intrinsics_prior_std =
       IntrinsicsVector::Constant(std::numeric_limits<double>::quiet_NaN());
   IntrinsicsVector intrinsics_std = IntrinsicsVector::Constant(std::numeric_limits<double>::quiet_NaN());
-  bool intrinsics_estimated = false;  // intrinsics_mode != kHeld
+  bool intrinsics_estimated = false;  // intrinsics_mode is kPrior or kFree
   double line_delay_std_s = std::numeric_limits<double>::quiet_NaN();
   bool time_offset_estimated = false;
   bool line_delay_estimated = false;
