@@ -22,7 +22,55 @@ set(SPLINECAL_SANITIZE_SKIP_TESTS
   # --rolling-shutter). The tool's --rolling-shutter path runs in every CalibrateCommand test
   # (simulated data), the same real window without it in
   # CalibrateCommandRealWindow.EvaluateOnTheSplinePredictsTheAccelerometer.
-  "CalibrateCommandRealWindow.RollingShutterOnAGlobalShutterConvergesAsFast")
+  "CalibrateCommandRealWindow.RollingShutterOnAGlobalShutterConvergesAsFast"
+  # The double-sphere fisheye with 100 landmarks, 8 s (70 s sanitized): an accuracy within the
+  # targets and stds. The same model and intrinsics, with landmarks seen through it, run in
+  # SimulateCameraCommand.WideAngleDoubleSphereThroughSimulateAndCalibrate (12 s: simulate and
+  # calibrate, 4 s, 60 landmarks); the landmark path from initial poses in
+  # Calibrate.NaturalLandmarksOnlyFromInitialPosesShortRecording.
+  "Calibrate.WideAngleDoubleSphereRoundTrip"
+  # Renders 100+ frames, detects them and calibrates on the detections (53 s sanitized): the
+  # corners' and the calibration's accuracy. The detector on a folder of frames runs in
+  # DetectCommand.FindsEveryCornerOfTheBundledStereoFrame (real EuRoC frames), the renderer and
+  # the detector on rendered grids in AprilGridRecall.TwentyPixelTagsOfRenderedGridsGiveExact-
+  # Corners, and calibrate on an observations file with the same flags in
+  # CalibrateCommand.WritesKalibrCamchainResultAndReport.
+  "DetectThenCalibrate.ImagesOfASimulatedRecordingGiveTheRigBack"
+  # Two 30 s fits, bias spline against constant bias (36 s sanitized): the residuals' levels.
+  # The spline bias model in Fit, with its covariance, runs in
+  # Fit.TheThreeCovarianceComputationsAgree (8 s of data, three solves); the kept per-sample
+  # residuals in Fit.KeepsPerSampleResidualsForTheReport.
+  "Fit.BiasSplineFollowsADriftingBias"
+  # Every camera model on 40 views (32 s sanitized): each within 4 of its stds. The same
+  # CalibrateIntrinsics path for every model, on 6 views, runs in
+  # CalibrateIntrinsicsModels.EveryModelFitsAFewViewsAtThePixelNoise (written for this).
+  "CalibrateIntrinsics.EveryModelFromTheSweepWithinThreeStd"
+  # Four 8 s calibrations with free intrinsics, with and without the view clusters (28 s
+  # sanitized): how much the stds widen. The view-cluster covariance is on by default
+  # (CovarianceOptions::view_clusters) and runs with free intrinsics in
+  # Calibrate.EstimatedIntrinsicsFromAPerturbedStartWithinThreeStd; the clusters themselves in
+  # ViewClusters.* (intrinsics).
+  "CalibrateViewClusters.WidenTheStdsForAModelMisfitNotForAnExactModel"
+  # simulate, then calibrate with --rolling-shutter and --imu-yaml (26 s sanitized): the time
+  # offset, line delay and lever arm recovered. simulate's files run in
+  # SimulateCameraCommand.WritesObservationsAndTruthDeterministically and
+  # SimulateCameraCommand.WideAngleDoubleSphereThroughSimulateAndCalibrate (simulate then
+  # calibrate); calibrate with --rolling-shutter in every CalibrateCommand test.
+  "SimulateCameraCommand.CalibrateRecoversTheSimulatedRig"
+  # Two IMUs, the second turned and moved (22 s sanitized): its pose and time offset recovered.
+  # Two IMUs through the same calibration run in CalibrateImus.UndeterminedLeverArmHeldWith-
+  # AWarning (9 s) and, through the tool with its files, in
+  # CalibrateCommand.SeveralImusWriteEachImu.
+  "CalibrateImus.TwoImusRoundTrip"
+  # The strided Allan kernel against a direct sum over 300,001 samples (15 s sanitized): an
+  # agreement to 1e-12, arithmetic the Release build checks. The same strided kernel, with the
+  # budget's strides on 1,000,000 samples, runs in
+  # StridedAllanDeviation.ExactCurveLiesWithinTheStridedIntervals (1 s).
+  "StridedAllanDeviation.EqualsDirectStridedSum"
+  # A fit of the EuRoC V1_01_easy recording (12 s sanitized): its biases and gravity against the
+  # ground truth. The same files are read in ReadEurocGroundTruth.SharedRealDataReads, and Fit
+  # with its options in every Fit.* test (simulated data).
+  "FitEuroc.V101EasyBiasesMatchTheGroundTruth")
 foreach(splinecal_skipped_test ${SPLINECAL_SANITIZE_SKIP_TESTS})
   # One label per test as ctest reads it; "fast" stays for `ctest -L fast`.
   set_tests_properties("${splinecal_skipped_test}" PROPERTIES LABELS "fast;sanitize_skip")

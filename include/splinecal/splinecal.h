@@ -24,6 +24,7 @@
 #ifndef SPLINECAL_SPLINECAL_H_
 #define SPLINECAL_SPLINECAL_H_
 
+#include "splinecal/axis_name.h"
 #include "splinecal/error.h"
 #include "splinecal/median.h"
 #include "splinecal/memory_reuse.h"

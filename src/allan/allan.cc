@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "splinecal/allan/detail/sensor_units.h"
+#include "splinecal/axis_name.h"
 #include "splinecal/error.h"
 #include "splinecal/string_printf.h"
 
@@ -37,7 +38,7 @@ KalibrKey Combine(const std::vector<AxisAllan>& axes,
     largest_bound = std::max(largest_bound, estimate.upper_bound);
     if (!estimate.identified) continue;
     identified.push_back(estimate.value);
-    key.axes += std::string(key.axes.empty() ? "" : ", ") + internal::kAxisLetters[axis.axis];
+    key.axes += std::string(key.axes.empty() ? "" : ", ") + AxisName(axis.axis);
   }
   if (!key.present) return key;
   key.unreliable = unreliable;

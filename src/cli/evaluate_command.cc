@@ -33,7 +33,7 @@ struct EvaluateInputs {
 };
 
 EvaluateInputs ReadEvaluateInputs() {
-  EvaluateInputs in{ReadSplineCsv(RequiredFlag("spline", FLAGS_spline))};
+  EvaluateInputs in{ReadSplineCsv(RequiredFlag("spline", FLAGS_spline)), EvaluateOptions{}};
   in.options.samples = FLAGS_samples;
   in.options.every_s = FLAGS_every;
   in.options.gravity_m_s2 = PositiveFlag("gravity", FLAGS_gravity);

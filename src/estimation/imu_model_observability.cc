@@ -8,6 +8,8 @@
 #include <limits>
 #include <map>
 
+#include "splinecal/axis_name.h"
+
 namespace splinecal {
 namespace {
 
@@ -21,8 +23,6 @@ constexpr double kRotationMeaninglessRad = 0.0175;
 constexpr double kLeverArmMeaningless_m = 0.01;
 // Eigenvalues below this fraction of the largest are raised to it (the file comment).
 constexpr double kEigenFloor = 1e-12;
-
-const char* Axis(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 
 std::vector<ImuModelParameter> ListParameters(SplineProblem* problem) {
   std::vector<ImuModelParameter> list;
@@ -41,27 +41,27 @@ std::vector<ImuModelParameter> ListParameters(SplineProblem* problem) {
     for (int c = 0; c <= r; ++c) {
       const std::string rc = "(" + std::to_string(r) + "," + std::to_string(c) + ")";
       add(m.m_a.data(), LowerTriangularIndex(r, c), "M_a" + rc,
-          std::string("specific force along the accelerometer's ") + Axis(c) + " axis",
+          std::string("specific force along the accelerometer's ") + AxisName(c) + " axis",
           kMatrixMeaningless);
       add(m.m_g.data(), LowerTriangularIndex(r, c), "M_g" + rc,
-          std::string("rotation about the gyro's ") + Axis(c) + " axis", kMatrixMeaningless);
+          std::string("rotation about the gyro's ") + AxisName(c) + " axis", kMatrixMeaningless);
     }
   }
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) {
       add(m.a.data(), 3 * r + c, "A(" + std::to_string(r) + "," + std::to_string(c) + ")",
-          std::string("specific force along the gyro's ") + Axis(c) + " axis", kAMeaningless);
+          std::string("specific force along the gyro's ") + AxisName(c) + " axis", kAMeaningless);
     }
   }
   for (int a = 0; a < 3; ++a) {
-    add(m.phi_gyro_i.data(), a, std::string("C_gyro_i(") + Axis(a) + ")",
-        std::string("rotation about an axis other than ") + Axis(a), kRotationMeaninglessRad);
+    add(m.phi_gyro_i.data(), a, std::string("C_gyro_i(") + AxisName(a) + ")",
+        std::string("rotation about an axis other than ") + AxisName(a), kRotationMeaninglessRad);
   }
   if (problem->imu_model_kind() == ImuModelKind::kScaleMisalignmentSizeEffect) {
     for (int a = 0; a < 3; ++a) {
-      add(m.ry_i.data(), a, std::string("ry_i(") + Axis(a) + ")",
+      add(m.ry_i.data(), a, std::string("ry_i(") + AxisName(a) + ")",
           "angular velocity and acceleration about several axes", kLeverArmMeaningless_m);
-      add(m.rz_i.data(), a, std::string("rz_i(") + Axis(a) + ")",
+      add(m.rz_i.data(), a, std::string("rz_i(") + AxisName(a) + ")",
           "angular velocity and acceleration about several axes", kLeverArmMeaningless_m);
     }
   }

@@ -1,5 +1,9 @@
 #include "splinecal/imu/static_recording.h"
 
+#include <string>
+
+#include "splinecal/axis_name.h"
+
 namespace splinecal {
 
 const char* ImuSensorName(ImuSensor sensor) {
@@ -7,8 +11,7 @@ const char* ImuSensorName(ImuSensor sensor) {
 }
 
 std::string AxisSeries::name() const {
-  static const char* const kAxisLetters[] = {"x", "y", "z"};
-  return std::string(sensor == ImuSensor::kGyroscope ? "gyro_" : "accel_") + kAxisLetters[axis];
+  return std::string(sensor == ImuSensor::kGyroscope ? "gyro_" : "accel_") + AxisName(axis);
 }
 
 }  // namespace splinecal

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "row_checks.h"
+#include "splinecal/axis_name.h"
 #include "splinecal/error.h"
 #include "splinecal/imu/imu_rate.h"
 #include "splinecal/io/parallel_euroc_imu.h"
@@ -23,8 +24,6 @@ constexpr int64_t kRowsForEstimate = 1024;
 // A mean accelerometer reading with a magnitude in this range is gravity in units of g.
 constexpr double kGravityInGLow = 0.5;
 constexpr double kGravityInGHigh = 1.5;
-
-const char* const kAxisLetters[] = {"x", "y", "z"};
 
 // Reserves every axis for the whole file, estimated from the rows read so far.
 class CapacityPlanner {
@@ -67,7 +66,7 @@ std::vector<std::string> FieldNames(const std::vector<AxisSeries>& axes) {
   std::vector<std::string> names;
   for (const AxisSeries& axis : axes) {
     names.push_back(std::string(axis.sensor == ImuSensor::kGyroscope ? "gyro " : "accel ") +
-                    kAxisLetters[axis.axis]);
+                    AxisName(axis.axis));
   }
   return names;
 }

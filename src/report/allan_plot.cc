@@ -10,13 +10,13 @@
 
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/detail/sensor_units.h"
+#include "splinecal/axis_name.h"
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/string_printf.h"
 
 namespace splinecal {
 namespace {
 
-using internal::kAxisLetters;
 using internal::SensorUnits;
 using internal::UnitsOf;
 
@@ -61,7 +61,7 @@ void AddAxisPanel(const AxisAllan& axis, bool unreliable, plot::Figure* figure) 
   plot::Panel& panel = figure->panels.emplace_back();
   panel.title =
       std::string(axis.sensor == ImuSensor::kGyroscope ? "gyroscope " : "accelerometer ") +
-      kAxisLetters[axis.axis] + (unreliable ? " (UNRELIABLE: moving)" : "");
+      AxisName(axis.axis) + (unreliable ? " (UNRELIABLE: moving)" : "");
   panel.x = {"averaging time τ [s]", plot::Scale::kLog};
   panel.y = {std::string("Allan deviation [") + units.adev_svg + "]", plot::Scale::kLog};
   panel.legend = plot::LegendPosition::kBottomLeft;

@@ -9,6 +9,7 @@
 
 #include "splinecal/allan/allan.h"
 #include "splinecal/allan/detail/sensor_units.h"
+#include "splinecal/axis_name.h"
 #include "splinecal/imu/noise.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/yaml_writer.h"
@@ -17,7 +18,6 @@
 namespace splinecal {
 namespace {
 
-using internal::kAxisLetters;
 using internal::SensorUnits;
 using internal::UnitsOf;
 
@@ -173,7 +173,7 @@ std::string AllanResultYamlText(const AllanResult& result) {
     yaml.EndMap();
     for (const AxisAllan& axis : result.axes) {
       if (axis.sensor != sensor) continue;
-      yaml.BeginMap(kAxisLetters[axis.axis]);
+      yaml.BeginMap(AxisName(axis.axis));
       yaml.Scalar("mean", axis.mean);
       if (result.motion.moving) yaml.Scalar("unreliable", std::string("the recording moves"));
       yaml.Scalar("filter_dip_below_tau_s", axis.fit.filter_dip_tau_s);

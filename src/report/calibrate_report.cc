@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "splinecal/axis_name.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/lie/so3.h"
 #include "splinecal/plot/plot_decimation.h"
@@ -23,8 +24,6 @@
 namespace splinecal {
 
 namespace {
-
-const char* const kAxisNames[3] = {"x", "y", "z"};
 
 void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
   yaml->Matrix("T_cam_imu", c.calibration.T_cam_imu.matrix());
@@ -104,7 +103,7 @@ plot::Figure ImuAxesFigure(const CalibrationResult& r,
         &figure, "", "time [s] (IMU spline)", sensor == 0 ? gyro_label : accel_label);
     for (int a = 0; a < 3; ++a) {
       plot::Series& series = panel.series.emplace_back();
-      series.label = kAxisNames[a];
+      series.label = AxisName(a);
       series.line_width = 0.8;
       for (size_t k : keep) {
         const ImuResidualRecord& s = r.imu_samples[k];
@@ -169,7 +168,7 @@ plot::Figure TrajectoryFigure(const CalibrationResult& r) {
   const SE3Splined spline = r.MakeSpline();
   plot::Series& xy = top.series.emplace_back();
   std::vector<plot::Series> components(3);
-  for (int a = 0; a < 3; ++a) components[a].label = kAxisNames[a];
+  for (int a = 0; a < 3; ++a) components[a].label = AxisName(a);
   const int64_t step = std::max<int64_t>(1, (spline.end_time_ns() - spline.start_time_ns()) / 3000);
   for (int64_t t = spline.start_time_ns(); t <= spline.end_time_ns(); t += step) {
     const Eigen::Vector3d p = spline.PoseNs(t).translation();

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "splinecal/axis_name.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/plot/plot_decimation.h"
 #include "splinecal/plot/svg_plot.h"
@@ -30,7 +31,6 @@ std::string VectorText(const Eigen::Vector3d& v, int digits) {
   return "[" + Fixed(v[0], digits) + ", " + Fixed(v[1], digits) + ", " + Fixed(v[2], digits) + "]";
 }
 
-const char* const kAxisNames[3] = {"x", "y", "z"};
 const char* const kAxisColors[3] = {"#d62728", "#2ca02c", "#1f77b4"};
 
 }  // namespace
@@ -160,7 +160,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
       plot::Panel& panel = figure.panels.emplace_back();
       panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
       panel.y = {
-          std::string(gyro ? "gyro " : "accel ") + kAxisNames[a] + (gyro ? " [rad/s]" : " [m/s^2]"),
+          std::string(gyro ? "gyro " : "accel ") + AxisName(a) + (gyro ? " [rad/s]" : " [m/s^2]"),
           plot::Scale::kLinear};
       plot::Series& measured = panel.series.emplace_back();
       measured.label = "measured";
@@ -193,7 +193,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
                plot::Scale::kLinear};
     for (int a = 0; a < 3; ++a) {
       plot::Series& series = panel.series.emplace_back();
-      series.label = kAxisNames[a];
+      series.label = AxisName(a);
       series.color = kAxisColors[a];
       series.line_width = 1.0;
       for (size_t i : keep) {
@@ -213,7 +213,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
                plot::Scale::kLinear};
     for (int a = 0; a < 3; ++a) {
       plot::Series& series = panel.series.emplace_back();
-      series.label = kAxisNames[a];
+      series.label = AxisName(a);
       series.color = kAxisColors[a];
       series.line = false;
       series.marker = plot::Marker::kCircle;
@@ -238,7 +238,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
     panel.y = {sensor == 0 ? "gyro bias [rad/s]" : "accel bias [m/s^2]", plot::Scale::kLinear};
     for (int a = 0; a < 3; ++a) {
       plot::Series& series = panel.series.emplace_back();
-      series.label = kAxisNames[a];
+      series.label = AxisName(a);
       series.color = kAxisColors[a];
       for (size_t i : keep) {
         const FitImuSample& s = imu[i];

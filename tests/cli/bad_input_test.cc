@@ -174,7 +174,9 @@ TEST_P(BadInput, ExitsTwoWithOneLineAndWritesNothing) {
   EXPECT_EQ(result.exit_code, 2) << result.err;
   EXPECT_EQ(CountLines(result.err), 1) << result.err;
   EXPECT_THAT(result.err, HasSubstr("splinecal " + row.command->name + ": "));
-  if (!bad_path.empty()) EXPECT_THAT(result.err, HasSubstr(bad_path));
+  if (!bad_path.empty()) {
+    EXPECT_THAT(result.err, HasSubstr(bad_path));
+  }
   if (row.bad != nullptr) {
     const auto instead = row.role->expect_instead.find(row.bad->name);
     EXPECT_THAT(
@@ -185,7 +187,9 @@ TEST_P(BadInput, ExitsTwoWithOneLineAndWritesNothing) {
       EXPECT_THAT(result.err, HasSubstr(bad_path + ":" + std::to_string(line) + ": "));
     }
   }
-  if (row.special == "UnwritableOutput") EXPECT_THAT(result.err, HasSubstr("a-file"));
+  if (row.special == "UnwritableOutput") {
+    EXPECT_THAT(result.err, HasSubstr("a-file"));
+  }
   EXPECT_FALSE(std::filesystem::exists(dir.File("out/result.yaml")));
 }
 

@@ -93,7 +93,9 @@ TEST(IntrinsicsCommand, StereoChessboardsGiveEveryOutput) {
     const auto parameters = cov["parameters"].as<std::vector<std::string>>();
     ASSERT_EQ(parameters.size(), n == 0 ? 8u : 14u);
     for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(parameters[i], names[i]);
-    if (n == 1) EXPECT_EQ(parameters[13], "T_cn_cnm1_phi_z");
+    if (n == 1) {
+      EXPECT_EQ(parameters[13], "T_cn_cnm1_phi_z");
+    }
     const auto matrix = cov["matrix"].as<std::vector<std::vector<double>>>();
     ASSERT_EQ(matrix.size(), parameters.size());
     for (size_t i = 0; i < matrix.size(); ++i) {

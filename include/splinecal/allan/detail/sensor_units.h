@@ -27,8 +27,6 @@ struct SensorUnits {
 
 const SensorUnits& UnitsOf(ImuSensor sensor);
 
-inline const char* const kAxisLetters[] = {"x", "y", "z"};
-
 }  // namespace internal
 }  // namespace splinecal
 
