@@ -173,6 +173,7 @@
 #include "splinecal/calib/calibrate_run.h"
 #include "splinecal/calib/camchain_prior.h"
 #include "splinecal/calib/camera_selection.h"
+#include "splinecal/calib/consider_covariance.h"
 #include "splinecal/calib/fit.h"
 
 // intrinsics/
