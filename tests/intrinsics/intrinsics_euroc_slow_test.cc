@@ -68,7 +68,8 @@ TEST(IntrinsicsEuroc, RadTanAgreesWithOpenCvCalibrateCameraOnTheSameCorners) {
                                            distortion,
                                            rvecs,
                                            tvecs,
-                                           cv::CALIB_FIX_K3);
+                                           // LU for OpenCV's steps, as in opencv_reference.h.
+                                           cv::CALIB_FIX_K3 | cv::CALIB_USE_LU);
     const Camera& ours = run.result.cameras[n].camera;
     RecordProperty("cam" + std::to_string(n) + "_opencv_fx_fy_cx_cy_rms",
                    std::to_string(K.at<double>(0, 0)) + " " + std::to_string(K.at<double>(1, 1)) +

@@ -28,9 +28,10 @@ TEST(IntrinsicsNees, EveryModelInItsNinetyFivePercentBand) {
       spec.camera.width = c.scene.cameras[0].width;
       spec.camera.height = c.scene.cameras[0].height;
       IntrinsicsOptions options;
+      // Never stopped by the count; the default tolerances (function and parameter 1e-10
+      // relative) stop where a further step moves no printed NEES: each model's sum was the same
+      // to 0.1 with 1e-16 / 1e-14 (docs/reliability.md, "test time before / after").
       options.solver.max_iterations = 1000;
-      options.solver.function_tolerance = 1e-16;
-      options.solver.parameter_tolerance = 1e-14;
       const IntrinsicsResult result = CalibrateIntrinsics(
           testing::SimulateIntrinsicsViews(c.scene, 100 + seed), c.scene.target, {spec}, options);
       const IntrinsicsCameraResult& camera = result.cameras[0];
@@ -43,7 +44,8 @@ TEST(IntrinsicsNees, EveryModelInItsNinetyFivePercentBand) {
         EXPECT_NEAR(camera.reprojection_rms_px, std::sqrt(2.0) * c.scene.sigma_px,
                     0.1 * std::sqrt(2.0) * c.scene.sigma_px);
         continue;
-      }      const IntrinsicsVector estimate = camera.camera.intrinsics();
+      }
+      const IntrinsicsVector estimate = camera.camera.intrinsics();
       const IntrinsicsVector truth = c.scene.cameras[0].intrinsics();
       Eigen::VectorXd e(camera.active.size());
       for (size_t j = 0; j < camera.active.size(); ++j) {
