@@ -179,9 +179,9 @@ TEST(CalibrateImuModelMonteCarlo, ScaleMisalignment) {
 // The size effect shows in the angular acceleration: the rig shaken (0.1 rad at ~0.5 s periods
 // about every axis, angular acceleration RMS >= 18 rad/s^2), with knots every 0.025 s. At the
 // default 0.05 s the spline does not follow the shake closely enough: M_a's NEES sum was 227.7,
-// above its interval [91.57, 152.21] (M_a(2,2) 1.9-3.3 std low on seeds 1-5), every other group
-// inside; at 0.025 s every group is inside (2026-11-28). Without the shake (the lever arms'
-// stds 3-24 mm) A's sum was 131.8, below its interval [144.74, 219.05].
+// above its interval [91.57, 152.21] (M_a(2,2) 1.85-3.32 std low on seeds 1-5) and A's 132.5 just
+// below [144.74, 219.05], the other groups inside; at 0.025 s every group is inside (2026-11-28). Without the shake (the lever arms'
+// stds 2.6-24 mm) A's sum was 131.8, below its interval [144.74, 219.05].
 // 4 s recordings: 20 calibrations in 14.5 s of Release CPU (43.7 s wall on the loaded 2-core
 // machine, 2026-11-28).
 TEST(CalibrateImuModelMonteCarlo, ScaleMisalignmentSizeEffect) {
@@ -193,7 +193,7 @@ TEST(CalibrateImuModelMonteCarlo, ScaleMisalignmentSizeEffect) {
 // trajectory shaken by 0.2 rad at ~0.5 s periods (rotation rate RMS 3.41 rad/s, angular
 // acceleration RMS 44.96 rad/s^2), one seed; and determined to better than 1 mm (each std below
 // it: an error bound above the std would hold by luck). Measured 2026-11-28: errors up to
-// 0.52 mm, stds 0.18-0.49 mm; at 0.1 rad on 4 s the stds were 1-4 mm (the NEES test above).
+// 0.52 mm, stds 0.18-0.49 mm; at 0.1 rad on 4 s the stds were 1.0-4.8 mm (seeds 1-5).
 // 4.7 s of Release CPU (15.4 s wall).
 TEST(CalibrateImuModel, SizeEffectLeverArmsWithinOneMillimetre) {
   constexpr double kMaxErrorM = 1e-3;
