@@ -56,6 +56,9 @@ struct ScenarioOptions {
   // Data from ClosedFormCalibrationTrajectory(seed) instead of a spline (target only, no
   // landmarks).
   bool closed_form = false;
+  // closed_form only: adds to roll, pitch and yaw a term of this amplitude [rad] of period
+  // ~0.5 s (a rig shaken by hand: the angular accelerations the IMU size effect shows in).
+  double shake_amplitude_rad = 0.0;
   // The rig's camera (intrinsics, image size); none: EuRoC's cam0 (pinhole-radtan).
   std::optional<Camera> camera;
 };
@@ -65,9 +68,12 @@ struct ScenarioOptions {
 // axis, to -z_w). Sums of sinusoids of periods 0.8-5 s: body rates of 1-2 rad/s about every
 // axis and accelerations of 1-3 m/s^2 at their peaks (bounds from the amplitudes), the tilt
 // partly following the position so that the target stays in view (8 s of it: ~142 of the 144
-// corners per frame). `seed` scales every period by [0.85, 1.15] and draws the phases.
+// corners per frame). `seed` scales every period by [0.85, 1.15] and draws the phases. A
+// shake_amplitude_rad > 0 adds one term of periods 0.45, 0.5, 0.55 s to roll, pitch and yaw
+// (drawn after the others: the rest of the trajectory stays the same).
 inline AnalyticTrajectory ClosedFormCalibrationTrajectory(uint64_t seed,
-                                                          const Eigen::Vector3d& target_centre_w) {
+                                                          const Eigen::Vector3d& target_centre_w,
+                                                          double shake_amplitude_rad = 0.0) {
   std::mt19937_64 engine(seed);
   auto uniform = [&engine]() { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };
   auto term = [&](double amplitude, double period_s) {
@@ -91,6 +97,11 @@ inline AnalyticTrajectory ClosedFormCalibrationTrajectory(uint64_t seed,
   rpy[0] = {kPi, 0.0, {roll_follow, term(0.15, 2.3), term(0.06, 0.9)}};
   rpy[1] = {0.0, 0.0, {pitch_follow, term(0.15, 2.9), term(0.06, 1.0)}};
   rpy[2] = {0.3, 0.0, {term(0.45, 3.3), term(0.1, 1.2)}};
+  if (shake_amplitude_rad > 0.0) {
+    rpy[0].terms.push_back(term(shake_amplitude_rad, 0.45));
+    rpy[1].terms.push_back(term(shake_amplitude_rad, 0.5));
+    rpy[2].terms.push_back(term(shake_amplitude_rad, 0.55));
+  }
   return AnalyticTrajectory("closed_form_calibration", p, rpy);
 }
 
@@ -128,7 +139,7 @@ inline CalibrationScenario MakeCalibrationScenario(const ScenarioOptions& o) {
   if (o.closed_form) {
     const int64_t end_ns = options.start_ns + std::llround(o.duration_s * 1e9);
     s.trajectory = ClosedFormCalibrationTrajectory(
-        o.seed, TargetCentre(options.camera.target, options.camera.T_w_t));
+        o.seed, TargetCentre(options.camera.target, options.camera.T_w_t), o.shake_amplitude_rad);
     s.imu = SimulateImuFromTrajectory(*s.trajectory, options.start_ns, end_ns, options.imu);
     s.camera_result =
         SimulateTargetFromTrajectory(*s.trajectory, options.start_ns, end_ns, cam, options.camera);
