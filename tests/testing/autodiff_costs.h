@@ -180,9 +180,10 @@ struct PoseResidual {
 };
 
 // The autodiff twins as cost functions (caller owns the result). Defined in autodiff_costs.cc,
-// compiled once into the tests' support library (tests/CMakeLists.txt): the Jets of 31 to 43
-// parameters cost 10 to 25 s of optimisation per unit that instantiates them, which six test
-// files and a benchmark did (docs/reliability.md, "The cold build").
+// compiled once into the library splinecal_test_oracles (CMakeLists.txt) that the tests and
+// benchmarks link: instantiated inline, their Jets of 31 to 43 parameters were most of the
+// compile time of each of the five test files and the benchmark calling them (fit_test.cc:
+// 190 CPU-s with them, 43 without; docs/reliability.md, "The cold build").
 ceres::CostFunction* NewAutoDiffGyroCost(int bias_blocks,
                                          const ImuResidualSegment& segment,
                                          const ImuResidualSample& sample);
