@@ -179,44 +179,22 @@ struct PoseResidual {
   PoseResidualData data;
 };
 
-// The autodiff twins as cost functions (caller owns the result).
-inline ceres::CostFunction* NewAutoDiffGyroCost(int bias_blocks,
-                                                const ImuResidualSegment& segment,
-                                                const ImuResidualSample& sample) {
-  CHECK(bias_blocks == 1 || bias_blocks == 4) << "bias_blocks must be 1 or 4";
-  if (bias_blocks == 1) {
-    return new ceres::AutoDiffCostFunction<GyroResidual<1>, 3, 7, 7, 7, 7, 3>(
-        new GyroResidual<1>(segment, sample));
-  }
-  return new ceres::AutoDiffCostFunction<GyroResidual<4>, 3, 7, 7, 7, 7, 3, 3, 3, 3>(
-      new GyroResidual<4>(segment, sample));
-}
-
-inline ceres::CostFunction* NewAutoDiffAccelCost(int bias_blocks,
-                                                 const ImuResidualSegment& segment,
-                                                 const ImuResidualSample& sample) {
-  CHECK(bias_blocks == 1 || bias_blocks == 4) << "bias_blocks must be 1 or 4";
-  if (bias_blocks == 1) {
-    return new ceres::AutoDiffCostFunction<AccelResidual<1>, 3, 7, 7, 7, 7, 3, 3>(
-        new AccelResidual<1>(segment, sample));
-  }
-  return new ceres::AutoDiffCostFunction<AccelResidual<4>, 3, 7, 7, 7, 7, 3, 3, 3, 3, 3>(
-      new AccelResidual<4>(segment, sample));
-}
-
-inline ceres::CostFunction* NewAutoDiffPoseCost(const PoseResidualData& data) {
-  return new ceres::AutoDiffCostFunction<PoseResidual, 6, 7, 7, 7, 7, 1, 7>(new PoseResidual(data));
-}
+// The autodiff twins as cost functions (caller owns the result). Defined in autodiff_costs.cc,
+// compiled once into the library splinecal_test_oracles (CMakeLists.txt) that the tests and
+// benchmarks link: instantiated inline, their Jets of 31 to 43 parameters were most of the
+// compile time of each of the five test files and the benchmark calling them (fit_test.cc:
+// 190 CPU-s with them, 43 without; docs/reliability.md, "The cold build").
+ceres::CostFunction* NewAutoDiffGyroCost(int bias_blocks,
+                                         const ImuResidualSegment& segment,
+                                         const ImuResidualSample& sample);
+ceres::CostFunction* NewAutoDiffAccelCost(int bias_blocks,
+                                          const ImuResidualSegment& segment,
+                                          const ImuResidualSample& sample);
+ceres::CostFunction* NewAutoDiffPoseCost(const PoseResidualData& data);
 
 // The twins in place of the analytic residuals of a whole problem (fit, the spline problem):
 // options.residuals.replacement = testing::AutoDiffReplacementCosts().
-inline ReplacementCosts AutoDiffReplacementCosts() {
-  ReplacementCosts costs;
-  costs.gyro = &NewAutoDiffGyroCost;
-  costs.accel = &NewAutoDiffAccelCost;
-  costs.pose = &NewAutoDiffPoseCost;
-  return costs;
-}
+ReplacementCosts AutoDiffReplacementCosts();
 
 }  // namespace testing
 }  // namespace splinecal

@@ -8,10 +8,8 @@
 #define SPLINECAL_TESTS_TESTING_AUTODIFF_IMU_MODEL_COSTS_H_
 
 #include <ceres/cost_function.h>
-#include <ceres/dynamic_autodiff_cost_function.h>
 
 #include <array>
-#include <memory>
 
 #include "splinecal/estimation/detail/imu_costs.h"
 #include "splinecal/estimation/detail/imu_model_costs.h"
@@ -121,26 +119,11 @@ struct ImuModelAccelResidual {
 };
 
 // The autodiff twins of NewImuModelGyroCost / NewImuModelAccelCost: the same blocks, in the same
-// order, as the analytic cost of `segment` (caller owns the result).
-template <typename Functor>
-ceres::CostFunction* NewAutoDiffImuModelCost(const ImuModelSegment& segment,
-                                             const ceres::CostFunction& analytic) {
-  // 8 parameters per pass: the Jets stay small enough to compile and run in the tests.
-  auto* cost = new ceres::DynamicAutoDiffCostFunction<Functor, 8>(new Functor(segment));
-  for (int size : analytic.parameter_block_sizes()) cost->AddParameterBlock(size);
-  cost->SetNumResiduals(analytic.num_residuals());
-  return cost;
-}
-
-inline ceres::CostFunction* NewAutoDiffImuModelGyroCost(const ImuModelSegment& segment) {
-  const std::unique_ptr<ceres::CostFunction> analytic(NewImuModelGyroCost(segment));
-  return NewAutoDiffImuModelCost<ImuModelGyroResidual>(segment, *analytic);
-}
-
-inline ceres::CostFunction* NewAutoDiffImuModelAccelCost(const ImuModelSegment& segment) {
-  const std::unique_ptr<ceres::CostFunction> analytic(NewImuModelAccelCost(segment));
-  return NewAutoDiffImuModelCost<ImuModelAccelResidual>(segment, *analytic);
-}
+// order, as the analytic cost of `segment` (caller owns the result). Defined in
+// autodiff_imu_model_costs.cc, compiled once for every test and benchmark that uses them
+// (testing/autodiff_costs.h says why).
+ceres::CostFunction* NewAutoDiffImuModelGyroCost(const ImuModelSegment& segment);
+ceres::CostFunction* NewAutoDiffImuModelAccelCost(const ImuModelSegment& segment);
 
 }  // namespace testing
 }  // namespace splinecal
