@@ -110,16 +110,13 @@ py::dict CalibrateFunction(py::handle imu,
   CalibrateOptions options;
   ApplyEstimateArguments(arguments, &options.model, &options.solver);
   options.rolling_shutter = rolling_shutter;
+  std::vector<ImuModelKind> kinds(num_imus, ImuModelKind::kCalibrated);
   for (size_t i = 0; i < num_imus; ++i) {
-    ImuModelKind kind = ImuModelKind::kCalibrated;
-    if (!ParseImuModelKind(models[i], &kind)) {
+    if (!ParseImuModelKind(models[i], &kinds[i])) {
       throw py::value_error("imu_model: '" + models[i] + "' is not one of " + ImuModelNames());
     }
-    if (i == 0) options.imu_model = kind;
-    if (i > 0 && kind != ImuModelKind::kCalibrated) {
-      throw py::value_error("imu_model: the IMUs after the first support only 'calibrated' so far");
-    }
   }
+  options.imu_model = kinds[0];
   options.estimate_time_offset = !no_time_offset;
   options.intrinsics = ParseParameterMode(
       "intrinsics", intrinsics, estimate_intrinsics, ParameterMode::kFree, "estimate_intrinsics");
@@ -173,6 +170,7 @@ py::dict CalibrateFunction(py::handle imu,
     further.name = ImuSourceName(source, bag_i, "imu" + std::to_string(i));
     further.samples = ImuInUnits(source, bag_i, arguments.accel_unit, arguments.gyro_unit);
     further.noise = yamls[i].empty() ? ImuNoise::Adis16448() : ReadImuYaml(yamls[i]);
+    further.model = kinds[i];
     options.further_imus.push_back(std::move(further));
   }
   std::vector<StampedPose> initial;

@@ -110,3 +110,8 @@ def test_calibrate_several_imus_equals_the_command_line(tmp_path):
     assert result["imu1"]["model"] == "calibrated"
     with pytest.raises(ValueError, match="imu_yaml: 3 entries for 2 IMU"):
         splinecal.calibrate(imu=imus, **inputs, imu_yaml=[sim / "imu.yaml"] * 3)
+    # imu_model: one per IMU, each further IMU with its own model (refused before any solve).
+    with pytest.raises(ValueError, match="imu_model: 3 entries for 2 IMU"):
+        splinecal.calibrate(imu=imus, **inputs, imu_model="calibrated,scale-misalignment,calibrated")
+    with pytest.raises(ValueError, match="imu_model: 'scale-misalign' is not one of"):
+        splinecal.calibrate(imu=imus, **inputs, imu_model="calibrated,scale-misalign")

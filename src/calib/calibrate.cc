@@ -351,6 +351,7 @@ CalibrationResult CalibrationProblem::Run() {
   if (further_) {
     further_->Initialise(Spline(), spline_->gravity_w(), &result.warnings);
     further_->HoldUndeterminedLeverArms(Spline(), options_.max_lever_arm_std_m, &result.warnings);
+    further_->HoldUndeterminedModelParameters(spline_.get(), &result.warnings);
   }
   SolveUntilStable(&rounds, solver, &result);
   if (target_scale_free_) {

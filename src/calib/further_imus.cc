@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <numeric>
 
 #include "splinecal/error.h"
+#include "splinecal/estimation/imu_model_observability.h"
 #include "splinecal/estimation/interval_manifold.h"
 #include "splinecal/imu/imu_rate.h"
 #include "splinecal/imu/rigid_body_point.h"
@@ -77,6 +80,7 @@ FurtherImus::FurtherImus(const std::vector<FurtherImu>& imus,
     State state;
     state.name = imus[i].name;
     state.noise = imus[i].noise;
+    state.kind = imus[i].model;
     state.rate_hz = ImuRateHz(imus[i].samples);
     // Kalibr's densities: per-sample std = density sqrt(rate) (docs/conventions.md).
     state.sigma_gyro = state.noise.gyroscope_noise_density * std::sqrt(state.rate_hz);
@@ -186,6 +190,65 @@ void FurtherImus::HoldUndeterminedLeverArms(const SE3Splined& spline,
   }
 }
 
+void FurtherImus::HoldUndeterminedModelParameters(SplineProblem* spline,
+                                                  std::vector<std::string>* warnings) {
+  for (size_t i = 0; i < imus_.size(); ++i) {
+    State& imu = imus_[i];
+    std::vector<ImuModelParameter> parameters = ListImuModelParameters(imu.kind, &imu.model);
+    if (parameters.empty()) continue;
+    const std::vector<double*> model = ModelBlocks(&imu);
+    // The information of the model's blocks from this IMU's residuals alone, all else held: a
+    // lower bound of their stds (estimation/imu_model_observability.h).
+    std::vector<int> sizes;
+    Eigen::MatrixXd information;
+    for (const FurtherImuSegment& segment : Segments(imu)) {
+      const std::unique_ptr<ceres::CostFunction> cost(NewFurtherImuCost(segment));
+      std::vector<double*> blocks =
+          Blocks(&imu, segment, spline->control_blocks(), spline->gravity());
+      const size_t first = blocks.size() - model.size();
+      const std::vector<int32_t>& block_sizes = cost->parameter_block_sizes();
+      if (sizes.empty()) {
+        sizes.assign(block_sizes.begin() + first, block_sizes.end());
+        const int columns = std::accumulate(sizes.begin(), sizes.end(), 0);
+        information = Eigen::MatrixXd::Zero(columns, columns);
+      }
+      const int rows = cost->num_residuals();
+      using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+      std::vector<RowMajor> J(blocks.size());
+      std::vector<double*> jacobians(blocks.size(), nullptr);
+      for (size_t b = first; b < blocks.size(); ++b) {
+        J[b].resize(rows, block_sizes[b]);
+        jacobians[b] = J[b].data();
+      }
+      Eigen::VectorXd residuals(rows);
+      cost->Evaluate(blocks.data(), residuals.data(), jacobians.data());
+      Eigen::MatrixXd J_model(rows, information.cols());
+      for (size_t b = first, column = 0; b < blocks.size(); column += J[b].cols(), ++b) {
+        J_model.middleCols(column, J[b].cols()) = J[b];
+      }
+      information.noalias() += J_model.transpose() * J_model;
+    }
+    SetLowerBoundStds(information, model, sizes, &parameters);
+    std::vector<ImuModelParameter> undetermined;
+    for (const ImuModelParameter& p : parameters) {
+      if (!(p.lower_bound_std <= p.meaningless_std)) undetermined.push_back(p);
+    }
+    if (undetermined.empty()) continue;
+    State nominal_state;  // its model blocks at nominal, in ModelBlocks' order
+    nominal_state.kind = imu.kind;
+    const std::vector<double*> nominal = ModelBlocks(&nominal_state);
+    for (const ImuModelParameter& p : undetermined) {
+      const size_t b = std::find(model.begin(), model.end(), p.block) - model.begin();
+      p.block[p.index] = nominal[b][p.index];
+      std::vector<int>& held = imu.held_model[p.block];
+      held.push_back(p.index);
+      std::sort(held.begin(), held.end());
+    }
+    warnings->push_back(StringPrintf("IMU %zu (%s): ", i + 1, imu.name.c_str()) +
+                        UndeterminedImuModelWarning(undetermined));
+  }
+}
+
 std::vector<FurtherImuSegment> FurtherImus::Segments(const State& imu) const {
   std::vector<FurtherImuSegment> segments;
   const double dt_s = layout_.dt_s();
@@ -197,6 +260,7 @@ std::vector<FurtherImuSegment> FurtherImus::Segments(const State& imu) const {
       segment.segment_index = index;
       segment.dt_s = dt_s;
       segment.model = model_;
+      segment.kind = imu.kind;
       segment.sigma_gyro = imu.sigma_gyro;
       segment.sigma_accel = imu.sigma_accel;
       segment.bias_blocks = bias_.points_per_segment();
@@ -225,11 +289,25 @@ std::vector<double*> FurtherImus::Blocks(State* imu,
   for (int j = 0; j < nb; ++j) blocks.push_back(&imu->gyro_bias[3 * (first + j)]);
   for (int j = 0; j < nb; ++j) blocks.push_back(&imu->accel_bias[3 * (first + j)]);
   blocks.insert(blocks.end(), {gravity, imu->q_i_b.data(), imu->r_b.data(), &imu->time_offset_s});
+  const std::vector<double*> model = ModelBlocks(imu);
+  blocks.insert(blocks.end(), model.begin(), model.end());
+  return blocks;
+}
+
+std::vector<double*> FurtherImus::ModelBlocks(State* imu) {
+  ImuModelParameters& p = imu->model;
+  std::vector<double*> blocks;
+  if (imu->kind == ImuModelKind::kCalibrated) return blocks;
+  blocks = {p.m_a.data(), p.m_g.data(), p.a.data(), p.phi_gyro_i.data()};
+  if (imu->kind == ImuModelKind::kScaleMisalignmentSizeEffect) {
+    blocks.insert(blocks.end(), {p.ry_i.data(), p.rz_i.data()});
+  }
   return blocks;
 }
 
 void FurtherImus::AddToProblem(SplineProblem* spline) {
   ceres::Problem& problem = spline->problem();
+  held_manifolds_.clear();
   for (State& imu : imus_) {
     imu.built_time_offset_s = imu.time_offset_s;
     problem.AddParameterBlock(imu.q_i_b.data(), kRotationBlockSize, &so3_manifold_);
@@ -239,6 +317,16 @@ void FurtherImus::AddToProblem(SplineProblem* spline) {
     for (const FurtherImuSegment& segment : Segments(imu)) {
       problem.AddResidualBlock(NewFurtherImuCost(segment), nullptr,
                                Blocks(&imu, segment, spline->control_blocks(), spline->gravity()));
+    }
+    for (const auto& [block, held] : imu.held_model) {
+      double* values = const_cast<double*>(block);
+      const int size = problem.ParameterBlockSize(values);
+      if (static_cast<int>(held.size()) == size) {
+        problem.SetParameterBlockConstant(values);
+      } else {
+        held_manifolds_.push_back(std::make_unique<ceres::SubsetManifold>(size, held));
+        problem.SetManifold(values, held_manifolds_.back().get());
+      }
     }
     if (bias_.is_constant()) continue;
     // This IMU's own bias random walk, with its own densities (estimation/bias_costs.h).
@@ -270,9 +358,10 @@ void FurtherImus::AddCovarianceBlocks(ceres::Problem* problem,
                                       std::map<const double*, int>* offset,
                                       int* rows) const {
   for (State& imu : imus_) {
-    for (const double* block : {static_cast<const double*>(imu.q_i_b.data()),
-                                static_cast<const double*>(imu.r_b.data()),
-                                static_cast<const double*>(&imu.time_offset_s)}) {
+    std::vector<double*> blocks = {imu.q_i_b.data(), imu.r_b.data(), &imu.time_offset_s};
+    const std::vector<double*> model = ModelBlocks(&imu);
+    blocks.insert(blocks.end(), model.begin(), model.end());
+    for (const double* block : blocks) {
       if (problem->IsParameterBlockConstant(const_cast<double*>(block))) continue;
       (*offset)[block] = *rows;
       wanted->push_back(block);
@@ -287,7 +376,8 @@ void FurtherImus::Collect(const SplineProblem& spline, std::vector<FurtherImuEst
   for (State& imu : imus_) {
     FurtherImuEstimate e;
     e.name = imu.name;
-    e.calibration.model = ImuModelKind::kCalibrated;
+    e.calibration.model = imu.kind;
+    e.calibration.intrinsics = ModelIntrinsics(imu.kind, imu.model.Intrinsics());
     e.calibration.intrinsics.C_i_b = RotationFromBlock(imu.q_i_b.data()).matrix();
     e.calibration.intrinsics.r_b = imu.r_b;
     e.calibration.time_offset_s = imu.time_offset_s;
@@ -340,6 +430,34 @@ void FurtherImus::StdFrom(const Eigen::MatrixXd& cov,
     e.rotation_std_deg = diagonal(imu.q_i_b.data(), 3) * kRadToDeg;
     e.r_b_std_m = diagonal(imu.r_b.data(), 3);
     e.time_offset_std_s = diagonal(&imu.time_offset_s, 1)(0);
+    if (imu.kind == ImuModelKind::kCalibrated) continue;
+    // A held entry has no std; the tangent of a block with held entries skips them
+    // (ceres::SubsetManifold).
+    auto std_of = [&](const double* block, int j) {
+      const auto held_it = imu.held_model.find(block);
+      const std::vector<int> held =
+          held_it == imu.held_model.end() ? std::vector<int>() : held_it->second;
+      const auto it = offset.find(block);
+      if (it == offset.end() || std::find(held.begin(), held.end(), j) != held.end()) return NaN();
+      const int row = it->second + j -
+                      static_cast<int>(std::count_if(held.begin(), held.end(),
+                                                     [j](int h) { return h < j; }));
+      return std::sqrt(std::max(0.0, cov(row, row)));
+    };
+    const ImuModelParameters& p = imu.model;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c <= r; ++c) {
+        e.model_std.M_a(r, c) = std_of(p.m_a.data(), LowerTriangularIndex(r, c));
+        e.model_std.M_g(r, c) = std_of(p.m_g.data(), LowerTriangularIndex(r, c));
+      }
+      for (int c = 0; c < 3; ++c) e.model_std.A(r, c) = std_of(p.a.data(), 3 * r + c);
+      e.model_std.C_gyro_i_deg[r] = std_of(p.phi_gyro_i.data(), r) * kRadToDeg;
+    }
+    if (imu.kind != ImuModelKind::kScaleMisalignmentSizeEffect) continue;
+    for (int a = 0; a < 3; ++a) {
+      e.model_std.ry_i[a] = std_of(p.ry_i.data(), a);
+      e.model_std.rz_i[a] = std_of(p.rz_i.data(), a);
+    }
   }
 }
 

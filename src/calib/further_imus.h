@@ -1,6 +1,6 @@
 // The further IMUs of a rig in `splinecal calibrate` (CalibrateOptions::further_imus; private to
 // src/calib/): their parameter blocks (C_i_b, r_b, time offset, biases), initial guess,
-// observability guard, residuals (estimation/detail/further_imu_cost.h), standard deviations and
+// observability guard, model (FurtherImu::model), residuals (estimation/detail/further_imu_cost.h), standard deviations and
 // results. The reference IMU (the first) stays SplineProblem's.
 #ifndef SPLINECAL_SRC_CALIB_FURTHER_IMUS_H_
 #define SPLINECAL_SRC_CALIB_FURTHER_IMUS_H_
@@ -17,6 +17,7 @@
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/estimation/bias_spline.h"
 #include "splinecal/estimation/detail/further_imu_cost.h"
+#include "splinecal/estimation/imu_model_parameters.h"
 #include "splinecal/estimation/spline_problem.h"
 #include "splinecal/lie/se3_manifold.h"
 
@@ -51,6 +52,10 @@ class FurtherImus {
   // the current state exceeds max_std_m (the motion does not rotate enough to determine it).
   void HoldUndeterminedLeverArms(const SE3Splined& spline, double max_std_m,
                                  std::vector<std::string>* warnings);
+  // Holds at nominal, with a warning naming the IMU and the parameters, each entry of a further
+  // IMU's model that its residuals at the current state do not determine (the reference's guard,
+  // estimation/imu_model_observability.h, on this IMU's own residuals).
+  void HoldUndeterminedModelParameters(SplineProblem* spline, std::vector<std::string>* warnings);
   // Adds the blocks and residuals to spline->problem() (after spline->Reset()).
   void AddToProblem(SplineProblem* spline);
   // True when a time offset moved out of what the residuals were built for.
@@ -84,7 +89,12 @@ class FurtherImus {
     double initial_time_offset_s = 0.0;
     Eigen::Matrix3d initial_C_i_b = Eigen::Matrix3d::Identity();
     bool lever_arm_held = false;
+    ImuModelKind kind = ImuModelKind::kCalibrated;
+    ImuModelParameters model;  // its model's blocks, nominal initially (unused for calibrated)
+    std::map<const double*, std::vector<int>> held_model;  // model entries held at nominal
   };
+  // The model's blocks (further_imu_cost.h's order after the time offset; none for calibrated).
+  static std::vector<double*> ModelBlocks(State* imu);
   // The residual segments of one IMU at its current time offset.
   std::vector<FurtherImuSegment> Segments(const State& imu) const;
   // The blocks of one segment's cost (further_imu_cost.h's order).
@@ -100,6 +110,7 @@ class FurtherImus {
   mutable std::vector<State> imus_;  // Collect evaluates through the blocks' addresses
   SO3Manifold so3_manifold_;
   std::shared_ptr<ceres::Manifold> time_offset_manifold_;
+  std::vector<std::unique_ptr<ceres::Manifold>> held_manifolds_;  // of the current problem
 };
 
 }  // namespace internal

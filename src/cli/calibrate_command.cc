@@ -74,7 +74,7 @@ DEFINE_string(imu_model,
               "model (--imu-models); the last two also estimate M_a, M_g, A, C_gyro_i (and the "
               "accelerometer axes' lever arms ry_i, rz_i), written to imu_models.yaml and "
               "result.yaml's imu_model (docs/imu_models.md). Several IMUs: one for all or one "
-              "per IMU, comma-separated (the IMUs after the first: calibrated only)");
+              "per IMU, comma-separated (each further IMU's model at its own pose)");
 DEFINE_string(target_scale,
               "check",
               "check | free | held: the target's scale against the IMU (the accelerometer "
@@ -135,19 +135,15 @@ void ReadRigImus(std::vector<ImuSample>* imu, CalibrateOptions* options) {
                 std::to_string(n) + " IMU(s) (" + listed + std::to_string(n) +
                 "): give one for all or one per IMU");
   }
+  std::vector<ImuModelKind> kinds;
   for (size_t i = 0; i < n; ++i) {
     const std::string& model_name = models[models.size() == 1 ? 0 : i];
     ImuModelKind kind = ImuModelKind::kCalibrated;
     if (!ParseImuModelKind(model_name, &kind)) {
       throw Error("--imu-model: '" + model_name + "' is not one of " + ImuModelNames());
     }
-    if (i == 0) {
-      options->imu_model = kind;
-    } else if (kind != ImuModelKind::kCalibrated) {
-      throw Error("--imu-model: the IMUs after the first support only 'calibrated' so far, got '" +
-                  model_name + "' for IMU " + std::to_string(i) + " (" + sources[i] +
-                  "); give one model per IMU, e.g. " + models[0] + ",calibrated");
-    }
+    if (i == 0) options->imu_model = kind;
+    kinds.push_back(kind);
   }
   const ImuReadOptions read = ImuReadOptionsFromFlags(/*takes_imu_yaml=*/true);
   double reference_rate_hz = 0.0;
@@ -177,7 +173,7 @@ void ReadRigImus(std::vector<ImuSample>* imu, CalibrateOptions* options) {
                   sources[0] + " at " + StringPrintf("%.6g", reference_rate_hz) +
                   " Hz: every IMU must have the reference's rate (resample it first)");
     }
-    options->further_imus.push_back({name, std::move(samples), noise});
+    options->further_imus.push_back({name, std::move(samples), noise, kinds[i]});
   }
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "splinecal/estimation/detail/imu_model_intrinsics.h"
+#include "splinecal/estimation/detail/imu_model_motion.h"
 #include "splinecal/imu/imu_intrinsic_model.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/imu/matrix_parameters.h"
@@ -23,67 +24,6 @@ namespace {
 
 template <int kCols>
 using RowMajorRows = Eigen::Map<Eigen::Matrix<double, 3, kCols, Eigen::RowMajor>>;
-
-// The spline's motion at one sample: w_b, dw_b and f_b = R_w_b^T (a_w - g_w) with, on request,
-// their Jacobians w.r.t. the control poses (right tangent) and d f_b / d g_w = -R_w_b^T.
-struct SampleMotion {
-  BodyMotion<double> motion;
-  internal::SegmentTrace<double> angular;  // the SO(3) forward pass (rates, acceleration)
-  ControlPoseJacobian<3> J_f;
-  Eigen::Matrix3d J_f_gw;
-};
-
-void EvaluateMotion(const ImuModelSegment& s,
-                    const SegmentKnots<double>& knots,
-                    const Segment<double>& seg,
-                    const Eigen::Vector3d& g_w,
-                    bool f_pose_jacobian,
-                    SampleMotion* m) {
-  PredictAccelWithJacobian(s.segment.model,
-                           knots,
-                           seg,
-                           g_w,
-                           Eigen::Vector3d::Zero(),
-                           &m->motion.f_b,
-                           f_pose_jacobian ? &m->J_f : nullptr,
-                           &m->J_f_gw);
-  internal::TraceRequest request;
-  request.rates = true;
-  request.acceleration = true;
-  internal::ForwardPass(knots, seg, request, &m->angular);
-  m->motion.w_b = m->angular.w[2];
-  m->motion.dw_b = m->angular.aw[2];
-}
-
-// d prediction / d control pose k (3x6, right tangent) = J_w J_w_k + J_dw J_dw_k + J_f J_f_k,
-// every term whose model Jacobian is exactly zero skipped (the reference IMU's r_b = 0 zeroes
-// the accelerometer's w_b and dw_b without the size effect; A = 0 the gyro's f_b).
-void PoseJacobians(const SegmentKnots<double>& knots,
-                   const Segment<double>& seg,
-                   const SampleMotion& m,
-                   const Eigen::Matrix3d& J_w,
-                   const Eigen::Matrix3d& J_dw,
-                   const Eigen::Matrix3d& J_f,
-                   std::array<Eigen::Matrix<double, 3, 6>, kSplineOrder>* out) {
-  const bool use_w = !J_w.isZero(0.0);
-  const bool use_dw = !J_dw.isZero(0.0);
-  const bool use_f = !J_f.isZero(0.0);
-  ControlPoseJacobian<3> J_ws;
-  ControlPoseJacobian<3> J_dws;
-  if (use_w) EvaluateAngularVelocityJacobian(knots, seg, nullptr, &J_ws);
-  if (use_dw) AngularAccelerationJacobian(knots, seg, m.angular, &J_dws);
-  for (int k = 0; k < kSplineOrder; ++k) {
-    Eigen::Matrix<double, 3, 6>& J = (*out)[k];
-    if (use_f) {
-      J.noalias() = J_f * m.J_f.blocks[k];
-    } else {
-      J.setZero();
-    }
-    // The angular blocks' translation columns are zero.
-    if (use_w) J.rightCols<3>().noalias() += J_w * J_ws.blocks[k].rightCols<3>();
-    if (use_dw) J.rightCols<3>().noalias() += J_dw * J_dws.blocks[k].rightCols<3>();
-  }
-}
 
 void WriteBias(int bias_blocks,
                const ImuResidualSample& sample,
@@ -142,8 +82,9 @@ class ImuModelCostFunction : public ceres::CostFunction {
       const ImuResidualSample& sample = s_.samples[k];
       const int row = 3 * static_cast<int>(k);
       const Segment<double> seg = MakeSegment(s_.segment.segment_index, sample.u, s_.segment.dt_s);
-      SampleMotion m;
-      EvaluateMotion(s_, evaluation.knots, seg, g_w, f_pose_jacobian, &m);
+      internal::SampleMotion m;
+      internal::EvaluateSampleMotion(
+          s_.segment.model, evaluation.knots, seg, g_w, f_pose_jacobian, &m);
       const Eigen::Vector3d bias =
           nb == 1 ? internal::WeightedBias<1>(sample, parameters + kSplineOrder)
                   : internal::WeightedBias<4>(sample, parameters + kSplineOrder);
@@ -176,7 +117,7 @@ class ImuModelCostFunction : public ceres::CostFunction {
       const Eigen::Matrix3d& J_f = kGyro ? Jg.f_b : Ja.f_b;
       if (pose_jacobians) {
         std::array<Eigen::Matrix<double, 3, 6>, kSplineOrder> J_pose;
-        PoseJacobians(evaluation.knots,
+        internal::ChainPoseJacobians<3>(evaluation.knots,
                       seg,
                       m,
                       kGyro ? Jg.w_b : Ja.w_b,

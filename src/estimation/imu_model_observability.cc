@@ -24,10 +24,12 @@ constexpr double kLeverArmMeaningless_m = 0.01;
 // Eigenvalues below this fraction of the largest are raised to it (the file comment).
 constexpr double kEigenFloor = 1e-12;
 
-std::vector<ImuModelParameter> ListParameters(SplineProblem* problem) {
+}  // namespace
+
+std::vector<ImuModelParameter> ListImuModelParameters(ImuModelKind kind, ImuModelParameters* model) {
   std::vector<ImuModelParameter> list;
-  if (problem->imu_model_kind() == ImuModelKind::kCalibrated) return list;
-  ImuModelParameters& m = *problem->imu_model();
+  if (kind == ImuModelKind::kCalibrated) return list;
+  ImuModelParameters& m = *model;
   auto add = [&](double* block, int index, std::string name, std::string needs, double limit) {
     ImuModelParameter p;
     p.block = block;
@@ -57,7 +59,7 @@ std::vector<ImuModelParameter> ListParameters(SplineProblem* problem) {
     add(m.phi_gyro_i.data(), a, std::string("C_gyro_i(") + AxisName(a) + ")",
         std::string("rotation about an axis other than ") + AxisName(a), kRotationMeaninglessRad);
   }
-  if (problem->imu_model_kind() == ImuModelKind::kScaleMisalignmentSizeEffect) {
+  if (kind == ImuModelKind::kScaleMisalignmentSizeEffect) {
     for (int a = 0; a < 3; ++a) {
       add(m.ry_i.data(), a, std::string("ry_i(") + AxisName(a) + ")",
           "angular velocity and acceleration about several axes", kLeverArmMeaningless_m);
@@ -68,10 +70,27 @@ std::vector<ImuModelParameter> ListParameters(SplineProblem* problem) {
   return list;
 }
 
-}  // namespace
+void SetLowerBoundStds(const Eigen::MatrixXd& information,
+                       const std::vector<double*>& blocks,
+                       const std::vector<int>& sizes,
+                       std::vector<ImuModelParameter>* parameters) {
+  std::vector<int> first(blocks.size());
+  for (size_t b = 1; b < blocks.size(); ++b) first[b] = first[b - 1] + sizes[b - 1];
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
+  const double floor = std::max(kEigenFloor * eigen.eigenvalues().maxCoeff(),
+                                std::numeric_limits<double>::min());
+  const Eigen::VectorXd inverse = eigen.eigenvalues().cwiseMax(floor).cwiseInverse();
+  for (ImuModelParameter& parameter : *parameters) {
+    const size_t b = std::find(blocks.begin(), blocks.end(), parameter.block) - blocks.begin();
+    const int column = first[b] + parameter.index;
+    const Eigen::VectorXd v = eigen.eigenvectors().row(column).transpose();
+    parameter.lower_bound_std = std::sqrt(v.cwiseAbs2().dot(inverse));
+  }
+}
 
 std::vector<ImuModelParameter> ImuModelParameterStds(SplineProblem* problem) {
-  std::vector<ImuModelParameter> list = ListParameters(problem);
+  std::vector<ImuModelParameter> list =
+      ListImuModelParameters(problem->imu_model_kind(), problem->imu_model());
   if (list.empty()) return list;
   ceres::Problem& p = problem->problem();
   ceres::Problem::EvaluateOptions options;
@@ -85,12 +104,12 @@ std::vector<ImuModelParameter> ImuModelParameterStds(SplineProblem* problem) {
       options.residual_blocks.push_back(id);
     }
   }
-  // The column of each block's first entry in the evaluated Jacobian.
-  std::vector<int> first(blocks.size());
+  // The columns of each block's entries in the evaluated Jacobian.
+  std::vector<int> sizes;
   int columns = 0;
-  for (size_t b = 0; b < blocks.size(); ++b) {
-    first[b] = columns;
-    columns += p.ParameterBlockSize(blocks[b]);
+  for (double* block : blocks) {
+    sizes.push_back(p.ParameterBlockSize(block));
+    columns += sizes.back();
   }
   Eigen::MatrixXd information = Eigen::MatrixXd::Zero(columns, columns);
   ceres::CRSMatrix J;
@@ -103,17 +122,7 @@ std::vector<ImuModelParameter> ImuModelParameterStds(SplineProblem* problem) {
       }
     }
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
-  const double floor = std::max(kEigenFloor * eigen.eigenvalues().maxCoeff(),
-                                std::numeric_limits<double>::min());
-  const Eigen::VectorXd inverse =
-      eigen.eigenvalues().cwiseMax(floor).cwiseInverse();
-  for (ImuModelParameter& parameter : list) {
-    const size_t b = std::find(blocks.begin(), blocks.end(), parameter.block) - blocks.begin();
-    const int column = first[b] + parameter.index;
-    const Eigen::VectorXd v = eigen.eigenvectors().row(column).transpose();
-    parameter.lower_bound_std = std::sqrt(v.cwiseAbs2().dot(inverse));
-  }
+  SetLowerBoundStds(information, blocks, sizes, &list);
   return list;
 }
 

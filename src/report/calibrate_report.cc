@@ -289,15 +289,12 @@ std::string EstimatesTable(const CalibrationResult& r, const CalibrateOptions& o
 
 // The estimated IMU model with its standard deviations (Kalibr's imu-*.yaml keys; the stds per
 // entry, NaN where an entry is not a parameter; C_gyro_i's as its rotation vector per axis).
-void WriteImuModelYaml(const CalibrationResult& r, YamlWriter* yaml) {
-  const ImuIntrinsicsd& p = r.imu_model.intrinsics;
-  const ImuModelStd& s = r.imu_model_std;
-  yaml->BeginMap("imu_model");
-  yaml->Scalar("model", ImuModelName(r.imu_model.model));
+void WriteImuModelEntries(const ImuCalibration& imu, const ImuModelStd& s, YamlWriter* yaml) {
+  const ImuIntrinsicsd& p = imu.intrinsics;
   yaml->BeginMap("accelerometers");
   yaml->Matrix("M", p.M_a);
   yaml->Matrix("M_std", s.M_a);
-  if (r.imu_model.model == ImuModelKind::kScaleMisalignmentSizeEffect) {
+  if (imu.model == ImuModelKind::kScaleMisalignmentSizeEffect) {
     yaml->Vector("ry_i", p.ry_i);
     yaml->Vector("ry_i_std", s.ry_i);
     yaml->Vector("rz_i", p.rz_i);
@@ -312,6 +309,12 @@ void WriteImuModelYaml(const CalibrationResult& r, YamlWriter* yaml) {
   yaml->Matrix("C_gyro_i", p.C_gyro_i);
   yaml->Vector("C_gyro_i_std_deg", s.C_gyro_i_deg);
   yaml->EndMap();
+}
+
+void WriteImuModelYaml(const CalibrationResult& r, YamlWriter* yaml) {
+  yaml->BeginMap("imu_model");
+  yaml->Scalar("model", ImuModelName(r.imu_model.model));
+  WriteImuModelEntries(r.imu_model, r.imu_model_std, yaml);
   yaml->EndMap();
 }
 
@@ -335,6 +338,9 @@ void WriteFurtherImusYaml(const CalibrationResult& r, YamlWriter* yaml) {
     yaml->Scalar("time_offset", e.calibration.time_offset_s);
     yaml->Scalar("time_offset_std_s", e.time_offset_std_s);
     yaml->Scalar("initial_time_offset", e.initial_time_offset_s);
+    if (e.calibration.model != ImuModelKind::kCalibrated) {
+      WriteImuModelEntries(e.calibration, e.model_std, yaml);
+    }
     yaml->Vector("gyro_bias", e.gyro_bias);
     yaml->Vector("accel_bias", e.accel_bias);
     yaml->Scalar("gyro_rms", e.gyro_rms);

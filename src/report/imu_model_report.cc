@@ -47,9 +47,8 @@ Row VectorRow(const std::string& name, const char* format, const Eigen::Vector3d
   return row;
 }
 
-std::vector<Row> ImuModelRows(const CalibrationResult& r) {
-  const ImuIntrinsicsd& p = r.imu_model.intrinsics;
-  const ImuModelStd& s = r.imu_model_std;
+std::vector<Row> ImuModelRows(const ImuCalibration& imu, const ImuModelStd& s) {
+  const ImuIntrinsicsd& p = imu.intrinsics;
   std::vector<Row> rows;
   AddMatrixRows("M_a", "%.6f", p.M_a, s.M_a, true, &rows);
   AddMatrixRows("M_g", "%.6f", p.M_g, s.M_g, true, &rows);
@@ -59,7 +58,7 @@ std::vector<Row> ImuModelRows(const CalibrationResult& r) {
                            "%.4f",
                            SO3d(Eigen::Quaterniond(p.C_gyro_i)).Log() * kRadToDeg,
                            s.C_gyro_i_deg));
-  if (r.imu_model.model == ImuModelKind::kScaleMisalignmentSizeEffect) {
+  if (imu.model == ImuModelKind::kScaleMisalignmentSizeEffect) {
     rows.push_back(VectorRow("ry_i [mm]", "%.3f", 1e3 * p.ry_i, 1e3 * s.ry_i));
     rows.push_back(VectorRow("rz_i [mm]", "%.3f", 1e3 * p.rz_i, 1e3 * s.rz_i));
   }
@@ -79,39 +78,63 @@ std::string ValueOf(const Row& row, const Entry& e) {
   return e.parameter ? StringPrintf(row.format, e.value) : StringPrintf("%g", e.value);
 }
 
+// One IMU's model and its label (imu0 the reference, imuN (name) a further one).
+struct ImuModelOf {
+  const ImuCalibration* imu;
+  const ImuModelStd* std;
+  std::string label;
+};
+
+// Calls f for every IMU whose model is not `calibrated`, the reference first.
+template <typename F>
+void ForEachModel(const CalibrationResult& r, const F& f) {
+  if (r.imu_model.model != ImuModelKind::kCalibrated) f(ImuModelOf{&r.imu_model, &r.imu_model_std, "imu0"});
+  for (size_t i = 0; i < r.further_imus.size(); ++i) {
+    const FurtherImuEstimate& e = r.further_imus[i];
+    if (e.calibration.model == ImuModelKind::kCalibrated) continue;
+    f(ImuModelOf{&e.calibration, &e.model_std, "imu" + std::to_string(i + 1) + " (" + e.name + ")"});
+  }
+}
+
 }  // namespace
 
 std::string ImuModelText(const CalibrationResult& result) {
-  if (result.imu_model.model == ImuModelKind::kCalibrated) return "";
-  std::string text = std::string("IMU model ") + ImuModelName(result.imu_model.model) +
-                     " (Kalibr's imu0; each entry: value (std))\n";
-  for (const Row& row : ImuModelRows(result)) {
-    text += "  " + row.name + ":";
-    for (size_t k = 0; k < row.entries.size(); ++k) {
-      const Entry& e = row.entries[k];
-      text += (k == 0 ? " " : ", ") + ValueOf(row, e);
-      if (e.parameter) text += " (" + StdOf(row, e, result.covariance_ok) + ")";
+  std::string text;
+  ForEachModel(result, [&](const ImuModelOf& m) {
+    text += std::string("IMU model ") + ImuModelName(m.imu->model) + " (Kalibr's " + m.label +
+            "; each entry: value (std))\n";
+    for (const Row& row : ImuModelRows(*m.imu, *m.std)) {
+      text += "  " + row.name + ":";
+      for (size_t k = 0; k < row.entries.size(); ++k) {
+        const Entry& e = row.entries[k];
+        text += (k == 0 ? " " : ", ") + ValueOf(row, e);
+        if (e.parameter) text += " (" + StdOf(row, e, result.covariance_ok) + ")";
+      }
+      text += "\n";
     }
-    text += "\n";
-  }
+  });
   return text;
 }
 
 std::string ImuModelHtml(const CalibrationResult& result) {
-  if (result.imu_model.model == ImuModelKind::kCalibrated) return "";
-  std::string html = std::string("<h2>IMU model</h2>\n<p>Kalibr's ") +
-                     ImuModelName(result.imu_model.model) +
-                     " model of imu0 (docs/imu_models.md); \"held\": not determined by the "
-                     "recording, kept at nominal.</p>\n<table>\n";
-  for (const Row& row : ImuModelRows(result)) {
-    std::string values, stds;
-    for (size_t k = 0; k < row.entries.size(); ++k) {
-      values += (k == 0 ? "" : ", ") + ValueOf(row, row.entries[k]);
-      stds += (k == 0 ? "" : ", ") + StdOf(row, row.entries[k], result.covariance_ok);
+  std::string html;
+  ForEachModel(result, [&](const ImuModelOf& m) {
+    html += std::string("<h2>IMU model</h2>\n<p>Kalibr's ") + ImuModelName(m.imu->model) +
+            " model of " + m.label +
+            " (docs/imu_models.md); \"held\": not determined by the recording, kept at "
+            "nominal.</p>\n<table>\n";
+    for (const Row& row : ImuModelRows(*m.imu, *m.std)) {
+      std::string values, stds;
+      for (size_t k = 0; k < row.entries.size(); ++k) {
+        values += (k == 0 ? "" : ", ") + ValueOf(row, row.entries[k]);
+        stds += (k == 0 ? "" : ", ") + StdOf(row, row.entries[k], result.covariance_ok);
+      }
+      html +=
+          "<tr><th>" + row.name + "</th><td>" + values + "</td><td>std " + stds + "</td></tr>\n";
     }
-    html += "<tr><th>" + row.name + "</th><td>" + values + "</td><td>std " + stds + "</td></tr>\n";
-  }
-  return html + "</table>\n";
+    html += "</table>\n";
+  });
+  return html;
 }
 
 }  // namespace splinecal

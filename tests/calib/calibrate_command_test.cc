@@ -184,8 +184,11 @@ TEST_F(CalibrateCommand, SeveralImusBadInputExitsTwo) {
                  "--imu-yaml: 3 files for 2 IMU(s) (--imu lists 2)");
   expect_refused({"--imu-model", "calibrated,calibrated,calibrated"}, two,
                  "--imu-model: 3 models for 2 IMU(s)");
-  expect_refused({"--imu-model", "scale-misalignment"}, two,
-                 "the IMUs after the first support only 'calibrated' so far");
+  expect_refused({"--imu-model", "scale-misalignment,calibrated,calibrated"}, two,
+                 "--imu-model: 3 models for 2 IMU(s)");
+  expect_refused({"--imu-model", "calibrated,scale-misalign"}, two,
+                 "--imu-model: 'scale-misalign' is not one of calibrated, scale-misalignment, "
+                 "scale-misalignment-size-effect");
   expect_refused({}, imu_ + "," + slow, "imu_100hz/data.csv: IMU samples at 100 Hz, the reference");
 }
 

@@ -104,6 +104,9 @@ struct FurtherImu {
   std::string name;                // for messages and results (its file or topic)
   std::vector<ImuSample> samples;  // its own clock: t_reference = t_stamp + time_offset
   ImuNoise noise;                  // its Kalibr densities, weighting its residuals as given
+  // Its Kalibr model (imu/imu_model_kind.h): its own M_a, M_g, A, C_gyro_i (ry_i, rz_i) at its
+  // pose (estimation/detail/further_imu_cost.h), nominal initially.
+  ImuModelKind model = ImuModelKind::kCalibrated;
 };
 
 struct CalibrateOptions {
@@ -266,8 +269,10 @@ struct ImuModelStd {
 // A further IMU's estimate (CalibrateOptions::further_imus, same order).
 struct FurtherImuEstimate {
   std::string name;
-  // model kCalibrated; intrinsics.C_i_b, intrinsics.r_b; time_offset_s (imu/imu_intrinsics.h).
+  // Its model (FurtherImu::model) and intrinsics: C_i_b, r_b and the model's entries;
+  // time_offset_s (imu/imu_intrinsics.h).
   ImuCalibration calibration;
+  ImuModelStd model_std;  // the model's entries' stds (NaN for `calibrated`)
   // Standard deviations: C_i_b's rotation in its right tangent C_i_b Exp(phi) (b axes) [deg],
   // r_b per axis [m] (NaN when held), the time offset [s]; NaN when not computed.
   Eigen::Vector3d rotation_std_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());

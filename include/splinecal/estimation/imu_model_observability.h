@@ -15,9 +15,11 @@
 #ifndef SPLINECAL_ESTIMATION_IMU_MODEL_OBSERVABILITY_H_
 #define SPLINECAL_ESTIMATION_IMU_MODEL_OBSERVABILITY_H_
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include "splinecal/estimation/imu_model_parameters.h"
 #include "splinecal/estimation/spline_problem.h"
 
 namespace splinecal {
@@ -31,6 +33,17 @@ struct ImuModelParameter {
   double meaningless_std = 0;  // a std above this says nothing (units of the parameter)
   double lower_bound_std = 0;  // the information's std with all else held (see above)
 };
+
+// Every parameter of a model of `kind` whose blocks are `model`'s (none for kCalibrated), its
+// lower_bound_std unset: the reference IMU's (below) or a further IMU's (src/calib/further_imus.h).
+std::vector<ImuModelParameter> ListImuModelParameters(ImuModelKind kind, ImuModelParameters* model);
+
+// Sets each parameter's lower_bound_std from `information`, the information matrix of `blocks`
+// (their entries' columns in that order, `sizes` entries each).
+void SetLowerBoundStds(const Eigen::MatrixXd& information,
+                       const std::vector<double*>& blocks,
+                       const std::vector<int>& sizes,
+                       std::vector<ImuModelParameter>* parameters);
 
 // Every parameter of the problem's model (none for kCalibrated), with lower_bound_std from the
 // problem's IMU residuals at its current values (call after AddImuResiduals).
