@@ -20,9 +20,11 @@
 #include <array>
 #include <memory>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "benchmark_control_poses.h"
+#include "cost_evaluation_bench.h"
 #include "splinecal/estimation/detail/imu_costs.h"
 #include "splinecal/estimation/detail/imu_model_costs.h"
 #include "splinecal/estimation/imu_model_parameters.h"
@@ -39,54 +41,23 @@ enum class Path { kCalibrated, kAnalytic, kAutoDiff };
 
 // Both costs of every segment with their parameter blocks.
 struct Problem {
-  std::vector<std::array<double, 7>> poses;
-  std::array<std::array<double, 3>, kBiasBlocks> gyro_bias;
-  std::array<std::array<double, 3>, kBiasBlocks> accel_bias;
+  explicit Problem(std::mt19937* rng) : spline(rng) {}
+  bench::ImuSplineBlocks<kBiasBlocks> spline;
   std::array<double, 3> gravity = {0.0, 0.0, -9.81};
   ImuModelParameters model;
-  struct Cost {
-    std::unique_ptr<ceres::CostFunction> cost;
-    std::vector<double*> blocks;
-    std::vector<std::vector<double>> jacobians;
-    std::vector<double*> jacobian_pointers;
-    std::vector<double> residuals;
-  };
-  std::vector<Cost> costs;
+  std::vector<bench::EvaluatedCost> costs;
   int samples = 0;
 };
 
 void AddCost(ceres::CostFunction* cost, std::vector<double*> blocks, Problem* p) {
-  Problem::Cost c;
-  c.cost.reset(cost);
-  c.blocks = std::move(blocks);
-  c.residuals.resize(cost->num_residuals());
-  for (int size : cost->parameter_block_sizes()) {
-    c.jacobians.emplace_back(static_cast<size_t>(size) * cost->num_residuals());
-  }
-  for (auto& j : c.jacobians) c.jacobian_pointers.push_back(j.data());
-  p->costs.push_back(std::move(c));
+  p->costs.push_back(bench::MakeEvaluatedCost(cost, std::move(blocks)));
 }
 
 std::unique_ptr<Problem> MakeProblem(Path path, ImuModelKind kind) {
-  auto p = std::make_unique<Problem>();
   std::mt19937 rng(11);
-  for (const SE3d& pose : bench::BenchmarkControlPoses(&rng)) {
-    p->poses.emplace_back();
-    PoseToBlock(pose, p->poses.back().data());
-  }
+  auto p = std::make_unique<Problem>(&rng);
   std::normal_distribution<double> normal(0.0, 1.0);
-  for (int j = 0; j < kBiasBlocks; ++j) {
-    for (int a = 0; a < 3; ++a) {
-      p->gyro_bias[j][a] = 0.01 * normal(rng);
-      p->accel_bias[j][a] = 0.1 * normal(rng);
-    }
-  }
-  p->model.m_a = {1.02, 0.01, 0.98, -0.012, 0.008, 1.01};
-  p->model.m_g = {0.99, -0.01, 1.015, 0.007, -0.009, 1.02};
-  for (int j = 0; j < 9; ++j) p->model.a[j] = 0.001 * (j - 4);
-  p->model.phi_gyro_i = {0.002, -0.001, 0.003};
-  p->model.ry_i = {0.001, 0.003, -0.002};
-  p->model.rz_i = {-0.002, 0.001, 0.004};
+  bench::SetModelAwayFromNominal(&p->model);
   const double dt_s = 1e-9 * static_cast<double>(bench::kDtNs);
   for (int index = 1; index + 2 < bench::kNumControlPoses; ++index) {
     ImuModelSegment gyro;
@@ -105,12 +76,12 @@ std::unique_ptr<Problem> MakeProblem(Path path, ImuModelKind kind) {
     ImuModelSegment accel = gyro;
     accel.segment.sigma = 0.03;
     std::vector<double*> common;
-    for (int k = 0; k < 4; ++k) common.push_back(p->poses[index - 1 + k].data());
+    for (int k = 0; k < 4; ++k) common.push_back(p->spline.poses[index - 1 + k].data());
     std::vector<double*> gyro_blocks = common;
     std::vector<double*> accel_blocks = common;
     for (int j = 0; j < kBiasBlocks; ++j) {
-      gyro_blocks.push_back(p->gyro_bias[j].data());
-      accel_blocks.push_back(p->accel_bias[j].data());
+      gyro_blocks.push_back(p->spline.gyro_bias[j].data());
+      accel_blocks.push_back(p->spline.accel_bias[j].data());
     }
     accel_blocks.push_back(p->gravity.data());
     p->samples += kSamplesPerSegment;
@@ -143,16 +114,7 @@ std::unique_ptr<Problem> MakeProblem(Path path, ImuModelKind kind) {
 
 void BM_ImuModelEvaluate(benchmark::State& state, Path path, ImuModelKind kind) {
   const std::unique_ptr<Problem> p = MakeProblem(path, kind);
-  for (auto _ : state) {
-    for (Problem::Cost& c : p->costs) {
-      c.cost->Evaluate(c.blocks.data(), c.residuals.data(), c.jacobian_pointers.data());
-      benchmark::DoNotOptimize(c.residuals.data());
-      benchmark::DoNotOptimize(c.jacobians.front().data());
-    }
-  }
-  // items_per_second: IMU samples (gyro + accel rows) per second; 1e9 / it is ns per sample.
-  state.SetItemsProcessed(state.iterations() * p->samples);
-  state.counters["samples"] = p->samples;
+  bench::EvaluateEveryCost(state, p->costs, p->samples);
 }
 BENCHMARK_CAPTURE(BM_ImuModelEvaluate, calibrated, Path::kCalibrated, ImuModelKind::kCalibrated);
 BENCHMARK_CAPTURE(BM_ImuModelEvaluate,
