@@ -1,6 +1,8 @@
-// `calibrate` with two IMUs (calib/several_imus_round_trip.h), and a further IMU refused.
+// `calibrate` with two IMUs (calib/several_imus_round_trip.h), a further IMU refused, and the
+// closed-form simulator's readings of a further IMU against its mounted point's motion.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -14,14 +16,22 @@ namespace {
 
 using testing::kImu1;
 
+// 3 s of the closed-form trajectory (calib/calibrate_test_scenario.h), a rolling shutter of
+// line_delay_s.
+testing::CalibrationScenario ThreeSecondsClosedForm(double line_delay_s) {
+  testing::ScenarioOptions o;
+  o.closed_form = true;
+  o.duration_s = 3.0;
+  o.line_delay_s = line_delay_s;
+  return testing::MakeCalibrationScenario(o);
+}
+
 TEST(CalibrateImus, TwoImusRoundTrip) { testing::ExpectRoundTrip({kImu1}); }
 
 // A further IMU at another rate is refused in plain words naming it.
 TEST(CalibrateImus, AnotherRateRefused) {
-  testing::ScenarioOptions o;
-  o.closed_form = true;
-  o.duration_s = 3.0;
-  const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
+  const testing::CalibrationScenario s =
+      ThreeSecondsClosedForm(testing::ScenarioOptions().line_delay_s);
   FurtherImu imu = testing::Simulate(s, 3.0, kImu1);
   std::vector<ImuSample> every_other;
   for (size_t k = 0; k < imu.samples.size(); k += 2) every_other.push_back(imu.samples[k]);
@@ -37,22 +47,13 @@ TEST(CalibrateImus, AnotherRateRefused) {
   }
 }
 
-}  // namespace
-}  // namespace splinecal
-
-namespace splinecal {
-namespace {
 
 // The lever-arm guard (CalibrateOptions::max_lever_arm_std_m): with a bound below what 3 s of
 // this motion determine (the accelerometer's information gives 0.43 mm here, the bound is
 // 1 um), the lever arm is held at 0 exactly, reported without a std, and a warning names the IMU;
 // the rotation and the time offset are still estimated.
 TEST(CalibrateImus, UndeterminedLeverArmHeldWithAWarning) {
-  testing::ScenarioOptions o;
-  o.closed_form = true;
-  o.duration_s = 3.0;
-  o.line_delay_s = 0.0;
-  const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
+  const testing::CalibrationScenario s = ThreeSecondsClosedForm(0.0);
   CalibrateOptions options = testing::FastOptions();
   options.keep_residuals = false;
   options.further_imus.push_back(testing::Simulate(s, 3.0, testing::kImu1));
@@ -74,11 +75,6 @@ TEST(CalibrateImus, UndeterminedLeverArmHeldWithAWarning) {
   EXPECT_TRUE(warned);
 }
 
-}  // namespace
-}  // namespace splinecal
-
-namespace splinecal {
-namespace {
 
 // The further IMU's readings the Monte-Carlo tests feed `calibrate` are those of the mounted
 // point itself: the closed-form simulator (calib/closed_form_simulation.h, which forms
@@ -91,10 +87,7 @@ namespace {
 // Tolerances 1e-5 m/s^2 and 1e-5 rad/s, ~3000 and ~200 times below the ADIS16448's per-sample
 // noise: the differences' lever arm taken 1% (1.1 mm) short gave 7.1e-3 m/s^2 and failed.
 TEST(SeveralImusSimulation, ClosedFormReadingsAreTheMountedPointsMotion) {
-  testing::ScenarioOptions o;
-  o.closed_form = true;
-  o.duration_s = 3.0;
-  const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
+  const testing::CalibrationScenario s = ThreeSecondsClosedForm(0.0);
   const testing::MountedImu& m = testing::kImu1;
   SimulationOptions options;
   options.noise_free = true;
