@@ -30,6 +30,16 @@ testing::CalibrationScenario ThreeSecondsClosedForm(double line_delay_s) {
   return testing::MakeCalibrationScenario(o);
 }
 
+// A noise-free, bias-free IMU at m's pose and clock offset (its `calibrated` model).
+SimulationOptions NoiseFreeAt(const testing::MountedImu& m) {
+  SimulationOptions options;
+  options.noise_free = true;
+  options.imu.intrinsics.C_i_b = m.C_i_b.matrix();
+  options.imu.intrinsics.r_b = m.r_b;
+  options.imu.time_offset_s = m.time_offset_s;
+  return options;
+}
+
 TEST(CalibrateImus, TwoImusRoundTrip) { testing::ExpectRoundTrip({kImu1}); }
 
 // A further IMU at another rate is refused in plain words naming it.
@@ -91,11 +101,7 @@ TEST(CalibrateImus, UndeterminedLeverArmHeldWithAWarning) {
 TEST(SeveralImusSimulation, ClosedFormReadingsAreTheMountedPointsMotion) {
   const testing::CalibrationScenario s = ThreeSecondsClosedForm(0.0);
   const testing::MountedImu& m = testing::kImu1;
-  SimulationOptions options;
-  options.noise_free = true;
-  options.imu.intrinsics.C_i_b = m.C_i_b.matrix();
-  options.imu.intrinsics.r_b = m.r_b;
-  options.imu.time_offset_s = m.time_offset_s;
+  const SimulationOptions options = NoiseFreeAt(m);
   const std::vector<ImuSample> samples = testing::SimulateImuFromTrajectory(
       *s.trajectory, s.start_ns, s.start_ns + 3'000'000'000, options);
   ASSERT_GT(samples.size(), 500u);
@@ -137,11 +143,7 @@ TEST(SeveralImusSimulation, EstimatorPredictsTheSimulatorsReadings) {
   const testing::CalibrationScenario s = testing::MakeCalibrationScenario(o);
   const SE3Splined& spline = s.spline;
   const testing::MountedImu& m = testing::kImu1;
-  SimulationOptions options;
-  options.noise_free = true;
-  options.imu.intrinsics.C_i_b = m.C_i_b.matrix();
-  options.imu.intrinsics.r_b = m.r_b;
-  options.imu.time_offset_s = m.time_offset_s;
+  const SimulationOptions options = NoiseFreeAt(m);
   std::vector<ImuSample> samples;
   SimulateImu(spline,
               spline.start_time_ns() + 100'000'000,
