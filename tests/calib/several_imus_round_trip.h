@@ -41,6 +41,16 @@ constexpr double kMaxModelRotationStdDeg = 0.5;
 constexpr double kMaxLeverArmStdM = 0.005;
 constexpr double kMaxTimeOffsetStdS = 0.0005;
 
+// The noise seed of further IMU k (1, 2, ...) of a run whose ScenarioOptions::seed is `seed`:
+// seed + 200 + (k - 1), the offsets `splinecal simulate` uses (sim/simulation_run.cc), so that
+// every sensor of one run draws its own stream: the reference IMU draws from `seed` and the
+// camera's pixel noise from seed + 100 (calib/calibrate_test_scenario.h). A further IMU seeded
+// with the camera's seed would add to its readings the very numbers the camera adds to its
+// corners (both are GaussianSampler streams), noise the estimator assumes independent.
+inline uint64_t FurtherImuSeed(uint64_t seed, int k) {
+  return seed + 200 + static_cast<uint64_t>(k - 1);
+}
+
 struct MountedImu {
   SO3d C_i_b;
   Eigen::Vector3d r_b;
