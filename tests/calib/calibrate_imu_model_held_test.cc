@@ -119,7 +119,8 @@ testing::CalibrationScenario TurnedScenario(double duration_s, double wobble_rad
 // summary; the other 18 entries, C_i_b, r_b and the time offset are estimated within 3 std of the
 // truth (several_imus_round_trip.h's ExpectEntry). Measured 2026-11-28: the guard holds the six at
 // 0.2 and 0.4 mrad of wobble, three of them at 0.8 mrad (M_g(0,0) and M_g(2,0) then estimated with
-// std 0.013, C_gyro_i(z) with 0.55 deg), none at 1.6 mrad. 1.2 s of Release CPU (user + sys).
+// std 0.013, C_gyro_i(z) with 0.55 deg), none at 1.6 mrad. 1.2 s of Release CPU (user + sys),
+// 8.9 s in the sanitizer build (scripts/test.sh --sanitize's flags and options).
 TEST(CalibrateImuModelHeld, FurtherImuGuardHoldsWhatARotationAboutOneAxisLeaves) {
   constexpr double kDurationS = 4.0;
   const testing::CalibrationScenario s = TurnedScenario(kDurationS, 2e-4);

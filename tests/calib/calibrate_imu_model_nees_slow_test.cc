@@ -90,9 +90,8 @@ void ExpectNeesInsideIntervals(const Options& opt) {
   // Groups by their index in the per-seed vector of normalised errors: the model's entries
   // (testing::AppendImuModelErrors), then T_cam_imu's rotation and translation.
   testing::NeesRuns runs;
-  std::vector<testing::NeesGroup>& groups = runs.groups;
-  groups = testing::ImuModelNeesGroups(opt.model);
-  groups.push_back({"T_cam_imu", testing::NeesEntries(groups), 6});
+  runs.groups = testing::ImuModelNeesGroups(opt.model);
+  runs.groups.push_back({"T_cam_imu", testing::NeesEntries(runs.groups), 6});
   const ImuIntrinsicsd truth = Miscalibrated(opt.model);
   for (int seed = 1; seed <= kSeeds; ++seed) {
     const testing::CalibrationScenario s = ModelScenario(opt, truth, static_cast<uint64_t>(seed));

@@ -18,8 +18,6 @@
 // as calibrate_imus_nees_slow_test.cc).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cstdio>
 #include <vector>
 
 #include "calib/imu_model_nees.h"
@@ -41,12 +39,11 @@ struct Options {
 void ExpectNeesInsideIntervals(const Options& opt) {
   const testing::MountedImu truth = testing::WithModel(testing::kImu1, opt.model);
   testing::NeesRuns runs;
-  std::vector<testing::NeesGroup>& groups = runs.groups;
-  groups = testing::ImuModelNeesGroups(opt.model);
-  const int pose = testing::NeesEntries(groups);
-  groups.push_back({"C_i_b", pose, 3});
-  groups.push_back({"r_b", pose + 3, 3});
-  groups.push_back({"time offset", pose + 6, 1});
+  runs.groups = testing::ImuModelNeesGroups(opt.model);
+  const int pose = testing::NeesEntries(runs.groups);
+  runs.groups.push_back({"C_i_b", pose, 3});
+  runs.groups.push_back({"r_b", pose + 3, 3});
+  runs.groups.push_back({"time offset", pose + 6, 1});
   for (int seed = 1; seed <= kSeeds; ++seed) {
     testing::ScenarioOptions o;
     o.closed_form = true;
