@@ -147,8 +147,9 @@ TEST(CalibrateImuModelHeld, FurtherImuGuardHoldsWhatARotationAboutOneAxisLeaves)
   options.min_rotation_rate_rad_s = 0.0;
   // r_b along the turning axis shows only through the wobble's angular acceleration (std 26 mm
   // here): the lever-arm guard's default 1 cm would hold all of r_b at 0, and its 11 cm off the
-  // axis would then show as centripetal acceleration the model lacks (measured: the
-  // accelerometer's white noise 3.9x its density, M_a's stds up to 0.10).
+  // axis would then show as centripetal acceleration the model lacks (measured: calibrate's
+  // warning of the accelerometer's white noise at 3.9x its density and stds up to 74x the noise
+  // model's; IMU 1's M_a stds up to 0.10 instead of 0.0014-0.0026).
   options.max_lever_arm_std_m = 0.05;
   options.further_imus.push_back(testing::Simulate(s, kDurationS, mounted));
   const CalibrationResult r = Calibrate(s.imu, s.observations, s.start, &s.target, options);
