@@ -3,19 +3,23 @@
 // late) with `scale-misalignment` or `scale-misalignment-size-effect` and WithModel's errors
 // (`--imu-model calibrated,scale-misalignment`). Per group of its parameters -- M_a, M_g (lower
 // triangles), A, C_gyro_i, the size effect's ry_i, rz_i, its rotation C_i_b (right tangent), lever
-// arm r_b and time offset -- the diagonal NEES sum_i (error_i / std_i)^2 summed over 20 seeds must
-// lie in the two-sided 95% interval of chi-square with 20 x dof degrees of freedom
-// (testing/chi_square.h). As in calibrate_imu_model_nees_slow_test.cc (the reference IMU's model)
-// the NEES is the diagonal one (the result has per-entry stds, not their correlations): for the
-// groups of several entries the sum is then not exactly chi-square (correlated entries widen its
-// spread).
+// arm r_b and time offset -- each entry's NEES (error / std)^2 summed over 20 seeds must lie in
+// chi-square(20)'s two-sided interval at the family-wise level 95% over all entries
+// (testing/chi_square.h, ExpectEachEntryNeesInsideFamilyInterval95), and each group's sum is
+// printed. The result has per-entry stds, not their correlations, so a group's sum is the
+// diagonal NEES, which is not chi-square(20 x dof) when its entries correlate: on seeds 1-20 the
+// runs' normalised errors correlate up to 0.73 within A, 0.85 within ry_i, rz_i and 0.65 within
+// r_b, and those groups' sums fell below the uncorrelated interval (A 141.0 of [144.7, 219.1],
+// ry_i, rz_i 78.5 of [91.6, 152.2], r_b 39.2 of [40.5, 83.3]) while on seeds 21-40 they were
+// 186.0-195.9, 120.6 and 92.8 (above [40.5, 83.3]): a spread wider than the interval assumes,
+// not a bias. Each entry alone is exactly chi-square(20) whatever the correlations.
 //
 // Data: the closed-form trajectory (calib/calibrate_test_scenario.h, closed_form; no spline
 // represents it exactly), both IMUs' readings from it (calib/closed_form_simulation.h, the
 // further one through its model at its pose and clock offset), the ADIS16448's noise on both.
 // Each seed draws another trajectory (periods, phases), other camera and reference-IMU noise
-// (ScenarioOptions::seed) and another noise of the further IMU (MountedImu::seed = 100 + seed,
-// as calibrate_imus_nees_slow_test.cc).
+// (ScenarioOptions::seed) and another noise of the further IMU (MountedImu::seed =
+// FurtherImuSeed(seed, 1), a stream no other sensor of the run draws from).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -56,7 +60,7 @@ void ExpectNeesInsideIntervals(const Options& opt) {
     double dw_rms = 0.0;
     testing::Excitation(*s.trajectory, opt.duration_s, &w_rms, &dw_rms);
     testing::MountedImu mounted = truth;
-    mounted.seed = 100 + static_cast<uint64_t>(seed);
+    mounted.seed = testing::FurtherImuSeed(o.seed, 1);
     CalibrateOptions options = testing::FastOptions();
     options.keep_residuals = false;
     options.model.knot_spacing_s = opt.knot_spacing_s;
@@ -78,13 +82,11 @@ void ExpectNeesInsideIntervals(const Options& opt) {
     runs.Add(seed, r.solve.solve_time_s, w_rms, dw_rms, z);
     if (::testing::Test::HasFatalFailure()) return;
   }
-  runs.Expect(kSeeds);
+  runs.ExpectEachEntry(kSeeds);
 }
 
 // 4 s recordings: 20 calibrations in 13.7 s of Release CPU (42 s wall on the loaded 2-core
-// machine, 2026-11-28). Every group inside, C_i_b too (66.25 over [40.47, 83.30]; under
-// `calibrated`, calibrate_imus_nees_slow_test.cc, it is above): under a model C_i_b is fixed by
-// the accelerometers alone, the gyro's own rotation going to C_gyro_i.
+// machine, 2026-11-28).
 TEST(CalibrateImusModelMonteCarlo, FurtherScaleMisalignment) {
   ExpectNeesInsideIntervals({ImuModelKind::kScaleMisalignment, 4.0});
 }

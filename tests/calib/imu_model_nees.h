@@ -97,6 +97,7 @@ inline int NeesEntries(const std::vector<NeesGroup>& groups) {
 // The NEES sums of a Monte-Carlo test's groups over its runs, and the lowest excitation.
 struct NeesRuns {
   std::vector<NeesGroup> groups;
+  std::vector<double> entry_sums;  // each entry's sum of squares over the runs
   double w_rms_min = 1e9;
   double dw_rms_min = 1e9;
 
@@ -114,6 +115,8 @@ struct NeesRuns {
     for (double v : z) std::printf(" %+.2f", v);
     std::printf("\n");
     std::fflush(stdout);
+    entry_sums.resize(z.size(), 0.0);
+    for (std::size_t i = 0; i < z.size(); ++i) entry_sums[i] += z[i] * z[i];
     for (NeesGroup& group : groups) {
       for (int i = group.first; i < group.first + group.dof; ++i) {
         ASSERT_TRUE(std::isfinite(z[i])) << group.name << " seed " << run;
@@ -124,12 +127,35 @@ struct NeesRuns {
 
   // Prints the lowest excitation and expects every group's sum inside its 95% interval.
   void Expect(int runs) const {
+    PrintExcitation();
+    ExpectNeesSumsInsideInterval95(groups, runs);
+  }
+
+  // Prints the lowest excitation and each group's sum with its chi-square interval (not
+  // expected: the interval holds for uncorrelated entries only), and expects each entry's sum
+  // inside chi-square(runs)'s interval at the family-wise 95% level
+  // (ExpectEachEntryNeesInsideFamilyInterval95).
+  void ExpectEachEntry(int runs) const {
+    PrintExcitation();
+    for (const NeesGroup& group : groups) {
+      const ChiSquareInterval band = ChiSquareInterval95(runs * group.dof);
+      std::printf("%s: NEES sum %.2f over %d runs (dof %d; [%.2f, %.2f] if uncorrelated)\n",
+                  group.name,
+                  group.sum,
+                  runs,
+                  group.dof,
+                  band.low,
+                  band.high);
+    }
+    ExpectEachEntryNeesInsideFamilyInterval95(entry_sums, runs);
+  }
+
+  void PrintExcitation() const {
     std::printf(
         "excitation, lowest over the seeds: rotation rate RMS %.2f rad/s, angular "
         "acceleration RMS %.2f rad/s^2\n",
         w_rms_min,
         dw_rms_min);
-    ExpectNeesSumsInsideInterval95(groups, runs);
   }
 };
 

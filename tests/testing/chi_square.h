@@ -33,6 +33,18 @@ inline double ChiSquareQuantile(double k, double z) {
   return k * std::pow(1.0 - a + z * std::sqrt(a), 3.0);
 }
 
+// The standard normal quantile z with P(Z > z) = alpha (0 < alpha < 0.5), by bisection on
+// P(Z > z) = erfc(z / sqrt(2)) / 2, which falls monotonically in z.
+inline double NormalUpperQuantile(double alpha) {
+  double low = 0.0;
+  double high = 40.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (low + high);
+    (0.5 * std::erfc(mid / std::sqrt(2.0)) > alpha ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
 // The two-sided 95% interval of chi-square with k degrees of freedom.
 struct ChiSquareInterval {
   double low = 0.0;
@@ -67,6 +79,28 @@ inline void ExpectNeesSumsInsideInterval95(const std::vector<NeesGroup>& groups,
         band.high);
     EXPECT_GE(group.sum, band.low) << group.name << ": uncertainty too pessimistic";
     EXPECT_LE(group.sum, band.high) << group.name << ": uncertainty overconfident";
+  }
+}
+
+// Expects each scalar entry's NEES sum over `runs` runs inside chi-square(runs)'s two-sided
+// interval at the family-wise level 95% over all the entries (Bonferroni: each entry's interval
+// at 1 - 0.05 / m). Each entry's sum is exactly chi-square(runs) whatever the correlations between
+// entries, where a group's sum of per-entry squares is not: with correlated entries its mean is
+// still runs x dof but its spread is wider than chi-square(runs x dof)'s, so a group interval
+// fails honest stds more often than 5%.
+inline void ExpectEachEntryNeesInsideFamilyInterval95(const std::vector<double>& entry_sums,
+                                                     int runs) {
+  const double z = NormalUpperQuantile(0.025 / static_cast<double>(entry_sums.size()));
+  const double low = ChiSquareQuantile(runs, -z);
+  const double high = ChiSquareQuantile(runs, z);
+  std::printf("each of %zu entries: NEES sum over %d runs inside [%.2f, %.2f] (95%% over all)\n",
+              entry_sums.size(),
+              runs,
+              low,
+              high);
+  for (std::size_t i = 0; i < entry_sums.size(); ++i) {
+    EXPECT_GE(entry_sums[i], low) << "entry " << i << ": uncertainty too pessimistic";
+    EXPECT_LE(entry_sums[i], high) << "entry " << i << ": uncertainty overconfident";
   }
 }
 
