@@ -1,7 +1,8 @@
 // What the tests of both trajectory models (se3_spline_test.cc, split_segment_test.cc,
-// split_segment_jacobians_test.cc) check a spline with: seeded random splines, the interior times
-// they sample, every output of one Evaluate, and the control-pose Jacobians against central
-// differences of the spline under splinecal's right perturbation T_k -> T_k Exp(d).
+// split_segment_jacobians_test.cc, imu_model_test.cc) check a spline with: seeded random splines,
+// the interior times they sample, every output of one Evaluate, the reference split spline on the
+// same control poses, and the control-pose Jacobians against central differences of the spline
+// under splinecal's right perturbation T_k -> T_k Exp(d).
 // Header-only, test-only.
 #ifndef SPLINECAL_TESTS_SPLINE_SPLINE_CHECKS_H_
 #define SPLINECAL_TESTS_SPLINE_SPLINE_CHECKS_H_
@@ -15,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "spline/reference_split_spline.h"
 #include "spline/spline_test_util.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/spline/se3_spline.h"
@@ -67,6 +69,19 @@ inline SplineState EvaluateAll(const SE3Splined& spline, const Segment<double>& 
 
 inline SplineState EvaluateAt(const SE3Splined& spline, double t_s) {
   return EvaluateAll(spline, spline.SegmentAt(t_s));
+}
+
+// The reference split spline of the benchmark (reference_split_spline.h) on the control poses of
+// `spline`, with its knot time and spacing.
+inline reference::SplitSpline ReferenceSplitSpline(const SE3Splined& spline,
+                                                   reference::KnotMode mode) {
+  std::vector<Eigen::Matrix3d> R;
+  std::vector<Eigen::Vector3d> p;
+  for (const SE3d& T : spline.control_poses()) {
+    R.push_back(T.rotationMatrix());
+    p.push_back(T.translation());
+  }
+  return reference::SplitSpline(R, p, spline.t0_ns(), spline.dt_ns(), mode);
 }
 
 // The spline with control pose `index` replaced by T_index Exp(d).

@@ -168,14 +168,8 @@ TEST(SplitJacobian, ResidualJacobiansMatchTheReferenceSplitSpline) {
   for (const auto& [min_angle, max_angle] :
        {std::make_pair(1e-9, 1e-6), std::make_pair(0.1, 1.0), std::make_pair(2.5, 3.0)}) {
     const SE3Splined spline = MakeRandomSplit(31, min_angle, max_angle);
-    std::vector<Eigen::Matrix3d> R;
-    std::vector<Eigen::Vector3d> p;
-    for (const SE3d& T : spline.control_poses()) {
-      R.push_back(T.rotationMatrix());
-      p.push_back(T.translation());
-    }
-    const reference::SplitSpline ref(
-        R, p, spline.t0_ns(), spline.dt_ns(), reference::KnotMode::kCached);
+    const reference::SplitSpline ref =
+        testing::ReferenceSplitSpline(spline, reference::KnotMode::kCached);
     const Eigen::Vector3d g_w(0.3, -0.2, -9.81);
     const Eigen::Vector3d bias(0.01, -0.02, 0.03);
     const Eigen::Vector3d measured(0.1, -0.2, 9.7);
