@@ -15,33 +15,31 @@ enum class PoseFormat { kTum, kEurocGroundTruth };
 StampedPose ParseRow(const TextFileReader& reader,
                      const std::vector<std::string_view>& fields,
                      PoseFormat format) {
+  static const char* const kTumNames[] = {"time", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
+  static const char* const kEurocNames[] = {"timestamp", "p x", "p y", "p z",
+                                            "q w",       "q x", "q y", "q z"};
+  const bool tum = format == PoseFormat::kTum;
+  const char* const* names = tum ? kTumNames : kEurocNames;
   StampedPose pose;
-  double v[8];
-  if (format == PoseFormat::kTum) {
-    static const char* const kNames[] = {"time", "tx", "ty", "tz", "qx", "qy", "qz", "qw"};
+  if (tum) {
     internal::CheckColumnCount(reader, fields, 8, "TUM: t_s tx ty tz qx qy qz qw");
-    pose.t_ns = ParseSecondsToNs(fields[0], reader, kNames[0]);
-    for (int i = 1; i < 8; ++i) {
-      v[i] = ParseBoundedDouble(fields[i], reader, kNames[i], i < 4 ? kMaxPosition : 2.0,
-                                i < 4 ? "m" : "(quaternion)");
-    }
-    pose.p = Eigen::Vector3d(v[1], v[2], v[3]);
-    pose.q = internal::CheckedUnitQuaternion(reader, fields[4], v[7], v[4], v[5], v[6]);
+    pose.t_ns = ParseSecondsToNs(fields[0], reader, names[0]);
   } else {
-    static const char* const kNames[] = {"timestamp", "p x", "p y", "p z",
-                                         "q w",       "q x", "q y", "q z"};
     if (fields.size() < 8) {
       reader.Fail("expected at least 8 columns (EuRoC ground truth: t_ns, p xyz, q wxyz, ...), "
                   "found " + std::to_string(fields.size()));
     }
-    pose.t_ns = ParseTimestampNs(fields[0], reader, kNames[0]);
-    for (int i = 1; i < 8; ++i) {
-      v[i] = ParseBoundedDouble(fields[i], reader, kNames[i], i < 4 ? kMaxPosition : 2.0,
-                                i < 4 ? "m" : "(quaternion)");
-    }
-    pose.p = Eigen::Vector3d(v[1], v[2], v[3]);
-    pose.q = internal::CheckedUnitQuaternion(reader, fields[4], v[4], v[5], v[6], v[7]);
+    pose.t_ns = ParseTimestampNs(fields[0], reader, names[0]);
   }
+  // Both: the position, then the quaternion in the file's order (TUM x y z w, EuRoC w x y z).
+  double v[8];
+  for (int i = 1; i < 8; ++i) {
+    v[i] = ParseBoundedDouble(fields[i], reader, names[i], i < 4 ? kMaxPosition : 2.0,
+                              i < 4 ? "m" : "(quaternion)");
+  }
+  pose.p = Eigen::Vector3d(v[1], v[2], v[3]);
+  pose.q = tum ? internal::CheckedUnitQuaternion(reader, fields[4], v[7], v[4], v[5], v[6])
+               : internal::CheckedUnitQuaternion(reader, fields[4], v[4], v[5], v[6], v[7]);
   return pose;
 }
 

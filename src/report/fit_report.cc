@@ -33,6 +33,26 @@ std::string VectorText(const Eigen::Vector3d& v, int digits) {
 
 const char* const kAxisColors[3] = {"#d62728", "#2ca02c", "#1f77b4"};
 
+// One series per axis x, y, z on `panel` (kAxisColors, otherwise drawn as `style`): value(sample,
+// axis) against seconds(sample.t_ns), for the samples at the indices `keep`.
+template <typename Sample, typename Seconds, typename Value>
+void AddAxisSeries(const plot::Series& style,
+                   const std::vector<Sample>& samples,
+                   const std::vector<size_t>& keep,
+                   const Seconds& seconds,
+                   const Value& value,
+                   plot::Panel* panel) {
+  for (int a = 0; a < 3; ++a) {
+    plot::Series& series = panel->series.emplace_back(style);
+    series.label = AxisName(a);
+    series.color = kAxisColors[a];
+    for (size_t i : keep) {
+      series.x.push_back(seconds(samples[i].t_ns));
+      series.y.push_back(value(samples[i], a));
+    }
+  }
+}
+
 }  // namespace
 
 std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
@@ -186,44 +206,44 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   residuals.columns = 1;
   residuals.panel_width = 900.0;
   residuals.panel_height = 240.0;
+  plot::Series thin_line;
+  thin_line.line_width = 1.0;
   for (int sensor = 0; sensor < 2; ++sensor) {
     plot::Panel& panel = residuals.panels.emplace_back();
     panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
     panel.y = {sensor == 0 ? "gyro residual [rad/s]" : "accel residual [m/s^2]",
                plot::Scale::kLinear};
-    for (int a = 0; a < 3; ++a) {
-      plot::Series& series = panel.series.emplace_back();
-      series.label = AxisName(a);
-      series.color = kAxisColors[a];
-      series.line_width = 1.0;
-      for (size_t i : keep) {
-        const FitImuSample& s = imu[i];
-        series.x.push_back(seconds(s.t_ns));
-        series.y.push_back(sensor == 0 ? s.gyro_fitted[a] - s.gyro_measured[a]
-                                       : s.accel_fitted[a] - s.accel_measured[a]);
-      }
-    }
+    AddAxisSeries(
+        thin_line,
+        imu,
+        keep,
+        seconds,
+        [sensor](const FitImuSample& s, int a) {
+          return sensor == 0 ? s.gyro_fitted[a] - s.gyro_measured[a]
+                             : s.accel_fitted[a] - s.accel_measured[a];
+        },
+        &panel);
   }
   const std::vector<size_t> keep_poses =
       plot::DecimatedIndices(r.pose_samples.size(), max_points, /*keep_last=*/true);
+  plot::Series dots;
+  dots.line = false;
+  dots.marker = plot::Marker::kCircle;
+  dots.marker_size = 1.5;
   for (int kind = 0; kind < 2; ++kind) {
     plot::Panel& panel = residuals.panels.emplace_back();
     panel.x = {"pose time, shifted like the IMU axis [s]", plot::Scale::kLinear};
     panel.y = {kind == 0 ? "pose position error [m]" : "pose rotation error [deg]",
                plot::Scale::kLinear};
-    for (int a = 0; a < 3; ++a) {
-      plot::Series& series = panel.series.emplace_back();
-      series.label = AxisName(a);
-      series.color = kAxisColors[a];
-      series.line = false;
-      series.marker = plot::Marker::kCircle;
-      series.marker_size = 1.5;
-      for (size_t i : keep_poses) {
-        const FitPoseSample& s = r.pose_samples[i];
-        series.x.push_back(seconds(s.t_ns));
-        series.y.push_back(kind == 0 ? s.position_error_m[a] : kRadToDeg * s.rotation_error_rad[a]);
-      }
-    }
+    AddAxisSeries(
+        dots,
+        r.pose_samples,
+        keep_poses,
+        seconds,
+        [kind](const FitPoseSample& s, int a) {
+          return kind == 0 ? s.position_error_m[a] : kRadToDeg * s.rotation_error_rad[a];
+        },
+        &panel);
   }
 
   // Biases over time (with +-1 std bands for the constant model).
@@ -236,16 +256,15 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
     plot::Panel& panel = biases.panels.emplace_back();
     panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
     panel.y = {sensor == 0 ? "gyro bias [rad/s]" : "accel bias [m/s^2]", plot::Scale::kLinear};
-    for (int a = 0; a < 3; ++a) {
-      plot::Series& series = panel.series.emplace_back();
-      series.label = AxisName(a);
-      series.color = kAxisColors[a];
-      for (size_t i : keep) {
-        const FitImuSample& s = imu[i];
-        series.x.push_back(seconds(s.t_ns));
-        series.y.push_back(sensor == 0 ? s.gyro_bias[a] : s.accel_bias[a]);
-      }
-    }
+    AddAxisSeries(
+        plot::Series(),
+        imu,
+        keep,
+        seconds,
+        [sensor](const FitImuSample& s, int a) {
+          return sensor == 0 ? s.gyro_bias[a] : s.accel_bias[a];
+        },
+        &panel);
   }
 
   std::string html = InputFilesHtml({{"IMU", inputs.imu_path}, {"poses", inputs.poses_path}});

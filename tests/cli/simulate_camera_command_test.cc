@@ -14,9 +14,10 @@
 namespace splinecal {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::CountLines;
+using ::testing::HasSubstr;
 using testing::ReadFileText;
+using testing::RefusedInOneLine;
 using testing::RunTool;
 using testing::TempDir;
 
@@ -52,9 +53,7 @@ TEST(SimulateCameraCommand, CameraFlagsWithoutCamchainAreRefused) {
   TempDir dir;
   const auto result = RunTool({"simulate", "--target", DataFile("aprilgrid.yaml"), "--out",
                                dir.File("o"), "--quiet"});
-  EXPECT_EQ(result.exit_code, 2);
-  EXPECT_EQ(CountLines(result.err), 1);
-  EXPECT_THAT(result.err, HasSubstr("need --camchain"));
+  EXPECT_TRUE(RefusedInOneLine(result, "need --camchain"));
   const auto calibration = RunTool({"simulate", "--trajectory", "calibration", "--out",
                                     dir.File("o"), "--quiet"});
   EXPECT_EQ(calibration.exit_code, 2);

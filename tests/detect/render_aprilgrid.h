@@ -17,6 +17,7 @@ extern "C" {
 #include <apriltag/tag36h11.h>
 }
 
+#include "detect/gray_image_from_float.h"
 #include "splinecal/camera/camera_model.h"
 #include "splinecal/camera/observations.h"
 #include "splinecal/camera/target.h"
@@ -146,20 +147,7 @@ class PlanarViewRenderer {
               cv::Scalar(120));
     if (blur_px > 0) cv::GaussianBlur(fine, fine, cv::Size(0, 0), blur_px * kSub);
     cv::resize(fine, pixels, cv::Size(camera_.width, camera_.height), 0, 0, cv::INTER_AREA);
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> gauss(0.0, noise);
-    GrayImage image;
-    image.width = camera_.width;
-    image.height = camera_.height;
-    image.pixels.resize(static_cast<size_t>(image.width) * image.height);
-    for (int v = 0; v < image.height; ++v) {
-      for (int u = 0; u < image.width; ++u) {
-        const double value = pixels.at<float>(v, u) + (noise > 0 ? gauss(rng) : 0.0);
-        image.pixels[static_cast<size_t>(v) * image.width + u] =
-            static_cast<uint8_t>(std::clamp(std::lround(value), 0L, 255L));
-      }
-    }
-    return image;
+    return GrayImageFromFloat(pixels, noise, seed);
   }
 
  private:

@@ -19,10 +19,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
+#include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include <opencv2/imgproc.hpp>
-
+#include "detect/gray_image_from_float.h"
 #include "splinecal/camera/target.h"
 #include "splinecal/detect/gray_image.h"
 
@@ -87,17 +87,8 @@ inline GrayImage RenderCheckerboard(const CalibrationTarget& target, const Pinho
     }
   }
   if (blur_px > 0) cv::GaussianBlur(pixels, pixels, cv::Size(0, 0), blur_px);
-  GrayImage image;
-  image.width = view.width;
-  image.height = view.height;
-  image.pixels.resize(static_cast<size_t>(view.width) * view.height);
-  for (int v = 0; v < view.height; ++v) {
-    for (int u = 0; u < view.width; ++u) {
-      image.pixels[static_cast<size_t>(v) * view.width + u] =
-          static_cast<uint8_t>(std::lround(pixels.at<float>(v, u)));
-    }
-  }
-  return image;
+  // Intensities 40..210 averaged: the clamp to 0..255 never acts.
+  return GrayImageFromFloat(pixels);
 }
 
 }  // namespace testing

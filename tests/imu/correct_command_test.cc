@@ -16,7 +16,6 @@
 namespace splinecal {
 namespace {
 
-using testing::CountLines;
 using ::testing::HasSubstr;
 using testing::RunTool;
 using testing::TempDir;
@@ -97,11 +96,7 @@ TEST(CorrectCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
   bad_model.replace(bad_model.find("size-effect"), 11, "sizeeffect");
   const std::string bad = dir.Write("bad.yaml", bad_model);
   const std::string out = dir.File("out");
-  struct Case {
-    std::vector<std::string> args;
-    std::string message;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<testing::BadInvocation> cases = {
       {{"--imu", imu}, "--imu-intrinsics"},
       {{"--imu-intrinsics", intrinsics}, "--imu"},
       {{"--imu", imu, "--imu-intrinsics", intrinsics, "--imu-index", "1"},
@@ -111,15 +106,7 @@ TEST(CorrectCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
        "--derivative-window"},
       {{"--imu", dir.File("missing.csv"), "--imu-intrinsics", intrinsics}, "missing.csv"},
   };
-  for (const Case& c : cases) {
-    std::vector<std::string> args = {"correct", "--out", out};
-    args.insert(args.end(), c.args.begin(), c.args.end());
-    const auto result = RunTool(args);
-    EXPECT_EQ(result.exit_code, 2) << c.message;
-    EXPECT_EQ(CountLines(result.err), 1) << result.err;
-    EXPECT_THAT(result.err, HasSubstr(c.message));
-    EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml")) << c.message;
-  }
+  testing::ExpectEachRefusedWritingNothing({"correct", "--out", out}, cases, out + "/result.yaml");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "spline/spline_checks.h"
 #include "spline/spline_test_util.h"
 #include "splinecal/lie/se3.h"
 #include "splinecal/lie/se3_manifold.h"
@@ -31,23 +32,12 @@ constexpr double kNumericJacobianTolerance = 1e-6;
 constexpr double kAutoDiffTolerance = 1e-9;
 constexpr double kRoundingTolerance = 1e-12;
 
-constexpr int kNumPoses = 8;
-
 SE3Splined MakeRandomSpline(uint32_t seed, TrajectoryModel model = TrajectoryModel::kSE3) {
-  return SE3Splined(testing::RandomControlPoses(kNumPoses, seed),
-                    testing::kEurocLikeT0Ns,
-                    testing::kTestDtNs,
-                    model);
+  return testing::RandomSpline(seed, model);
 }
 
 std::vector<double> InteriorTimes(const SE3Splined& spline) {
-  std::vector<double> times;
-  for (int i = 1; i < spline.num_control_poses() - 2; ++i) {
-    for (double u : {0.0, 0.3, 0.77}) {
-      times.push_back(spline.TimeSinceT0(spline.knot_time_ns(i)) + u * spline.dt());
-    }
-  }
-  return times;
+  return testing::InteriorTimes(spline, {0.0, 0.3, 0.77});
 }
 
 const Eigen::Vector3d kGyroBias(0.01, -0.02, 0.005);
@@ -106,25 +96,6 @@ TEST(PredictImu, MatchesSplineRatesPlusBiases) {
   }
 }
 
-// Numeric d prediction / d d_k for T_k -> T_k Exp(d_k).
-template <typename F>
-std::array<Eigen::MatrixXd, 4> NumericControlJacobians(const SE3Splined& spline,
-                                                       const Segment<double>& seg,
-                                                       const F& predict) {
-  std::array<Eigen::MatrixXd, 4> J;
-  for (int k = 0; k < 4; ++k) {
-    const int index = seg.first_index() + k;
-    J[k] = testing::CentralDifferenceJacobian(
-        [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
-          SE3Splined perturbed = spline;
-          perturbed.SetControlPose(index, spline.control_pose(index) * SE3d::Exp(Vector6d(d)));
-          return predict(perturbed);
-        },
-        Eigen::VectorXd::Zero(6));
-  }
-  return J;
-}
-
 TEST(PredictGyroWithJacobian, MatchesNumericRightPerturbation) {
   for (uint32_t seed : {2u, 3u}) {
     const SE3Splined spline = MakeRandomSpline(seed);
@@ -133,13 +104,18 @@ TEST(PredictGyroWithJacobian, MatchesNumericRightPerturbation) {
       ControlPoseJacobian<3> J;
       Eigen::Vector3d gyro;
       PredictGyroWithJacobian(spline, seg, kGyroBias, &gyro, &J);
-      const auto J_num = NumericControlJacobians(spline, seg, [&](const SE3Splined& s) {
-        Eigen::Vector3d g;
-        PredictImu(s, seg, GravityWorld(), kGyroBias, kAccelBias, &g, nullptr);
-        return Eigen::VectorXd(g);
-      });
+      EXPECT_TRUE(testing::ControlJacobianMatchesNumeric(
+          J,
+          spline,
+          seg,
+          [&](const SE3Splined& s) {
+            Eigen::Vector3d g;
+            PredictImu(s, seg, GravityWorld(), kGyroBias, kAccelBias, &g, nullptr);
+            return Eigen::VectorXd(g);
+          },
+          kNumericJacobianTolerance))
+          << t;
       for (int k = 0; k < 4; ++k) {
-        EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kNumericJacobianTolerance)) << t << k;
         EXPECT_TRUE((J.blocks[k].leftCols<3>().isZero())) << "gyro ignores control translations";
       }
     }
@@ -156,14 +132,17 @@ TEST(PredictAccelWithJacobian, MatchesNumericRightPerturbation) {
       Eigen::Matrix3d J_gw;
       Eigen::Vector3d accel;
       PredictAccelWithJacobian(spline, seg, g_w, kAccelBias, &accel, &J, &J_gw);
-      const auto J_num = NumericControlJacobians(spline, seg, [&](const SE3Splined& s) {
-        Eigen::Vector3d a;
-        PredictImu(s, seg, g_w, kGyroBias, kAccelBias, nullptr, &a);
-        return Eigen::VectorXd(a);
-      });
-      for (int k = 0; k < 4; ++k) {
-        EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kNumericJacobianTolerance)) << t << k;
-      }
+      EXPECT_TRUE(testing::ControlJacobianMatchesNumeric(
+          J,
+          spline,
+          seg,
+          [&](const SE3Splined& s) {
+            Eigen::Vector3d a;
+            PredictImu(s, seg, g_w, kGyroBias, kAccelBias, nullptr, &a);
+            return Eigen::VectorXd(a);
+          },
+          kNumericJacobianTolerance))
+          << t;
       const Eigen::MatrixXd J_gw_num = testing::CentralDifferenceJacobian(
           [&](const Eigen::VectorXd& g) -> Eigen::VectorXd {
             Eigen::Vector3d a;

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "splinecal/sim/simulate_imu.h"
-#include "splinecal/sim/trajectories.h"
 #include "splinecal/imu/integrate.h"
 #include "splinecal/io/euroc.h"
+#include "splinecal/sim/simulate_imu.h"
+#include "splinecal/sim/trajectories.h"
 #include "testing/paths.h"
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
@@ -23,7 +23,6 @@
 namespace splinecal {
 namespace {
 
-using testing::CountLines;
 using ::testing::HasSubstr;
 using testing::ReadFileText;
 using testing::RunTool;
@@ -123,11 +122,7 @@ TEST(IntegrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
                               text.substr(line3, line4 - line3) + text.substr(line5);
   const std::string unsorted = dir.Write("imu_unsorted.csv", swapped);
   const std::string out = dir.File("out");
-  struct Case {
-    std::vector<std::string> args;
-    std::string message;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<testing::BadInvocation> cases = {
       {{"--imu", files.imu, "--groundtruth", files.truth, "--start", "500"}, "--start"},
       {{"--imu", files.imu, "--groundtruth", files.truth, "--duration", "500"}, "--duration"},
       {{"--imu", files.imu, "--groundtruth", files.truth, "--method", "heun"}, "heun"},
@@ -136,15 +131,8 @@ TEST(IntegrateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
       {{"--imu", files.imu}, "--groundtruth"},
       {{"--imu", files.imu, "--groundtruth", files.imu}, "imu0.csv:"},
   };
-  for (const Case& c : cases) {
-    std::vector<std::string> args = {"integrate", "--out", out};
-    args.insert(args.end(), c.args.begin(), c.args.end());
-    const auto result = RunTool(args);
-    EXPECT_EQ(result.exit_code, 2) << c.message << ": " << result.err;
-    EXPECT_EQ(CountLines(result.err), 1) << result.err;
-    EXPECT_THAT(result.err, HasSubstr(c.message));
-    EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml")) << c.message;
-  }
+  testing::ExpectEachRefusedWritingNothing(
+      {"integrate", "--out", out}, cases, out + "/result.yaml");
   // With --accel-unit g the same file integrates.
   const auto result = RunTool({"integrate",
                                "--imu",

@@ -9,19 +9,17 @@
 #include <vector>
 
 #include "splinecal/imu/imu_model.h"
-#include "splinecal/sim/trajectories.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/poses.h"
 #include "splinecal/io/spline_csv.h"
+#include "splinecal/sim/trajectories.h"
 #include "testing/run_tool.h"
 #include "testing/strict_yaml.h"
 
 namespace splinecal {
 namespace {
 
-using testing::CountLines;
-using ::testing::HasSubstr;
 using testing::ReadFileText;
 using testing::RunTool;
 using testing::TempDir;
@@ -154,10 +152,6 @@ TEST(SimulateCommand, RecoversASmoothTrajectoryFileWellUnderAMillimetre) {
 TEST(SimulateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
   TempDir dir;
   const std::string out = dir.File("sim");
-  struct Case {
-    std::vector<std::string> args;
-    std::string message;
-  };
   const std::string unsorted = dir.Write("unsorted.txt",
                                          "0.0 0 0 0 0 0 0 1\n"
                                          "0.1 0 0 0 0 0 0 1\n"
@@ -166,7 +160,7 @@ TEST(SimulateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
                                      "gyroscope_noise_density: 1e-4\ngyroscope_random_walk: 1e-5\n"
                                      "accelerometer_noise_density: 1e-3\n"
                                      "accelerometer_random_walk: 1e-3\n");
-  const std::vector<Case> cases = {
+  const std::vector<testing::BadInvocation> cases = {
       {{"--trajectory", "circle"}, "unknown trajectory"},
       {{"--imu-rate", "0"}, "--imu-rate"},
       {{"--duration", "-1"}, "--duration"},
@@ -176,15 +170,7 @@ TEST(SimulateCommand, BadInputExitsTwoWithOneLineAndNoOutput) {
       {{"--imu-yaml", yaml, "--gyroscope_noise_density", "1e-3"}, "either"},
       {{"--gyroscope_noise_density", "-1"}, "gyroscope_noise_density"},
   };
-  for (const Case& c : cases) {
-    std::vector<std::string> args = {"simulate", "--out", out};
-    args.insert(args.end(), c.args.begin(), c.args.end());
-    const auto result = RunTool(args);
-    EXPECT_EQ(result.exit_code, 2) << c.message;
-    EXPECT_EQ(CountLines(result.err), 1) << result.err;
-    EXPECT_THAT(result.err, HasSubstr(c.message));
-    EXPECT_FALSE(std::filesystem::exists(out + "/result.yaml")) << c.message;
-  }
+  testing::ExpectEachRefusedWritingNothing({"simulate", "--out", out}, cases, out + "/result.yaml");
 }
 
 }  // namespace

@@ -124,12 +124,9 @@ TEST(ReadEurocGroundTruth, NonUnitQuaternionIsRefused) {
   const std::string path = dir.Write("gt.csv",
                                      "100,1,2,3,2,0,0,0,4,5,6,0,0,0,0,0,0\n"
                                      "200,1,2,3,1,0,0,0,4,5,6,0,0,0,0,0,0\n");
-  try {
-    ReadEurocGroundTruth(path);
-    FAIL();
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("gt.csv:1:11: quaternion has norm 2"));
-  }
+  EXPECT_THAT(
+      [&] { ReadEurocGroundTruth(path); },
+      ::testing::ThrowsMessage<Error>(::testing::HasSubstr("gt.csv:1:11: quaternion has norm 2")));
 }
 
 TEST(ReadEurocGroundTruth, SharedRealDataReads) {
@@ -153,13 +150,10 @@ TEST(ReadEurocImu, ImplausibleMagnitudeIsRefusedWithTheLimit) {
   const std::string path = dir.Write("huge.csv",
                                      "1000,0,0,0,0,0,9.8\n"
                                      "2000,0,1e300,0,0,0,9.8\n");
-  try {
-    ReadEurocImu(path);
-    FAIL();
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("huge.csv:2:8: gyro y: value 1e+300 is beyond the "
-                                               "plausible 1000 rad/s"));
-  }
+  EXPECT_THAT([&] { ReadEurocImu(path); },
+              ::testing::ThrowsMessage<Error>(
+                  ::testing::HasSubstr("huge.csv:2:8: gyro y: value 1e+300 is beyond the "
+                                       "plausible 1000 rad/s")));
 }
 
 }  // namespace

@@ -3,6 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include "splinecal/error.h"
 #include "testing/temp_dir.h"
 
@@ -11,6 +15,27 @@ namespace {
 
 using ::testing::HasSubstr;
 using testing::TempDir;
+
+// The first data line of a file written with `text`, split into fields: the reader stays open
+// for the parsers' error context (file:line:column).
+class FirstLineFields {
+ public:
+  FirstLineFields(const std::string& name, const std::string& text)
+      : path_(dir_.Write(name, text)), reader_(path_) {
+    EXPECT_TRUE(reader_.NextLine()) << "no data line in " << path_;
+    SplitFields(reader_.line(), &fields_);
+  }
+
+  const std::string& path() const { return path_; }
+  const TextFileReader& reader() const { return reader_; }
+  std::string_view operator[](int i) const { return fields_.at(i); }
+
+ private:
+  TempDir dir_;
+  std::string path_;
+  TextFileReader reader_;
+  std::vector<std::string_view> fields_;
+};
 
 std::vector<std::string> DataLines(const std::string& path) {
   TextFileReader reader(path);
@@ -116,28 +141,20 @@ TEST(SplitFields, CommasWithSpacesAndWhitespace) {
 }
 
 TEST(ParseFiniteDouble, ReportsFileLineColumnAndField) {
-  TempDir dir;
-  const std::string path = dir.Write("a.csv", "#h\n1,2.5,abc\n");
-  TextFileReader reader(path);
-  ASSERT_TRUE(reader.NextLine());
-  std::vector<std::string_view> fields;
-  SplitFields(reader.line(), &fields);
+  const FirstLineFields fields("a.csv", "#h\n1,2.5,abc\n");
+  const TextFileReader& reader = fields.reader();
   EXPECT_DOUBLE_EQ(ParseFiniteDouble(fields[1], reader, "x"), 2.5);
   try {
     ParseFiniteDouble(fields[2], reader, "gyro z");
     FAIL() << "no throw";
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), path + ":2:7: gyro z: expected a number, got 'abc'");
+    EXPECT_EQ(std::string(e.what()), fields.path() + ":2:7: gyro z: expected a number, got 'abc'");
   }
 }
 
 TEST(ParseFiniteDouble, RefusesNanInfAndOverflow) {
-  TempDir dir;
-  const std::string path = dir.Write("a.csv", "nan,inf,-inf,1e400,+3\n");
-  TextFileReader reader(path);
-  ASSERT_TRUE(reader.NextLine());
-  std::vector<std::string_view> fields;
-  SplitFields(reader.line(), &fields);
+  const FirstLineFields fields("a.csv", "nan,inf,-inf,1e400,+3\n");
+  const TextFileReader& reader = fields.reader();
   for (int i = 0; i < 4; ++i) {
     EXPECT_THROW(ParseFiniteDouble(fields[i], reader, "v"), Error) << fields[i];
   }
@@ -145,13 +162,8 @@ TEST(ParseFiniteDouble, RefusesNanInfAndOverflow) {
 }
 
 TEST(ParseInt64, ExactAndRangeChecked) {
-  TempDir dir;
-  const std::string path =
-      dir.Write("a.csv", "1403715273262142976,99999999999999999999,1.5,-7\n");
-  TextFileReader reader(path);
-  ASSERT_TRUE(reader.NextLine());
-  std::vector<std::string_view> fields;
-  SplitFields(reader.line(), &fields);
+  const FirstLineFields fields("a.csv", "1403715273262142976,99999999999999999999,1.5,-7\n");
+  const TextFileReader& reader = fields.reader();
   EXPECT_EQ(ParseInt64(fields[0], reader, "t"), 1403715273262142976LL);
   EXPECT_THROW(ParseInt64(fields[1], reader, "t"), Error);
   EXPECT_THROW(ParseInt64(fields[2], reader, "t"), Error);
@@ -160,14 +172,11 @@ TEST(ParseInt64, ExactAndRangeChecked) {
 
 // Stamps beyond +-4e18 ns would let a difference of two of them overflow int64.
 TEST(ParseTimestampNs, RefusesStampsBeyondThePlausibleRange) {
-  TempDir dir;
-  const std::string path = dir.Write(
-      "a.txt", "4000000000000000000 -4000000000000000000 4000000000000000001 -9000000000000000000 "
-               "4000000000.000000001 -4000000001 4e9\n");
-  TextFileReader reader(path);
-  ASSERT_TRUE(reader.NextLine());
-  std::vector<std::string_view> fields;
-  SplitFields(reader.line(), &fields);
+  const FirstLineFields fields(
+      "a.txt",
+      "4000000000000000000 -4000000000000000000 4000000000000000001 -9000000000000000000 "
+      "4000000000.000000001 -4000000001 4e9\n");
+  const TextFileReader& reader = fields.reader();
   EXPECT_EQ(ParseTimestampNs(fields[0], reader, "t"), kMaxTimestampNs);
   EXPECT_EQ(ParseTimestampNs(fields[1], reader, "t"), -kMaxTimestampNs);
   try {
@@ -185,13 +194,9 @@ TEST(ParseTimestampNs, RefusesStampsBeyondThePlausibleRange) {
 }
 
 TEST(ParseSecondsToNs, DigitExactWithoutFloatingPoint) {
-  TempDir dir;
-  const std::string path =
-      dir.Write("a.txt", "1403715273.262142976 1403715273.2621429765 12 0.5 -1.25 1.5e3 x1\n");
-  TextFileReader reader(path);
-  ASSERT_TRUE(reader.NextLine());
-  std::vector<std::string_view> fields;
-  SplitFields(reader.line(), &fields);
+  const FirstLineFields fields(
+      "a.txt", "1403715273.262142976 1403715273.2621429765 12 0.5 -1.25 1.5e3 x1\n");
+  const TextFileReader& reader = fields.reader();
   EXPECT_EQ(ParseSecondsToNs(fields[0], reader, "t"), 1403715273262142976LL);
   EXPECT_EQ(ParseSecondsToNs(fields[1], reader, "t"), 1403715273262142977LL);  // rounded
   EXPECT_EQ(ParseSecondsToNs(fields[2], reader, "t"), 12000000000LL);

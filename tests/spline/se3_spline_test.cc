@@ -7,10 +7,13 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
+#include "spline/spline_checks.h"
 #include "spline/spline_test_util.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3.h"
@@ -20,6 +23,9 @@
 namespace splinecal {
 namespace {
 
+using testing::EvaluateAll;
+using testing::EvaluateAt;
+using testing::InteriorTimes;
 using testing::RelativelyNear;
 
 // Time derivatives vs central differences in time (h = 1e-5 s against dt = 0.2 s): truncation
@@ -32,12 +38,10 @@ constexpr double kJacobianTolerance = 1e-6;
 // Identities that hold exactly up to rounding of a few dozen operations on O(10) values.
 constexpr double kRoundingTolerance = 1e-11;
 
-constexpr int kNumPoses = 8;
+constexpr int kNumPoses = testing::kRandomSplinePoses;
 
 SE3Splined MakeRandomSpline(uint32_t seed, double min_angle = 0.1, double max_angle = 1.0) {
-  return SE3Splined(testing::RandomControlPoses(kNumPoses, seed, min_angle, max_angle),
-                    testing::kEurocLikeT0Ns,
-                    testing::kTestDtNs);
+  return testing::RandomSpline(seed, TrajectoryModel::kSE3, min_angle, max_angle);
 }
 
 // Relative times [s] spread over every segment, including knots and both ends.
@@ -50,31 +54,7 @@ std::vector<double> SampleTimes(const SE3Splined& spline) {
   return times;
 }
 
-// Interior times only (central differences need t +- h inside the valid range).
-std::vector<double> InteriorTimes(const SE3Splined& spline) {
-  std::vector<double> times;
-  for (int i = 1; i < spline.num_control_poses() - 2; ++i) {
-    for (double u : {0.013, 0.25, 0.5, 0.81, 0.99}) {
-      times.push_back(spline.TimeSinceT0(spline.knot_time_ns(i)) + u * spline.dt());
-    }
-  }
-  return times;
-}
-
-struct State {
-  SE3d T_w_s;
-  Eigen::Vector3d w_s, w_dot_s, v_w, a_w;
-};
-
-State EvaluateAll(const SE3Splined& spline, const Segment<double>& segment) {
-  State s;
-  spline.Evaluate(segment, &s.T_w_s, &s.w_s, &s.w_dot_s, &s.v_w, &s.a_w);
-  return s;
-}
-
-State EvaluateAt(const SE3Splined& spline, double t_s) {
-  return EvaluateAll(spline, spline.SegmentAt(t_s));
-}
+using State = testing::SplineState;
 
 // ---------------------------------------------------------------------------------------------
 // Construction and time handling.
@@ -406,25 +386,6 @@ TEST(SE3Spline, LargeRotationsBetweenControlPoses) {
 // ---------------------------------------------------------------------------------------------
 // Jacobians with respect to control poses (right perturbation).
 
-// out(spline with T_k -> T_k Exp(d)) as a function of d, for every k of the segment.
-template <typename F>
-std::array<Eigen::MatrixXd, 4> NumericControlJacobians(const SE3Splined& spline,
-                                                       const Segment<double>& segment,
-                                                       const F& output) {
-  std::array<Eigen::MatrixXd, 4> J;
-  for (int k = 0; k < 4; ++k) {
-    const int index = segment.first_index() + k;
-    J[k] = testing::CentralDifferenceJacobian(
-        [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
-          SE3Splined perturbed = spline;
-          perturbed.SetControlPose(index, spline.control_pose(index) * SE3d::Exp(Vector6d(d)));
-          return output(perturbed);
-        },
-        Eigen::VectorXd::Zero(6));
-  }
-  return J;
-}
-
 class SE3SplineJacobian : public ::testing::TestWithParam<std::pair<double, double>> {};
 
 TEST_P(SE3SplineJacobian, PoseMatchesNumericRightPerturbation) {
@@ -437,63 +398,28 @@ TEST_P(SE3SplineJacobian, PoseMatchesNumericRightPerturbation) {
       ControlPoseJacobian<6> J;
       spline.EvaluatePoseJacobian(seg, &T_w_s, &J);
       EXPECT_EQ(J.first_index, seg.index - 1);
-      const auto J_num = NumericControlJacobians(spline, seg, [&](const SE3Splined& s) {
-        SE3d pose;
-        s.Evaluate(seg, &pose);
-        return Eigen::VectorXd((T_w_s.inverse() * pose).Log());
-      });
-      for (int k = 0; k < 4; ++k) {
-        EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kJacobianTolerance))
-            << "t " << t << " k " << k;
-      }
+      EXPECT_TRUE(testing::PoseJacobianMatchesNumeric(J, T_w_s, spline, seg, kJacobianTolerance))
+          << "t " << t;
     }
   }
 }
 
 TEST_P(SE3SplineJacobian, AngularVelocityMatchesNumericRightPerturbation) {
-  const auto [min_angle, max_angle] = GetParam();
-  for (uint32_t seed : {53u, 54u}) {
-    const SE3Splined spline = MakeRandomSpline(seed, min_angle, max_angle);
-    for (double t : InteriorTimes(spline)) {
-      const Segment<double> seg = spline.SegmentAt(t);
-      Eigen::Vector3d w_s;
-      ControlPoseJacobian<3> J;
-      spline.EvaluateAngularVelocityJacobian(seg, &w_s, &J);
-      EXPECT_TRUE(RelativelyNear(w_s, EvaluateAll(spline, seg).w_s, 1e-15));
-      const auto J_num = NumericControlJacobians(spline, seg, [&](const SE3Splined& s) {
-        Eigen::Vector3d w;
-        s.Evaluate(seg, nullptr, &w);
-        return Eigen::VectorXd(w);
-      });
-      for (int k = 0; k < 4; ++k) {
-        EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kJacobianTolerance))
-            << "t " << t << " k " << k;
-      }
-    }
-  }
+  testing::ExpectRateJacobianMatchesNumeric(testing::kAngularVelocity,
+                                            TrajectoryModel::kSE3,
+                                            GetParam(),
+                                            {53u, 54u},
+                                            1e-15,
+                                            kJacobianTolerance);
 }
 
 TEST_P(SE3SplineJacobian, LinearAccelerationMatchesNumericRightPerturbation) {
-  const auto [min_angle, max_angle] = GetParam();
-  for (uint32_t seed : {55u, 56u}) {
-    const SE3Splined spline = MakeRandomSpline(seed, min_angle, max_angle);
-    for (double t : InteriorTimes(spline)) {
-      const Segment<double> seg = spline.SegmentAt(t);
-      Eigen::Vector3d a_w;
-      ControlPoseJacobian<3> J;
-      spline.EvaluateLinearAccelerationJacobian(seg, &a_w, &J);
-      EXPECT_TRUE(RelativelyNear(a_w, EvaluateAll(spline, seg).a_w, 1e-14));
-      const auto J_num = NumericControlJacobians(spline, seg, [&](const SE3Splined& s) {
-        Eigen::Vector3d a;
-        s.Evaluate(seg, nullptr, nullptr, nullptr, nullptr, &a);
-        return Eigen::VectorXd(a);
-      });
-      for (int k = 0; k < 4; ++k) {
-        EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kJacobianTolerance))
-            << "t " << t << " k " << k;
-      }
-    }
-  }
+  testing::ExpectRateJacobianMatchesNumeric(testing::kLinearAcceleration,
+                                            TrajectoryModel::kSE3,
+                                            GetParam(),
+                                            {55u, 56u},
+                                            1e-14,
+                                            kJacobianTolerance);
 }
 
 // Rotation steps between control poses: tiny (series branches), generic, large.

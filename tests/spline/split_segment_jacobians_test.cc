@@ -9,10 +9,12 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <utility>
 #include <vector>
 
 #include "spline/reference_split_spline.h"
+#include "spline/spline_checks.h"
 #include "spline/spline_test_util.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/lie/se3.h"
@@ -34,47 +36,15 @@ constexpr double kRiddersTolerance = 1e-9;
 // U, V polynomials; rotation matrices multiplied in another order).
 constexpr double kSameModelTolerance = 1e-12;
 
-constexpr int kNumPoses = 8;
-
 SE3Splined MakeRandomSplit(uint32_t seed, double min_angle, double max_angle) {
-  return SE3Splined(testing::RandomControlPoses(kNumPoses, seed, min_angle, max_angle),
-                    testing::kEurocLikeT0Ns,
-                    testing::kTestDtNs,
-                    TrajectoryModel::kSplitSO3R3);
+  return testing::RandomSpline(seed, TrajectoryModel::kSplitSO3R3, min_angle, max_angle);
 }
 
-std::vector<double> InteriorTimes(const SE3Splined& spline) {
-  std::vector<double> times;
-  for (int i = 1; i + 2 < spline.num_control_poses(); ++i) {
-    for (double u : {0.0, 0.013, 0.25, 0.5, 0.81, 1.0}) {
-      times.push_back(spline.TimeSinceT0(spline.knot_time_ns(i)) + u * spline.dt());
-    }
-  }
-  return times;
-}
+// Every segment's knots (u = 0, 1) included: the Jacobians need no room for steps in time.
+constexpr std::initializer_list<double> kSegmentFractions = {0.0, 0.013, 0.25, 0.5, 0.81, 1.0};
 
-// The spline with control pose `index` replaced by T_index Exp(d).
-SE3Splined Perturbed(const SE3Splined& spline, int index, const Eigen::VectorXd& d) {
-  SE3Splined perturbed = spline;
-  perturbed.SetControlPose(index, spline.control_pose(index) * SE3d::Exp(Vector6d(d)));
-  return perturbed;
-}
-
-// d output / d d_k by central differences, for the segment's four control poses.
-template <typename F>
-std::array<Eigen::MatrixXd, 4> NumericControlJacobians(const SE3Splined& spline,
-                                                       const Segment<double>& segment,
-                                                       const F& output) {
-  std::array<Eigen::MatrixXd, 4> J;
-  for (int k = 0; k < 4; ++k) {
-    const int index = segment.first_index() + k;
-    J[k] = testing::CentralDifferenceJacobian(
-        [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
-          return output(Perturbed(spline, index, d));
-        },
-        Eigen::VectorXd::Zero(6));
-  }
-  return J;
+std::vector<double> SampleTimes(const SE3Splined& spline) {
+  return testing::InteriorTimes(spline, kSegmentFractions);
 }
 
 // Rotation steps between control poses: tiny (series branches), generic, large.
@@ -84,19 +54,16 @@ TEST_P(SplitJacobian, PoseMatchesNumericRightPerturbation) {
   const auto [min_angle, max_angle] = GetParam();
   for (uint32_t seed : {21u, 22u}) {
     const SE3Splined spline = MakeRandomSplit(seed, min_angle, max_angle);
-    for (double t : InteriorTimes(spline)) {
+    for (double t : SampleTimes(spline)) {
       const Segment<double> seg = spline.SegmentAt(t);
       SE3d T_w_s;
       ControlPoseJacobian<6> J;
       spline.EvaluatePoseJacobian(seg, &T_w_s, &J);
       EXPECT_EQ(J.first_index, seg.first_index());
       EXPECT_EQ(T_w_s.matrix(), spline.Pose(seg).matrix());
-      const auto J_num = NumericControlJacobians(spline, seg, [&](const SE3Splined& s) {
-        return Eigen::VectorXd((T_w_s.inverse() * s.Pose(seg)).Log());
-      });
+      EXPECT_TRUE(testing::PoseJacobianMatchesNumeric(J, T_w_s, spline, seg, kJacobianTolerance))
+          << "t " << t;
       for (int k = 0; k < 4; ++k) {
-        EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kJacobianTolerance))
-            << "t " << t << " k " << k;
         // Position and orientation do not mix (split_segment_jacobians.h, step 2).
         EXPECT_TRUE(J.blocks[k].topRightCorner(3, 3).isZero(0.0));
         EXPECT_TRUE(J.blocks[k].bottomLeftCorner(3, 3).isZero(0.0));
@@ -106,38 +73,23 @@ TEST_P(SplitJacobian, PoseMatchesNumericRightPerturbation) {
 }
 
 TEST_P(SplitJacobian, AngularVelocityMatchesNumericRightPerturbation) {
-  const auto [min_angle, max_angle] = GetParam();
-  const SE3Splined spline = MakeRandomSplit(23, min_angle, max_angle);
-  for (double t : InteriorTimes(spline)) {
-    const Segment<double> seg = spline.SegmentAt(t);
-    Eigen::Vector3d w_s;
-    ControlPoseJacobian<3> J;
-    spline.EvaluateAngularVelocityJacobian(seg, &w_s, &J);
-    EXPECT_EQ(w_s, spline.AngularVelocity(seg));
-    const auto J_num = NumericControlJacobians(
-        spline, seg, [&](const SE3Splined& s) { return Eigen::VectorXd(s.AngularVelocity(seg)); });
-    for (int k = 0; k < 4; ++k) {
-      EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kJacobianTolerance)) << t << " " << k;
-    }
-  }
+  testing::ExpectRateJacobianMatchesNumeric(testing::kAngularVelocity,
+                                            TrajectoryModel::kSplitSO3R3,
+                                            GetParam(),
+                                            {23u},
+                                            0.0,
+                                            kJacobianTolerance,
+                                            kSegmentFractions);
 }
 
 TEST_P(SplitJacobian, LinearAccelerationMatchesNumericRightPerturbation) {
-  const auto [min_angle, max_angle] = GetParam();
-  const SE3Splined spline = MakeRandomSplit(25, min_angle, max_angle);
-  for (double t : InteriorTimes(spline)) {
-    const Segment<double> seg = spline.SegmentAt(t);
-    Eigen::Vector3d a_w;
-    ControlPoseJacobian<3> J;
-    spline.EvaluateLinearAccelerationJacobian(seg, &a_w, &J);
-    EXPECT_EQ(a_w, spline.LinearAcceleration(seg));
-    const auto J_num = NumericControlJacobians(spline, seg, [&](const SE3Splined& s) {
-      return Eigen::VectorXd(s.LinearAcceleration(seg));
-    });
-    for (int k = 0; k < 4; ++k) {
-      EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kJacobianTolerance)) << t << " " << k;
-    }
-  }
+  testing::ExpectRateJacobianMatchesNumeric(testing::kLinearAcceleration,
+                                            TrajectoryModel::kSplitSO3R3,
+                                            GetParam(),
+                                            {25u},
+                                            0.0,
+                                            kJacobianTolerance,
+                                            kSegmentFractions);
 }
 
 TEST_P(SplitJacobian, SpecificForceMatchesNumericRightPerturbation) {
@@ -145,7 +97,7 @@ TEST_P(SplitJacobian, SpecificForceMatchesNumericRightPerturbation) {
   const SE3Splined spline = MakeRandomSplit(27, min_angle, max_angle);
   const Eigen::Vector3d g_w(0.4, -0.3, -9.8);
   const Eigen::Vector3d b_a(0.05, -0.02, 0.1);
-  for (double t : InteriorTimes(spline)) {
+  for (double t : SampleTimes(spline)) {
     const Segment<double> seg = spline.SegmentAt(t);
     Eigen::Vector3d accel;
     ControlPoseJacobian<3> J;
@@ -155,14 +107,17 @@ TEST_P(SplitJacobian, SpecificForceMatchesNumericRightPerturbation) {
     PredictImu(spline, seg, g_w, b_a, b_a, &unused, &accel_value);
     EXPECT_TRUE(RelativelyNear(accel, accel_value, 1e-13));
     EXPECT_TRUE(RelativelyNear(J_gw, -spline.Pose(seg).rotationMatrix().transpose(), 1e-14));
-    const auto J_num = NumericControlJacobians(spline, seg, [&](const SE3Splined& s) {
-      Eigen::Vector3d a;
-      PredictImu(s, seg, g_w, b_a, b_a, &unused, &a);
-      return Eigen::VectorXd(a);
-    });
-    for (int k = 0; k < 4; ++k) {
-      EXPECT_TRUE(RelativelyNear(J.blocks[k], J_num[k], kJacobianTolerance)) << t << " " << k;
-    }
+    EXPECT_TRUE(testing::ControlJacobianMatchesNumeric(
+        J,
+        spline,
+        seg,
+        [&](const SE3Splined& s) {
+          Eigen::Vector3d a;
+          PredictImu(s, seg, g_w, b_a, b_a, &unused, &a);
+          return Eigen::VectorXd(a);
+        },
+        kJacobianTolerance))
+        << "t " << t;
   }
 }
 
@@ -189,13 +144,15 @@ TEST(SplitJacobian, PoseAndSpecificForceMatchRiddersExtrapolation) {
       const int index = seg.first_index() + k;
       const Eigen::MatrixXd J_pose_num = testing::RiddersJacobian(
           [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
-            return (T_w_s.inverse() * Perturbed(spline, index, d).Pose(seg)).Log();
+            return (T_w_s.inverse() * testing::PerturbedControlPose(spline, index, d).Pose(seg))
+                .Log();
           },
           Eigen::VectorXd::Zero(6));
       const Eigen::MatrixXd J_accel_num = testing::RiddersJacobian(
           [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
             Eigen::Vector3d gyro, a;
-            PredictImu(Perturbed(spline, index, d), seg, g_w, zero, zero, &gyro, &a);
+            PredictImu(
+                testing::PerturbedControlPose(spline, index, d), seg, g_w, zero, zero, &gyro, &a);
             return a;
           },
           Eigen::VectorXd::Zero(6));
@@ -211,18 +168,12 @@ TEST(SplitJacobian, ResidualJacobiansMatchTheReferenceSplitSpline) {
   for (const auto& [min_angle, max_angle] :
        {std::make_pair(1e-9, 1e-6), std::make_pair(0.1, 1.0), std::make_pair(2.5, 3.0)}) {
     const SE3Splined spline = MakeRandomSplit(31, min_angle, max_angle);
-    std::vector<Eigen::Matrix3d> R;
-    std::vector<Eigen::Vector3d> p;
-    for (const SE3d& T : spline.control_poses()) {
-      R.push_back(T.rotationMatrix());
-      p.push_back(T.translation());
-    }
-    const reference::SplitSpline ref(
-        R, p, spline.t0_ns(), spline.dt_ns(), reference::KnotMode::kCached);
+    const reference::SplitSpline ref =
+        testing::ReferenceSplitSpline(spline, reference::KnotMode::kCached);
     const Eigen::Vector3d g_w(0.3, -0.2, -9.81);
     const Eigen::Vector3d bias(0.01, -0.02, 0.03);
     const Eigen::Vector3d measured(0.1, -0.2, 9.7);
-    for (double t : InteriorTimes(spline)) {
+    for (double t : SampleTimes(spline)) {
       const Segment<double> seg = spline.SegmentAt(t);
       const reference::Query query =
           ref.QueryAtNs(spline.knot_time_ns(seg.index) + std::llround(seg.u * spline.dt_ns()));

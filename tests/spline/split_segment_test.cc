@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "spline/reference_split_spline.h"
+#include "spline/spline_checks.h"
 #include "spline/spline_test_util.h"
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/lie/se3.h"
@@ -22,6 +23,9 @@
 namespace splinecal {
 namespace {
 
+using testing::EvaluateAll;
+using testing::EvaluateAt;
+using testing::InteriorTimes;
 using testing::RelativelyNear;
 
 // Time derivatives vs central differences in time (h = 1e-5 s against dt = 0.2 s): truncation
@@ -32,7 +36,7 @@ constexpr double kTimeStep = 1e-5;
 // roundings on values of O(1..100).
 constexpr double kSameModelTolerance = 1e-12;
 
-constexpr int kNumPoses = 8;
+constexpr int kNumPoses = testing::kRandomSplinePoses;
 
 SE3Splined MakeSplit(const std::vector<SE3d>& poses) {
   return SE3Splined(
@@ -40,7 +44,7 @@ SE3Splined MakeSplit(const std::vector<SE3d>& poses) {
 }
 
 SE3Splined MakeRandomSplit(uint32_t seed, double min_angle = 0.1, double max_angle = 1.0) {
-  return MakeSplit(testing::RandomControlPoses(kNumPoses, seed, min_angle, max_angle));
+  return testing::RandomSpline(seed, TrajectoryModel::kSplitSO3R3, min_angle, max_angle);
 }
 
 // Times in every segment, both ends and knots included.
@@ -55,27 +59,7 @@ std::vector<int64_t> SampleTimesNs(const SE3Splined& spline) {
   return times;
 }
 
-// Interior relative times [s] (central differences need t +- h inside the valid range).
-std::vector<double> InteriorTimes(const SE3Splined& spline) {
-  std::vector<double> times;
-  for (int i = 1; i + 2 < spline.num_control_poses(); ++i) {
-    for (double u : {0.013, 0.25, 0.5, 0.81, 0.99}) {
-      times.push_back(spline.TimeSinceT0(spline.knot_time_ns(i)) + u * spline.dt());
-    }
-  }
-  return times;
-}
-
-struct State {
-  SE3d T_w_s;
-  Eigen::Vector3d w_s, w_dot_s, v_w, a_w;
-};
-
-State EvaluateAt(const SE3Splined& spline, double t_s) {
-  State s;
-  spline.Evaluate(spline.SegmentAt(t_s), &s.T_w_s, &s.w_s, &s.w_dot_s, &s.v_w, &s.a_w);
-  return s;
-}
+using State = testing::SplineState;
 
 TEST(SplitSegment, PoseMatchesTheDefinitionWrittenWithSo3ExpAndLog) {
   const SE3Splined spline = MakeRandomSplit(3);
@@ -163,9 +147,8 @@ TEST(SplitSegment, IsC2ContinuousAcrossKnots) {
     const Segment<double> before = MakeSegment(i - 1, 1.0, spline.dt());
     const Segment<double> after = spline.SegmentAtNs(knot_ns);
     ASSERT_EQ(after.index, i);
-    State a, b;
-    spline.Evaluate(before, &a.T_w_s, &a.w_s, &a.w_dot_s, &a.v_w, &a.a_w);
-    spline.Evaluate(after, &b.T_w_s, &b.w_s, &b.w_dot_s, &b.v_w, &b.a_w);
+    const State a = EvaluateAll(spline, before);
+    const State b = EvaluateAll(spline, after);
     EXPECT_TRUE(RelativelyNear(a.T_w_s.matrix(), b.T_w_s.matrix(), 1e-12));
     EXPECT_TRUE(RelativelyNear(a.v_w, b.v_w, 1e-12));
     EXPECT_TRUE(RelativelyNear(a.a_w, b.a_w, 1e-12));
@@ -195,14 +178,8 @@ TEST(SplitSegment, EqualRotationsGiveTheCoupledSplinesPositions) {
 
 TEST(SplitSegment, MatchesTheReferenceSplitSpline) {
   const SE3Splined spline = MakeRandomSplit(15, 0.1, 2.5);
-  std::vector<Eigen::Matrix3d> R;
-  std::vector<Eigen::Vector3d> p;
-  for (const SE3d& T : spline.control_poses()) {
-    R.push_back(T.rotationMatrix());
-    p.push_back(T.translation());
-  }
-  const reference::SplitSpline ref(
-      R, p, spline.t0_ns(), spline.dt_ns(), reference::KnotMode::kPerQuery);
+  const reference::SplitSpline ref =
+      testing::ReferenceSplitSpline(spline, reference::KnotMode::kPerQuery);
   const Eigen::Vector3d g_w(0.3, -0.2, -9.81);
   const Eigen::Vector3d b_g(0.01, -0.02, 0.03);
   const Eigen::Vector3d b_a(-0.1, 0.2, 0.05);

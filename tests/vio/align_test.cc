@@ -562,20 +562,28 @@ void WriteAlignInputs(const testing::Scenario& scenario,
   dir.Write("camchain.yaml", camchain.str());
 }
 
+// `splinecal align` on the files WriteAlignInputs wrote into `dir`, writing into dir/out, with the
+// `extra` flags after the others.
+testing::ToolResult RunAlign(const testing::TempDir& dir, std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {"align",
+                                   "--imu",
+                                   dir.File("imu.csv"),
+                                   "--camera-poses",
+                                   dir.File("poses.txt"),
+                                   "--camchain",
+                                   dir.File("camchain.yaml"),
+                                   "--out",
+                                   dir.File("out")};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return testing::RunTool(args);
+}
+
 TEST(AlignCommand, WritesResultAndAlignedPoses) {
   const testing::ScenarioOptions options = DefaultOptions();
   const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, options.T_cam_imu);
-  const testing::ToolResult run = testing::RunTool({"align",
-                                                    "--imu",
-                                                    dir.File("imu.csv"),
-                                                    "--camera-poses",
-                                                    dir.File("poses.txt"),
-                                                    "--camchain",
-                                                    dir.File("camchain.yaml"),
-                                                    "--out",
-                                                    dir.File("out")});
+  const testing::ToolResult run = RunAlign(dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(testing::ExpectStrictYamlFilesIn(dir.File("out")), 1);
   const YamlDocument yaml(dir.File("out/result.yaml"));
@@ -607,17 +615,7 @@ TEST(AlignCommand, EstimatesRotationExtrinsicWhenAsked) {
   const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, SE3d(SO3d(), options.T_cam_imu.translation()));
-  const testing::ToolResult run = testing::RunTool({"align",
-                                                    "--imu",
-                                                    dir.File("imu.csv"),
-                                                    "--camera-poses",
-                                                    dir.File("poses.txt"),
-                                                    "--camchain",
-                                                    dir.File("camchain.yaml"),
-                                                    "--estimate-rotation-extrinsic",
-                                                    "--out",
-                                                    dir.File("out"),
-                                                    "--quiet"});
+  const testing::ToolResult run = RunAlign(dir, {"--estimate-rotation-extrinsic", "--quiet"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
   const YamlDocument yaml(dir.File("out/result.yaml"));
@@ -633,15 +631,7 @@ TEST(AlignCommand, FailedCheckExitsTwoWithoutOutput) {
       testing::MakeScenario(testing::ConstantVelocityTrajectory(), options);
   testing::TempDir dir;
   WriteAlignInputs(scenario, dir, options.T_cam_imu);
-  const testing::ToolResult run = testing::RunTool({"align",
-                                                    "--imu",
-                                                    dir.File("imu.csv"),
-                                                    "--camera-poses",
-                                                    dir.File("poses.txt"),
-                                                    "--camchain",
-                                                    dir.File("camchain.yaml"),
-                                                    "--out",
-                                                    dir.File("out")});
+  const testing::ToolResult run = RunAlign(dir);
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("not enough excitation"));
   EXPECT_FALSE(std::filesystem::exists(dir.File("out/result.yaml")));
