@@ -36,11 +36,14 @@
 
 namespace splinecal {
 
-inline constexpr int kFocalSteps = 48;
+// Focal lengths in image widths: 0.1 (a pinhole's 157 deg horizontal field of view; fisheye
+// models put their focal length lower than a pinhole's for the same field of view) to 6 (9.5
+// deg), 56 steps 7.7% apart.
+inline constexpr int kFocalSteps = 56;
 inline constexpr double kMinFocalWidths = 0.1;
-inline constexpr double kMaxFocalWidths = 3.0;
+inline constexpr double kMaxFocalWidths = 6.0;
 inline constexpr int kInitViews = 12;  // views PnP is run on per candidate
-inline constexpr int kCoarseFocalStride = 4;  // coarse pass: 1.075^4 = 1.34 apart
+inline constexpr int kCoarseFocalStride = 4;  // coarse pass: 1.077^4 = 1.35 apart
 inline constexpr size_t kCoarseSeeds = 2;     // coarse candidates refined
 
 enum class IntrinsicsSweep {
@@ -57,6 +60,9 @@ struct InitialIntrinsics {
   Camera camera;
   double median_rms_px = 0.0;  // the winner's score
   std::string description;     // what was tried and what won, in words
+  // The winner is the grid's smallest or largest focal length; `warning` says so in one line.
+  bool at_grid_edge = false;
+  std::string warning;
 };
 
 // `views` of one camera (at least one with 6 corners). ok = false when no candidate could
