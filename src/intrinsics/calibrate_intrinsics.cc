@@ -164,7 +164,8 @@ void InitialiseCamera(int n,
                       std::vector<ViewRecord>* records,
                       const IntrinsicsOptions& options,
                       RigState* state,
-                      std::string* description) {
+                      std::string* description,
+                      std::vector<std::string>* warnings) {
   std::vector<const TargetView*> candidates;
   for (size_t v = 0; v < views->size(); ++v) {
     if ((*views)[v].cam_id == n && (*records)[v].status == ViewStatus::kUsed) {
@@ -191,6 +192,12 @@ void InitialiseCamera(int n,
     }
     camera = initial.camera;
     *description = initial.description;
+    if (!initial.warning.empty()) {
+      warnings->push_back(StringPrintf("cam%d (%s): %s",
+                                       n,
+                                       CameraModelName(camera.projection, camera.distortion).c_str(),
+                                       initial.warning.c_str()));
+    }
   }
   state->cameras[n] = camera;
   state->intrinsics[n] = camera.intrinsics();
@@ -631,8 +638,14 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
   state.sigma_px.assign(num_cameras, 1.0);
   result.cameras.resize(num_cameras);
   for (int n = 0; n < num_cameras; ++n) {
-    InitialiseCamera(
-        n, cameras[n], &views, &records, options, &state, &result.cameras[n].initialisation);
+    InitialiseCamera(n,
+                     cameras[n],
+                     &views,
+                     &records,
+                     options,
+                     &state,
+                     &result.cameras[n].initialisation,
+                     &result.warnings);
   }
   std::vector<bool> extrinsic_estimated;
   PlaceRig(views, &records, options, &state, &extrinsic_estimated);

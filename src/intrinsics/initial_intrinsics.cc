@@ -1,5 +1,6 @@
 #include "splinecal/intrinsics/initial_intrinsics.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,25 +8,126 @@
 #include "splinecal/camera/pnp.h"
 #include "splinecal/median.h"
 #include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
+// [Hartley04] R. Hartley, A. Zisserman, Multiple View Geometry, 2nd ed. (normalised DLT).
 namespace splinecal {
 namespace {
 
-// Up to kInitViews views with the most corners, spread over the recording: the views are cut
-// into kInitViews runs by time and each run gives its fullest view.
-std::vector<const TargetView*> SpreadViews(const std::vector<const TargetView*>& views) {
-  std::vector<const TargetView*> chosen;
+// The similarity that moves `points` to their centroid and scales their RMS distance from it
+// to sqrt(2), so that the DLT's rows are equally weighted [Hartley04, 4.4.4].
+Eigen::Matrix3d CentreAndScale(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& p : points) centroid += p;
+  centroid /= static_cast<double>(points.size());
+  double sum_sq = 0.0;
+  for (const Eigen::Vector2d& p : points) sum_sq += (p - centroid).squaredNorm();
+  const double rms = std::sqrt(sum_sq / static_cast<double>(points.size()));
+  const double k = rms > 0.0 ? std::sqrt(2.0) / rms : 1.0;
+  Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
+  T.topLeftCorner<2, 2>() *= k;
+  T.topRightCorner<2, 1>() = -k * centroid;
+  return T;
+}
+
+// The spread of the target's depth over a view's corners relative to its mean depth,
+// (z_max - z_min) / z_mean, from the plane-to-pixel homography H (direct linear transform,
+// both sides normalised, CentreAndScale). H ~ K [r1 r2 t], and K's third row is
+// (0 0 1) for any focal length and principal point, so H's third row gives each corner's depth
+// z = r13 x + r23 y + t3 up to one scale: the spread needs no intrinsics. Lens distortion bends
+// the fit a little; the spread only ranks views. 0 for a non-planar target or too few corners.
+double DepthSpread(const TargetView& view) {
+  const size_t n = view.corners.size();
+  if (n < 4) return 0.0;
+  // Every stride-th corner, up to kSpreadCorners over the whole board: a ranking needs no
+  // more, and the homographies of every view of a long recording cost less.
+  constexpr size_t kSpreadCorners = 36;
+  const size_t stride = (n + kSpreadCorners - 1) / kSpreadCorners;
+  std::vector<Eigen::Vector2d> xy;
+  std::vector<Eigen::Vector2d> uv;
+  for (size_t i = 0; i < n; i += stride) {
+    const TargetCornerObservation& c = view.corners[i];
+    if (c.p_t.z() != 0.0) return 0.0;
+    xy.push_back(c.p_t.head<2>());
+    uv.push_back(c.uv);
+  }
+  const Eigen::Matrix3d Ta = CentreAndScale(xy);
+  const Eigen::Matrix3d Tp = CentreAndScale(uv);
+  // The normal equations of the DLT's rows (9 x 9): its smallest eigenvector is H's.
+  Eigen::Matrix<double, 9, 9> AtA = Eigen::Matrix<double, 9, 9>::Zero();
+  for (size_t i = 0; i < xy.size(); ++i) {
+    const Eigen::Vector3d a = Ta * xy[i].homogeneous();
+    const Eigen::Vector3d b = Tp * uv[i].homogeneous();
+    Eigen::Matrix<double, 9, 1> r1;
+    Eigen::Matrix<double, 9, 1> r2;
+    r1 << Eigen::Vector3d::Zero(), -b.z() * a, b.y() * a;
+    r2 << b.z() * a, Eigen::Vector3d::Zero(), -b.x() * a;
+    AtA += r1 * r1.transpose() + r2 * r2.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eigen(AtA);
+  const Eigen::Matrix<double, 9, 1> h = eigen.eigenvectors().col(0);
+  // Tp's third row is (0 0 1): the depth row of H is that of Tp^-1 H_n Ta, h's last three.
+  const Eigen::RowVector3d depth_row = h.tail<3>().transpose() * Ta;
+  double z_min = std::numeric_limits<double>::infinity();
+  double z_max = -z_min;
+  double z_sum = 0.0;
+  for (const Eigen::Vector2d& p : xy) {
+    const double z = depth_row.dot(p.homogeneous());
+    z_min = std::min(z_min, z);
+    z_max = std::max(z_max, z);
+    z_sum += z;
+  }
+  const double z_mean = std::abs(z_sum) / static_cast<double>(xy.size());
+  return z_mean > 0.0 && std::isfinite(z_max - z_min) ? (z_max - z_min) / z_mean : 0.0;
+}
+
+// The kInitViews views the candidates are scored on: those with the most perspective, spread
+// over the recording. A camera sees its focal length only through perspective: under an affine
+// camera (a target with no depth spread, fronto-parallel or far) f trades exactly with the
+// distance, and PnP fits every focal length alike, to the lens distortion's misfit. A median
+// over such views is flat in f and its minimum falls anywhere (a simulated radtan lens with 7
+// of 12 views within 12 degrees of fronto-parallel: the grid's smallest focal, 75 px for a
+// true 458). The views are cut into 2 kInitViews runs by time; each run offers its view with
+// the largest depth spread (DepthSpread) among those with at least half of the run's most
+// corners (a partial view's homography is poorly fixed), ties to more corners; the kInitViews
+// offers with the largest spread are scored, in time order.
+std::vector<const TargetView*> SweepViews(const std::vector<const TargetView*>& views) {
   const size_t n = views.size();
-  const size_t runs = std::min<size_t>(kInitViews, n);
+  const size_t runs = std::min<size_t>(2 * kInitViews, n);
+  struct Offer {
+    size_t index;
+    double spread;
+  };
+  std::vector<Offer> offers;
   for (size_t r = 0; r < runs; ++r) {
     const size_t begin = r * n / runs;
     const size_t end = (r + 1) * n / runs;
-    const TargetView* best = views[begin];
+    size_t most_corners = 0;
     for (size_t i = begin; i < end; ++i) {
-      if (views[i]->corners.size() > best->corners.size()) best = views[i];
+      most_corners = std::max(most_corners, views[i]->corners.size());
     }
-    chosen.push_back(best);
+    Offer best{begin, -1.0};
+    // About kSpreadViewsPerRun views of a run, evenly spaced: neighbouring frames of a long
+    // recording are near repeats of each other.
+    constexpr size_t kSpreadViewsPerRun = 4;
+    const size_t step = std::max<size_t>(1, (end - begin) / kSpreadViewsPerRun);
+    for (size_t i = begin; i < end; i += step) {
+      if (2 * views[i]->corners.size() < most_corners) continue;
+      const double spread = DepthSpread(*views[i]);
+      if (spread > best.spread ||
+          (spread == best.spread && views[i]->corners.size() > views[best.index]->corners.size())) {
+        best = Offer{i, spread};
+      }
+    }
+    offers.push_back(best);
   }
+  std::stable_sort(offers.begin(), offers.end(),
+                   [](const Offer& a, const Offer& b) { return a.spread > b.spread; });
+  offers.resize(std::min<size_t>(kInitViews, offers.size()));
+  std::sort(offers.begin(), offers.end(),
+            [](const Offer& a, const Offer& b) { return a.index < b.index; });
+  std::vector<const TargetView*> chosen;
+  for (const Offer& offer : offers) chosen.push_back(views[offer.index]);
   return chosen;
 }
 
@@ -134,7 +236,7 @@ InitialIntrinsics InitialiseIntrinsics(const Camera& model,
                                        const std::vector<const TargetView*>& views,
                                        IntrinsicsSweep sweep) {
   InitialIntrinsics result;
-  const std::vector<const TargetView*> spread = SpreadViews(views);
+  const std::vector<const TargetView*> scored = SweepViews(views);
   const double width = model.width > 0 ? model.width : 640.0;
   std::vector<Camera> shapes = ShapeCandidates(model);
   for (Camera& shape : shapes) {
@@ -144,7 +246,7 @@ InitialIntrinsics InitialiseIntrinsics(const Camera& model,
   SweepPoint winner;
   int tried = 0;
   if (sweep == IntrinsicsSweep::kExhaustive) {
-    SweepRanking ranking(shapes, spread, width, 1);
+    SweepRanking ranking(shapes, scored, width, 1);
     for (size_t s = 0; s < shapes.size(); ++s) {
       for (int k = 0; k < kFocalSteps; ++k) ranking.Try(s, k);
     }
@@ -162,14 +264,14 @@ InitialIntrinsics InitialiseIntrinsics(const Camera& model,
     std::stable_sort(coarse_steps.begin(), coarse_steps.end(), [&](int a, int b) {
       return std::abs(a - one_width_step) < std::abs(b - one_width_step);
     });
-    SweepRanking coarse(shapes, spread, width, kCoarseSeeds);
+    SweepRanking coarse(shapes, scored, width, kCoarseSeeds);
     for (int k : coarse_steps) {
       for (size_t s = 0; s < shapes.size(); ++s) coarse.Try(s, k);
     }
     // Fine: the skipped steps within kCoarseFocalStride - 1 of each seed, each seed's score
     // carried over. With no seed (no coarse candidate placed the target) every step is tried.
     const std::vector<SweepPoint> seeds = coarse.best();
-    SweepRanking fine(shapes, spread, width, 1);
+    SweepRanking fine(shapes, scored, width, 1);
     for (const SweepPoint& seed : seeds) fine.Add(seed);
     for (const SweepPoint& seed : seeds) {
       for (int d = 1; d < kCoarseFocalStride; ++d) {
@@ -192,6 +294,20 @@ InitialIntrinsics InitialiseIntrinsics(const Camera& model,
   }
   result.ok = std::isfinite(best);
   result.median_rms_px = best;
+  if (result.ok && (winner.step == 0 || winner.step == kFocalSteps - 1)) {
+    // The score may still fall beyond the grid: the lens is outside the sweep's range, or the
+    // views do not fix the focal length. A pinhole's horizontal field of view names the edge.
+    const bool smallest = winner.step == 0;
+    result.at_grid_edge = true;
+    result.warning = StringPrintf(
+        "the starting-point sweep's best focal length, %.1f px, is its grid's %s (%.3g image "
+        "widths, a pinhole's %.0f deg horizontal field of view): the lens may lie beyond the "
+        "sweep or the views may not fix its focal length (check fu, fv)",
+        result.camera.fu,
+        smallest ? "smallest" : "largest",
+        smallest ? kMinFocalWidths : kMaxFocalWidths,
+        2.0 * std::atan(0.5 / (smallest ? kMinFocalWidths : kMaxFocalWidths)) * kRadToDeg);
+  }
   if (result.ok) {
     const Eigen::Vector2d shape = result.camera.projection_params;
     result.description = StringPrintf(
@@ -201,14 +317,14 @@ InitialIntrinsics InitialiseIntrinsics(const Camera& model,
         kMinFocalWidths * width,
         kMaxFocalWidths * width,
         shapes.size(),
-        spread.size(),
+        scored.size(),
         result.camera.fu,
         shape.x(),
         shape.y(),
         best);
   } else {
     result.description = StringPrintf(
-        "no candidate of %d placed the target in any of %zu views", tried, spread.size());
+        "no candidate of %d placed the target in any of %zu views", tried, scored.size());
   }
   return result;
 }

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "intrinsics/intrinsics_expectations.h"
 #include "intrinsics/intrinsics_models.h"
 #include "intrinsics/intrinsics_simulation.h"
 #include "splinecal/intrinsics/intrinsics_observability.h"
@@ -30,18 +31,7 @@ IntrinsicsOptions QuietOptions() {
   return options;
 }
 
-// Every active intrinsic of `result` within `k` of its reported std of the truth.
-void ExpectWithinStd(const IntrinsicsCameraResult& result, const Camera& truth, double k) {
-  const IntrinsicsVector estimate = result.camera.intrinsics();
-  const IntrinsicsVector expected = truth.intrinsics();
-  for (int i : result.active) {
-    SCOPED_TRACE(IntrinsicName(truth, i));
-    ASSERT_TRUE(std::isfinite(result.intrinsics_std(i)));
-    EXPECT_LT(std::abs(estimate(i) - expected(i)), k * result.intrinsics_std(i))
-        << "estimate " << estimate(i) << " truth " << expected(i) << " std "
-        << result.intrinsics_std(i);
-  }
-}
+using testing::ExpectWithinStd;
 
 TEST(CalibrateIntrinsics, StereoRadTanRigFromTheSweepWithinThreeStd) {
   testing::IntrinsicsScene scene;

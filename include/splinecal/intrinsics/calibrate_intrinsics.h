@@ -13,11 +13,12 @@
 //   1. Views. The observations are grouped by (timestamp, camera); corners whose point id the
 //      target lacks are dropped; a view needs min_corners corners.
 //   2. Initial intrinsics (cameras without given values). A sweep over the focal length f on a
-//      geometric grid from 0.1 to 3 image widths and over the model's shape parameter (omni
+//      geometric grid from 0.1 to 6 image widths and over the model's shape parameter (omni
 //      xi, eucm alpha, ds alpha, fov w; the model's distortion at 0), the principal point at
 //      the image centre: every candidate camera solves PnP (camera/pnp.h) on up to
-//      kInitViews views spread over the recording, and the candidate with the smallest median
-//      view RMS wins. The unprojection that PnP starts from is the candidate model's own, so a
+//      kInitViews views with the most perspective, spread over the recording, and the
+//      candidate with the smallest median view RMS wins (a winner at the grid's edge is
+//      warned about). The unprojection that PnP starts from is the candidate model's own, so a
 //      fisheye or an omnidirectional lens starts from a fisheye or omnidirectional guess, not
 //      from a pinhole homography that cannot describe it.
 //   3. Target poses by PnP with the initial camera; a view whose PnP fails is dropped (reason

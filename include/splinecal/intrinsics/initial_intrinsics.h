@@ -6,24 +6,29 @@
 // Instead, every candidate camera of the model itself is tried: focal lengths on a geometric
 // grid (fu = fv = f, kFocalSteps values from kMinFocalWidths to kMaxFocalWidths image widths)
 // times the model's shape values (ShapeCandidates), principal point at the image centre,
-// distortion zero. Each candidate solves PnP on a few views spread over the recording and is
-// scored by the median of their reprojection RMS; the lowest score wins. Near the true values
-// PnP's reprojection error is small for every view; far from them no pose explains the corners.
+// distortion zero. Each candidate solves PnP on kInitViews views and is scored by the median of
+// their reprojection RMS; the lowest score wins. Near the true values PnP's reprojection error
+// is small for every view; far from them no pose explains the corners.
+//
+// The views scored are those with the most perspective, spread over the recording (SweepViews
+// in the .cc). A view without depth spread (fronto-parallel, or far) fits every focal length
+// alike: f trades with the distance. When most scored views were such, the median was flat in
+// f at the undistorted candidates' misfit of the lens distortion, and its minimum fell at the
+// grid's edge: simulated EuRoC radtan lens, 24 views, seed 5, 7 of the 12 views (then the
+// fullest of each time run) within 12 deg of fronto-parallel: 75.2 px for a true 458.7. The
+// 12 views with the largest depth spread put it at 416.7 px (0.91 of the truth).
 //
 // The sweep is coarse to fine (kCoarseToFine): every kCoarseFocalStride-th focal step of every
 // shape first, then the skipped steps within kCoarseFocalStride - 1 of the kCoarseSeeds best of
 // those. A candidate's PnP solves stop once its median cannot beat the score it is compared
 // with (exact: the upper median is >= that score once half the views are). It assumes the best
-// candidate lies within 3 steps (a factor 1.24) of one of the two best coarse ones.
-// Measured against the exhaustive sweep (kExhaustive, the old one's result): the same candidate
-// (focal, shape, score bit for bit) in all 19 sweeps of CompareModels.*, CalibrateIntrinsics.*
-// and the OpenCV chessboard tests, in initial_intrinsics_test.cc, and on EuRoC cam0/cam1
-// (observations.csv) with pinhole-radtan (f 613.2 / 761.9 px), ds-none (369.5 px, shape
-// (-0.2, 0.6)) and pinhole-equi (459.1 px). PnP solves on EuRoC: 281/224 of 576 (radtan),
-// 349/368 of 1728 (ds), 153/156 of 576 (equi); sweep CPU 2.0-2.4x less for radtan, 4-5x for
-// ds-none and equi, 4.0x over the 19 test sweeps (3.14 s -> 0.78 s; std::clock, one run, load
-// about 7 on 2 cores). Fewer PnP iterations in the coarse pass (5 instead of 15) were tried and
-// saved no measurable CPU: most of a solve is not in its iterations.
+// candidate lies within 3 steps (a factor 1.25) of one of the two best coarse ones. Measured
+// against the exhaustive sweep (kExhaustive): the same candidate (focal, shape, score bit for
+// bit) in the 16 sweeps of initial_intrinsics_test.cc and on EuRoC cam0/cam1 (observations.csv,
+// views of 12 corners or more) with pinhole-radtan (f 448.9 / 386.8 px), ds-none (359.0 px,
+// shape (-0.2, 0.6)) and pinhole-equi (448.9 px); 23 of 56 candidates solved for radtan and
+// equi, 54 of 168 for ds-none. A winner at the grid's first or last step is flagged
+// (at_grid_edge) with a one-line warning: the lens may lie beyond the grid.
 #ifndef SPLINECAL_INTRINSICS_INITIAL_INTRINSICS_H_
 #define SPLINECAL_INTRINSICS_INITIAL_INTRINSICS_H_
 
@@ -36,11 +41,14 @@
 
 namespace splinecal {
 
-inline constexpr int kFocalSteps = 48;
+// Focal lengths in image widths: 0.1 (a pinhole's 157 deg horizontal field of view; fisheye
+// models put their focal length lower than a pinhole's for the same field of view) to 6 (9.5
+// deg), 56 steps 7.7% apart.
+inline constexpr int kFocalSteps = 56;
 inline constexpr double kMinFocalWidths = 0.1;
-inline constexpr double kMaxFocalWidths = 3.0;
+inline constexpr double kMaxFocalWidths = 6.0;
 inline constexpr int kInitViews = 12;  // views PnP is run on per candidate
-inline constexpr int kCoarseFocalStride = 4;  // coarse pass: 1.075^4 = 1.34 apart
+inline constexpr int kCoarseFocalStride = 4;  // coarse pass: 1.077^4 = 1.35 apart
 inline constexpr size_t kCoarseSeeds = 2;     // coarse candidates refined
 
 enum class IntrinsicsSweep {
@@ -57,6 +65,9 @@ struct InitialIntrinsics {
   Camera camera;
   double median_rms_px = 0.0;  // the winner's score
   std::string description;     // what was tried and what won, in words
+  // The winner is the grid's smallest or largest focal length; `warning` says so in one line.
+  bool at_grid_edge = false;
+  std::string warning;
 };
 
 // `views` of one camera (at least one with 6 corners). ok = false when no candidate could
