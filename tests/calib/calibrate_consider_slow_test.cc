@@ -3,8 +3,8 @@
 //   * the sensitivity S = d T_cam_imu / d c that the covariance carries against re-solving with
 //     a perturbed intrinsic (central differences of the held estimate);
 //   * the own chain simulated: the intrinsics from the recording's own noisy corners
-//     (CalibrateIntrinsics), then calibrate with them as a prior (kPrior: the corners count twice)
-//     and considered (kConsider): the diagonal NEES of T_cam_imu over 20 seeds.
+//     (CalibrateIntrinsics), then calibrate with them considered (kConsider): the diagonal NEES
+//     of T_cam_imu over 20 seeds.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -89,16 +89,18 @@ TEST(CalibrateConsider, CarriedVarianceMatchesReSolvingWithPerturbedIntrinsics) 
 
 // The own chain simulated, 20 seeds of the closed-form 8 s recording (global shutter, EuRoC's
 // radtan camera, 0.5 px corners): the intrinsics and their covariance from the recording's corners
-// alone, then calibrate from them with the prior and considered. The NEES of T_cam_imu's 6
-// components (diagonal, as calibrate_nees_slow_test.cc) for the considered run must lie in the
-// two-sided 95% chi-square band; the prior's is printed beside it (it counts the corners twice,
-// and its NEES says by how much). Measured 2026-11-28: consider 116.37 (rotation 50.97,
-// translation 65.40), prior 132.19 (66.47, 65.72); bands 91.57-152.21 and 40.47-83.30.
+// alone, then calibrate from them with the intrinsics considered. The NEES of T_cam_imu's 6
+// components (diagonal, as calibrate_nees_slow_test.cc) must lie in the two-sided 95% chi-square
+// band. Measured 2026-11-28: 116.37 (rotation 50.97, translation 65.40); bands 91.57-152.21 and
+// 40.47-83.30. The same seeds calibrated with the intrinsics as a prior instead (it counts the
+// corners twice) gave 132.19 (66.47, 65.72); that run was printed only, no assertion read it,
+// and it was 45% of this test's CPU (32.7 CPU-s with it, 17.8 without, the same consider sums;
+// docs/reliability.md, "The cold and warm figures"), so it is no longer made: set
+// options.intrinsics = ParameterMode::kPrior below to see it again.
 TEST(CalibrateConsider, OwnChainNeesOfTCamImuIsInsideItsInterval) {
   constexpr int kSeeds = 20;
-  std::vector<testing::NeesGroup> consider_groups = {
+  std::vector<testing::NeesGroup> groups = {
       {"rotation", 0, 3}, {"translation", 3, 3}, {"T_cam_imu", 0, 6}};
-  std::vector<testing::NeesGroup> prior_groups = consider_groups;
   for (int seed = 1; seed <= kSeeds; ++seed) {
     testing::ScenarioOptions o;
     o.closed_form = true;
@@ -122,38 +124,22 @@ TEST(CalibrateConsider, OwnChainNeesOfTCamImuIsInsideItsInterval) {
     CalibrateOptions options = testing::FastOptions();
     options.keep_residuals = false;
     options.camchain_covariances = {covariance};
-    std::printf("seed %2d: ", seed);
-    for (ParameterMode mode : {ParameterMode::kPrior, ParameterMode::kConsider}) {
-      options.intrinsics = mode;
-      const CalibrationResult r = Calibrate(s.imu, s.observations, start, &s.target, options);
-      ASSERT_TRUE(r.covariance_ok) << "seed " << seed;
-      const Eigen::VectorXd z =
-          Change(r.cameras[0].calibration, s.truth[0]).cwiseQuotient(Stds(r.cameras[0]));
-      std::vector<testing::NeesGroup>& groups =
-          mode == ParameterMode::kPrior ? prior_groups : consider_groups;
-      std::printf(" %s:", ParameterModeName(mode));
-      for (testing::NeesGroup& group : groups) {
-        double nees = 0.0;  // a loop: GCC 12 flags z.segment()'s vector load (-Warray-bounds)
-        for (int i = group.first; i < group.first + group.dof; ++i) nees += z[i] * z[i];
-        group.sum += nees;
-        std::printf(" %s %.2f", group.name, nees);
-      }
+    options.intrinsics = ParameterMode::kConsider;
+    const CalibrationResult r = Calibrate(s.imu, s.observations, start, &s.target, options);
+    ASSERT_TRUE(r.covariance_ok) << "seed " << seed;
+    const Eigen::VectorXd z =
+        Change(r.cameras[0].calibration, s.truth[0]).cwiseQuotient(Stds(r.cameras[0]));
+    std::printf("seed %2d: %s:", seed, ParameterModeName(*options.intrinsics));
+    for (testing::NeesGroup& group : groups) {
+      double nees = 0.0;  // a loop: GCC 12 flags z.segment()'s vector load (-Warray-bounds)
+      for (int i = group.first; i < group.first + group.dof; ++i) nees += z[i] * z[i];
+      group.sum += nees;
+      std::printf(" %s %.2f", group.name, nees);
     }
     std::printf("\n");
     std::fflush(stdout);
   }
-  for (size_t g = 0; g < prior_groups.size(); ++g) {
-    const testing::ChiSquareInterval band =
-        testing::ChiSquareInterval95(kSeeds * prior_groups[g].dof);
-    std::printf("%s NEES over %d seeds: prior %.2f, consider %.2f (95%% band %.2f-%.2f)\n",
-                prior_groups[g].name,
-                kSeeds,
-                prior_groups[g].sum,
-                consider_groups[g].sum,
-                band.low,
-                band.high);
-  }
-  testing::ExpectNeesSumsInsideInterval95(consider_groups, kSeeds);
+  testing::ExpectNeesSumsInsideInterval95(groups, kSeeds);
 }
 
 }  // namespace
