@@ -13,19 +13,18 @@ COSTDATA's names with spaces (parametrised tests, "a/b  # GetParam() = b") count
 """
 import heapq
 import json
+import os
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_costs import read_cost_file  # noqa: E402  (the one CTestCostData reader)
 
 build, costdata = sys.argv[1], sys.argv[2]
 extra = sys.argv[3:]
 j = json.loads(subprocess.run(["ctest", "--test-dir", build, "--show-only=json-v1", *extra],
                               capture_output=True, text=True).stdout)
-measured = {}
-for line in open(costdata):
-    p = line.split()
-    if len(p) >= 3 and p[0] != "---":
-        try: measured[line.rsplit(None, 2)[0]] = float(p[-1])
-        except ValueError: pass
+measured = read_cost_file(costdata)
 tests = []
 for i, t in enumerate(j["tests"]):
     props = {p["name"]: p["value"] for p in t.get("properties", [])}

@@ -33,7 +33,11 @@ HEADER = """\
 
 def read_costs(build_dir):
     """{test name: average seconds} from a build folder's CTestCostData.txt."""
-    path = os.path.join(build_dir, "Testing", "Temporary", "CTestCostData.txt")
+    return read_cost_file(os.path.join(build_dir, "Testing", "Temporary", "CTestCostData.txt"))
+
+
+def read_cost_file(path):
+    """{test name: average seconds} from a CTestCostData.txt file."""
     costs = {}
     with open(path) as f:
         for line in f:
