@@ -7,6 +7,11 @@
 #                                test left out, and the fast tests labelled sanitize_skip
 #                                (tests/sanitize_skip.cmake says which and why)
 #   scripts/test.sh --fast       leaves out the tests labelled slow
+#   scripts/test.sh --skip-sanitized
+#                                after --sanitize: Release build, leaving out the fast C++ tests
+#                                that --sanitize ran, then checks that the two together ran every
+#                                test (.ci/run: every test once, the fast ones under the
+#                                sanitizers, which check what Release checks and memory on top)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -41,7 +46,19 @@ for arg in "$@"; do
       export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
       ;;
     --fast) ctest_args+=(-LE slow) ;;
-    *) echo "usage: scripts/test.sh [--sanitize] [--fast]" >&2; exit 2 ;;
+    --skip-sanitized)
+      # What --sanitize does not run: the slow tests, the Jet and autodiff checks (not built
+      # there), the tests tests/sanitize_skip.cmake leaves out, the Python module's tests and the
+      # downstream-project test (neither built there). .ci/run checks that the two phases
+      # together run every test.
+      release_labels="slow|arithmetic|sanitize_skip|python|consumer"
+      ctest_args+=(-L "$release_labels")
+      if [[ ! -f build-sanitize/CTestTestfile.cmake ]]; then
+        echo "scripts/test.sh --skip-sanitized: run scripts/test.sh --sanitize first" >&2
+        exit 2
+      fi
+      ;;
+    *) echo "usage: scripts/test.sh [--sanitize] [--fast] [--skip-sanitized]" >&2; exit 2 ;;
   esac
 done
 
@@ -50,3 +67,17 @@ jobs=$(nproc)
 scripts/configure.sh . "$build_dir" "${cmake_args[@]}"
 cmake --build "$build_dir" -j "$jobs"
 ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" "${ctest_args[@]}"
+
+if [[ -n "${release_labels:-}" ]]; then
+  # Every test of the Release build ran here or in the sanitizer build (a label that went
+  # missing would otherwise drop tests silently).
+  list_tests() { ctest --test-dir "$1" -N "${@:2}" | sed -n 's/^ *Test *#[0-9]*: //p' | sort -u; }
+  missing=$(comm -23 <(list_tests build) \
+    <(sort -u <(list_tests build -L "$release_labels") \
+              <(list_tests build-sanitize -LE "slow|sanitize_skip")))
+  if [[ -n "$missing" ]]; then
+    echo "run neither here nor by scripts/test.sh --sanitize:" >&2
+    echo "$missing" >&2
+    exit 1
+  fi
+fi

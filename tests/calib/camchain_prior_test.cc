@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <vector>
 
 #include "splinecal/lie/se3_manifold.h"
@@ -21,6 +22,15 @@ struct Case {
   std::vector<int> intrinsics;
   bool chain = false;
 };
+
+// The case as the test list shows it, e.g. "intrinsics_4_5_0_1_2_3_and_chain". Without it
+// GoogleTest prints the struct's bytes, the vector's heap pointers included, so the listed name
+// changed from build to build and from run to run.
+void PrintTo(const Case& c, std::ostream* os) {
+  if (!c.intrinsics.empty()) *os << "intrinsics";
+  for (int j : c.intrinsics) *os << "_" << j;
+  if (c.chain) *os << (c.intrinsics.empty() ? "chain" : "_and_chain");
+}
 
 class CamchainPriorTest : public ::testing::TestWithParam<Case> {};
 
