@@ -1,33 +1,26 @@
 #include "splinecal/imu/imu_model_kind.h"
 
+#include <array>
+
+#include "splinecal/enum_names.h"
+
 namespace splinecal {
 
-const char* ImuModelName(ImuModelKind kind) {
-  switch (kind) {
-    case ImuModelKind::kCalibrated:
-      return "calibrated";
-    case ImuModelKind::kScaleMisalignment:
-      return "scale-misalignment";
-    case ImuModelKind::kScaleMisalignmentSizeEffect:
-      return "scale-misalignment-size-effect";
-  }
-  return "calibrated";
-}
+constexpr std::array<EnumName<ImuModelKind>, 3> kImuModelNames = {{
+    {ImuModelKind::kCalibrated, "calibrated"},
+    {ImuModelKind::kScaleMisalignment, "scale-misalignment"},
+    {ImuModelKind::kScaleMisalignmentSizeEffect, "scale-misalignment-size-effect"},
+}};
+
+const char* ImuModelName(ImuModelKind kind) { return NameOf(kImuModelNames, kind); }
 
 bool ParseImuModelKind(const std::string& name, ImuModelKind* kind) {
-  for (ImuModelKind candidate : {ImuModelKind::kCalibrated,
-                                 ImuModelKind::kScaleMisalignment,
-                                 ImuModelKind::kScaleMisalignmentSizeEffect}) {
-    if (name == ImuModelName(candidate)) {
-      *kind = candidate;
-      return true;
-    }
-  }
-  return false;
+  return ValueNamed(kImuModelNames, name, kind);
 }
 
 const char* ImuModelNames() {
-  return "calibrated, scale-misalignment, scale-misalignment-size-effect";
+  static const std::string names = JoinNames(kImuModelNames, ", ");
+  return names.c_str();
 }
 
 int NumImuIntrinsicParameters(ImuModelKind kind) {
