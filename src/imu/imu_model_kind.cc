@@ -6,11 +6,15 @@
 
 namespace splinecal {
 
+namespace {
+
 constexpr std::array<EnumName<ImuModelKind>, 3> kImuModelNames = {{
     {ImuModelKind::kCalibrated, "calibrated"},
     {ImuModelKind::kScaleMisalignment, "scale-misalignment"},
     {ImuModelKind::kScaleMisalignmentSizeEffect, "scale-misalignment-size-effect"},
 }};
+
+}  // namespace
 
 const char* ImuModelName(ImuModelKind kind) { return NameOf(kImuModelNames, kind); }
 

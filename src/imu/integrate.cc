@@ -13,11 +13,15 @@
 
 namespace splinecal {
 
+namespace {
+
 constexpr std::array<EnumName<IntegrationMethod>, 3> kIntegrationMethodNames = {{
     {IntegrationMethod::kEuler, "euler"},
     {IntegrationMethod::kMidpoint, "midpoint"},
     {IntegrationMethod::kRk4, "rk4"},
 }};
+
+}  // namespace
 
 const char* IntegrationMethodName(IntegrationMethod method) {
   return NameOf(kIntegrationMethodNames, method);
