@@ -22,21 +22,32 @@ struct EnumName {
   const char* name;
 };
 
-// The name of `value`. A value missing from the table is a programmer error (a new enumerator
+// A table may carry more per value than its name: every function below takes any row type with
+// the members `value` and `name`, e.g. struct {Kind value; const char* name; int num_parameters;}.
+
+// The row of `value`. A value missing from the table is a programmer error (a new enumerator
 // without its row), not bad input: it aborts.
-template <typename Enum, size_t N>
-const char* NameOf(const std::array<EnumName<Enum>, N>& table, Enum value) {
-  for (const EnumName<Enum>& row : table) {
-    if (row.value == value) return row.name;
+template <typename Row, size_t N>
+const Row& RowOf(const std::array<Row, N>& table, decltype(Row::value) value) {
+  for (const Row& row : table) {
+    if (row.value == value) return row;
   }
-  LOG(FATAL) << "enum value " << static_cast<int>(value) << " has no name";
-  return "";
+  LOG(FATAL) << "enum value " << static_cast<int>(value) << " has no row";
+  return table[0];
+}
+
+// The name of `value` (aborts as RowOf does).
+template <typename Row, size_t N>
+const char* NameOf(const std::array<Row, N>& table, decltype(Row::value) value) {
+  return RowOf(table, value).name;
 }
 
 // The value named `name` (exact spelling); false, leaving *value alone, when no row has it.
-template <typename Enum, size_t N>
-bool ValueNamed(const std::array<EnumName<Enum>, N>& table, const std::string& name, Enum* value) {
-  for (const EnumName<Enum>& row : table) {
+template <typename Row, size_t N>
+bool ValueNamed(const std::array<Row, N>& table,
+                const std::string& name,
+                decltype(Row::value)* value) {
+  for (const Row& row : table) {
     if (name == row.name) {
       *value = row.value;
       return true;
@@ -46,10 +57,10 @@ bool ValueNamed(const std::array<EnumName<Enum>, N>& table, const std::string& n
 }
 
 // Every name in table order, joined by `separator` (for messages and --help).
-template <typename Enum, size_t N>
-std::string JoinNames(const std::array<EnumName<Enum>, N>& table, const std::string& separator) {
+template <typename Row, size_t N>
+std::string JoinNames(const std::array<Row, N>& table, const std::string& separator) {
   std::string names;
-  for (const EnumName<Enum>& row : table) {
+  for (const Row& row : table) {
     if (!names.empty()) names += separator;
     names += row.name;
   }

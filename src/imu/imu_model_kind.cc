@@ -8,35 +8,34 @@ namespace splinecal {
 
 namespace {
 
-constexpr std::array<EnumName<ImuModelKind>, 3> kImuModelNames = {{
-    {ImuModelKind::kCalibrated, "calibrated"},
-    {ImuModelKind::kScaleMisalignment, "scale-misalignment"},
-    {ImuModelKind::kScaleMisalignmentSizeEffect, "scale-misalignment-size-effect"},
+// Kalibr's name of each model and the number of intrinsic parameters it estimates (header).
+struct ImuModelRow {
+  ImuModelKind value;
+  const char* name;
+  int num_intrinsic_parameters;
+};
+
+constexpr std::array<ImuModelRow, 3> kImuModels = {{
+    {ImuModelKind::kCalibrated, "calibrated", 0},
+    {ImuModelKind::kScaleMisalignment, "scale-misalignment", 24},
+    {ImuModelKind::kScaleMisalignmentSizeEffect, "scale-misalignment-size-effect", 30},
 }};
 
 }  // namespace
 
-const char* ImuModelName(ImuModelKind kind) { return NameOf(kImuModelNames, kind); }
+const char* ImuModelName(ImuModelKind kind) { return NameOf(kImuModels, kind); }
 
 bool ParseImuModelKind(const std::string& name, ImuModelKind* kind) {
-  return ValueNamed(kImuModelNames, name, kind);
+  return ValueNamed(kImuModels, name, kind);
 }
 
 const char* ImuModelNames() {
-  static const std::string names = JoinNames(kImuModelNames, ", ");
+  static const std::string names = JoinNames(kImuModels, ", ");
   return names.c_str();
 }
 
 int NumImuIntrinsicParameters(ImuModelKind kind) {
-  switch (kind) {
-    case ImuModelKind::kCalibrated:
-      return 0;
-    case ImuModelKind::kScaleMisalignment:
-      return 24;
-    case ImuModelKind::kScaleMisalignmentSizeEffect:
-      return 30;
-  }
-  return 0;
+  return RowOf(kImuModels, kind).num_intrinsic_parameters;
 }
 
 }  // namespace splinecal

@@ -7,6 +7,8 @@
 namespace splinecal {
 namespace {
 
+// Tables with rows wider than EnumName (RowOf and a third member): imu/imu_model_kind.cc, tested
+// in tests/imu/imu_model_kind_test.cc.
 enum class Colour { kRed, kGreen, kBlue };
 
 constexpr std::array<EnumName<Colour>, 3> kColourNames = {{
