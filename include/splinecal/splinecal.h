@@ -25,6 +25,7 @@
 #define SPLINECAL_SPLINECAL_H_
 
 #include "splinecal/axis_name.h"
+#include "splinecal/enum_names.h"
 #include "splinecal/error.h"
 #include "splinecal/median.h"
 #include "splinecal/memory_reuse.h"

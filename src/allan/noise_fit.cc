@@ -430,23 +430,22 @@ AxisNoiseFit FitNoise(const AllanCurve& curve,
   const int dip_end = FilterDipEnd(of(NoiseTerm::kWhite), p);
   fit.filter_dip_tau_s = dip_end > 0 ? p.tau[dip_end - 1] : 0.0;
 
+  // Each term: the window Decide picks among points [begin, end), then its estimate there
+  // (upper bounds from bound_begin on).
+  auto decide = [&](NoiseTerm term, int begin, int end, WindowRule rule, Choice choice) {
+    return Decide(term, of(term), begin, end, options.min_points, rule, choice);
+  };
+  auto estimate =
+      [&](NoiseTerm term, const Decision& decision, int begin, int end, int bound_begin) {
+        fit[term] =
+            Estimate(term, decision, of(term), bounds_of(term), begin, end, bound_begin, options);
+      };
+
   // White noise first: the others are placed relative to its range.
-  const Decision white = Decide(NoiseTerm::kWhite,
-                                of(NoiseTerm::kWhite),
-                                dip_end,
-                                size,
-                                options.min_points,
-                                nullptr,
-                                Choice::kEarliestThenLongest);
+  const Decision white =
+      decide(NoiseTerm::kWhite, dip_end, size, nullptr, Choice::kEarliestThenLongest);
   int after_white = white.found ? white.window.first + 1 : dip_end;
-  fit[NoiseTerm::kWhite] = Estimate(NoiseTerm::kWhite,
-                                    white,
-                                    of(NoiseTerm::kWhite),
-                                    bounds_of(NoiseTerm::kWhite),
-                                    dip_end,
-                                    size,
-                                    white.found ? white.window.first : dip_end,
-                                    options);
+  estimate(NoiseTerm::kWhite, white, dip_end, size, white.found ? white.window.first : dip_end);
   if (fit[NoiseTerm::kWhite].identified) {
     const double n = fit[NoiseTerm::kWhite].value;
     int first = size;
@@ -457,65 +456,26 @@ AxisNoiseFit FitNoise(const AllanCurve& curve,
     after_white = std::max(after_white, first);
   }
   const int quantization_end = white.found ? white.window.first : size;
-  fit[NoiseTerm::kQuantization] = Estimate(NoiseTerm::kQuantization,
-                                           Decide(NoiseTerm::kQuantization,
-                                                  of(NoiseTerm::kQuantization),
-                                                  0,
-                                                  quantization_end,
-                                                  options.min_points,
-                                                  nullptr,
-                                                  Choice::kLongest),
-                                           of(NoiseTerm::kQuantization),
-                                           bounds_of(NoiseTerm::kQuantization),
-                                           0,
-                                           quantization_end,
-                                           dip_end,
-                                           options);
-  fit[NoiseTerm::kBiasInstability] = Estimate(NoiseTerm::kBiasInstability,
-                                              Decide(NoiseTerm::kBiasInstability,
-                                                     of(NoiseTerm::kBiasInstability),
-                                                     after_white,
-                                                     size,
-                                                     options.min_points,
-                                                     &WiderThanBend,
-                                                     Choice::kLowest),
-                                              of(NoiseTerm::kBiasInstability),
-                                              bounds_of(NoiseTerm::kBiasInstability),
-                                              after_white,
-                                              size,
-                                              dip_end,
-                                              options);
-  const Decision walk = Decide(NoiseTerm::kRandomWalk,
-                               of(NoiseTerm::kRandomWalk),
-                               after_white,
-                               size,
-                               options.min_points,
-                               &NoFallAfter,
-                               Choice::kLongest);
-  fit[NoiseTerm::kRandomWalk] = Estimate(NoiseTerm::kRandomWalk,
-                                         walk,
-                                         of(NoiseTerm::kRandomWalk),
-                                         bounds_of(NoiseTerm::kRandomWalk),
-                                         after_white,
-                                         size,
-                                         dip_end,
-                                         options);
+  estimate(NoiseTerm::kQuantization,
+           decide(NoiseTerm::kQuantization, 0, quantization_end, nullptr, Choice::kLongest),
+           0,
+           quantization_end,
+           dip_end);
+  estimate(NoiseTerm::kBiasInstability,
+           decide(NoiseTerm::kBiasInstability, after_white, size, &WiderThanBend, Choice::kLowest),
+           after_white,
+           size,
+           dip_end);
+  const Decision walk =
+      decide(NoiseTerm::kRandomWalk, after_white, size, &NoFallAfter, Choice::kLongest);
+  estimate(NoiseTerm::kRandomWalk, walk, after_white, size, dip_end);
   const int after_walk =
       fit[NoiseTerm::kRandomWalk].identified ? walk.window.first + 1 : after_white;
-  fit[NoiseTerm::kRateRamp] = Estimate(NoiseTerm::kRateRamp,
-                                       Decide(NoiseTerm::kRateRamp,
-                                              of(NoiseTerm::kRateRamp),
-                                              after_walk,
-                                              size,
-                                              options.min_points,
-                                              &NoFallAfter,
-                                              Choice::kLongest),
-                                       of(NoiseTerm::kRateRamp),
-                                       bounds_of(NoiseTerm::kRateRamp),
-                                       after_walk,
-                                       size,
-                                       dip_end,
-                                       options);
+  estimate(NoiseTerm::kRateRamp,
+           decide(NoiseTerm::kRateRamp, after_walk, size, &NoFallAfter, Choice::kLongest),
+           after_walk,
+           size,
+           dip_end);
 
   for (int j = 0; j < kNumNoiseTerms; ++j) {
     fit.terms[j].model_note =

@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -19,6 +20,27 @@ constexpr double kLn2 = 0.69314718055994530942;
 // A model term must hold at least this share of the model variance at some averaging time to
 // count as identified in the full fit.
 constexpr double kModelIdentifiedShare = 0.5;
+
+// Each term's names (for people; the YAML key), its Allan deviation slope (ADEV ~ tau^slope for
+// AVAR ~ tau^(2 slope), NoiseTermBasis) and its power-law noise type (the rate is the
+// "frequency", its integral the "phase", allan/edf.h), in NoiseTerm order.
+struct NoiseTermProperties {
+  const char* name;
+  const char* key;
+  double slope;
+  PowerLawNoise noise_type;
+};
+constexpr std::array<NoiseTermProperties, kNumNoiseTerms> kNoiseTermProperties = {{
+    {"quantization noise", "quantization", -1.0, PowerLawNoise::kWhitePm},
+    {"white noise", "noise_density", -0.5, PowerLawNoise::kWhiteFm},
+    {"bias instability", "bias_instability", 0.0, PowerLawNoise::kFlickerFm},
+    {"random walk", "random_walk", 0.5, PowerLawNoise::kRandomWalkFm},
+    {"rate ramp", "rate_ramp", 1.0, PowerLawNoise::kRandomWalkFm},
+}};
+
+const NoiseTermProperties& PropertiesOf(NoiseTerm term) {
+  return kNoiseTermProperties.at(static_cast<size_t>(term));
+}
 
 std::string Percent(double fraction) { return StringPrintf("%.0f%%", 100.0 * fraction); }
 
@@ -41,70 +63,13 @@ double LargestShare(const std::vector<std::array<double, kNumNoiseTerms>>& share
 
 }  // namespace
 
-const char* NoiseTermName(NoiseTerm term) {
-  switch (term) {
-    case NoiseTerm::kQuantization:
-      return "quantization noise";
-    case NoiseTerm::kWhite:
-      return "white noise";
-    case NoiseTerm::kBiasInstability:
-      return "bias instability";
-    case NoiseTerm::kRandomWalk:
-      return "random walk";
-    case NoiseTerm::kRateRamp:
-      return "rate ramp";
-  }
-  return "?";
-}
+const char* NoiseTermName(NoiseTerm term) { return PropertiesOf(term).name; }
 
-double NoiseTermSlope(NoiseTerm term) {
-  // ADEV ~ tau^(slope) for AVAR ~ tau^(2 slope) (NoiseTermBasis).
-  switch (term) {
-    case NoiseTerm::kQuantization:
-      return -1.0;
-    case NoiseTerm::kWhite:
-      return -0.5;
-    case NoiseTerm::kBiasInstability:
-      return 0.0;
-    case NoiseTerm::kRandomWalk:
-      return 0.5;
-    case NoiseTerm::kRateRamp:
-      return 1.0;
-  }
-  return 0.0;
-}
+double NoiseTermSlope(NoiseTerm term) { return PropertiesOf(term).slope; }
 
-PowerLawNoise NoiseTermNoiseType(NoiseTerm term) {
-  // The rate is the "frequency", its integral the "phase" (allan/edf.h).
-  switch (term) {
-    case NoiseTerm::kQuantization:
-      return PowerLawNoise::kWhitePm;
-    case NoiseTerm::kWhite:
-      return PowerLawNoise::kWhiteFm;
-    case NoiseTerm::kBiasInstability:
-      return PowerLawNoise::kFlickerFm;
-    case NoiseTerm::kRandomWalk:
-    case NoiseTerm::kRateRamp:
-      return PowerLawNoise::kRandomWalkFm;
-  }
-  return PowerLawNoise::kWhiteFm;
-}
+PowerLawNoise NoiseTermNoiseType(NoiseTerm term) { return PropertiesOf(term).noise_type; }
 
-const char* NoiseTermKey(NoiseTerm term) {
-  switch (term) {
-    case NoiseTerm::kQuantization:
-      return "quantization";
-    case NoiseTerm::kWhite:
-      return "noise_density";
-    case NoiseTerm::kBiasInstability:
-      return "bias_instability";
-    case NoiseTerm::kRandomWalk:
-      return "random_walk";
-    case NoiseTerm::kRateRamp:
-      return "rate_ramp";
-  }
-  return "?";
-}
+const char* NoiseTermKey(NoiseTerm term) { return PropertiesOf(term).key; }
 
 double NoiseTermBasis(NoiseTerm term, double tau_s) {
   switch (term) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "splinecal/enum_names.h"
 #include "splinecal/units.h"
 
 namespace splinecal {
@@ -27,6 +28,20 @@ constexpr std::array<SupportedModel, 8> kSupportedModels = {{
     {ProjectionModel::kDoubleSphere, DistortionModel::kNone},
 }};
 
+// Kalibr's camera_model and distortion_model names.
+constexpr std::array<EnumName<ProjectionModel>, 4> kProjectionModelNames = {{
+    {ProjectionModel::kPinhole, "pinhole"},
+    {ProjectionModel::kOmni, "omni"},
+    {ProjectionModel::kEucm, "eucm"},
+    {ProjectionModel::kDoubleSphere, "ds"},
+}};
+constexpr std::array<EnumName<DistortionModel>, 4> kDistortionModelNames = {{
+    {DistortionModel::kNone, "none"},
+    {DistortionModel::kRadTan, "radtan"},
+    {DistortionModel::kEquidistant, "equidistant"},
+    {DistortionModel::kFov, "fov"},
+}};
+
 // The distortion's part of a command-line name (Kalibr shortens equidistant to equi there).
 std::string ShortDistortionName(DistortionModel model) {
   return model == DistortionModel::kEquidistant ? "equi" : DistortionModelName(model);
@@ -44,31 +59,11 @@ double TangentDeterminant(const Eigen::Matrix<double, 2, 3>& J, const Eigen::Vec
 }  // namespace
 
 std::string ProjectionModelName(ProjectionModel model) {
-  switch (model) {
-    case ProjectionModel::kPinhole:
-      return "pinhole";
-    case ProjectionModel::kOmni:
-      return "omni";
-    case ProjectionModel::kEucm:
-      return "eucm";
-    case ProjectionModel::kDoubleSphere:
-      return "ds";
-  }
-  return "pinhole";
+  return NameOf(kProjectionModelNames, model);
 }
 
 std::string DistortionModelName(DistortionModel model) {
-  switch (model) {
-    case DistortionModel::kNone:
-      return "none";
-    case DistortionModel::kRadTan:
-      return "radtan";
-    case DistortionModel::kEquidistant:
-      return "equidistant";
-    case DistortionModel::kFov:
-      return "fov";
-  }
-  return "none";
+  return NameOf(kDistortionModelNames, model);
 }
 
 std::string CameraModelName(ProjectionModel projection, DistortionModel distortion) {

@@ -21,18 +21,40 @@ Eigen::Matrix3d ClosestRotation(const Eigen::Matrix3d& M) {
   return svd.matrixU() * D * svd.matrixV().transpose();
 }
 
-// Hartley's normalisation of 2-D points: centroid to 0, mean distance sqrt(2).
-Eigen::Matrix3d Normalisation(const std::vector<Eigen::Vector2d>& points) {
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+// Hartley's normalisation of N-D points as a homogeneous transform: centroid to 0, mean
+// distance sqrt(N).
+template <int N>
+Eigen::Matrix<double, N + 1, N + 1> Normalisation(
+    const std::vector<Eigen::Matrix<double, N, 1>>& points) {
+  Eigen::Matrix<double, N, 1> mean = Eigen::Matrix<double, N, 1>::Zero();
   for (const auto& p : points) mean += p;
   mean /= static_cast<double>(points.size());
   double distance = 0.0;
   for (const auto& p : points) distance += (p - mean).norm();
   distance /= static_cast<double>(points.size());
-  const double s = distance > 0.0 ? std::sqrt(2.0) / distance : 1.0;
-  Eigen::Matrix3d T;
-  T << s, 0.0, -s * mean.x(), 0.0, s, -s * mean.y(), 0.0, 0.0, 1.0;
+  const double s = distance > 0.0 ? std::sqrt(static_cast<double>(N)) / distance : 1.0;
+  Eigen::Matrix<double, N + 1, N + 1> T = Eigen::Matrix<double, N + 1, N + 1>::Identity();
+  T.template topLeftCorner<N, N>() *= s;
+  T.template topRightCorner<N, 1>() = -s * mean;
   return T;
+}
+
+// The DLT solution: the right singular vector of A's smallest singular value. False (with
+// `degenerate` as the message) when the next smallest is below kMinSingularValueRatio of the
+// largest: the solution is then not unique.
+bool NullVector(const Eigen::MatrixXd& A,
+                const char* degenerate,
+                Eigen::VectorXd* v,
+                std::string* message) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  const Eigen::Index last = A.cols() - 1;
+  if (!(sv(last - 1) > kMinSingularValueRatio * sv(0))) {
+    *message = degenerate;
+    return false;
+  }
+  *v = svd.matrixV().col(last);
+  return true;
 }
 
 // The sign of a homogeneous map M (H or P) that puts the points along their bearings rather than
@@ -57,7 +79,7 @@ bool PlanarPose(const std::vector<Eigen::Vector3d>& p_t,
     xy[i] = p_t[i].head<2>();
     xy1[i] = Eigen::Vector3d(xy[i].x(), xy[i].y(), 1.0);
   }
-  const Eigen::Matrix3d Ta = Normalisation(xy);
+  const Eigen::Matrix3d Ta = Normalisation<2>(xy);
   Eigen::MatrixXd A(2 * n, 9);
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d a = Ta * xy1[i];
@@ -65,13 +87,8 @@ bool PlanarPose(const std::vector<Eigen::Vector3d>& p_t,
     A.row(2 * i) << 0.0, 0.0, 0.0, -b[i].z() * a.transpose(), b[i].y() * a.transpose();
     A.row(2 * i + 1) << b[i].z() * a.transpose(), 0.0, 0.0, 0.0, -b[i].x() * a.transpose();
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sv = svd.singularValues();
-  if (!(sv(7) > kMinSingularValueRatio * sv(0))) {
-    *message = "degenerate target geometry (collinear points)";
-    return false;
-  }
-  const Eigen::VectorXd h = svd.matrixV().col(8);
+  Eigen::VectorXd h;
+  if (!NullVector(A, "degenerate target geometry (collinear points)", &h, message)) return false;
   Eigen::Matrix3d Hn;
   Hn << h(0), h(1), h(2), h(3), h(4), h(5), h(6), h(7), h(8);
   Eigen::Matrix3d H = Hn * Ta;
@@ -95,17 +112,7 @@ bool GeneralPose(const std::vector<Eigen::Vector3d>& p_t,
                  SE3d* T_c_t,
                  std::string* message) {
   const int n = static_cast<int>(p_t.size());
-  // Normalise the 3-D points: centroid 0, mean distance sqrt(3).
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : p_t) mean += p;
-  mean /= n;
-  double distance = 0.0;
-  for (const auto& p : p_t) distance += (p - mean).norm();
-  distance /= n;
-  const double s3 = distance > 0.0 ? std::sqrt(3.0) / distance : 1.0;
-  Eigen::Matrix4d Ta = Eigen::Matrix4d::Identity();
-  Ta.topLeftCorner<3, 3>() *= s3;
-  Ta.topRightCorner<3, 1>() = -s3 * mean;
+  const Eigen::Matrix4d Ta = Normalisation<3>(p_t);
   std::vector<Eigen::Vector4d> homogeneous(n);
   Eigen::MatrixXd A(2 * n, 12);
   for (int i = 0; i < n; ++i) {
@@ -115,13 +122,11 @@ bool GeneralPose(const std::vector<Eigen::Vector3d>& p_t,
     A.row(2 * i + 1) << b[i].z() * a.transpose(), Eigen::RowVector4d::Zero(),
         -b[i].x() * a.transpose();
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sv = svd.singularValues();
-  if (!(sv(10) > kMinSingularValueRatio * sv(0))) {
-    *message = "degenerate target geometry (coplanar or too few independent points)";
+  Eigen::VectorXd p;
+  if (!NullVector(
+          A, "degenerate target geometry (coplanar or too few independent points)", &p, message)) {
     return false;
   }
-  const Eigen::VectorXd p = svd.matrixV().col(11);
   Eigen::Matrix<double, 3, 4> Pn;
   Pn << p(0), p(1), p(2), p(3), p(4), p(5), p(6), p(7), p(8), p(9), p(10), p(11);
   Eigen::Matrix<double, 3, 4> P = Pn * Ta;

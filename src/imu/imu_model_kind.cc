@@ -1,45 +1,41 @@
 #include "splinecal/imu/imu_model_kind.h"
 
+#include <array>
+
+#include "splinecal/enum_names.h"
+
 namespace splinecal {
 
-const char* ImuModelName(ImuModelKind kind) {
-  switch (kind) {
-    case ImuModelKind::kCalibrated:
-      return "calibrated";
-    case ImuModelKind::kScaleMisalignment:
-      return "scale-misalignment";
-    case ImuModelKind::kScaleMisalignmentSizeEffect:
-      return "scale-misalignment-size-effect";
-  }
-  return "calibrated";
-}
+namespace {
+
+// Kalibr's name of each model and the number of intrinsic parameters it estimates (header).
+struct ImuModelRow {
+  ImuModelKind value;
+  const char* name;
+  int num_intrinsic_parameters;
+};
+
+constexpr std::array<ImuModelRow, 3> kImuModels = {{
+    {ImuModelKind::kCalibrated, "calibrated", 0},
+    {ImuModelKind::kScaleMisalignment, "scale-misalignment", 24},
+    {ImuModelKind::kScaleMisalignmentSizeEffect, "scale-misalignment-size-effect", 30},
+}};
+
+}  // namespace
+
+const char* ImuModelName(ImuModelKind kind) { return NameOf(kImuModels, kind); }
 
 bool ParseImuModelKind(const std::string& name, ImuModelKind* kind) {
-  for (ImuModelKind candidate : {ImuModelKind::kCalibrated,
-                                 ImuModelKind::kScaleMisalignment,
-                                 ImuModelKind::kScaleMisalignmentSizeEffect}) {
-    if (name == ImuModelName(candidate)) {
-      *kind = candidate;
-      return true;
-    }
-  }
-  return false;
+  return ValueNamed(kImuModels, name, kind);
 }
 
 const char* ImuModelNames() {
-  return "calibrated, scale-misalignment, scale-misalignment-size-effect";
+  static const std::string names = JoinNames(kImuModels, ", ");
+  return names.c_str();
 }
 
 int NumImuIntrinsicParameters(ImuModelKind kind) {
-  switch (kind) {
-    case ImuModelKind::kCalibrated:
-      return 0;
-    case ImuModelKind::kScaleMisalignment:
-      return 24;
-    case ImuModelKind::kScaleMisalignmentSizeEffect:
-      return 30;
-  }
-  return 0;
+  return RowOf(kImuModels, kind).num_intrinsic_parameters;
 }
 
 }  // namespace splinecal

@@ -3,33 +3,35 @@
 #include <glog/logging.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
+#include "splinecal/enum_names.h"
 #include "splinecal/error.h"
 #include "splinecal/units.h"
 
 namespace splinecal {
 
+namespace {
+
+constexpr std::array<EnumName<IntegrationMethod>, 3> kIntegrationMethodNames = {{
+    {IntegrationMethod::kEuler, "euler"},
+    {IntegrationMethod::kMidpoint, "midpoint"},
+    {IntegrationMethod::kRk4, "rk4"},
+}};
+
+}  // namespace
+
 const char* IntegrationMethodName(IntegrationMethod method) {
-  switch (method) {
-    case IntegrationMethod::kEuler:
-      return "euler";
-    case IntegrationMethod::kMidpoint:
-      return "midpoint";
-    case IntegrationMethod::kRk4:
-      return "rk4";
-  }
-  LOG(FATAL) << "unknown IntegrationMethod " << static_cast<int>(method);
-  return "";
+  return NameOf(kIntegrationMethodNames, method);
 }
 
 IntegrationMethod ParseIntegrationMethod(const std::string& name) {
-  for (IntegrationMethod method :
-       {IntegrationMethod::kEuler, IntegrationMethod::kMidpoint, IntegrationMethod::kRk4}) {
-    if (name == IntegrationMethodName(method)) return method;
-  }
-  throw Error("unknown integration method '" + name + "' (choose euler, midpoint or rk4)");
+  IntegrationMethod method;
+  if (ValueNamed(kIntegrationMethodNames, name, &method)) return method;
+  throw Error("unknown integration method '" + name + "' (choose from " +
+              JoinNames(kIntegrationMethodNames, ", ") + ")");
 }
 
 std::vector<IntegrationMethod> ParseIntegrationMethods(const std::string& comma_list) {
@@ -46,7 +48,8 @@ std::vector<IntegrationMethod> ParseIntegrationMethods(const std::string& comma_
     }
   }
   if (methods.empty()) {
-    throw Error("no integration method given (choose from euler, midpoint, rk4)");
+    throw Error("no integration method given (choose from " +
+                JoinNames(kIntegrationMethodNames, ", ") + ")");
   }
   return methods;
 }

@@ -27,10 +27,10 @@
 // jacobians[i][r * size_i + c]) and passes ceres::GradientChecker through SE3Manifold and
 // GravityManifold. d r_g / d b_g,j = weight_j I / sigma_g, d r_a / d g_w = -R_w_s^T / sigma_a.
 //
-// Two layouts of the same residuals:
-//   GyroCostFunction / AccelCostFunction                 one sample, ceres::SizedCostFunction
-//   GyroSegmentCostFunction / AccelSegmentCostFunction   every sample of one spline segment,
-//                                                        stacked (3 rows per sample)
+// Two layouts of the same residuals, one template each over ImuSensor (the Gyro/Accel names):
+//   ImuSampleCostFunction   (GyroCostFunction, AccelCostFunction)  one sample, SizedCostFunction
+//   ImuSegmentCostFunction  (GyroSegmentCostFunction, ...)         every sample of one spline
+//                                                                  segment, stacked (3 per sample)
 // The stacked form is the same objective with ~20x fewer residual blocks at 200 Hz and
 // dt = 0.1 s: Ceres' per-block costs (bookkeeping, validity checks, the manifold product per
 // block, one product term per pair of blocks in J^T J) dominate otherwise; `splinecal fit` uses
@@ -49,11 +49,13 @@
 #include <Eigen/Core>
 #include <array>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "splinecal/estimation/detail/pose_block_jacobian.h"
 #include "splinecal/estimation/spline_evaluation_callback.h"
 #include "splinecal/imu/imu_model.h"
+#include "splinecal/imu/static_recording.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/spline/segment.h"
 #include "splinecal/spline/segment_jacobians.h"
@@ -82,28 +84,6 @@ struct ImuResidualSegment {
 };
 
 namespace internal {
-
-template <int kBiasBlocks>
-struct GyroCostBase;
-template <>
-struct GyroCostBase<1> {
-  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, 3>;
-};
-template <>
-struct GyroCostBase<4> {
-  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, 3, 3, 3, 3>;
-};
-
-template <int kBiasBlocks>
-struct AccelCostBase;
-template <>
-struct AccelCostBase<1> {
-  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, 3, 3>;
-};
-template <>
-struct AccelCostBase<4> {
-  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, 3, 3, 3, 3, 3>;
-};
 
 // The knots and the pose-block lifts of one evaluation (local holds knots computed from the
 // blocks when the shared spline does not match).
@@ -156,162 +136,66 @@ void WriteBiasJacobians(const ImuResidualSample& sample,
   }
 }
 
-// Gyro residual of one sample into residual[0..2]; Jacobians (when jacobians != nullptr) into
-// rows row..row+2 of each requested block. parameters: 4 poses, kBiasBlocks biases.
-template <int kBiasBlocks>
-void GyroSampleRows(const SegmentEvaluation& evaluation,
-                    const ImuResidualSegment& segment,
-                    const ImuResidualSample& sample,
-                    double const* const* parameters,
-                    double* residual,
-                    double** jacobians,
-                    int row) {
+// The residual of one sample into residual[0..2]; Jacobians (when jacobians != nullptr) into
+// rows row..row+2 of each requested block. parameters: 4 poses, kBiasBlocks biases, and g_w for
+// the accelerometer. The gyro's Jacobian has no translation columns (spline/segment_jacobians.h).
+template <ImuSensor kSensor, int kBiasBlocks>
+void SampleRows(const SegmentEvaluation& evaluation,
+                const ImuResidualSegment& segment,
+                const ImuResidualSample& sample,
+                double const* const* parameters,
+                double* residual,
+                double** jacobians,
+                int row) {
+  constexpr bool kGyro = kSensor == ImuSensor::kGyroscope;
   const Segment<double> seg = MakeSegment(segment.segment_index, sample.u, segment.dt_s);
   const double inv_sigma = 1.0 / segment.sigma;
   const bool pose_jacobians = AnyPoseJacobian(jacobians);
-  Eigen::Vector3d w_s;
-  ControlPoseJacobian<3> J_ws_ctrl;
-  EvaluateAngularVelocityJacobian(
-      evaluation.knots, seg, &w_s, pose_jacobians ? &J_ws_ctrl : nullptr);
   const Eigen::Vector3d bias = WeightedBias<kBiasBlocks>(sample, parameters + kSplineOrder);
-  Eigen::Map<Eigen::Vector3d> r(residual);
-  r = (w_s + bias - sample.measured) * inv_sigma;
-  if (jacobians == nullptr) return;
-  if (pose_jacobians) {
-    for (int k = 0; k < kSplineOrder; ++k) {
-      if (jacobians[k] == nullptr) continue;
-      const Eigen::Matrix3d J_phi = J_ws_ctrl.blocks[k].rightCols<3>() * inv_sigma;
-      LiftRotationOnlyPoseJacobian(J_phi, evaluation.lifts[k], jacobians[k] + 7 * row);
-    }
-  }
-  WriteBiasJacobians<kBiasBlocks>(sample, inv_sigma, jacobians + kSplineOrder, row);
-}
-
-// Accel residual of one sample; parameters: 4 poses, kBiasBlocks biases, g_w.
-template <int kBiasBlocks>
-void AccelSampleRows(const SegmentEvaluation& evaluation,
-                     const ImuResidualSegment& segment,
-                     const ImuResidualSample& sample,
-                     double const* const* parameters,
-                     double* residual,
-                     double** jacobians,
-                     int row) {
-  const Segment<double> seg = MakeSegment(segment.segment_index, sample.u, segment.dt_s);
-  const double inv_sigma = 1.0 / segment.sigma;
-  const bool pose_jacobians = AnyPoseJacobian(jacobians);
-  const Eigen::Map<const Eigen::Vector3d> g_w(parameters[kSplineOrder + kBiasBlocks]);
-  const Eigen::Vector3d bias = WeightedBias<kBiasBlocks>(sample, parameters + kSplineOrder);
-  Eigen::Vector3d accel;
-  ControlPoseJacobian<3> J_accel_ctrl;
+  Eigen::Vector3d prediction;
+  ControlPoseJacobian<3> J_ctrl;
   Eigen::Matrix3d J_accel_gw;
-  PredictAccelWithJacobian(segment.model,
-                           evaluation.knots,
-                           seg,
-                           g_w,
-                           bias,
-                           &accel,
-                           pose_jacobians ? &J_accel_ctrl : nullptr,
-                           &J_accel_gw);
+  if constexpr (kGyro) {
+    EvaluateAngularVelocityJacobian(
+        evaluation.knots, seg, &prediction, pose_jacobians ? &J_ctrl : nullptr);
+    prediction += bias;
+  } else {
+    const Eigen::Map<const Eigen::Vector3d> g_w(parameters[kSplineOrder + kBiasBlocks]);
+    PredictAccelWithJacobian(segment.model,
+                             evaluation.knots,
+                             seg,
+                             g_w,
+                             bias,
+                             &prediction,
+                             pose_jacobians ? &J_ctrl : nullptr,
+                             &J_accel_gw);
+  }
   Eigen::Map<Eigen::Vector3d> r(residual);
-  r = (accel - sample.measured) * inv_sigma;
+  r = (prediction - sample.measured) * inv_sigma;
   if (jacobians == nullptr) return;
   if (pose_jacobians) {
     for (int k = 0; k < kSplineOrder; ++k) {
       if (jacobians[k] == nullptr) continue;
-      const Eigen::Matrix<double, 3, 6> J = J_accel_ctrl.blocks[k] * inv_sigma;
-      LiftPoseJacobian(J, evaluation.lifts[k], jacobians[k] + 7 * row);
+      if constexpr (kGyro) {
+        const Eigen::Matrix3d J_phi = J_ctrl.blocks[k].rightCols<3>() * inv_sigma;
+        LiftRotationOnlyPoseJacobian(J_phi, evaluation.lifts[k], jacobians[k] + 7 * row);
+      } else {
+        const Eigen::Matrix<double, 3, 6> J = J_ctrl.blocks[k] * inv_sigma;
+        LiftPoseJacobian(J, evaluation.lifts[k], jacobians[k] + 7 * row);
+      }
     }
   }
   WriteBiasJacobians<kBiasBlocks>(sample, inv_sigma, jacobians + kSplineOrder, row);
-  double* J_g = jacobians[kSplineOrder + kBiasBlocks];
-  if (J_g != nullptr) {
-    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(J_g + 3 * row);
-    J = J_accel_gw * inv_sigma;
+  if constexpr (!kGyro) {
+    double* J_g = jacobians[kSplineOrder + kBiasBlocks];
+    if (J_g != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(J_g + 3 * row);
+      J = J_accel_gw * inv_sigma;
+    }
   }
 }
 
 }  // namespace internal
-
-// The gyro residual of one sample (3 rows). kBiasBlocks: 1 (constant bias) or 4 (bias spline).
-template <int kBiasBlocks>
-class GyroCostFunction : public internal::GyroCostBase<kBiasBlocks>::Type {
- public:
-  GyroCostFunction(const ImuResidualSegment& segment, const ImuResidualSample& sample)
-      : segment_(segment), sample_(sample) {}
-
-  bool Evaluate(double const* const* parameters,
-                double* residuals,
-                double** jacobians) const override;
-
- private:
-  ImuResidualSegment segment_;
-  ImuResidualSample sample_;
-};
-
-// The accelerometer residual of one sample (3 rows).
-template <int kBiasBlocks>
-class AccelCostFunction : public internal::AccelCostBase<kBiasBlocks>::Type {
- public:
-  AccelCostFunction(const ImuResidualSegment& segment, const ImuResidualSample& sample)
-      : segment_(segment), sample_(sample) {}
-
-  bool Evaluate(double const* const* parameters,
-                double* residuals,
-                double** jacobians) const override;
-
- private:
-  ImuResidualSegment segment_;
-  ImuResidualSample sample_;
-};
-
-// Every gyro residual of one segment, stacked: rows 3s..3s+2 are sample s. Same parameter
-// blocks as GyroCostFunction. `samples` must not be empty.
-template <int kBiasBlocks>
-class GyroSegmentCostFunction : public ceres::CostFunction {
- public:
-  GyroSegmentCostFunction(const ImuResidualSegment& segment, std::vector<ImuResidualSample> samples)
-      : segment_(segment), samples_(std::move(samples)) {
-    CHECK(!samples_.empty());
-    set_num_residuals(3 * static_cast<int>(samples_.size()));
-    for (int k = 0; k < kSplineOrder; ++k) mutable_parameter_block_sizes()->push_back(7);
-    for (int j = 0; j < kBiasBlocks; ++j) mutable_parameter_block_sizes()->push_back(3);
-  }
-
-  bool Evaluate(double const* const* parameters,
-                double* residuals,
-                double** jacobians) const override;
-
-  const std::vector<ImuResidualSample>& samples() const { return samples_; }
-
- private:
-  ImuResidualSegment segment_;
-  std::vector<ImuResidualSample> samples_;
-};
-
-// Every accelerometer residual of one segment, stacked.
-template <int kBiasBlocks>
-class AccelSegmentCostFunction : public ceres::CostFunction {
- public:
-  AccelSegmentCostFunction(const ImuResidualSegment& segment,
-                           std::vector<ImuResidualSample> samples)
-      : segment_(segment), samples_(std::move(samples)) {
-    CHECK(!samples_.empty());
-    set_num_residuals(3 * static_cast<int>(samples_.size()));
-    for (int k = 0; k < kSplineOrder; ++k) mutable_parameter_block_sizes()->push_back(7);
-    for (int j = 0; j < kBiasBlocks; ++j) mutable_parameter_block_sizes()->push_back(3);
-    mutable_parameter_block_sizes()->push_back(3);  // g_w
-  }
-
-  bool Evaluate(double const* const* parameters,
-                double* residuals,
-                double** jacobians) const override;
-
-  const std::vector<ImuResidualSample>& samples() const { return samples_; }
-
- private:
-  ImuResidualSegment segment_;
-  std::vector<ImuResidualSample> samples_;
-};
 
 // ---- Evaluate: the residual rows and their Jacobians ----
 
@@ -331,7 +215,7 @@ SegmentKnotData<T> KnotDataFromBlocks(const T* const* poses) {
 // The sample's bias: its B-spline weights times the segment's kBiasBlocks bias points.
 
 // The rows of `num_samples` samples of one segment, 3 per sample, stacked: the segment's knot
-// data is prepared once and kSampleRows (GyroSampleRows or AccelSampleRows, a compile-time
+// data is prepared once and kSampleRows (a SampleRows instance, a compile-time
 // constant so that it inlines) writes each sample's residual and Jacobian rows.
 template <auto kSampleRows>
 void EvaluateSegmentSamples(const ImuResidualSegment& segment,
@@ -353,54 +237,94 @@ void EvaluateSegmentSamples(const ImuResidualSegment& segment,
   }
 }
 
+// The 3-vector blocks after the four poses: the biases, then g_w for the accelerometer.
+template <ImuSensor kSensor, int kBiasBlocks>
+inline constexpr int kImuVectorBlocks = kBiasBlocks +
+                                        (kSensor == ImuSensor::kAccelerometer ? 1 : 0);
+
+template <int>
+inline constexpr int kVectorBlockSize = 3;
+
+// ceres::SizedCostFunction<3, 7, 7, 7, 7, 3, ..., 3> with kVectorBlocks blocks of 3.
+template <int kVectorBlocks, typename = std::make_integer_sequence<int, kVectorBlocks>>
+struct OneSampleCostBase;
+template <int kVectorBlocks, int... kBlock>
+struct OneSampleCostBase<kVectorBlocks, std::integer_sequence<int, kBlock...>> {
+  using Type = ceres::SizedCostFunction<3, 7, 7, 7, 7, kVectorBlockSize<kBlock>...>;
+};
+
 }  // namespace internal
 
-template <int kBiasBlocks>
-bool GyroCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
-                                             double* residuals,
-                                             double** jacobians) const {
-  internal::EvaluateSegmentSamples<internal::GyroSampleRows<kBiasBlocks>>(
-      segment_, &sample_, 1, parameters, residuals, jacobians);
-  return true;
-}
+// The residual of one sample (3 rows). kBiasBlocks: 1 (constant bias) or 4 (bias spline).
+template <ImuSensor kSensor, int kBiasBlocks>
+class ImuSampleCostFunction
+    : public internal::OneSampleCostBase<internal::kImuVectorBlocks<kSensor, kBiasBlocks>>::Type {
+ public:
+  ImuSampleCostFunction(const ImuResidualSegment& segment, const ImuResidualSample& sample)
+      : segment_(segment), sample_(sample) {}
+
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    internal::EvaluateSegmentSamples<internal::SampleRows<kSensor, kBiasBlocks>>(
+        segment_, &sample_, 1, parameters, residuals, jacobians);
+    return true;
+  }
+
+ private:
+  ImuResidualSegment segment_;
+  ImuResidualSample sample_;
+};
+
+// Every residual of one segment, stacked: rows 3s..3s+2 are sample s. The parameter blocks of
+// ImuSampleCostFunction. `samples` must not be empty.
+template <ImuSensor kSensor, int kBiasBlocks>
+class ImuSegmentCostFunction : public ceres::CostFunction {
+ public:
+  ImuSegmentCostFunction(const ImuResidualSegment& segment, std::vector<ImuResidualSample> samples)
+      : segment_(segment), samples_(std::move(samples)) {
+    CHECK(!samples_.empty());
+    set_num_residuals(3 * static_cast<int>(samples_.size()));
+    for (int k = 0; k < kSplineOrder; ++k) mutable_parameter_block_sizes()->push_back(7);
+    for (int j = 0; j < internal::kImuVectorBlocks<kSensor, kBiasBlocks>; ++j) {
+      mutable_parameter_block_sizes()->push_back(3);
+    }
+  }
+
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const override {
+    internal::EvaluateSegmentSamples<internal::SampleRows<kSensor, kBiasBlocks>>(
+        segment_, samples_.data(), samples_.size(), parameters, residuals, jacobians);
+    return true;
+  }
+
+  const std::vector<ImuResidualSample>& samples() const { return samples_; }
+
+ private:
+  ImuResidualSegment segment_;
+  std::vector<ImuResidualSample> samples_;
+};
 
 template <int kBiasBlocks>
-bool AccelCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
-                                              double* residuals,
-                                              double** jacobians) const {
-  internal::EvaluateSegmentSamples<internal::AccelSampleRows<kBiasBlocks>>(
-      segment_, &sample_, 1, parameters, residuals, jacobians);
-  return true;
-}
-
+using GyroCostFunction = ImuSampleCostFunction<ImuSensor::kGyroscope, kBiasBlocks>;
 template <int kBiasBlocks>
-bool GyroSegmentCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
-                                                    double* residuals,
-                                                    double** jacobians) const {
-  internal::EvaluateSegmentSamples<internal::GyroSampleRows<kBiasBlocks>>(
-      segment_, samples_.data(), samples_.size(), parameters, residuals, jacobians);
-  return true;
-}
-
+using AccelCostFunction = ImuSampleCostFunction<ImuSensor::kAccelerometer, kBiasBlocks>;
 template <int kBiasBlocks>
-bool AccelSegmentCostFunction<kBiasBlocks>::Evaluate(double const* const* parameters,
-                                                     double* residuals,
-                                                     double** jacobians) const {
-  internal::EvaluateSegmentSamples<internal::AccelSampleRows<kBiasBlocks>>(
-      segment_, samples_.data(), samples_.size(), parameters, residuals, jacobians);
-  return true;
-}
+using GyroSegmentCostFunction = ImuSegmentCostFunction<ImuSensor::kGyroscope, kBiasBlocks>;
+template <int kBiasBlocks>
+using AccelSegmentCostFunction = ImuSegmentCostFunction<ImuSensor::kAccelerometer, kBiasBlocks>;
 
-// The analytic costs are compiled once, in src/estimation/imu_costs.cc, for both bias models;
-// other units only declare them (their Evaluate is the costly part to compile).
-extern template class GyroCostFunction<1>;
-extern template class GyroCostFunction<4>;
-extern template class AccelCostFunction<1>;
-extern template class AccelCostFunction<4>;
-extern template class GyroSegmentCostFunction<1>;
-extern template class GyroSegmentCostFunction<4>;
-extern template class AccelSegmentCostFunction<1>;
-extern template class AccelSegmentCostFunction<4>;
+// The analytic costs are compiled once, in src/estimation/imu_costs.cc, for both sensors and
+// both bias models; other units only declare them (their Evaluate is the costly part to compile).
+extern template class ImuSampleCostFunction<ImuSensor::kGyroscope, 1>;
+extern template class ImuSampleCostFunction<ImuSensor::kGyroscope, 4>;
+extern template class ImuSampleCostFunction<ImuSensor::kAccelerometer, 1>;
+extern template class ImuSampleCostFunction<ImuSensor::kAccelerometer, 4>;
+extern template class ImuSegmentCostFunction<ImuSensor::kGyroscope, 1>;
+extern template class ImuSegmentCostFunction<ImuSensor::kGyroscope, 4>;
+extern template class ImuSegmentCostFunction<ImuSensor::kAccelerometer, 1>;
+extern template class ImuSegmentCostFunction<ImuSensor::kAccelerometer, 4>;
 
 }  // namespace splinecal
 

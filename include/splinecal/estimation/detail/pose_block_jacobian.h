@@ -41,14 +41,19 @@ inline PoseBlockLift MakePoseBlockLift(const double* pose_block) {
   return lift;
 }
 
+// A Jacobian with respect to one pose block: `rows` rows of 7 (row-major) at `jacobian`.
+using AmbientPoseJacobian = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>>;
+inline AmbientPoseJacobian AmbientPoseRows(double* jacobian, Eigen::Index rows) {
+  return AmbientPoseJacobian(jacobian, rows, 7);
+}
+
 // Writes J_tangent (rows x 6, columns [rho | phi]) lifted to the ambient block as `rows` rows
 // of 7 (row-major) at `jacobian`.
 template <typename Derived>
 void LiftPoseJacobian(const Eigen::MatrixBase<Derived>& J_tangent,
                       const PoseBlockLift& lift,
                       double* jacobian) {
-  const int rows = static_cast<int>(J_tangent.rows());
-  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>> J(jacobian, rows, 7);
+  auto J = AmbientPoseRows(jacobian, J_tangent.rows());
   J.template leftCols<3>().noalias() = J_tangent.template leftCols<3>() * lift.Rt;
   J.template rightCols<4>().noalias() = J_tangent.template rightCols<3>() * lift.dphi_dq;
 }
@@ -58,8 +63,7 @@ template <typename Derived>
 void LiftRotationOnlyPoseJacobian(const Eigen::MatrixBase<Derived>& J_phi,
                                   const PoseBlockLift& lift,
                                   double* jacobian) {
-  const int rows = static_cast<int>(J_phi.rows());
-  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>> J(jacobian, rows, 7);
+  auto J = AmbientPoseRows(jacobian, J_phi.rows());
   J.template leftCols<3>().setZero();
   J.template rightCols<4>().noalias() = J_phi * lift.dphi_dq;
 }
