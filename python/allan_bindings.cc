@@ -26,23 +26,39 @@ namespace python {
 
 namespace {
 
+// The columns of an array `name` (n, k) or (n,) (DoubleArray's checks): x of allan_deviation, or
+// imu of allan: 6 (gyro xyz, accel xyz) or 1 to 3 of one sensor, as `splinecal allan --columns`
+// reads a file's (io/static_recording.h checks them).
+struct ArrayColumns {
+  ArrayColumns(py::handle array, const std::string& name) {
+    const py::array any = py::array::ensure(array);
+    one_column = any && any.ndim() == 1;
+    const py::array_t<double> x = DoubleArray(
+        array, name, one_column ? std::vector<py::ssize_t>{-1} : std::vector<py::ssize_t>{-1, -1});
+    rows = x.shape(0);
+    const py::ssize_t k = one_column ? 1 : x.shape(1);
+    columns.assign(k, std::vector<double>(rows));
+    for (py::ssize_t i = 0; i < rows; ++i) {
+      for (py::ssize_t j = 0; j < k; ++j) columns[j][i] = x.data()[i * k + j];
+    }
+  }
+
+  bool one_column;  // a 1-d array
+  py::ssize_t rows;
+  std::vector<std::vector<double>> columns;
+};
+
 py::tuple AllanDeviation(py::handle x_object,
                          double rate_hz,
                          int taus_per_decade,
                          double max_tau_fraction) {
   PositiveArgument(rate_hz, "rate_hz");
-  const py::array x_any = py::array::ensure(x_object);
-  const bool one_column = x_any && x_any.ndim() == 1;
-  const py::array_t<double> x = DoubleArray(
-      x_object, "x", one_column ? std::vector<py::ssize_t>{-1} : std::vector<py::ssize_t>{-1, -1});
-  const py::ssize_t n = x.shape(0);
-  const py::ssize_t k = one_column ? 1 : x.shape(1);
+  const ArrayColumns x(x_object, "x");
+  const bool one_column = x.one_column;
+  const std::vector<std::vector<double>>& columns = x.columns;
+  const auto k = static_cast<py::ssize_t>(columns.size());
   const std::vector<int64_t> cluster_sizes =
-      AllanClusterSizes(n, taus_per_decade, max_tau_fraction);
-  std::vector<std::vector<double>> columns(k, std::vector<double>(n));
-  for (py::ssize_t i = 0; i < n; ++i) {
-    for (py::ssize_t j = 0; j < k; ++j) columns[j][i] = x.data()[i * k + j];
-  }
+      AllanClusterSizes(x.rows, taus_per_decade, max_tau_fraction);
   std::vector<AllanCurve> curves = RunWithoutGil([&] {
     std::vector<AllanCurve> result;
     for (py::ssize_t j = 0; j < k; ++j) {
@@ -59,22 +75,6 @@ py::tuple AllanDeviation(py::handle x_object,
     for (py::ssize_t j = 0; j < k; ++j) adev.mutable_data()[i * k + j] = curves[j].adev[i];
   }
   return py::make_tuple(tau, adev);
-}
-
-// The columns of an array (n, k) or (n,): 6 (gyro xyz, accel xyz) or 1 to 3 of one sensor, as
-// `splinecal allan --columns` reads a file's (io/static_recording.h checks them).
-std::vector<std::vector<double>> ArrayColumns(py::handle imu) {
-  const py::array any = py::array::ensure(imu);
-  const bool one_column = any && any.ndim() == 1;
-  const py::array_t<double> samples = DoubleArray(
-      imu, "imu", one_column ? std::vector<py::ssize_t>{-1} : std::vector<py::ssize_t>{-1, -1});
-  const py::ssize_t n = samples.shape(0);
-  const py::ssize_t k = one_column ? 1 : samples.shape(1);
-  std::vector<std::vector<double>> columns(k, std::vector<double>(n));
-  for (py::ssize_t i = 0; i < n; ++i) {
-    for (py::ssize_t j = 0; j < k; ++j) columns[j][i] = samples.data()[i * k + j];
-  }
-  return columns;
 }
 
 std::optional<ImuSensor> SensorArgument(py::handle sensor) {
@@ -163,7 +163,7 @@ py::dict Allan(py::handle imu,
   } else {
     if (rate.is_none()) throw py::value_error("rate: required with an array");
     const double rate_hz = PositiveArgument(rate.cast<double>(), "rate");
-    const std::vector<std::vector<double>> values = ArrayColumns(imu);
+    const std::vector<std::vector<double>> values = ArrayColumns(imu, "imu").columns;
     // Errors name the argument; result.yaml's `source` says what it was.
     recording = StaticRecordingFromColumns(values, rate_hz, axes_of, "imu", read);
     recording.source = "numpy array";

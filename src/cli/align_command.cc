@@ -11,6 +11,7 @@
 
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/common_flags.h"
+#include "splinecal/cli/console_text.h"
 #include "splinecal/error.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/euroc.h"
@@ -103,20 +104,15 @@ int RunAlign() {
   const Eigen::Vector3d g_w = result.R_w_c0 * result.gravity_c0;
   for (const std::string& warning : result.warnings) std::printf("warning: %s\n", warning.c_str());
   std::printf(
-      "scale %.9g (std %.3g)\ngravity_c0 [%.9f %.9f %.9f] m/s^2 (world: [%.3g %.3g %.6f])\n"
-      "gyro_bias [%.9f %.9f %.9f] rad/s\nwrote %s/result.yaml and aligned_poses.csv "
-      "(%d frames)\n",
+      "scale %.9g (std %.3g)\ngravity_c0 %s m/s^2 (world: [%.3g %.3g %.6f])\n"
+      "gyro_bias %s rad/s\nwrote %s/result.yaml and aligned_poses.csv (%d frames)\n",
       result.scale,
       result.scale_std,
-      result.gravity_c0.x(),
-      result.gravity_c0.y(),
-      result.gravity_c0.z(),
+      BracketedVector(result.gravity_c0, "%.9f").c_str(),
       g_w.x(),
       g_w.y(),
       g_w.z(),
-      result.gyro_bias.x(),
-      result.gyro_bias.y(),
-      result.gyro_bias.z(),
+      BracketedVector(result.gyro_bias, "%.9f").c_str(),
       out_dir.c_str(),
       static_cast<int>(result.states_w.size()));
   return 0;

@@ -8,6 +8,7 @@
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
+#include "splinecal/cli/console_text.h"
 #include "splinecal/error.h"
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/spline_csv.h"
@@ -63,23 +64,12 @@ int RunEvaluate() {
               "accel [m/s^2]");
   const EvaluateRun run = EvaluateSplineFiles(spline, FLAGS_spline, in.options);
   for (const SplineEvaluation& e : run.samples) {
-    const Eigen::Vector3d& p = e.T_w_s.translation();
-    std::printf(
-        "%10.4f  [%8.4f %8.4f %8.4f]  [%7.4f %7.4f %7.4f]  [%7.4f %7.4f %7.4f]  "
-        "[%7.3f %7.3f %7.3f]\n",
-        NanosecondsToSeconds(e.t_ns - spline.start_time_ns()),
-        p.x(),
-        p.y(),
-        p.z(),
-        e.w_s.x(),
-        e.w_s.y(),
-        e.w_s.z(),
-        e.gyro.x(),
-        e.gyro.y(),
-        e.gyro.z(),
-        e.accel.x(),
-        e.accel.y(),
-        e.accel.z());
+    std::printf("%10.4f  %s  %s  %s  %s\n",
+                NanosecondsToSeconds(e.t_ns - spline.start_time_ns()),
+                BracketedVector(e.T_w_s.translation(), "%8.4f").c_str(),
+                BracketedVector(e.w_s, "%7.4f").c_str(),
+                BracketedVector(e.gyro, "%7.4f").c_str(),
+                BracketedVector(e.accel, "%7.3f").c_str());
   }
   output.WriteFiles(run.files);
   output.Commit();

@@ -11,6 +11,7 @@
 #include "splinecal/cli/command.h"
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
+#include "splinecal/cli/console_text.h"
 #include "splinecal/error.h"
 #include "splinecal/io/euroc.h"
 #include "splinecal/io/kalibr_yaml.h"
@@ -94,24 +95,14 @@ int RunFit() {
   output.WriteFiles(FitOutputFiles(result, inputs));
   output.Commit();
 
-  std::printf("gyro_bias   [%.6f %.6f %.6f] rad/s   std [%.2g %.2g %.2g]\n",
-              result.gyro_bias.x(),
-              result.gyro_bias.y(),
-              result.gyro_bias.z(),
-              result.gyro_bias_std.x(),
-              result.gyro_bias_std.y(),
-              result.gyro_bias_std.z());
-  std::printf("accel_bias  [%.6f %.6f %.6f] m/s^2   std [%.2g %.2g %.2g]\n",
-              result.accel_bias.x(),
-              result.accel_bias.y(),
-              result.accel_bias.z(),
-              result.accel_bias_std.x(),
-              result.accel_bias_std.y(),
-              result.accel_bias_std.z());
-  std::printf("gravity_w   [%.6f %.6f %.6f] m/s^2   direction std %.2g deg\n",
-              result.gravity_w.x(),
-              result.gravity_w.y(),
-              result.gravity_w.z(),
+  std::printf("gyro_bias   %s rad/s   std %s\n",
+              BracketedVector(result.gyro_bias, "%.6f").c_str(),
+              BracketedVector(result.gyro_bias_std, "%.2g").c_str());
+  std::printf("accel_bias  %s m/s^2   std %s\n",
+              BracketedVector(result.accel_bias, "%.6f").c_str(),
+              BracketedVector(result.accel_bias_std, "%.2g").c_str());
+  std::printf("gravity_w   %s m/s^2   direction std %.2g deg\n",
+              BracketedVector(result.gravity_w, "%.6f").c_str(),
               result.gravity_direction_std_deg);
   if (result.time_offset_estimated) {
     std::printf("time_offset %.6f ms   std %.2g ms\n",
@@ -119,15 +110,9 @@ int RunFit() {
                 1e3 * result.time_offset_std_s);
   }
   if (result.extrinsic_estimated) {
-    const Eigen::Vector3d t = result.T_m_s.translation();
-    const Eigen::Vector3d r = result.T_m_s.so3().Log() * kRadToDeg;
-    std::printf("T_pose_imu  t [%.5f %.5f %.5f] m, rotation vector [%.4f %.4f %.4f] deg\n",
-                t.x(),
-                t.y(),
-                t.z(),
-                r.x(),
-                r.y(),
-                r.z());
+    std::printf("T_pose_imu  t %s m, rotation vector %s deg\n",
+                BracketedVector(result.T_m_s.translation(), "%.5f").c_str(),
+                BracketedVector(result.T_m_s.so3().Log() * kRadToDeg, "%.4f").c_str());
   }
   std::printf(
       "residual RMS gyro %.3g rad/s (noise %.3g), accel %.3g m/s^2 (noise %.3g); "

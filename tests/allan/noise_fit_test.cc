@@ -46,6 +46,20 @@ AllanCurve ModelCurve(const NoiseModel& model, double rate_hz, int64_t num_sampl
   return curve;
 }
 
+// A white-noise density of 1e-4 and a random walk of 1e-6: the two terms of a typical gyro.
+NoiseModel WhiteAndRandomWalk() {
+  NoiseModel model;
+  model[NoiseTerm::kWhite] = 1e-4;
+  model[NoiseTerm::kRandomWalk] = 1e-6;
+  return model;
+}
+
+// The fit's `term` identified, and within `relative` of `truth`.
+void ExpectIdentifiedNear(const AxisNoiseFit& fit, NoiseTerm term, double truth, double relative) {
+  ASSERT_TRUE(fit[term].identified) << NoiseTermKey(term) << ": " << fit[term].reason;
+  EXPECT_NEAR(fit[term].value / truth, 1.0, relative) << NoiseTermKey(term);
+}
+
 TEST(NonNegativeLeastSquares, RecoversExactNonNegativeSolution) {
   std::mt19937_64 engine(11);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -108,17 +122,14 @@ TEST(FitNoise, ExactModelCurveGivesItsTerms) {
       << fit[NoiseTerm::kBiasInstability].reason;
   EXPECT_GT(fit[NoiseTerm::kBiasInstability].value, truth[NoiseTerm::kBiasInstability]);
   EXPECT_LT(fit[NoiseTerm::kBiasInstability].value, 1.15 * truth[NoiseTerm::kBiasInstability]);
-  ASSERT_TRUE(fit[NoiseTerm::kWhite].identified) << fit[NoiseTerm::kWhite].reason;
-  EXPECT_NEAR(fit[NoiseTerm::kWhite].value / truth[NoiseTerm::kWhite], 1.0, 0.03);
+  ExpectIdentifiedNear(fit, NoiseTerm::kWhite, truth[NoiseTerm::kWhite], 0.03);
 }
 
 // Strided points (allan/work_budget.h) get the intervals of their own EDF, min(overlapping,
 // terms): at N = 10^7 and stride 2^14, about 610 terms against the overlapping estimator's
 // millions, so their intervals are more than ten times wider; unstrided points keep theirs.
 TEST(FitNoise, StridedPointsGetTheirOwnIntervals) {
-  NoiseModel truth;
-  truth[NoiseTerm::kWhite] = 1e-4;
-  truth[NoiseTerm::kRandomWalk] = 1e-6;
+  const NoiseModel truth = WhiteAndRandomWalk();
   const AllanCurve plain = ModelCurve(truth, 200.0, 10'000'000);
   AllanCurve strided = plain;
   strided.strides.assign(plain.adev.size(), 1);
@@ -134,16 +145,13 @@ TEST(FitNoise, StridedPointsGetTheirOwnIntervals) {
       EXPECT_EQ(strided_width, plain_width) << "tau " << plain.tau_s[i];
     }
   }
-  ASSERT_TRUE(strided_fit[NoiseTerm::kWhite].identified) << strided_fit[NoiseTerm::kWhite].reason;
-  EXPECT_NEAR(strided_fit[NoiseTerm::kWhite].value / truth[NoiseTerm::kWhite], 1.0, 0.03);
+  ExpectIdentifiedNear(strided_fit, NoiseTerm::kWhite, truth[NoiseTerm::kWhite], 0.03);
 }
 
 // One table of relative intervals for every axis of a recording: the same fit, bit for bit, as
 // each axis computing its own.
 TEST(FitNoise, SharedIntervalsGiveTheSameFit) {
-  NoiseModel truth;
-  truth[NoiseTerm::kWhite] = 1e-4;
-  truth[NoiseTerm::kRandomWalk] = 1e-6;
+  const NoiseModel truth = WhiteAndRandomWalk();
   AllanCurve curve = ModelCurve(truth, 200.0, 10'000'000);
   curve.strides.assign(curve.adev.size(), 1);
   for (int i = 0; i < 8; ++i) curve.strides[i] = 64;
@@ -404,10 +412,8 @@ TEST(NoiseTermBasis, RateRampCoefficientBySimulation) {
   for (double& v : noisy) v += kN * std::sqrt(kRateHz) * normal(engine);
   const AxisNoiseFit fit = FitNoise(IntegratedSignal(std::move(noisy), kRateHz, "ramp")
                                         .Deviation(AllanClusterSizes(kSamples, 10, 0.1)));
-  ASSERT_TRUE(fit[NoiseTerm::kRateRamp].identified) << fit[NoiseTerm::kRateRamp].reason;
-  EXPECT_NEAR(fit[NoiseTerm::kRateRamp].value / kR, 1.0, 0.05);
-  ASSERT_TRUE(fit[NoiseTerm::kWhite].identified) << fit[NoiseTerm::kWhite].reason;
-  EXPECT_NEAR(fit[NoiseTerm::kWhite].value / kN, 1.0, 0.03);
+  ExpectIdentifiedNear(fit, NoiseTerm::kRateRamp, kR, 0.05);
+  ExpectIdentifiedNear(fit, NoiseTerm::kWhite, kN, 0.03);
 }
 
 }  // namespace

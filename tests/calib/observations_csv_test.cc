@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "splinecal/error.h"
+#include "testing/refusals.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -67,16 +68,8 @@ TEST(ReadObservationsCsv, RefusesBadRowsNamingLineAndColumn) {
       {"#t_ns,cam_id,point_id,u,v\n", "no observations"},
       {"5,0,2,3,4\n6,0,2,3,4\n5,0,2,3.5,4\n", "bad.csv:3: point 2 of camera 0 appears twice"},
   };
-  testing::TempDir dir;
-  for (const auto& [csv, message] : cases) {
-    const std::string path = dir.Write("bad.csv", csv);
-    try {
-      ReadObservationsCsv(path);
-      ADD_FAILURE() << "accepted:\n" << csv;
-    } catch (const Error& e) {
-      EXPECT_THAT(e.what(), HasSubstr(message)) << csv;
-    }
-  }
+  testing::ExpectEachFileRefused(
+      cases, "bad.csv", [](const std::string& path) { ReadObservationsCsv(path); });
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "splinecal/error.h"
+#include "testing/refusals.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -75,17 +76,8 @@ TEST(ReadTargetYaml, RefusesBadFiles) {
       {"target_type: points\npoints:\n  - [-1, 0, 0, 0]\n", "integer >= 0"},
       {"target_type: points\npoints:\n  - [1, 0, 0, 0]\n", "at least 4 points"},
   };
-  testing::TempDir dir;
-  for (const auto& [yaml, message] : cases) {
-    const std::string path = dir.Write("bad.yaml", yaml);
-    try {
-      ReadTargetYaml(path);
-      ADD_FAILURE() << "accepted:\n" << yaml;
-    } catch (const Error& e) {
-      EXPECT_THAT(e.what(), HasSubstr(message)) << yaml;
-      EXPECT_THAT(e.what(), HasSubstr("bad.yaml")) << yaml;
-    }
-  }
+  testing::ExpectEachFileRefused(
+      cases, "bad.yaml", [](const std::string& path) { ReadTargetYaml(path); });
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "splinecal/error.h"
 #include "testing/paths.h"
+#include "testing/refusals.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -31,12 +32,7 @@ std::string ReadBytes(const std::string& path) {
 }
 
 std::string ErrorOf(const std::string& path) {
-  try {
-    ReadGrayImage(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return testing::ErrorOf([&] { ReadGrayImage(path); });
 }
 
 TEST(ReadGrayImage, ReadsPngAndJpegAsOpenCvDecodesThem) {

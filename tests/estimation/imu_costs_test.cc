@@ -152,36 +152,33 @@ std::unique_ptr<ceres::CostFunction> MakeCost(int bias_blocks, const Args&... ar
 // The segment positions probed: both ends and the inside.
 const double kUs[] = {0.0, 0.23, 0.5, 0.81, 1.0};
 
-TEST(GyroCostFunction, AnalyticMatchesAutoDiffForBothBiasModels) {
+// The analytic Cost<1> and Cost<4> against their automatic-differentiation twins (new_autodiff,
+// testing/autodiff_costs.h) at every kUs; the accelerometer's cost has the gravity block too.
+template <template <int> class Cost>
+void ExpectAnalyticMatchesAutoDiff(ceres::CostFunction* (*new_autodiff)(int,
+                                                                        const ImuResidualSegment&,
+                                                                        const ImuResidualSample&),
+                                   bool with_gravity) {
   for (int bias_blocks : {1, 4}) {
     for (double u : kUs) {
-      Blocks blocks = MakeBlocks(3);
+      Blocks blocks = MakeBlocks(with_gravity ? 4 : 3);
       const ImuResidualSegment segment = TestSegment(5);
-      const ImuResidualSample sample = MakeSample(u, 9, bias_blocks == 4);
+      const ImuResidualSample sample = MakeSample(u, with_gravity ? 10 : 9, bias_blocks == 4);
       const std::unique_ptr<ceres::CostFunction> analytic =
-          MakeCost<GyroCostFunction>(bias_blocks, segment, sample);
-      std::unique_ptr<ceres::CostFunction> autodiff(
-          testing::NewAutoDiffGyroCost(bias_blocks, segment, sample));
-      const std::vector<double*> p = blocks.Pointers(bias_blocks, false);
+          MakeCost<Cost>(bias_blocks, segment, sample);
+      std::unique_ptr<ceres::CostFunction> autodiff(new_autodiff(bias_blocks, segment, sample));
+      const std::vector<double*> p = blocks.Pointers(bias_blocks, with_gravity);
       ExpectSame(Evaluate(*analytic, p), Evaluate(*autodiff, p), kAutoDiffTolerance);
     }
   }
 }
 
+TEST(GyroCostFunction, AnalyticMatchesAutoDiffForBothBiasModels) {
+  ExpectAnalyticMatchesAutoDiff<GyroCostFunction>(&testing::NewAutoDiffGyroCost, false);
+}
+
 TEST(AccelCostFunction, AnalyticMatchesAutoDiffForBothBiasModels) {
-  for (int bias_blocks : {1, 4}) {
-    for (double u : kUs) {
-      Blocks blocks = MakeBlocks(4);
-      const ImuResidualSegment segment = TestSegment(5);
-      const ImuResidualSample sample = MakeSample(u, 10, bias_blocks == 4);
-      const std::unique_ptr<ceres::CostFunction> analytic =
-          MakeCost<AccelCostFunction>(bias_blocks, segment, sample);
-      std::unique_ptr<ceres::CostFunction> autodiff(
-          testing::NewAutoDiffAccelCost(bias_blocks, segment, sample));
-      const std::vector<double*> p = blocks.Pointers(bias_blocks, true);
-      ExpectSame(Evaluate(*analytic, p), Evaluate(*autodiff, p), kAutoDiffTolerance);
-    }
-  }
+  ExpectAnalyticMatchesAutoDiff<AccelCostFunction>(&testing::NewAutoDiffAccelCost, true);
 }
 
 // Central differences along the tangent of every block (through its manifold's Plus), against

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -149,21 +150,26 @@ class ReprojectionCostTest : public ::testing::Test {
     }
   }
 
-  Blocks TargetBlocks(const ControlPoseWindow& window) {
+  // The blocks of both costs: the control poses `pose_indices`, T_c_s, the time shift and the
+  // line delay, then `last` (the target pose T_w_t, or a landmark's inverse depth).
+  Blocks CostBlocks(const std::vector<int>& pose_indices,
+                    double* last,
+                    const ceres::Manifold* last_manifold) {
     Blocks b;
-    for (int i = 0; i < window.num_poses; ++i) {
-      b.parameters.push_back(scene_.poses[window.first_index + i].data());
+    for (int i : pose_indices) {
+      b.parameters.push_back(scene_.poses[i].data());
       b.manifolds.push_back(&pose_manifold_);
     }
-    b.parameters.push_back(scene_.T_c_s.data());
-    b.manifolds.push_back(&pose_manifold_);
-    b.parameters.push_back(&scene_.shift);
-    b.manifolds.push_back(nullptr);
-    b.parameters.push_back(&scene_.line_delay);
-    b.manifolds.push_back(nullptr);
-    b.parameters.push_back(scene_.T_w_t.data());
-    b.manifolds.push_back(&pose_manifold_);
+    b.parameters.insert(b.parameters.end(),
+                        {scene_.T_c_s.data(), &scene_.shift, &scene_.line_delay, last});
+    b.manifolds.insert(b.manifolds.end(), {&pose_manifold_, nullptr, nullptr, last_manifold});
     return b;
+  }
+
+  Blocks TargetBlocks(const ControlPoseWindow& window) {
+    std::vector<int> indices(window.num_poses);
+    std::iota(indices.begin(), indices.end(), window.first_index);
+    return CostBlocks(indices, scene_.T_w_t.data(), &pose_manifold_);
   }
 
   // Every target corner with its true pixel, plus `offset_px` of seeded noise. Offsets within
@@ -435,20 +441,7 @@ class LandmarkCostTest : public ReprojectionCostTest {
   }
 
   Blocks LandmarkBlocks(const std::vector<int>& indices, double* rho) {
-    Blocks b;
-    for (int i : indices) {
-      b.parameters.push_back(scene_.poses[i].data());
-      b.manifolds.push_back(&pose_manifold_);
-    }
-    b.parameters.push_back(scene_.T_c_s.data());
-    b.manifolds.push_back(&pose_manifold_);
-    b.parameters.push_back(&scene_.shift);
-    b.manifolds.push_back(nullptr);
-    b.parameters.push_back(&scene_.line_delay);
-    b.manifolds.push_back(nullptr);
-    b.parameters.push_back(rho);
-    b.manifolds.push_back(nullptr);
-    return b;
+    return CostBlocks(indices, rho, nullptr);
   }
 
   std::vector<int> Indices(double t_ref, double t_frame) {

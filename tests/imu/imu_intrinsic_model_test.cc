@@ -126,6 +126,17 @@ Eigen::Matrix<double, 6, kNumInputs> AutoDiffJacobian(ImuModelKind kind,
   return J;
 }
 
+// The columns both sensors' Jacobians have, into their three rows of the stacked Jacobian: the
+// body motion (w, dw, f), the IMU's rotation phi_i_b and its lever arm r_b.
+template <typename SensorJacobians, typename Rows>
+void SetBodyMotionBlocks(const SensorJacobians& Js, Rows rows) {
+  rows.template middleCols<3>(kW) = Js.w_b;
+  rows.template middleCols<3>(kDw) = Js.dw_b;
+  rows.template middleCols<3>(kF) = Js.f_b;
+  rows.template middleCols<3>(kPhiIB) = Js.phi_i_b;
+  rows.template middleCols<3>(kRb) = Js.r_b;
+}
+
 Eigen::Matrix<double, 6, kNumInputs> AnalyticJacobian(ImuModelKind kind,
                                                       const ImuIntrinsicsd& p,
                                                       const BodyMotion<double>& m) {
@@ -133,20 +144,12 @@ Eigen::Matrix<double, 6, kNumInputs> AnalyticJacobian(ImuModelKind kind,
   ImuAccelJacobians Ja;
   PredictImuReadings(kind, p, m, kGyroBias, kAccelBias, nullptr, nullptr, &Jg, &Ja);
   Eigen::Matrix<double, 6, kNumInputs> J = Eigen::Matrix<double, 6, kNumInputs>::Zero();
-  J.block<3, 3>(0, kW) = Jg.w_b;
-  J.block<3, 3>(0, kDw) = Jg.dw_b;
-  J.block<3, 3>(0, kF) = Jg.f_b;
-  J.block<3, 3>(0, kPhiIB) = Jg.phi_i_b;
-  J.block<3, 3>(0, kRb) = Jg.r_b;
+  SetBodyMotionBlocks(Jg, J.topRows<3>());
   J.block<3, 6>(0, kMg) = Jg.M_g;
   J.block<3, 9>(0, kA) = Jg.A;
   J.block<3, 3>(0, kPhiGyro) = Jg.phi_gyro_i;
   J.block<3, 3>(0, kBg).setIdentity();
-  J.block<3, 3>(3, kW) = Ja.w_b;
-  J.block<3, 3>(3, kDw) = Ja.dw_b;
-  J.block<3, 3>(3, kF) = Ja.f_b;
-  J.block<3, 3>(3, kPhiIB) = Ja.phi_i_b;
-  J.block<3, 3>(3, kRb) = Ja.r_b;
+  SetBodyMotionBlocks(Ja, J.bottomRows<3>());
   J.block<3, 6>(3, kMa) = Ja.M_a;
   J.block<3, 3>(3, kRy) = Ja.ry_i;
   J.block<3, 3>(3, kRz) = Ja.rz_i;

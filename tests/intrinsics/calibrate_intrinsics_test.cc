@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "intrinsics/intrinsics_expectations.h"
 #include "intrinsics/intrinsics_models.h"
 #include "intrinsics/intrinsics_simulation.h"
@@ -16,15 +18,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-IntrinsicsCameraSpec SpecOf(const Camera& truth) {
-  IntrinsicsCameraSpec spec;
-  spec.camera.projection = truth.projection;
-  spec.camera.distortion = truth.distortion;
-  spec.camera.width = truth.width;
-  spec.camera.height = truth.height;
-  return spec;
-}
-
 IntrinsicsOptions QuietOptions() {
   IntrinsicsOptions options;
   options.solver.max_iterations = 100;
@@ -32,6 +25,16 @@ IntrinsicsOptions QuietOptions() {
 }
 
 using testing::ExpectWithinStd;
+using testing::SpecOf;
+
+// The intrinsics of every camera of the scene from `observations`, each camera told only its
+// models and image size (SpecOf).
+IntrinsicsResult CalibrateScene(const testing::IntrinsicsScene& scene,
+                                const std::vector<Observation>& observations) {
+  std::vector<IntrinsicsCameraSpec> specs;
+  for (const Camera& camera : scene.cameras) specs.push_back(SpecOf(camera));
+  return CalibrateIntrinsics(observations, scene.target, specs, QuietOptions());
+}
 
 TEST(CalibrateIntrinsics, StereoRadTanRigFromTheSweepWithinThreeStd) {
   testing::IntrinsicsScene scene;
@@ -45,11 +48,7 @@ TEST(CalibrateIntrinsics, StereoRadTanRigFromTheSweepWithinThreeStd) {
                    SE3d(SO3d::Exp(Eigen::Vector3d(0.002, -0.004, 0.001)),
                         Eigen::Vector3d(-0.110, 0.0004, -0.0009))};
   const std::vector<Observation> observations = testing::SimulateIntrinsicsViews(scene, 7);
-  const IntrinsicsResult result =
-      CalibrateIntrinsics(observations,
-                          scene.target,
-                          {SpecOf(scene.cameras[0]), SpecOf(scene.cameras[1])},
-                          QuietOptions());
+  const IntrinsicsResult result = CalibrateScene(scene, observations);
   ASSERT_EQ(result.cameras.size(), 2u);
   for (int n = 0; n < 2; ++n) {
     SCOPED_TRACE(n);
@@ -97,10 +96,7 @@ TEST(CalibrateIntrinsics, TargetOnlyInTheCentreNamesTheDistortion) {
   scene.min_distance_m = 2.5;
   scene.max_distance_m = 3.0;
   scene.views = 30;
-  const IntrinsicsResult result = CalibrateIntrinsics(testing::SimulateIntrinsicsViews(scene, 5),
-                                                      scene.target,
-                                                      {SpecOf(scene.cameras[0])},
-                                                      QuietOptions());
+  const IntrinsicsResult result = CalibrateScene(scene, testing::SimulateIntrinsicsViews(scene, 5));
   const std::string all = ::testing::PrintToString(result.warnings);
   EXPECT_THAT(all, HasSubstr("k2"));
   EXPECT_THAT(all, HasSubstr("of the image"));
@@ -144,8 +140,7 @@ TEST(CalibrateIntrinsics, RepeatedViewsAreSetAsideAndCounted) {
     }
   }
   observations.insert(observations.end(), copies.begin(), copies.end());
-  const IntrinsicsResult result =
-      CalibrateIntrinsics(observations, scene.target, {SpecOf(scene.cameras[0])}, QuietOptions());
+  const IntrinsicsResult result = CalibrateScene(scene, observations);
   int repeats = 0;
   for (const ViewRecord& v : result.views) repeats += v.status == ViewStatus::kRepeat;
   EXPECT_EQ(repeats, 10);
@@ -159,8 +154,7 @@ TEST(CalibrateIntrinsics, AnOutlierCornerIsRejected) {
   scene.views = 20;
   std::vector<Observation> observations = testing::SimulateIntrinsicsViews(scene, 17);
   observations[40].uv += Eigen::Vector2d(12.0, -9.0);  // a mislabelled corner
-  const IntrinsicsResult result =
-      CalibrateIntrinsics(observations, scene.target, {SpecOf(scene.cameras[0])}, QuietOptions());
+  const IntrinsicsResult result = CalibrateScene(scene, observations);
   EXPECT_GE(result.cameras[0].corners_rejected, 1);
   ExpectWithinStd(result.cameras[0], scene.cameras[0], 3.0);
 }

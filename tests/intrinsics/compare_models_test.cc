@@ -19,11 +19,7 @@ TEST(CompareModels, TheTrueModelFitsBestOnTheSameCorners) {
   const testing::ModelCase ds = testing::AllModelCases()[7];
   ASSERT_EQ(ds.name, "ds-none");
   const Camera& truth = ds.scene.cameras[0];
-  IntrinsicsCameraSpec spec;
-  spec.camera.projection = truth.projection;
-  spec.camera.distortion = truth.distortion;
-  spec.camera.width = truth.width;
-  spec.camera.height = truth.height;
+  const IntrinsicsCameraSpec spec = testing::SpecOf(truth);
   IntrinsicsOptions options;
   options.solver.max_iterations = 100;
   const IntrinsicsResult result = CalibrateIntrinsics(

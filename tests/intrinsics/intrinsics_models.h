@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "intrinsics/intrinsics_simulation.h"
+#include "splinecal/intrinsics/calibrate_intrinsics.h"
 
 namespace splinecal {
 namespace testing {
@@ -16,6 +17,17 @@ struct ModelCase {
   std::string name;
   IntrinsicsScene scene;
 };
+
+// What the command is told about a camera whose truth is `truth`: its models and image size,
+// nothing of its parameters (the calibration starts from its own sweep).
+inline IntrinsicsCameraSpec SpecOf(const Camera& truth) {
+  IntrinsicsCameraSpec spec;
+  spec.camera.projection = truth.projection;
+  spec.camera.distortion = truth.distortion;
+  spec.camera.width = truth.width;
+  spec.camera.height = truth.height;
+  return spec;
+}
 
 inline Camera MakeTestCamera(ProjectionModel projection,
                              DistortionModel distortion,

@@ -7,6 +7,7 @@
 
 #include "splinecal/error.h"
 #include "testing/paths.h"
+#include "testing/refusals.h"
 #include "testing/shared_data.h"
 #include "testing/temp_dir.h"
 
@@ -29,12 +30,7 @@ std::string ImuRows(int count, int64_t period_ns = 5000000) {
 }
 
 std::string ErrorOf(const std::string& path) {
-  try {
-    ReadEurocImu(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return testing::ErrorOf([&] { ReadEurocImu(path); });
 }
 
 TEST(ReadEurocImu, ReadsRowsExactly) {

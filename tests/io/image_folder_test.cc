@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "splinecal/error.h"
+#include "testing/refusals.h"
 #include "testing/temp_dir.h"
 
 namespace splinecal {
@@ -15,16 +16,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-// The message of the Error that `f` throws ("" when it throws none).
-template <typename F>
-std::string ErrorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(ListImageFolder, ReadsAnEurocCameraFolderInTimeOrder) {
   testing::TempDir dir;

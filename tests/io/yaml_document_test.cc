@@ -6,6 +6,7 @@
 #include "splinecal/error.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "testing/paths.h"
+#include "testing/refusals.h"
 #include "testing/shared_data.h"
 #include "testing/temp_dir.h"
 
@@ -15,14 +16,7 @@ namespace {
 using ::testing::HasSubstr;
 using testing::TempDir;
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::ErrorOf;
 
 TEST(YamlDocument, OpenCvHeaderMatricesAndRows) {
   TempDir dir;

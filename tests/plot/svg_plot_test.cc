@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "testing/text_checks.h"
+
 namespace splinecal {
 namespace plot {
 namespace {
@@ -207,13 +209,14 @@ TEST(RenderSvg, WellFormedAndDeterministic) {
   const std::string svg = RenderSvg(AllanLikeFigure());
   EXPECT_EQ(XmlProblem(svg), "");
   EXPECT_EQ(svg, RenderSvg(AllanLikeFigure()));
-  EXPECT_THAT(svg, HasSubstr("<svg xmlns=\"http://www.w3.org/2000/svg\""));
-  EXPECT_THAT(svg, HasSubstr(">Allan deviation [rad/s]</text>"));
-  // Decade labels with superscript exponents on both axes.
-  EXPECT_THAT(svg, HasSubstr(">10<tspan dy=\"-5\" font-size=\"8\">-3</tspan></text>"));
-  EXPECT_THAT(svg, HasSubstr(">10<tspan dy=\"-5\" font-size=\"8\">2</tspan></text>"));
-  EXPECT_THAT(svg, HasSubstr("stroke-dasharray"));
-  EXPECT_THAT(svg, HasSubstr("white noise N = 1.7e-4 rad/s/√Hz"));
+  splinecal::testing::ExpectContainsEach(svg,
+                                         {"<svg xmlns=\"http://www.w3.org/2000/svg\"",
+                                          ">Allan deviation [rad/s]</text>",
+                                          // Decade labels with superscript exponents on both axes.
+                                          ">10<tspan dy=\"-5\" font-size=\"8\">-3</tspan></text>",
+                                          ">10<tspan dy=\"-5\" font-size=\"8\">2</tspan></text>",
+                                          "stroke-dasharray",
+                                          "white noise N = 1.7e-4 rad/s/√Hz"});
   // 30 error bars: a vertical bar and two caps each.
   EXPECT_GE(Count(svg, "V"), 30);
 }

@@ -16,6 +16,7 @@
 #include "splinecal/report/reprojection_figures.h"
 #include "testing/html_ids.h"
 #include "testing/strict_yaml.h"
+#include "testing/text_checks.h"
 
 namespace splinecal {
 namespace {
@@ -169,21 +170,20 @@ TEST(CalibrateReprojectionCsv, HeaderAndOneRowPerSample) {
 TEST(CalibrateReportHtml, EverySectionAndTheEstimates) {
   const std::string html = Report(SmallResult(2));
   EXPECT_THAT(html, StartsWith("<!DOCTYPE html>"));
-  EXPECT_THAT(html, HasSubstr("<title>splinecal calibrate</title>"));
-  EXPECT_THAT(html, HasSubstr("<tr><th colspan=3>cam0</th></tr>"));
-  EXPECT_THAT(html, HasSubstr("<tr><th colspan=3>cam1</th></tr>"));
-  EXPECT_THAT(html, HasSubstr("<tr><th>timeshift_cam_imu [ms]</th><td>2.0000</td>"));
-  EXPECT_THAT(html, HasSubstr("<tr><th>T_cam_imu translation [mm]</th><td>10.00, 20.00, -30.00"));
-  EXPECT_THAT(html, HasSubstr("0.500 (estimated)"));
-  for (const char* section : {"<h2>Warnings</h2>",
-                              "<h2>Reprojection</h2>",
-                              "<h2>Reprojection by image position</h2>",
-                              "<h2>IMU</h2>",
-                              "<h2>IMU biases</h2>",
-                              "<h2>Trajectory</h2>"}) {
-    EXPECT_THAT(html, HasSubstr(section));
-  }
-  EXPECT_THAT(html, HasSubstr("<li>a &lt;tagged&gt; warning</li>"));
+  testing::ExpectContainsEach(html,
+                              {"<title>splinecal calibrate</title>",
+                               "<tr><th colspan=3>cam0</th></tr>",
+                               "<tr><th colspan=3>cam1</th></tr>",
+                               "<tr><th>timeshift_cam_imu [ms]</th><td>2.0000</td>",
+                               "<tr><th>T_cam_imu translation [mm]</th><td>10.00, 20.00, -30.00",
+                               "0.500 (estimated)",
+                               "<h2>Warnings</h2>",
+                               "<h2>Reprojection</h2>",
+                               "<h2>Reprojection by image position</h2>",
+                               "<h2>IMU</h2>",
+                               "<h2>IMU biases</h2>",
+                               "<h2>Trajectory</h2>",
+                               "<li>a &lt;tagged&gt; warning</li>"});
   EXPECT_THAT(html, Not(HasSubstr("<tagged>")));
   EXPECT_THAT(html, EndsWith("</body></html>\n"));
 }
@@ -197,11 +197,12 @@ TEST(CalibrateReportHtml, NoWarningsNoWarningSection) {
 TEST(CalibrateSummaryText, CamerasResidualsAndWarnings) {
   const std::string text = CalibrateSummaryText(SmallResult(2));
   EXPECT_THAT(text, StartsWith("cam0 T_cam_imu:\n  ["));
-  EXPECT_THAT(text, HasSubstr("cam1 T_cam_imu:\n"));
-  EXPECT_THAT(text, HasSubstr("  timeshift_cam_imu 2.000000 ms (std 0.1000 ms)\n"));
-  EXPECT_THAT(text, HasSubstr("  line_delay 20.0000 us/row (fixed)\n"));
-  EXPECT_THAT(text, HasSubstr("  reprojection RMS 0.400 px over 340 points in 12 frames\n"));
-  EXPECT_THAT(text, HasSubstr("pixel sigma 0.500 px (estimated)\n"));
+  testing::ExpectContainsEach(text,
+                              {"cam1 T_cam_imu:\n",
+                               "  timeshift_cam_imu 2.000000 ms (std 0.1000 ms)\n",
+                               "  line_delay 20.0000 us/row (fixed)\n",
+                               "  reprojection RMS 0.400 px over 340 points in 12 frames\n",
+                               "pixel sigma 0.500 px (estimated)\n"});
   EXPECT_THAT(text, EndsWith("warning: a <tagged> warning\n"));
 }
 

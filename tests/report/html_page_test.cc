@@ -6,6 +6,7 @@
 #include <string>
 
 #include "testing/html_ids.h"
+#include "testing/text_checks.h"
 
 namespace splinecal {
 namespace {
@@ -19,11 +20,12 @@ TEST(HtmlPage, SkeletonWithEscapedTitleAndLayoutAfterTheSharedCss) {
   HtmlPage page("a <b> & c", "body{margin:2em}");
   const std::string html = page.str();
   EXPECT_THAT(html, StartsWith("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\">"));
-  EXPECT_THAT(html, HasSubstr("<title>a &lt;b&gt; &amp; c</title>"));
-  EXPECT_THAT(html, HasSubstr("<h1>a &lt;b&gt; &amp; c</h1>\n"));
-  // The report's layout comes last, so it overrides the shared rules.
-  EXPECT_THAT(html, HasSubstr("body{margin:2em}</style>"));
-  EXPECT_THAT(html, HasSubstr("<style>body{font-family:sans-serif}"));
+  testing::ExpectContainsEach(html,
+                              {"<title>a &lt;b&gt; &amp; c</title>",
+                               "<h1>a &lt;b&gt; &amp; c</h1>\n",
+                               // The report's layout comes last: it overrides the shared rules.
+                               "body{margin:2em}</style>",
+                               "<style>body{font-family:sans-serif}"});
   EXPECT_THAT(html, EndsWith("</body></html>\n"));
 }
 

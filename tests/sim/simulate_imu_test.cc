@@ -39,6 +39,28 @@ const SE3Splined& CourseSpline(int seconds) {
   return it->second;
 }
 
+// What SimulateImu writes: the readings and the ground truth at their times.
+struct Simulation {
+  std::vector<ImuSample> imu;
+  std::vector<GroundTruthState> truth;
+};
+
+Simulation Simulate(const SE3Splined& spline,
+                    int64_t start_ns,
+                    int64_t end_ns,
+                    const SimulationOptions& options) {
+  Simulation out;
+  SimulateImu(spline, start_ns, end_ns, options, &out.imu, &out.truth);
+  return out;
+}
+
+// No noise, no bias: the readings are the spline's prediction.
+SimulationOptions NoiseFree() {
+  SimulationOptions options;
+  options.noise_free = true;
+  return options;
+}
+
 TEST(ImuTimestamps, ExactPeriodsAndNoAccumulatedDrift) {
   const std::vector<int64_t> t200 = ImuTimestamps(1'000, 1'000 + 1'000'000'000, 200.0);
   ASSERT_EQ(t200.size(), 201u);
@@ -55,11 +77,8 @@ TEST(ImuTimestamps, ExactPeriodsAndNoAccumulatedDrift) {
 
 TEST(SimulateImu, NoiseFreeZeroBiasIsExactlyTheSplinePrediction) {
   const SE3Splined& spline = CourseSpline(5);
-  SimulationOptions options;
-  options.noise_free = true;
-  std::vector<ImuSample> imu;
-  std::vector<GroundTruthState> truth;
-  SimulateImu(spline, spline.start_time_ns(), spline.end_time_ns(), options, &imu, &truth);
+  const auto [imu, truth] =
+      Simulate(spline, spline.start_time_ns(), spline.end_time_ns(), NoiseFree());
   ASSERT_EQ(imu.size(), 1001u);
   const Eigen::Vector3d g_w = GravityWorld(9.81);
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
@@ -78,11 +97,8 @@ TEST(SimulateImu, GroundTruthIsTheSplinePoseAndItsDerivative) {
   const SE3Splined& spline = CourseSpline(5);
   SimulationOptions options;
   options.seed = 3;
-  std::vector<ImuSample> imu;
-  std::vector<GroundTruthState> truth;
-  const int64_t start = spline.start_time_ns() + 2'000'000;
-  const int64_t end = spline.end_time_ns() - 2'000'000;
-  SimulateImu(spline, start, end, options, &imu, &truth);
+  const auto [imu, truth] = Simulate(
+      spline, spline.start_time_ns() + 2'000'000, spline.end_time_ns() - 2'000'000, options);
   ASSERT_EQ(truth.size(), imu.size());
   const int64_t h_ns = 1'000'000;
   for (size_t k = 0; k < truth.size(); k += 7) {
@@ -109,12 +125,10 @@ TEST(SimulateImu, ReadingsCarryTheReportedBiasesAndWhiteNoiseOfTheRightSize) {
   options.gyro_bias = Eigen::Vector3d(0.01, -0.02, 0.03);
   options.accel_bias = Eigen::Vector3d(0.1, 0.2, -0.3);
   options.noise.gyroscope_noise_density = 5e-3;  // Large enough to dominate rounding.
-  std::vector<ImuSample> noisy, clean;
-  std::vector<GroundTruthState> truth;
-  SimulateImu(spline, spline.start_time_ns(), spline.end_time_ns(), options, &noisy, &truth);
-  SimulationOptions clean_options;
-  clean_options.noise_free = true;
-  SimulateImu(spline, spline.start_time_ns(), spline.end_time_ns(), clean_options, &clean, nullptr);
+  const auto [noisy, truth] =
+      Simulate(spline, spline.start_time_ns(), spline.end_time_ns(), options);
+  const std::vector<ImuSample> clean =
+      Simulate(spline, spline.start_time_ns(), spline.end_time_ns(), NoiseFree()).imu;
   ASSERT_EQ(noisy.size(), clean.size());
   EXPECT_EQ(truth.front().gyro_bias, options.gyro_bias);
   EXPECT_EQ(truth.front().accel_bias, options.accel_bias);
@@ -139,9 +153,8 @@ TEST(SimulateImu, SameSeedGivesTheSameBytes) {
     SimulationOptions options;
     options.seed = seed;
     options.gyro_bias = Eigen::Vector3d(0.001, 0.002, 0.003);
-    std::vector<ImuSample> imu;
-    std::vector<GroundTruthState> truth;
-    SimulateImu(spline, spline.start_time_ns(), spline.end_time_ns(), options, &imu, &truth);
+    const auto [imu, truth] =
+        Simulate(spline, spline.start_time_ns(), spline.end_time_ns(), options);
     std::vector<double> values;
     for (size_t k = 0; k < imu.size(); ++k) {
       for (int i = 0; i < 3; ++i) {
@@ -196,10 +209,7 @@ TEST(FitAnalyticTrajectory, CourseSplineFollowsTheClosedForms) {
   EXPECT_EQ(spline.t0_ns(), 0);
   EXPECT_EQ(spline.start_time_ns(), kStartNs);
   EXPECT_GE(spline.end_time_ns(), end_ns);
-  SimulationOptions options;
-  options.noise_free = true;
-  std::vector<ImuSample> imu;
-  SimulateImu(spline, kStartNs, end_ns, options, &imu, nullptr);
+  const std::vector<ImuSample> imu = Simulate(spline, kStartNs, end_ns, NoiseFree()).imu;
   double gyro_error = 0.0, accel_error = 0.0;
   for (const ImuSample& sample : imu) {
     const TrajectoryState state = VioCourseTrajectory().Evaluate((sample.t_ns - kStartNs) * 1e-9);
@@ -221,11 +231,7 @@ TEST(FitAnalyticTrajectory, CourseSplineFollowsTheClosedForms) {
 // vio_course from the spline, integrate from the ground-truth start.
 TEST(SimulateImu, MidpointBeatsEulerTenfoldOnSimulatedVioCourse) {
   const SE3Splined& spline = CourseSpline(20);
-  SimulationOptions options;
-  options.noise_free = true;
-  std::vector<ImuSample> imu;
-  std::vector<GroundTruthState> truth;
-  SimulateImu(spline, kStartNs, kStartNs + 20'000'000'000, options, &imu, &truth);
+  const auto [imu, truth] = Simulate(spline, kStartNs, kStartNs + 20'000'000'000, NoiseFree());
   double error[3];
   int m = 0;
   for (IntegrationMethod method :

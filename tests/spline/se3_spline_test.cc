@@ -28,10 +28,6 @@ using testing::EvaluateAt;
 using testing::InteriorTimes;
 using testing::RelativelyNear;
 
-// Time derivatives vs central differences in time (h = 1e-5 s against dt = 0.2 s): truncation
-// ~ h^2/6 |f'''| relative ~1e-9, rounding eps |f| / h ~ 1e-11 relative. The brief's bar: 1e-6.
-constexpr double kTimeDerivativeTolerance = 1e-6;
-constexpr double kTimeStep = 1e-5;
 // Jacobians vs central differences in the right perturbation (h = 1e-5): errors ~1e-10 on
 // O(1..100) entries; 1e-6 relative leaves margin yet catches any wrong term (O(1) relative).
 constexpr double kJacobianTolerance = 1e-6;
@@ -195,58 +191,17 @@ TEST(SE3Spline, OptionalOutputsAgreeWithFullEvaluation) {
   EXPECT_EQ(T_w_s.matrix(), all.T_w_s.matrix());
 }
 
-TEST(SE3Spline, BodyAngularVelocityMatchesCentralDifference) {
+TEST(SE3Spline, TimeDerivativesMatchCentralDifferences) {
   for (uint32_t seed : {11u, 12u, 13u}) {
-    const SE3Splined spline = MakeRandomSpline(seed);
-    for (double t : InteriorTimes(spline)) {
-      const State s = EvaluateAt(spline, t);
-      const Eigen::Matrix3d R = s.T_w_s.rotationMatrix();
-      const Eigen::Matrix3d dR = (spline.Pose(t + kTimeStep).rotationMatrix() -
-                                  spline.Pose(t - kTimeStep).rotationMatrix()) /
-                                 (2 * kTimeStep);
-      const Eigen::Matrix3d w_hat = R.transpose() * dR;
-      const Eigen::Vector3d w_numeric = 0.5 * (Vee(w_hat) - Vee(w_hat.transpose()));
-      EXPECT_TRUE(RelativelyNear(s.w_s, w_numeric, kTimeDerivativeTolerance)) << t;
-    }
+    testing::ExpectTimeDerivativesMatchCentralDifferences(MakeRandomSpline(seed));
   }
 }
 
-TEST(SE3Spline, BodyAngularAccelerationMatchesCentralDifference) {
+TEST(SE3Spline, WorldLinearAccelerationIsTheSecondDifferenceOfThePosition) {
   for (uint32_t seed : {11u, 12u, 13u}) {
     const SE3Splined spline = MakeRandomSpline(seed);
     for (double t : InteriorTimes(spline)) {
       const State s = EvaluateAt(spline, t);
-      const Eigen::Vector3d w_numeric =
-          (EvaluateAt(spline, t + kTimeStep).w_s - EvaluateAt(spline, t - kTimeStep).w_s) /
-          (2 * kTimeStep);
-      EXPECT_TRUE(RelativelyNear(s.w_dot_s, w_numeric, kTimeDerivativeTolerance)) << t;
-    }
-  }
-}
-
-TEST(SE3Spline, WorldLinearVelocityMatchesCentralDifference) {
-  for (uint32_t seed : {11u, 12u, 13u}) {
-    const SE3Splined spline = MakeRandomSpline(seed);
-    for (double t : InteriorTimes(spline)) {
-      const State s = EvaluateAt(spline, t);
-      const Eigen::Vector3d v_numeric =
-          (spline.Pose(t + kTimeStep).translation() - spline.Pose(t - kTimeStep).translation()) /
-          (2 * kTimeStep);
-      EXPECT_TRUE(RelativelyNear(s.v_w, v_numeric, kTimeDerivativeTolerance)) << t;
-    }
-  }
-}
-
-TEST(SE3Spline, WorldLinearAccelerationMatchesCentralDifference) {
-  for (uint32_t seed : {11u, 12u, 13u}) {
-    const SE3Splined spline = MakeRandomSpline(seed);
-    for (double t : InteriorTimes(spline)) {
-      const State s = EvaluateAt(spline, t);
-      // Of the velocity (checked above) and, with a larger step, of the position directly.
-      const Eigen::Vector3d a_from_v =
-          (EvaluateAt(spline, t + kTimeStep).v_w - EvaluateAt(spline, t - kTimeStep).v_w) /
-          (2 * kTimeStep);
-      EXPECT_TRUE(RelativelyNear(s.a_w, a_from_v, kTimeDerivativeTolerance)) << t;
       const double h = 1e-4;  // second difference: rounding eps |p| / h^2 ~ 1e-7 m/s^2
       const Eigen::Vector3d a_from_p =
           (spline.Pose(t + h).translation() - 2.0 * s.T_w_s.translation() +
@@ -370,17 +325,7 @@ TEST(SE3Spline, LargeRotationsBetweenControlPoses) {
   const SE3Splined spline(testing::RandomControlPoses(kNumPoses, 41, 2.5, 3.0),
                           testing::kEurocLikeT0Ns,
                           testing::kTestDtNs);
-  for (double t : InteriorTimes(spline)) {
-    const State s = EvaluateAt(spline, t);
-    const Eigen::Vector3d v_numeric =
-        (spline.Pose(t + kTimeStep).translation() - spline.Pose(t - kTimeStep).translation()) /
-        (2 * kTimeStep);
-    EXPECT_TRUE(RelativelyNear(s.v_w, v_numeric, kTimeDerivativeTolerance)) << t;
-    const Eigen::Vector3d a_numeric =
-        (EvaluateAt(spline, t + kTimeStep).v_w - EvaluateAt(spline, t - kTimeStep).v_w) /
-        (2 * kTimeStep);
-    EXPECT_TRUE(RelativelyNear(s.a_w, a_numeric, kTimeDerivativeTolerance)) << t;
-  }
+  testing::ExpectTimeDerivativesMatchCentralDifferences(spline);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -389,19 +334,8 @@ TEST(SE3Spline, LargeRotationsBetweenControlPoses) {
 class SE3SplineJacobian : public ::testing::TestWithParam<std::pair<double, double>> {};
 
 TEST_P(SE3SplineJacobian, PoseMatchesNumericRightPerturbation) {
-  const auto [min_angle, max_angle] = GetParam();
-  for (uint32_t seed : {51u, 52u}) {
-    const SE3Splined spline = MakeRandomSpline(seed, min_angle, max_angle);
-    for (double t : InteriorTimes(spline)) {
-      const Segment<double> seg = spline.SegmentAt(t);
-      SE3d T_w_s;
-      ControlPoseJacobian<6> J;
-      spline.EvaluatePoseJacobian(seg, &T_w_s, &J);
-      EXPECT_EQ(J.first_index, seg.index - 1);
-      EXPECT_TRUE(testing::PoseJacobianMatchesNumeric(J, T_w_s, spline, seg, kJacobianTolerance))
-          << "t " << t;
-    }
-  }
+  testing::ExpectPoseJacobianMatchesNumeric(
+      TrajectoryModel::kSE3, GetParam(), {51u, 52u}, kRoundingTolerance, kJacobianTolerance);
 }
 
 TEST_P(SE3SplineJacobian, AngularVelocityMatchesNumericRightPerturbation) {

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <utility>
 #include <vector>
@@ -69,6 +70,32 @@ inline SplineState EvaluateAll(const SE3Splined& spline, const Segment<double>& 
 
 inline SplineState EvaluateAt(const SE3Splined& spline, double t_s) {
   return EvaluateAll(spline, spline.SegmentAt(t_s));
+}
+
+// Central differences in time (h = kTimeStep = 1e-5 s against dt = 0.2 s): truncation
+// h^2/6 |f'''| ~ 1e-9 relative, rounding eps |f| / h ~ 1e-11 relative; 1e-6 is the brief's bar.
+inline constexpr double kTimeStep = 1e-5;
+inline constexpr double kTimeDerivativeTolerance = 1e-6;
+
+// Every time derivative of one Evaluate against central differences of the outputs at
+// InteriorTimes +- kTimeStep: v_w of the position, a_w of v_w, w_dot_s of w_s, and w_s as
+// Log(R(t - h)^T R(t + h)) / 2h (vee(R^T dR/dt) to O(h^2)).
+inline void ExpectTimeDerivativesMatchCentralDifferences(const SE3Splined& spline) {
+  for (double t : InteriorTimes(spline)) {
+    const SplineState s = EvaluateAt(spline, t);
+    const SplineState plus = EvaluateAt(spline, t + kTimeStep);
+    const SplineState minus = EvaluateAt(spline, t - kTimeStep);
+    const Eigen::Vector3d v_numeric =
+        (plus.T_w_s.translation() - minus.T_w_s.translation()) / (2 * kTimeStep);
+    const Eigen::Vector3d a_numeric = (plus.v_w - minus.v_w) / (2 * kTimeStep);
+    const Eigen::Vector3d w_numeric =
+        (minus.T_w_s.so3().inverse() * plus.T_w_s.so3()).Log() / (2 * kTimeStep);
+    const Eigen::Vector3d w_dot_numeric = (plus.w_s - minus.w_s) / (2 * kTimeStep);
+    EXPECT_TRUE(RelativelyNear(s.v_w, v_numeric, kTimeDerivativeTolerance)) << t;
+    EXPECT_TRUE(RelativelyNear(s.a_w, a_numeric, kTimeDerivativeTolerance)) << t;
+    EXPECT_TRUE(RelativelyNear(s.w_s, w_numeric, kTimeDerivativeTolerance)) << t;
+    EXPECT_TRUE(RelativelyNear(s.w_dot_s, w_dot_numeric, kTimeDerivativeTolerance)) << t;
+  }
 }
 
 // The reference split spline of the benchmark (reference_split_spline.h) on the control poses of
@@ -142,6 +169,39 @@ inline ::testing::AssertionResult PoseJacobianMatchesNumeric(const ControlPoseJa
         return Eigen::VectorXd((T_w_s.inverse() * s.Pose(segment)).Log());
       },
       tolerance);
+}
+
+// The pose Jacobian (EvaluatePoseJacobian) against central differences (PoseJacobianMatchesNumeric)
+// for `seeds` random splines of the model with rotation steps of min_angle..max_angle rad, at
+// `segment_fractions` of every segment: its first control pose is the segment's, and the pose it
+// evaluates with the Jacobian agrees with Pose's to `same_value_tolerance` (0: bit for bit).
+// `also` checks more of each Jacobian where the model promises more (the split model's zero
+// blocks).
+inline void ExpectPoseJacobianMatchesNumeric(
+    TrajectoryModel model,
+    std::pair<double, double> rotation_steps,
+    std::initializer_list<uint32_t> seeds,
+    double same_value_tolerance,
+    double jacobian_tolerance,
+    std::initializer_list<double> segment_fractions = kInteriorFractions,
+    const std::function<void(const ControlPoseJacobian<6>&)>& also = nullptr) {
+  for (uint32_t seed : seeds) {
+    const SE3Splined spline =
+        RandomSpline(seed, model, rotation_steps.first, rotation_steps.second);
+    for (double t : InteriorTimes(spline, segment_fractions)) {
+      const Segment<double> seg = spline.SegmentAt(t);
+      SE3d T_w_s;
+      ControlPoseJacobian<6> J;
+      spline.EvaluatePoseJacobian(seg, &T_w_s, &J);
+      EXPECT_EQ(J.first_index, seg.first_index());
+      EXPECT_TRUE(
+          RelativelyNear(T_w_s.matrix(), spline.Pose(seg).matrix(), same_value_tolerance))
+          << t;
+      EXPECT_TRUE(PoseJacobianMatchesNumeric(J, T_w_s, spline, seg, jacobian_tolerance))
+          << "t " << t;
+      if (also) also(J);
+    }
+  }
 }
 
 // A rate with a control-pose Jacobian of its own: SE3Spline's evaluation with the Jacobian, and

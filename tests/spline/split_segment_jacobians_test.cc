@@ -51,25 +51,20 @@ std::vector<double> SampleTimes(const SE3Splined& spline) {
 class SplitJacobian : public ::testing::TestWithParam<std::pair<double, double>> {};
 
 TEST_P(SplitJacobian, PoseMatchesNumericRightPerturbation) {
-  const auto [min_angle, max_angle] = GetParam();
-  for (uint32_t seed : {21u, 22u}) {
-    const SE3Splined spline = MakeRandomSplit(seed, min_angle, max_angle);
-    for (double t : SampleTimes(spline)) {
-      const Segment<double> seg = spline.SegmentAt(t);
-      SE3d T_w_s;
-      ControlPoseJacobian<6> J;
-      spline.EvaluatePoseJacobian(seg, &T_w_s, &J);
-      EXPECT_EQ(J.first_index, seg.first_index());
-      EXPECT_EQ(T_w_s.matrix(), spline.Pose(seg).matrix());
-      EXPECT_TRUE(testing::PoseJacobianMatchesNumeric(J, T_w_s, spline, seg, kJacobianTolerance))
-          << "t " << t;
-      for (int k = 0; k < 4; ++k) {
-        // Position and orientation do not mix (split_segment_jacobians.h, step 2).
-        EXPECT_TRUE(J.blocks[k].topRightCorner(3, 3).isZero(0.0));
-        EXPECT_TRUE(J.blocks[k].bottomLeftCorner(3, 3).isZero(0.0));
-      }
-    }
-  }
+  testing::ExpectPoseJacobianMatchesNumeric(
+      TrajectoryModel::kSplitSO3R3,
+      GetParam(),
+      {21u, 22u},
+      0.0,
+      kJacobianTolerance,
+      kSegmentFractions,
+      [](const ControlPoseJacobian<6>& J) {
+        for (int k = 0; k < 4; ++k) {
+          // Position and orientation do not mix (split_segment_jacobians.h, step 2).
+          EXPECT_TRUE(J.blocks[k].topRightCorner(3, 3).isZero(0.0));
+          EXPECT_TRUE(J.blocks[k].bottomLeftCorner(3, 3).isZero(0.0));
+        }
+      });
 }
 
 TEST_P(SplitJacobian, AngularVelocityMatchesNumericRightPerturbation) {

@@ -28,10 +28,6 @@ using testing::EvaluateAt;
 using testing::InteriorTimes;
 using testing::RelativelyNear;
 
-// Time derivatives vs central differences in time (h = 1e-5 s against dt = 0.2 s): truncation
-// h^2/6 |f'''| ~ 1e-9 relative, rounding eps |f| / h ~ 1e-11 relative.
-constexpr double kTimeDerivativeTolerance = 1e-6;
-constexpr double kTimeStep = 1e-5;
 // The same formulas evaluated in another order (reference spline, Exp of lie/so3.h): a few dozen
 // roundings on values of O(1..100).
 constexpr double kSameModelTolerance = 1e-12;
@@ -104,23 +100,7 @@ TEST(SplitSegment, OrientationAndAngularRatesAreTheCoupledSplinesBitForBit) {
 }
 
 TEST(SplitSegment, TimeDerivativesMatchCentralDifferences) {
-  const SE3Splined spline = MakeRandomSplit(7);
-  for (double t : InteriorTimes(spline)) {
-    const State s = EvaluateAt(spline, t);
-    const State plus = EvaluateAt(spline, t + kTimeStep);
-    const State minus = EvaluateAt(spline, t - kTimeStep);
-    const Eigen::Vector3d v_numeric =
-        (plus.T_w_s.translation() - minus.T_w_s.translation()) / (2 * kTimeStep);
-    const Eigen::Vector3d a_numeric = (plus.v_w - minus.v_w) / (2 * kTimeStep);
-    // w_s = vee(R^T dR/dt): Log(R(t - h)^T R(t + h)) / 2h is it to O(h^2).
-    const Eigen::Vector3d w_numeric =
-        (minus.T_w_s.so3().inverse() * plus.T_w_s.so3()).Log() / (2 * kTimeStep);
-    const Eigen::Vector3d w_dot_numeric = (plus.w_s - minus.w_s) / (2 * kTimeStep);
-    EXPECT_TRUE(RelativelyNear(s.v_w, v_numeric, kTimeDerivativeTolerance)) << t;
-    EXPECT_TRUE(RelativelyNear(s.a_w, a_numeric, kTimeDerivativeTolerance)) << t;
-    EXPECT_TRUE(RelativelyNear(s.w_s, w_numeric, kTimeDerivativeTolerance)) << t;
-    EXPECT_TRUE(RelativelyNear(s.w_dot_s, w_dot_numeric, kTimeDerivativeTolerance)) << t;
-  }
+  testing::ExpectTimeDerivativesMatchCentralDifferences(MakeRandomSplit(7));
 }
 
 TEST(SplitSegment, BodyOutputsAreTheWorldOutputsRotated) {

@@ -14,6 +14,7 @@
 #include <glog/logging.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "splinecal/estimation/bias_costs.h"
 #include "splinecal/estimation/detail/imu_costs.h"
@@ -35,9 +36,22 @@ Vector3<T> WeightedBiasT(const ImuResidualSample& sample, const T* const* bias_b
   return bias;
 }
 
+// What ceres::AutoDiffCostFunction calls, for a residual computed from an array of its parameter
+// blocks (Derived::Compute(blocks, residual)): one pointer per block and the residual last, for
+// any number of blocks (the IMU residuals take 1 or 4 bias blocks).
+template <typename Derived>
+struct BlockArrayFunctor {
+  template <typename T, typename... Rest>
+  bool operator()(const T* first, Rest... rest) const {
+    const T* blocks[] = {first, rest...};  // the residual last, not read through it
+    T* residual = std::get<sizeof...(Rest) - 1>(std::forward_as_tuple(rest...));
+    return static_cast<const Derived&>(*this).Compute(blocks, residual);
+  }
+};
+
 // Functor for ceres::AutoDiffCostFunction<GyroResidual<k>, 3, 7, 7, 7, 7, 3 (x k)>.
 template <int kBiasBlocks>
-struct GyroResidual {
+struct GyroResidual : BlockArrayFunctor<GyroResidual<kBiasBlocks>> {
   GyroResidual(const ImuResidualSegment& segment_in, const ImuResidualSample& sample_in)
       : segment(segment_in), sample(sample_in) {}
 
@@ -53,32 +67,13 @@ struct GyroResidual {
     return true;
   }
 
-  template <typename T>
-  bool operator()(const T* p0, const T* p1, const T* p2, const T* p3, const T* b0, T* r) const {
-    const T* blocks[] = {p0, p1, p2, p3, b0};
-    return Compute(blocks, r);
-  }
-  template <typename T>
-  bool operator()(const T* p0,
-                  const T* p1,
-                  const T* p2,
-                  const T* p3,
-                  const T* b0,
-                  const T* b1,
-                  const T* b2,
-                  const T* b3,
-                  T* r) const {
-    const T* blocks[] = {p0, p1, p2, p3, b0, b1, b2, b3};
-    return Compute(blocks, r);
-  }
-
   ImuResidualSegment segment;
   ImuResidualSample sample;
 };
 
 // Functor for ceres::AutoDiffCostFunction<AccelResidual<k>, 3, 7, 7, 7, 7, 3 (x k), 3>.
 template <int kBiasBlocks>
-struct AccelResidual {
+struct AccelResidual : BlockArrayFunctor<AccelResidual<kBiasBlocks>> {
   AccelResidual(const ImuResidualSegment& segment_in, const ImuResidualSample& sample_in)
       : segment(segment_in), sample(sample_in) {}
 
@@ -93,27 +88,6 @@ struct AccelResidual {
     const T inv_sigma = T(1.0 / segment.sigma);
     for (int a = 0; a < 3; ++a) residual[a] = (accel[a] - T(sample.measured[a])) * inv_sigma;
     return true;
-  }
-
-  template <typename T>
-  bool operator()(
-      const T* p0, const T* p1, const T* p2, const T* p3, const T* b0, const T* g, T* r) const {
-    const T* blocks[] = {p0, p1, p2, p3, b0, g};
-    return Compute(blocks, r);
-  }
-  template <typename T>
-  bool operator()(const T* p0,
-                  const T* p1,
-                  const T* p2,
-                  const T* p3,
-                  const T* b0,
-                  const T* b1,
-                  const T* b2,
-                  const T* b3,
-                  const T* g,
-                  T* r) const {
-    const T* blocks[] = {p0, p1, p2, p3, b0, b1, b2, b3, g};
-    return Compute(blocks, r);
   }
 
   ImuResidualSegment segment;
