@@ -353,8 +353,8 @@ void RejectOutliers(const IntrinsicsOptions& options,
       const TargetView& view = (*views)[v];
       indices.push_back(v);
       ViewErrors& e = errors.emplace_back();
-      e.error =
-          RigViewErrors(CameraAt(*state, n), TargetInCamera(*state, view), ShapedCorners(*state, view));
+      e.error = RigViewErrors(
+          CameraAt(*state, n), TargetInCamera(*state, view), ShapedCorners(*state, view));
       for (const TargetCornerObservation& c : view.corners) {
         e.uv.push_back(c.uv);
         e.p_t.push_back(c.p_t);

@@ -18,7 +18,9 @@ RigViewCostFunction::RigViewCostFunction(const RigViewOptions& settings,
   mutable_parameter_block_sizes()->push_back(kPoseBlockSize);
   mutable_parameter_block_sizes()->push_back(kNumIntrinsics);
   if (settings_.has_extrinsic) mutable_parameter_block_sizes()->push_back(kPoseBlockSize);
-  if (settings_.shape.size() > 0) mutable_parameter_block_sizes()->push_back(settings_.shape.size());
+  if (settings_.shape.size() > 0) {
+    mutable_parameter_block_sizes()->push_back(settings_.shape.size());
+  }
 }
 
 bool RigViewCostFunction::Evaluate(double const* const* parameters,

@@ -46,9 +46,10 @@ struct RigViewOptions {
 };
 
 // Parameter blocks: T_c0_t (7), intrinsics (kNumIntrinsics, camera/camera_model.h layout), and
-// with has_extrinsic T_cn_c0 (7), then with a shape its coefficients c (shape.size()). The target pose comes first: estimation/marginal_covariance.h
-// groups residual blocks by their first parameter block, and a view's pose is what its
-// residuals have alone (the intrinsics, shared by every view, would make one huge group).
+// with has_extrinsic T_cn_c0 (7), then with a shape its coefficients c (shape.size()). The
+// target pose comes first: estimation/marginal_covariance.h groups residual blocks by their first
+// parameter block, and a view's pose is what its residuals have alone (the intrinsics, shared by
+// every view, would make one huge group).
 class RigViewCostFunction : public ceres::CostFunction {
  public:
   RigViewCostFunction(const RigViewOptions& settings,
