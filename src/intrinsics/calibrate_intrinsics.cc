@@ -67,7 +67,15 @@ struct RigState {
   std::vector<PoseBlock> T_cn_c0;  // parameter blocks (camera 0: identity, unused)
   std::vector<double> sigma_px;
   std::map<int64_t, PoseBlock> T_c0_t;  // per timestamp with a used view
+  TargetShape shape;                    // kind none: a flat target
+  std::array<double, kMaxTargetDeformationSize> deformation{};  // its block (shape.size() used)
 };
+
+// The view's corners on the target as the state shapes it (flat: as they are).
+std::vector<TargetCornerObservation> ShapedCorners(const RigState& state,
+                                                   const TargetView& view) {
+  return DeformedCorners(view.corners, state.shape, state.deformation.data());
+}
 
 class IntrinsicsSolver {
  public:
@@ -101,6 +109,9 @@ class IntrinsicsSolver {
           problem_->SetParameterBlockConstant(state_.T_cn_c0[n].data());
       }
     }
+    if (state_.shape.size() > 0) {
+      problem_->AddParameterBlock(state_.deformation.data(), state_.shape.size());
+    }
     for (size_t v = 0; v < views_.size(); ++v) {
       if (records_[v].status != ViewStatus::kUsed) continue;
       const TargetView& view = views_[v];
@@ -114,9 +125,11 @@ class IntrinsicsSolver {
       settings.has_extrinsic = n > 0;
       settings.sigma_px = state_.sigma_px[n];
       settings.huber_px = huber_px;
+      settings.shape = state_.shape;
       auto* cost = new RigViewCostFunction(settings, view.corners);
       std::vector<double*> blocks = {pose, state_.intrinsics[n].data()};
       if (n > 0) blocks.push_back(state_.T_cn_c0[n].data());
+      if (state_.shape.size() > 0) blocks.push_back(state_.deformation.data());
       const ceres::ResidualBlockId id = problem_->AddResidualBlock(cost, nullptr, blocks);
       view_of_[id] = &view;
     }
@@ -340,7 +353,8 @@ void RejectOutliers(const IntrinsicsOptions& options,
       const TargetView& view = (*views)[v];
       indices.push_back(v);
       ViewErrors& e = errors.emplace_back();
-      e.error = RigViewErrors(CameraAt(*state, n), TargetInCamera(*state, view), view.corners);
+      e.error = RigViewErrors(
+          CameraAt(*state, n), TargetInCamera(*state, view), ShapedCorners(*state, view));
       for (const TargetCornerObservation& c : view.corners) {
         e.uv.push_back(c.uv);
         e.p_t.push_back(c.p_t);
@@ -395,8 +409,9 @@ void MeasureSigma(const std::vector<TargetView>& views,
   for (size_t v = 0; v < views.size(); ++v) {
     if (records[v].status != ViewStatus::kUsed) continue;
     const TargetView& view = views[v];
-    for (const Eigen::Vector2d& e :
-         RigViewErrors(CameraAt(*state, view.cam_id), TargetInCamera(*state, view), view.corners)) {
+    for (const Eigen::Vector2d& e : RigViewErrors(CameraAt(*state, view.cam_id),
+                                                  TargetInCamera(*state, view),
+                                                  ShapedCorners(*state, view))) {
       if (!e.allFinite()) continue;
       sum[view.cam_id] += e.squaredNorm();
       m[view.cam_id] += 2.0;
@@ -460,6 +475,22 @@ void TimestampScores(IntrinsicsSolver* solver,
   }
 }
 
+// The target's shape and, with a covariance, its std (its block at `offset` in `covariance`).
+void FillDeformationResult(const RigState& state,
+                           const Eigen::MatrixXd& covariance,
+                           int offset,
+                           IntrinsicsResult* result) {
+  const int k = state.shape.size();
+  if (k == 0) return;
+  TargetDeformationResult& out = result->target_deformation;
+  out.coefficients = Eigen::Map<const Eigen::VectorXd>(state.deformation.data(), k);
+  out.heights_m = out.heights.M * out.coefficients;
+  if (covariance.size() == 0) return;
+  out.covariance = covariance.block(offset, offset, k, k);
+  out.heights_std_m =
+      (out.heights.M * out.covariance * out.heights.M.transpose()).diagonal().cwiseSqrt();
+}
+
 // Steps 6 (covariance) and the per-camera results.
 void FillCameraResults(IntrinsicsSolver* solver,
                        const IntrinsicsOptions& options,
@@ -480,6 +511,13 @@ void FillCameraResults(IntrinsicsSolver* solver,
       size += 6;
     }
   }
+  // The time blocks are chosen from the cameras' intrinsics alone, with or without a shape.
+  const int scores_size = size;
+  const int offset_shape = size;
+  if (state->shape.size() > 0) {
+    blocks.push_back(state->deformation.data());
+    size += state->shape.size();
+  }
   Eigen::MatrixXd covariance;
   // Per coordinate: where its std comes from (the names result.yaml's std_from uses).
   std::vector<const char*> source(size, "noise");
@@ -492,7 +530,7 @@ void FillCameraResults(IntrinsicsSolver* solver,
     if (robust) {
       std::vector<double> t_s;
       std::vector<Eigen::VectorXd> scores;
-      TimestampScores(solver, *state, offset_intrinsics, size, &t_s, &scores);
+      TimestampScores(solver, *state, offset_intrinsics, scores_size, &t_s, &scores);
       result->time_blocks = ChooseTimeBlocks(t_s, scores);
       const int64_t t0_ns = state->T_c0_t.begin()->first;
       const double block_s = result->time_blocks.block_s;
@@ -541,6 +579,7 @@ void FillCameraResults(IntrinsicsSolver* solver,
           "the intrinsics are not all determined (singular information): no standard deviations");
     }
   }
+  FillDeformationResult(*state, covariance, offset_shape, result);
   for (int n = 0; n < num_cameras; ++n) {
     IntrinsicsCameraResult& camera = result->cameras[n];
     camera.camera = CameraAt(*state, n);
@@ -632,6 +671,11 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
   }
 
   RigState state;
+  state.shape = MakeTargetShape(target, options.target_deformation);
+  result.target_deformation.shape = state.shape;
+  if (state.shape.size() > 0) {
+    result.target_deformation.heights = MakeTargetDeformationHeights(target, state.shape);
+  }
   state.cameras.resize(num_cameras);
   state.intrinsics.resize(num_cameras);
   state.active.resize(num_cameras);
@@ -691,7 +735,7 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
     const TargetView& view = views[v];
     ++camera.views_used;
     const std::vector<Eigen::Vector2d> errors =
-        RigViewErrors(camera.camera, TargetInCamera(state, view), view.corners);
+        RigViewErrors(camera.camera, TargetInCamera(state, view), ShapedCorners(state, view));
     double view_sq = 0.0;
     int count = 0;
     for (size_t i = 0; i < errors.size(); ++i) {

@@ -18,6 +18,9 @@ RigViewCostFunction::RigViewCostFunction(const RigViewOptions& settings,
   mutable_parameter_block_sizes()->push_back(kPoseBlockSize);
   mutable_parameter_block_sizes()->push_back(kNumIntrinsics);
   if (settings_.has_extrinsic) mutable_parameter_block_sizes()->push_back(kPoseBlockSize);
+  if (settings_.shape.size() > 0) {
+    mutable_parameter_block_sizes()->push_back(settings_.shape.size());
+  }
 }
 
 bool RigViewCostFunction::Evaluate(double const* const* parameters,
@@ -33,8 +36,12 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
   double* J_target = jacobians != nullptr ? jacobians[0] : nullptr;
   double* J_intrinsics = jacobians != nullptr ? jacobians[1] : nullptr;
   double* J_extrinsic = jacobians != nullptr && settings_.has_extrinsic ? jacobians[2] : nullptr;
-  const bool any_jacobian =
-      J_intrinsics != nullptr || J_target != nullptr || J_extrinsic != nullptr;
+  const int shape_size = settings_.shape.size();
+  const int shape_index = settings_.has_extrinsic ? 3 : 2;
+  const double* c = shape_size > 0 ? parameters[shape_index] : nullptr;
+  double* J_shape = jacobians != nullptr && shape_size > 0 ? jacobians[shape_index] : nullptr;
+  const bool any_jacobian = J_intrinsics != nullptr || J_target != nullptr ||
+                            J_extrinsic != nullptr || J_shape != nullptr;
   internal::PoseBlockLift target_lift, extrinsic_lift;
   if (J_target != nullptr) target_lift = internal::MakePoseBlockLift(parameters[0]);
   if (J_extrinsic != nullptr) extrinsic_lift = internal::MakePoseBlockLift(parameters[2]);
@@ -43,7 +50,8 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
   const double k = settings_.huber_px / settings_.sigma_px;
   for (size_t i = 0; i < corners_.size(); ++i) {
     const int row = 2 * static_cast<int>(i);
-    const Eigen::Vector3d x_c0 = T_c0_t * corners_[i].p_t;
+    const Eigen::Vector3d p_t = settings_.shape.Deform(corners_[i].p_t, c);
+    const Eigen::Vector3d x_c0 = T_c0_t * p_t;
     const Eigen::Vector3d x_c = T_cn_c0 * x_c0;
     Eigen::Vector2d uv;
     Eigen::Matrix<double, 2, 3> J_pi;
@@ -63,6 +71,9 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
       if (J_extrinsic != nullptr) {
         std::fill(J_extrinsic + 7 * row, J_extrinsic + 7 * (row + 2), 0.0);
       }
+      if (J_shape != nullptr) {
+        std::fill(J_shape + shape_size * row, J_shape + shape_size * (row + 2), 0.0);
+      }
       continue;
     }
     Eigen::Vector2d r = (uv - corners_[i].uv) * inv_sigma;
@@ -80,7 +91,7 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
     if (J_target != nullptr) {
       Eigen::Matrix<double, 2, 6> J_tangent;
       J_tangent.leftCols<3>() = FJ * R_cn_t;
-      J_tangent.rightCols<3>() = -FJ * R_cn_t * Hat(corners_[i].p_t);
+      J_tangent.rightCols<3>() = -FJ * R_cn_t * Hat(p_t);
       internal::LiftPoseJacobian(J_tangent, target_lift, J_target + 7 * row);
     }
     if (J_extrinsic != nullptr) {
@@ -88,6 +99,14 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
       J_tangent.leftCols<3>() = FJ * R_cn_c0;
       J_tangent.rightCols<3>() = -FJ * R_cn_c0 * Hat(x_c0);
       internal::LiftPoseJacobian(J_tangent, extrinsic_lift, J_extrinsic + 7 * row);
+    }
+    if (J_shape != nullptr) {
+      // h moves the point along the target's z axis: d x_c / d c_k = R_cn_t e_z b_k.
+      const Eigen::Vector2d along_normal = FJ * R_cn_t.col(2);
+      const Eigen::VectorXd b = settings_.shape.Basis(corners_[i].p_t.x(), corners_[i].p_t.y())
+                                    .head(shape_size);
+      Eigen::Map<Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor>>(
+          J_shape + shape_size * row, 2, shape_size) = along_normal * b.transpose();
     }
   }
   return true;

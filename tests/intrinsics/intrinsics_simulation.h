@@ -1,16 +1,19 @@
 // Simulated target views for the intrinsics tests: a rig of cameras with known intrinsics and
 // T_cn_c0 looks at an AprilGrid from random poses; every corner that projects inside an image
-// becomes an observation with Gaussian pixel noise.
+// becomes an observation with Gaussian pixel noise. The target may be bowed
+// (IntrinsicsScene::shape).
 #ifndef SPLINECAL_TESTS_INTRINSICS_INTRINSICS_SIMULATION_H_
 #define SPLINECAL_TESTS_INTRINSICS_INTRINSICS_SIMULATION_H_
 
 #include <Eigen/Core>
+#include <array>
 #include <random>
 #include <vector>
 
 #include "splinecal/camera/camera_model.h"
 #include "splinecal/camera/observations.h"
 #include "splinecal/camera/target.h"
+#include "splinecal/intrinsics/target_deformation.h"
 #include "splinecal/lie/se3.h"
 
 namespace splinecal {
@@ -29,6 +32,9 @@ struct IntrinsicsScene {
   double max_distance_m = 1.2;
   double spread = 0.4;
   double max_tilt_deg = 45.0;
+  // The target's true out-of-plane shape (target_deformation.h): flat by default.
+  TargetDeformationKind shape_kind = TargetDeformationKind::kNone;
+  std::array<double, kMaxTargetDeformationSize> shape{};
 };
 
 // The observations of `scene` drawn with `seed`, in (t_ns, cam_id, point_id) order. Views are
@@ -44,6 +50,7 @@ inline std::vector<Observation> SimulateIntrinsicsViews(const IntrinsicsScene& s
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const auto& [id, p] : scene.target.points) centre += p;
   centre /= static_cast<double>(scene.target.points.size());
+  const TargetShape shape = MakeTargetShape(scene.target, scene.shape_kind);
   std::vector<Observation> observations;
   for (int v = 0; v < scene.views; ++v) {
     const double distance =
@@ -65,7 +72,7 @@ inline std::vector<Observation> SimulateIntrinsicsViews(const IntrinsicsScene& s
       const SE3d T_cn_t = scene.T_cn_c0[n] * T;
       for (const auto& [id, p_t] : scene.target.points) {
         Eigen::Vector2d uv;
-        if (!camera.Project(T_cn_t * p_t, &uv)) continue;
+        if (!camera.Project(T_cn_t * shape.Deform(p_t, scene.shape.data()), &uv)) continue;
         if (uv.x() < 2 || uv.y() < 2 || uv.x() > camera.width - 3 || uv.y() > camera.height - 3) {
           continue;
         }

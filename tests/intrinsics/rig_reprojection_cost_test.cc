@@ -1,6 +1,6 @@
 // The rig reprojection residual's analytic Jacobians against Ceres' numeric differentiation
 // (ceres::GradientChecker through the blocks' manifolds), with and without the extrinsic and
-// with Huber's loss active on some corners.
+// with Huber's loss active on some corners, flat and with a target shape (target_deformation.h).
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
 
 #include <ceres/manifold.h>
@@ -31,7 +31,8 @@ std::vector<TargetCornerObservation> Corners(const Camera& camera,
   return corners;
 }
 
-void CheckGradients(bool has_extrinsic) {
+void CheckGradients(bool has_extrinsic,
+                    TargetDeformationKind kind = TargetDeformationKind::kNone) {
   const Camera camera = testing::EurocCam0();
   const SE3d T_c0_t(SO3d::Exp(Eigen::Vector3d(2.9, 0.2, -0.1)), Eigen::Vector3d(-0.2, -0.1, 0.9));
   const SE3d T_cn_c0 = has_extrinsic ? SE3d(SO3d::Exp(Eigen::Vector3d(0.01, -0.02, 0.005)),
@@ -42,6 +43,7 @@ void CheckGradients(bool has_extrinsic) {
   settings.has_extrinsic = has_extrinsic;
   settings.sigma_px = 0.5;
   settings.huber_px = 1.0;
+  settings.shape = MakeTargetShape(MakeAprilGrid(3, 3, 0.088, 0.3), kind);
   RigViewCostFunction cost(settings, Corners(camera, T_cn_c0 * T_c0_t, 0.5));
   ASSERT_GT(cost.num_residuals(), 20);
 
@@ -55,6 +57,12 @@ void CheckGradients(bool has_extrinsic) {
   if (has_extrinsic) {
     parameters.push_back(extrinsic.data());
     manifolds.push_back(&se3);
+  }
+  // A bow of a few millimetres with every coefficient non-zero.
+  std::vector<double> shape = {2e-3, -1e-3, 1.5e-3, 0.7e-3, -0.4e-3, 0.3e-3, -0.8e-3};
+  if (settings.shape.size() > 0) {
+    parameters.push_back(shape.data());
+    manifolds.push_back(nullptr);
   }
   // Analytic Jacobians in the blocks' tangent coordinates (ambient J times the manifold's
   // PlusJacobian; intrinsics as they are) against central differences of the residuals along
@@ -78,7 +86,8 @@ void CheckGradients(bool has_extrinsic) {
       analytic = J[b] * plus;
     }
     for (int k = 0; k < tangent; ++k) {
-      // Steps: 1e-6 rad or m on poses; 1e-6 relative on intrinsics (pixels to coefficients).
+      // Steps: 1e-6 rad or m on poses and on the shape's coefficients (m); 1e-6 relative on
+      // intrinsics (pixels to coefficients).
       const double h =
           manifolds[b] != nullptr ? 1e-6 : 1e-6 * std::max(1.0, std::abs(parameters[b][k]));
       auto residuals_at = [&](double step) {
@@ -110,6 +119,14 @@ TEST(RigViewCostFunction, JacobiansMatchNumericDifferentiation) { CheckGradients
 
 TEST(RigViewCostFunction, JacobiansWithTheExtrinsicMatchNumericDifferentiation) {
   CheckGradients(true);
+}
+
+TEST(RigViewCostFunction, JacobiansWithAQuadraticTargetMatchNumericDifferentiation) {
+  CheckGradients(false, TargetDeformationKind::kQuadratic);
+}
+
+TEST(RigViewCostFunction, JacobiansWithACubicTargetAndTheExtrinsicMatchNumericDifferentiation) {
+  CheckGradients(true, TargetDeformationKind::kCubic);
 }
 
 TEST(RigViewErrors, AreThePixelDifferences) {

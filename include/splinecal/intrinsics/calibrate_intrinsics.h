@@ -7,6 +7,9 @@
 //
 //   minimise  sum_views sum_corners |r|^2          r: intrinsics/rig_reprojection_cost.h
 //
+// and, with IntrinsicsOptions::target_deformation, the target's shape shared by every view
+// (intrinsics/target_deformation.h; its gauge is said there).
+//
 // Gauge: camera 0 is the rig's frame; nothing else is free.
 //
 // Steps (each reported in the result, so the user sees what was used and why):
@@ -65,6 +68,7 @@
 #include "splinecal/camera/target.h"
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/solve_rounds.h"
+#include "splinecal/intrinsics/target_deformation.h"
 #include "splinecal/intrinsics/time_blocks.h"
 #include "splinecal/lie/se3.h"
 
@@ -91,6 +95,9 @@ struct IntrinsicsOptions {
   // Camera-to-camera extrinsics: estimated (true) or held at the given T_cn_c0 (false).
   bool estimate_extrinsics = true;
   std::vector<SE3d> T_cn_c0_given;  // with estimate_extrinsics = false: one per camera
+  // The target's out-of-plane shape, shared by every view (target_deformation.h): none (flat),
+  // or a quadratic or cubic surface estimated with the intrinsics.
+  TargetDeformationKind target_deformation = TargetDeformationKind::kNone;
   SolverOptions solver;
   CovarianceOptions covariance;
 };
@@ -140,8 +147,21 @@ struct IntrinsicsCameraResult {
   std::vector<std::string> std_from;
 };
 
+// The estimated target shape (IntrinsicsOptions::target_deformation).
+struct TargetDeformationResult {
+  TargetShape shape;             // kind none: flat, nothing below is filled
+  Eigen::VectorXd coefficients;  // c [m], target_deformation.h's basis order
+  Eigen::MatrixXd covariance;    // of c (with the intrinsics' inflation), empty without stds
+  // The surface relative to the least-squares plane through the target's points, at its centre
+  // and corners (target_deformation.h): heights_m = heights.M c, with their stds.
+  TargetDeformationHeights heights;
+  Eigen::VectorXd heights_m;
+  Eigen::VectorXd heights_std_m;
+};
+
 struct IntrinsicsResult {
   std::vector<IntrinsicsCameraResult> cameras;
+  TargetDeformationResult target_deformation;
   std::vector<ViewRecord> views;              // every view offered, by (t_ns, cam_id)
   std::vector<ReprojectionSample> residuals;  // the used corners
   // The corners the outlier pass removed, with their errors when they were removed.
