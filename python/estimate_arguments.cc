@@ -23,17 +23,9 @@ void ApplyEstimateArguments(const EstimateArguments& arguments,
   if (!arguments.imu_yaml.is_none()) {
     model->noise = ReadImuYaml(PathArgument(arguments.imu_yaml, "imu_yaml"));
   }
-  bool known = false;
-  for (ImuNoiseMode mode :
-       {ImuNoiseMode::kEstimated, ImuNoiseMode::kReweighted, ImuNoiseMode::kGiven}) {
-    if (arguments.imu_noise == ImuNoiseModeName(mode)) {
-      model->imu_noise = mode;
-      known = true;
-    }
-  }
-  if (!known) {
-    throw py::value_error("imu_noise: expected estimated, reweighted or given, got '" +
-                          arguments.imu_noise + "'");
+  if (!ValueNamed(kImuNoiseModeNames, arguments.imu_noise, &model->imu_noise)) {
+    throw py::value_error("imu_noise: expected " + JoinNames(kImuNoiseModeNames, ", ") +
+                          ", got '" + arguments.imu_noise + "'");
   }
   model->trajectory = TrajectoryArgument(arguments.trajectory);
   if (arguments.threads < 1 || arguments.threads > 256) {

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "splinecal/camera/observation_gates.h"
+#include "splinecal/enum_names.h"
 
 namespace splinecal {
 namespace internal {
@@ -534,29 +536,22 @@ bool CalibrationProblem::ReleaseLineDelays() {
 using internal::CalibrationProblem;
 
 const char* ParameterModeName(ParameterMode mode) {
-  switch (mode) {
-    case ParameterMode::kHeld:
-      return "held";
-    case ParameterMode::kPrior:
-      return "prior";
-    case ParameterMode::kFree:
-      return "free";
-    case ParameterMode::kConsider:
-      return "consider";
-  }
-  return "held";
+  static constexpr std::array<EnumName<ParameterMode>, 4> kNames = {{
+      {ParameterMode::kHeld, "held"},
+      {ParameterMode::kPrior, "prior"},
+      {ParameterMode::kFree, "free"},
+      {ParameterMode::kConsider, "consider"},
+  }};
+  return NameOf(kNames, mode);
 }
 
 const char* TargetScaleModeName(TargetScaleMode mode) {
-  switch (mode) {
-    case TargetScaleMode::kCheck:
-      return "check";
-    case TargetScaleMode::kFree:
-      return "free";
-    case TargetScaleMode::kHeld:
-      return "held";
-  }
-  return "check";
+  static constexpr std::array<EnumName<TargetScaleMode>, 3> kNames = {{
+      {TargetScaleMode::kCheck, "check"},
+      {TargetScaleMode::kFree, "free"},
+      {TargetScaleMode::kHeld, "held"},
+  }};
+  return NameOf(kNames, mode);
 }
 
 namespace {

@@ -150,12 +150,10 @@ TrajectoryModel TrajectoryModelFlag() {
 }
 
 ImuNoiseMode ImuNoiseModeFlag() {
-  for (ImuNoiseMode mode :
-       {ImuNoiseMode::kEstimated, ImuNoiseMode::kReweighted, ImuNoiseMode::kGiven}) {
-    if (FLAGS_imu_noise == ImuNoiseModeName(mode)) return mode;
-  }
-  throw Error("--imu-noise: expected estimated, reweighted or given, got '" + FLAGS_imu_noise +
-              "'");
+  ImuNoiseMode mode = ImuNoiseMode::kEstimated;
+  if (ValueNamed(kImuNoiseModeNames, FLAGS_imu_noise, &mode)) return mode;
+  throw Error("--imu-noise: expected " + JoinNames(kImuNoiseModeNames, ", ") + ", got '" +
+              FLAGS_imu_noise + "'");
 }
 
 ImuReadOptions ImuReadOptionsFromFlags(bool takes_imu_yaml) {

@@ -1,7 +1,10 @@
 #include "splinecal/estimation/imu_noise_estimate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+
+#include "splinecal/enum_names.h"
 
 namespace splinecal {
 
@@ -45,18 +48,13 @@ std::array<double, kNumImuResidualKinds> ImuNoiseEstimate::MeasuredOverGiven() c
 }
 
 const char* ImuNoiseKey(ImuResidualKind kind) {
-  switch (kind) {
-    case ImuResidualKind::kGyro:
-      return "gyroscope_noise_density";
-    case ImuResidualKind::kAccel:
-      return "accelerometer_noise_density";
-    case ImuResidualKind::kGyroRandomWalk:
-      return "gyroscope_random_walk";
-    case ImuResidualKind::kAccelRandomWalk:
-      return "accelerometer_random_walk";
-    default:
-      return "";
-  }
+  static constexpr std::array<EnumName<ImuResidualKind>, kNumImuResidualKinds> kKeys = {{
+      {ImuResidualKind::kGyro, "gyroscope_noise_density"},
+      {ImuResidualKind::kAccel, "accelerometer_noise_density"},
+      {ImuResidualKind::kGyroRandomWalk, "gyroscope_random_walk"},
+      {ImuResidualKind::kAccelRandomWalk, "accelerometer_random_walk"},
+  }};
+  return kind == ImuResidualKind::kNotImu ? "" : NameOf(kKeys, kind);
 }
 
 ImuNoiseEstimator::ImuNoiseEstimator(const ImuNoise& given, double imu_rate_hz, ImuNoiseMode mode)

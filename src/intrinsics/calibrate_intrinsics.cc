@@ -14,6 +14,7 @@
 #include "splinecal/camera/observation_gates.h"
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/pnp.h"
+#include "splinecal/enum_names.h"
 #include "splinecal/error.h"
 #include "splinecal/estimation/marginal_covariance.h"
 #include "splinecal/intrinsics/corner_outliers.h"
@@ -31,23 +32,28 @@
 
 namespace splinecal {
 
-const char* ViewStatusName(ViewStatus status) {
-  switch (status) {
-    case ViewStatus::kUsed:
-      return "used";
-    case ViewStatus::kTooFewCorners:
-      return "too few corners";
-    case ViewStatus::kPnpFailed:
-      return "no target pose (PnP failed)";
-    case ViewStatus::kRepeat:
-      return "repeats an earlier view";
-    case ViewStatus::kThinned:
-      return "thinned (max views)";
-    case ViewStatus::kOutlier:
-      return "too few corners after outlier removal";
-  }
-  return "?";
-}
+namespace {
+
+struct ViewStatusRow {
+  ViewStatus value;
+  const char* name;
+  const char* key;
+};
+
+constexpr std::array<ViewStatusRow, 6> kViewStatusRows = {{
+    {ViewStatus::kUsed, "used", "used"},
+    {ViewStatus::kTooFewCorners, "too few corners", "too_few_corners"},
+    {ViewStatus::kPnpFailed, "no target pose (PnP failed)", "pnp_failed"},
+    {ViewStatus::kRepeat, "repeats an earlier view", "repeats"},
+    {ViewStatus::kThinned, "thinned (max views)", "thinned"},
+    {ViewStatus::kOutlier, "too few corners after outlier removal", "outlier"},
+}};
+
+}  // namespace
+
+const char* ViewStatusName(ViewStatus status) { return NameOf(kViewStatusRows, status); }
+
+const char* ViewStatusKey(ViewStatus status) { return RowOf(kViewStatusRows, status).key; }
 
 namespace {
 

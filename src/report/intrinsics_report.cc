@@ -43,24 +43,6 @@ constexpr ViewStatus kStatuses[] = {ViewStatus::kUsed,
                                     ViewStatus::kThinned,
                                     ViewStatus::kOutlier};
 
-std::string StatusKey(ViewStatus status) {
-  switch (status) {
-    case ViewStatus::kUsed:
-      return "used";
-    case ViewStatus::kTooFewCorners:
-      return "too_few_corners";
-    case ViewStatus::kPnpFailed:
-      return "pnp_failed";
-    case ViewStatus::kRepeat:
-      return "repeats";
-    case ViewStatus::kThinned:
-      return "thinned";
-    case ViewStatus::kOutlier:
-      return "outlier";
-  }
-  return "unknown";
-}
-
 std::string ValueWithStd(double value, double std, const char* format) {
   std::string text = StringPrintf(format, value);
   if (std::isfinite(std)) text += " &plusmn; " + StringPrintf(format, std);
@@ -255,7 +237,7 @@ std::string IntrinsicsResultYaml(const IntrinsicsResult& result,
     yaml.BeginMap("views_not_used");
     for (ViewStatus status : kStatuses) {
       if (status == ViewStatus::kUsed) continue;
-      yaml.Scalar(StatusKey(status), CountStatus(result, static_cast<int>(n), status));
+      yaml.Scalar(ViewStatusKey(status), CountStatus(result, static_cast<int>(n), status));
     }
     yaml.EndMap();
     yaml.Scalar("corners_used", c.corners_used);

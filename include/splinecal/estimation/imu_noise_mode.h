@@ -3,7 +3,10 @@
 #ifndef SPLINECAL_ESTIMATION_IMU_NOISE_MODE_H_
 #define SPLINECAL_ESTIMATION_IMU_NOISE_MODE_H_
 
+#include <array>
 #include <string>
+
+#include "splinecal/enum_names.h"
 
 namespace splinecal {
 
@@ -13,17 +16,15 @@ enum class ImuNoiseMode {
   kReweighted,  // as kEstimated, and the measured white noise also re-weights the solve
 };
 
-// "given", "estimated", "reweighted" (the --imu-noise values).
+// The --imu-noise values, the default first.
+inline constexpr std::array<EnumName<ImuNoiseMode>, 3> kImuNoiseModeNames = {{
+    {ImuNoiseMode::kEstimated, "estimated"},
+    {ImuNoiseMode::kReweighted, "reweighted"},
+    {ImuNoiseMode::kGiven, "given"},
+}};
+
 inline std::string ImuNoiseModeName(ImuNoiseMode mode) {
-  switch (mode) {
-    case ImuNoiseMode::kGiven:
-      return "given";
-    case ImuNoiseMode::kEstimated:
-      return "estimated";
-    case ImuNoiseMode::kReweighted:
-      return "reweighted";
-  }
-  return "estimated";
+  return NameOf(kImuNoiseModeNames, mode);
 }
 
 }  // namespace splinecal

@@ -104,7 +104,8 @@ struct IntrinsicsOptions {
 
 // Why a view was used or not (the report lists them).
 enum class ViewStatus { kUsed, kTooFewCorners, kPnpFailed, kRepeat, kThinned, kOutlier };
-const char* ViewStatusName(ViewStatus status);
+const char* ViewStatusName(ViewStatus status);  // in words, e.g. "repeats an earlier view"
+const char* ViewStatusKey(ViewStatus status);   // a result.yaml key, e.g. "repeats"
 
 struct ViewRecord {
   int64_t t_ns = 0;
