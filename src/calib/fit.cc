@@ -63,6 +63,10 @@ constexpr double kWarnResidualNoiseRatio = 3.0;
 constexpr double kEdgeFraction = 0.01;
 // A re-estimated IMU noise weight that moved by more than this fraction triggers another round.
 constexpr double kNoiseChangeForNewRound = 0.1;
+// Jacobian entries (8 bytes each) above which fit returns freed memory to the system between its
+// phases: 2e6 (16 MB of Jacobian values, about 45 s of 200 Hz IMU at 0.1 s knots), a quarter of
+// where calibrate and fit switch to SPARSE_SCHUR for memory (SolverOptions).
+constexpr double kTrimAboveJacobianEntries = 2e6;
 
 
 SE3d PoseOf(const StampedPose& pose) { return SE3d(SO3d::FromQuaternion(pose.q), pose.p); }
@@ -499,10 +503,15 @@ FitResult FitProblem::Impl::Solve() {
       6.0 * static_cast<double>(used_poses.size()) * 31.0;
   const SolverOptions solver = spline_problem->ResolvedSolverOptions(options.solver);
   SolveRounds rounds(solver, jacobian_entries);
+  // Freed memory is returned to the system (malloc_trim) only where it is the peak memory of a
+  // long recording: below kTrimAboveJacobianEntries the next allocations reuse the few tens of MB
+  // anyway, and faulting them back in cost more than the trim saved (a 20 s fit, 120 of them in
+  // a Monte-Carlo test: docs/performance.md, "The slow tests' CPU time").
+  [[maybe_unused]] const bool trim_memory = jacobian_entries > kTrimAboveJacobianEntries;
 #ifdef __GLIBC__
   // Return what the initialisation freed (the pose fit's solver) before the main solve, whose
   // Jacobian is the peak memory of long recordings (docs/performance.md).
-  malloc_trim(0);
+  if (trim_memory) malloc_trim(0);
 #endif
   for (int round = 0; round < solver.max_rounds; ++round) {
     rounds.Solve(problem(), "fit: ");
@@ -655,7 +664,7 @@ FitResult FitProblem::Impl::Solve() {
 #ifdef __GLIBC__
   // The solver's Jacobian is gone: give its pages back before the covariance allocates (the
   // peak memory of long recordings, docs/performance.md).
-  malloc_trim(0);
+  if (trim_memory) malloc_trim(0);
 #endif
   if (options.covariance.compute) ComputeCovariance(&result);
   result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());

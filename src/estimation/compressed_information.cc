@@ -79,13 +79,17 @@ namespace {
 // (so that blocks linearise in parallel): its rows' J^T J and J^T e over the stacked tangent
 // columns of its free parameter blocks.
 struct Linearization {
-  const ceres::CostFunction* cost = nullptr;  // the rows (not a compact form)
+  // The residual block's cost function as Ceres sees it, compact or not: a compact form
+  // (estimation/detail/compact_frame_cost.h) has the same J^T J, J^T e and |e|^2 as its rows,
+  // from its few rows (a calibration frame's ~7 against ~250: the rows' Jacobian and its product
+  // were most of a variance-component update, docs/performance.md "The slow tests' CPU time").
+  const ceres::CostFunction* cost = nullptr;
+  int rows = 0;  // the rows it stands for (CompactResidual::RowsOf), which n_l counts
   std::vector<double*> blocks;
   std::vector<int> tangent;  // per block; 0 for a constant block (no columns)
   int label = 0;
   int cluster = -1;
   bool ok = false;
-  int rows = 0;
   double squared_sum = 0.0;
   Eigen::MatrixXd JtJ;
   Eigen::VectorXd Jte;  // with clusters only
@@ -98,7 +102,6 @@ constexpr int kChunk = 1024;
 void Linearize(const ceres::Problem& problem, bool with_gradient, Linearization* out) {
   const std::vector<double*>& blocks = out->blocks;
   const int rows = out->cost->num_residuals();
-  out->rows = rows;
   std::vector<std::vector<double>> jacobians(blocks.size());
   std::vector<double*> pointers(blocks.size(), nullptr);
   int columns = 0;
@@ -163,8 +166,8 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
       Linearization& item = chunk.emplace_back();
       item.label = label;
       item.cluster = cluster_of ? cluster_of(id) : -1;
-      // The rows themselves, also where Ceres sees them compacted (their count matters here).
-      item.cost = &CompactResidual::RowsOf(*problem->GetCostFunctionForResidualBlock(id));
+      item.cost = problem->GetCostFunctionForResidualBlock(id);
+      item.rows = CompactResidual::RowsOf(*item.cost).num_residuals();
       problem->GetParameterBlocksForResidualBlock(id, &item.blocks);
       for (double* block : item.blocks) {
         if (ordinal_.emplace(block, static_cast<int>(blocks_by_ordinal_.size())).second) {

@@ -18,6 +18,7 @@
 #include "testing/run_tool.h"
 #include "testing/strict_yaml.h"
 #include "testing/temp_dir.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

@@ -9,6 +9,7 @@
 #include "allan/static_series.h"
 #include "splinecal/allan/allan_deviation.h"
 #include "splinecal/allan/noise_fit.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

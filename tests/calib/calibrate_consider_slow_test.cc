@@ -16,6 +16,7 @@
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/units.h"
 #include "testing/chi_square.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

@@ -32,6 +32,7 @@
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/units.h"
 #include "testing/shared_data.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

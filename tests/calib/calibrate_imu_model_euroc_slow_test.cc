@@ -51,6 +51,7 @@
 #include "splinecal/lie/so3.h"
 #include "splinecal/units.h"
 #include "testing/shared_data.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

@@ -15,6 +15,7 @@
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/lie/so3.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "calib/several_imus_round_trip.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

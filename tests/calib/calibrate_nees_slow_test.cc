@@ -28,6 +28,7 @@
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/calib/calibrate.h"
 #include "testing/chi_square.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

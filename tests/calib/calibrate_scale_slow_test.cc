@@ -18,6 +18,7 @@
 #include "testing/run_tool.h"
 #include "testing/shared_data.h"
 #include "testing/temp_dir.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

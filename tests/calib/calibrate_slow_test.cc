@@ -13,6 +13,7 @@
 #include "calib/calibrate_test_scenario.h"
 #include "splinecal/calib/calibrate.h"
 #include "splinecal/units.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

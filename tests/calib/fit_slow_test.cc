@@ -16,6 +16,7 @@
 #include "splinecal/estimation/gravity_manifold.h"
 #include "splinecal/units.h"
 #include "testing/chi_square.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

@@ -1,6 +1,7 @@
 #include "splinecal/estimation/reprojection_cost.h"
 
 #include <ceres/manifold.h>
+#include <ceres/normal_prior.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 
 #include "calib/camera_test_scene.h"
 #include "splinecal/estimation/detail/compact_frame_cost.h"
+#include "splinecal/estimation/variance_components.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "testing/numeric_diff.h"
 
@@ -170,6 +172,18 @@ class ReprojectionCostTest : public ::testing::Test {
     std::vector<int> indices(window.num_poses);
     std::iota(indices.begin(), indices.end(), window.first_index);
     return CostBlocks(indices, scene_.T_w_t.data(), &pose_manifold_);
+  }
+
+  // A frame calibrate would compact (estimation/detail/compact_frame_cost.h): global shutter
+  // (the line delay held at 0), Huber active on part of its corners; nullptr if no window covers
+  // it.
+  std::unique_ptr<TargetFrameCostFunction> CompactableFrame(ControlPoseWindow* window) {
+    const double t_frame = 0.62;
+    scene_.line_delay = 0.0;
+    settings_.huber_px = 1.5;
+    if (!settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.02, window)) return nullptr;
+    return std::make_unique<TargetFrameCostFunction>(
+        settings_, *window, t_frame, Corners(t_frame, 2.0));
   }
 
   // Every target corner with its true pixel, plus `offset_px` of seeded noise. Offsets within
@@ -350,13 +364,9 @@ TEST_F(ReprojectionCostTest, CompactFrameHasTheRowsNormalEquations) {
     SCOPED_TRACE(TrajectoryModelName(model));
     settings_.model = model;
     scene_.model = model;
-    const double t_frame = 0.62;
-    scene_.line_delay = 0.0;
-    settings_.huber_px = 1.5;
     ControlPoseWindow window;
-    ASSERT_TRUE(settings_.layout.WindowCovering(t_frame - 0.02, t_frame + 0.02, &window));
-    auto rows = std::make_unique<TargetFrameCostFunction>(
-        settings_, window, t_frame, Corners(t_frame, 2.0));
+    auto rows = CompactableFrame(&window);
+    ASSERT_NE(rows, nullptr);
     const TargetFrameCostFunction* frame = rows.get();
     ASSERT_TRUE(CompactFrameCostFunction::SavesRows(*frame));
     const CompactFrameCostFunction compact(std::move(rows));
@@ -400,6 +410,64 @@ TEST_F(ReprojectionCostTest, CompactFrameWithEstimatedIntrinsics) {
   free[window.num_poses + 2] = false;  // line delay
   ExpectSameNormalEquations(NormalEquationsOf(compact, blocks, free),
                             NormalEquationsOf(*frame, blocks, free));
+}
+
+// The variance components (estimation/variance_components.h) of a compact frame: computed from
+// the form Ceres sees (estimation/compressed_information.cc), they must be those of the frame's
+// rows, whose number n_l counts. A unit prior on every free block makes H positive definite (one
+// frame does not determine its four control poses). Tolerances: the compact form's J^T J and
+// |e|^2 equal the rows' to rounding (CompactFrameHasTheRowsNormalEquations: 1e-12 of the cost,
+// 1e-10 of the largest entry); tr(H^-1 H_l) goes through H^-1, whose condition (unit priors
+// beside the corners' information) amplifies that rounding: measured 2e-8 for the priors' share,
+// bounded at 1e-6 (a wrong row count or a missing share moves r_l by 1 or more).
+TEST_F(ReprojectionCostTest, CompactFrameHasTheRowsVarianceComponents) {
+  ControlPoseWindow window;
+  auto rows = CompactableFrame(&window);
+  ASSERT_NE(rows, nullptr);
+  const TargetFrameCostFunction* frame = rows.get();
+  CompactFrameCostFunction compact(std::move(rows));
+  const Blocks blocks = TargetBlocks(window);
+  const int n = window.num_poses;
+  auto components = [&](ceres::CostFunction* cost) {
+    ceres::Problem::Options options;
+    options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(options);
+    const ceres::ResidualBlockId frame_id =
+        problem.AddResidualBlock(cost, nullptr, blocks.parameters);
+    std::vector<std::unique_ptr<ceres::CostFunction>> priors;
+    for (size_t k = 0; k < blocks.parameters.size(); ++k) {
+      double* block = blocks.parameters[k];
+      if (blocks.manifolds[k] != nullptr) {
+        problem.SetManifold(block, const_cast<ceres::Manifold*>(blocks.manifolds[k]));
+      }
+      if (k == static_cast<size_t>(n + 2) || k == static_cast<size_t>(n + 3)) {
+        problem.SetParameterBlockConstant(block);  // line delay held at 0, T_w_t
+        continue;
+      }
+      const int size = problem.ParameterBlockSize(block);
+      priors.push_back(std::make_unique<ceres::NormalPrior>(
+          Eigen::MatrixXd::Identity(size, size), Eigen::Map<const Eigen::VectorXd>(block, size)));
+      problem.AddResidualBlock(priors.back().get(), nullptr, block);
+    }
+    return EstimateVarianceComponents(
+        &problem, [frame_id](ceres::ResidualBlockId id) { return id == frame_id ? 0 : 1; });
+  };
+  const VarianceComponents of_compact = components(&compact);
+  const VarianceComponents of_rows = components(const_cast<TargetFrameCostFunction*>(frame));
+  ASSERT_TRUE(of_compact.ok);
+  ASSERT_TRUE(of_rows.ok);
+  for (int label : {0, 1}) {
+    SCOPED_TRACE(label);
+    const VarianceComponent& got = of_compact.groups.at(label);
+    const VarianceComponent& want = of_rows.groups.at(label);
+    EXPECT_EQ(got.num_residuals, want.num_residuals);
+    EXPECT_NEAR(got.squared_sum, want.squared_sum, 1e-12 * want.squared_sum + 1e-15);
+    EXPECT_NEAR(got.redundancy, want.redundancy, 1e-6);
+  }
+  EXPECT_EQ(of_compact.groups.at(0).num_residuals, frame->num_residuals());
+  // The frame's corners determine parameters: its redundancy is below its row count.
+  EXPECT_LT(of_rows.groups.at(0).redundancy, frame->num_residuals() - 1.0);
 }
 
 TEST_F(ReprojectionCostTest, TargetEvaluationOutsideTheWindowFails) {

@@ -17,6 +17,7 @@
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/target_yaml.h"
 #include "testing/shared_data.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

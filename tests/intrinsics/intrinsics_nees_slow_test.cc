@@ -11,6 +11,7 @@
 #include "intrinsics/intrinsics_models.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "testing/chi_square.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {

@@ -13,6 +13,7 @@
 #include "splinecal/units.h"
 #include "splinecal/vio/align.h"
 #include "testing/rotations.h"
+#include "testing/tool_allocator.h"
 
 namespace splinecal {
 namespace {
