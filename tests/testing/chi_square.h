@@ -18,6 +18,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -52,6 +54,19 @@ struct NeesGroup {
   int dof;
   double sum = 0.0;
 };
+
+// The squared Mahalanobis norm e^T Sigma^-1 e of an error e with covariance Sigma: its NEES, which
+// is chi-square(dim e) for a Gaussian error whatever the correlations between its components.
+// NaN when Sigma is not positive definite (LLT fails), so a test asserting on it fails.
+inline double Mahalanobis(const Eigen::VectorXd& e, const Eigen::MatrixXd& sigma) {
+  // Scaled to unit diagonal first: the entries of one group can differ by orders of magnitude
+  // (A ~1e-4 rad/s per m/s^2 beside M_a ~1e-3), and the correlation matrix's factorisation
+  // is then as well conditioned as the correlations allow.
+  const Eigen::VectorXd s = sigma.diagonal().cwiseSqrt().cwiseInverse();
+  const Eigen::LLT<Eigen::MatrixXd> llt(s.asDiagonal() * sigma * s.asDiagonal());
+  if (llt.info() != Eigen::Success) return std::nan("");
+  return llt.matrixL().solve(s.cwiseProduct(e)).squaredNorm();
+}
 
 // Prints each group's sum with its interval (ChiSquareInterval95 of runs x dof) and expects the
 // sum inside it: below, the reported uncertainty is too pessimistic; above, overconfident.
