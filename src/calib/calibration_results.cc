@@ -289,9 +289,10 @@ void CalibrationProblem::ImuModelCovarianceFrom(const Eigen::MatrixXd& cov,
                                                 CalibrationResult* result) {
   // A held entry (estimation/imu_model_observability.h) has no row: the tangent of a block with
   // held entries skips them (ceres::SubsetManifold); a block all held is constant (no offset).
-  const std::vector<CovarianceBlock> blocks =
-      ModelCovarianceBlocks(spline_->imu_model_kind(), *spline_->imu_model(),
-                            [&](const double* block) { return spline_->HeldImuModelEntries(block); });
+  const std::vector<CovarianceBlock> blocks = ModelCovarianceBlocks(
+      spline_->imu_model_kind(), *spline_->imu_model(), [&](const double* block) {
+        return spline_->HeldImuModelEntries(block);
+      });
   result->imu_model_covariance = CovarianceOfBlocks(cov, offset, blocks);
   result->imu_model_std = ModelStdOf(result->imu_model_covariance);
 }

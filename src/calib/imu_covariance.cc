@@ -39,8 +39,7 @@ std::string ImuCovarianceEntryName(const ImuCovarianceEntry& entry) {
 std::vector<int> ImuCovariance::Rows(const std::vector<ImuParameter>& parameters) const {
   std::vector<int> rows;
   for (size_t k = 0; k < entries.size(); ++k) {
-    if (std::find(parameters.begin(), parameters.end(), entries[k].parameter) !=
-        parameters.end()) {
+    if (std::find(parameters.begin(), parameters.end(), entries[k].parameter) != parameters.end()) {
       rows.push_back(static_cast<int>(k));
     }
   }

@@ -2,7 +2,8 @@
 // reports it (CalibrationResult::imu_model_covariance, FurtherImuEstimate::covariance): the
 // block of the calibration's marginal covariance (calib/calibrate.h, the same matrix, inflation
 // factors included, that the per-entry standard deviations are the square roots of the diagonal
-// of) over one IMU's parameters, cross-covariances included. docs/imu_models.md says how to read it.
+// of) over one IMU's parameters, cross-covariances included; exactly symmetric. docs/imu_models.md
+// says how to read it.
 #ifndef SPLINECAL_CALIB_IMU_COVARIANCE_H_
 #define SPLINECAL_CALIB_IMU_COVARIANCE_H_
 
