@@ -281,10 +281,11 @@ class CalibrationProblem {
                    const Eigen::MatrixXd& cov,
                    const std::map<const double*, int>& offset,
                    CalibrationResult* result);
-  // The IMU model's standard deviations from the reported covariance (as BaselineStd).
-  void ImuModelStdFrom(const Eigen::MatrixXd& cov,
-                       const std::map<const double*, int>& offset,
-                       ImuModelStd* out);
+  // result->imu_model_covariance and the stds it gives (imu_model_std) from the reported
+  // covariance (as BaselineStd).
+  void ImuModelCovarianceFrom(const Eigen::MatrixXd& cov,
+                              const std::map<const double*, int>& offset,
+                              CalibrationResult* result);
   // Options for ComputeMarginalCovariance: the IMU noise's groups and time clusters, each
   // camchain prior as model noise (kModelNoiseCluster).
   MarginalCovarianceOptions CovarianceOptionsForProblem();

@@ -10,6 +10,7 @@
 #include <set>
 #include <vector>
 
+#include "imu_covariance_rows.h"
 #include "splinecal/calib/consider_covariance.h"
 #include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/estimation/view_clusters.h"
@@ -207,7 +208,7 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   if (target_scale_free_) {
     result->target_scale_std = std::sqrt(std::max(0.0, block(&target_scale_, 1)(0, 0)));
   }
-  if (!model_blocks.empty()) ImuModelStdFrom(cov, offset, &result->imu_model_std);
+  if (!model_blocks.empty()) ImuModelCovarianceFrom(cov, offset, result);
   if (further_) further_->StdFrom(cov, offset, &result->further_imus);
   const Eigen::VectorXd bias_std = cov.diagonal().tail(6).cwiseMax(0.0).cwiseSqrt();
   result->gyro_bias_std = bias_std.head<3>();
@@ -283,35 +284,17 @@ bool CalibrationProblem::CarryConsideredIntrinsics(std::vector<const double*> wa
   return true;
 }
 
-void CalibrationProblem::ImuModelStdFrom(const Eigen::MatrixXd& cov,
-                                         const std::map<const double*, int>& offset,
-                                         ImuModelStd* out) {
-  const ImuModelParameters& p = *spline_->imu_model();
-  // A held entry (estimation/imu_model_observability.h) has no std: NaN. The tangent of a block
-  // with held entries skips them (ceres::SubsetManifold).
-  auto std_of = [&](const double* block, int j) {
-    const std::vector<int> held = spline_->HeldImuModelEntries(block);
-    if (offset.count(block) == 0 || std::find(held.begin(), held.end(), j) != held.end()) {
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-    const int skipped = static_cast<int>(
-        std::count_if(held.begin(), held.end(), [j](int h) { return h < j; }));
-    const int row = offset.at(block) + j - skipped;
-    return std::sqrt(std::max(0.0, cov(row, row)));
-  };
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c <= r; ++c) {
-      out->M_a(r, c) = std_of(p.m_a.data(), LowerTriangularIndex(r, c));
-      out->M_g(r, c) = std_of(p.m_g.data(), LowerTriangularIndex(r, c));
-    }
-    for (int c = 0; c < 3; ++c) out->A(r, c) = std_of(p.a.data(), 3 * r + c);
-    out->C_gyro_i_deg[r] = std_of(p.phi_gyro_i.data(), r) * kRadToDeg;
-  }
-  if (spline_->imu_model_kind() != ImuModelKind::kScaleMisalignmentSizeEffect) return;
-  for (int a = 0; a < 3; ++a) {
-    out->ry_i[a] = std_of(p.ry_i.data(), a);
-    out->rz_i[a] = std_of(p.rz_i.data(), a);
-  }
+void CalibrationProblem::ImuModelCovarianceFrom(const Eigen::MatrixXd& cov,
+                                                const std::map<const double*, int>& offset,
+                                                CalibrationResult* result) {
+  // A held entry (estimation/imu_model_observability.h) has no row: the tangent of a block with
+  // held entries skips them (ceres::SubsetManifold); a block all held is constant (no offset).
+  const std::vector<CovarianceBlock> blocks = ModelCovarianceBlocks(
+      spline_->imu_model_kind(), *spline_->imu_model(), [&](const double* block) {
+        return spline_->HeldImuModelEntries(block);
+      });
+  result->imu_model_covariance = CovarianceOfBlocks(cov, offset, blocks);
+  result->imu_model_std = ModelStdOf(result->imu_model_covariance);
 }
 
 void CalibrationProblem::BaselineStd(size_t c,

@@ -8,6 +8,7 @@
 #include <memory>
 #include <numeric>
 
+#include "imu_covariance_rows.h"
 #include "splinecal/error.h"
 #include "splinecal/estimation/imu_model_observability.h"
 #include "splinecal/estimation/interval_manifold.h"
@@ -421,43 +422,30 @@ void FurtherImus::StdFrom(const Eigen::MatrixXd& cov,
   for (size_t i = 0; i < imus_.size() && i < out->size(); ++i) {
     const State& imu = imus_[i];
     FurtherImuEstimate& e = (*out)[i];
-    auto diagonal = [&](const double* block, int size) {
+    // AddCovarianceBlocks' order: C_i_b (its right tangent), r_b (no row when held), the time
+    // offset, the model's blocks (a held entry has no row: ceres::SubsetManifold skips it).
+    std::vector<CovarianceBlock> blocks = {
+        {imu.q_i_b.data(), VectorCoordinates(ImuParameter::kCIB, 3), {}},
+        {imu.r_b.data(), VectorCoordinates(ImuParameter::kRB, 3), {}},
+        {&imu.time_offset_s, VectorCoordinates(ImuParameter::kTimeOffset, 1), {}}};
+    const std::vector<CovarianceBlock> model =
+        ModelCovarianceBlocks(imu.kind, imu.model, [&](const double* block) {
+          const auto it = imu.held_model.find(block);
+          return it == imu.held_model.end() ? std::vector<int>() : it->second;
+        });
+    blocks.insert(blocks.end(), model.begin(), model.end());
+    e.covariance = CovarianceOfBlocks(cov, offset, blocks);
+    e.model_std = ModelStdOf(e.covariance);
+    auto diagonal = [&](ImuParameter parameter, int size) {
       Eigen::VectorXd d = Eigen::VectorXd::Constant(size, NaN());
-      const auto it = offset.find(block);
-      if (it == offset.end()) return d;
-      return Eigen::VectorXd(cov.diagonal().segment(it->second, size).cwiseMax(0.0).cwiseSqrt());
-    };
-    e.rotation_std_deg = diagonal(imu.q_i_b.data(), 3) * kRadToDeg;
-    e.r_b_std_m = diagonal(imu.r_b.data(), 3);
-    e.time_offset_std_s = diagonal(&imu.time_offset_s, 1)(0);
-    if (imu.kind == ImuModelKind::kCalibrated) continue;
-    // A held entry has no std; the tangent of a block with held entries skips them
-    // (ceres::SubsetManifold).
-    auto std_of = [&](const double* block, int j) {
-      const auto held_it = imu.held_model.find(block);
-      const std::vector<int> held =
-          held_it == imu.held_model.end() ? std::vector<int>() : held_it->second;
-      const auto it = offset.find(block);
-      if (it == offset.end() || std::find(held.begin(), held.end(), j) != held.end()) return NaN();
-      const int row = it->second + j -
-                      static_cast<int>(std::count_if(held.begin(), held.end(),
-                                                     [j](int h) { return h < j; }));
-      return std::sqrt(std::max(0.0, cov(row, row)));
-    };
-    const ImuModelParameters& p = imu.model;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c <= r; ++c) {
-        e.model_std.M_a(r, c) = std_of(p.m_a.data(), LowerTriangularIndex(r, c));
-        e.model_std.M_g(r, c) = std_of(p.m_g.data(), LowerTriangularIndex(r, c));
+      for (int k : e.covariance.Rows({parameter})) {
+        d[e.covariance.entries[k].row] = std::sqrt(std::max(0.0, e.covariance.matrix(k, k)));
       }
-      for (int c = 0; c < 3; ++c) e.model_std.A(r, c) = std_of(p.a.data(), 3 * r + c);
-      e.model_std.C_gyro_i_deg[r] = std_of(p.phi_gyro_i.data(), r) * kRadToDeg;
-    }
-    if (imu.kind != ImuModelKind::kScaleMisalignmentSizeEffect) continue;
-    for (int a = 0; a < 3; ++a) {
-      e.model_std.ry_i[a] = std_of(p.ry_i.data(), a);
-      e.model_std.rz_i[a] = std_of(p.rz_i.data(), a);
-    }
+      return d;
+    };
+    e.rotation_std_deg = diagonal(ImuParameter::kCIB, 3) * kRadToDeg;
+    e.r_b_std_m = diagonal(ImuParameter::kRB, 3);
+    e.time_offset_std_s = diagonal(ImuParameter::kTimeOffset, 1)(0);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "splinecal/axis_name.h"
+#include "splinecal/calib/imu_covariance.h"
 #include "splinecal/io/yaml_writer.h"
 #include "splinecal/lie/so3.h"
 #include "splinecal/plot/plot_decimation.h"
@@ -311,10 +312,26 @@ void WriteImuModelEntries(const ImuCalibration& imu, const ImuModelStd& s, YamlW
   yaml->EndMap();
 }
 
+// The joint covariance of an IMU's estimated parameters (calib/imu_covariance.h): `entries`, the
+// names of its rows in order, and `matrix`, SI units, rotation vectors in radians. Nothing when
+// empty.
+void WriteImuCovarianceYaml(const ImuCovariance& covariance, YamlWriter* yaml) {
+  if (covariance.empty()) return;
+  std::vector<std::string> names;
+  for (const ImuCovarianceEntry& entry : covariance.entries) {
+    names.push_back(ImuCovarianceEntryName(entry));
+  }
+  yaml->BeginMap("covariance");
+  yaml->StringList("entries", names);
+  yaml->Matrix("matrix", covariance.matrix);
+  yaml->EndMap();
+}
+
 void WriteImuModelYaml(const CalibrationResult& r, YamlWriter* yaml) {
   yaml->BeginMap("imu_model");
   yaml->Scalar("model", ImuModelName(r.imu_model.model));
   WriteImuModelEntries(r.imu_model, r.imu_model_std, yaml);
+  WriteImuCovarianceYaml(r.imu_model_covariance, yaml);
   yaml->EndMap();
 }
 
@@ -351,6 +368,7 @@ void WriteFurtherImusYaml(const CalibrationResult& r, YamlWriter* yaml) {
     yaml->Scalar("gyroscope_random_walk", e.noise.gyroscope_random_walk);
     yaml->Scalar("accelerometer_noise_density", e.noise.accelerometer_noise_density);
     yaml->Scalar("accelerometer_random_walk", e.noise.accelerometer_random_walk);
+    WriteImuCovarianceYaml(e.covariance, yaml);
     yaml->EndMap();
   }
 }

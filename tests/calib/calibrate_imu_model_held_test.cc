@@ -5,12 +5,15 @@
 // IMU's model, on a rig turned about one axis.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "calib/calibrate_test_checks.h"
 #include "calib/calibrate_test_scenario.h"
@@ -20,9 +23,86 @@
 #include "splinecal/lie/so3.h"
 #include "splinecal/report/calibrate_report.h"
 #include "splinecal/report/imu_model_report.h"
+#include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 namespace {
+
+// The covariance of an IMU's parameters (calib/imu_covariance.h) against its stds: square,
+// symmetric, positive definite (an estimated entry is determined: the held ones have no row), its
+// entries' names `names` in order, and the square roots of its diagonal exactly the reported stds
+// (`model`; for a further IMU also `further`'s C_i_b, r_b and time offset), rotations in radians
+// against stds in degrees.
+void ExpectCovarianceGivesTheStds(const ImuCovariance& covariance,
+                                  const std::vector<std::string>& names,
+                                  const ImuModelStd& model,
+                                  const FurtherImuEstimate* further = nullptr) {
+  const int n = static_cast<int>(covariance.entries.size());
+  ASSERT_EQ(covariance.matrix.rows(), n);
+  ASSERT_EQ(covariance.matrix.cols(), n);
+  std::vector<std::string> got;
+  for (const ImuCovarianceEntry& entry : covariance.entries) {
+    got.push_back(ImuCovarianceEntryName(entry));
+  }
+  EXPECT_EQ(got, names);
+  // Exactly symmetric (imu_covariance.cc averages the two triangles).
+  EXPECT_TRUE(covariance.matrix == covariance.matrix.transpose());
+  const Eigen::VectorXd sigma = covariance.matrix.diagonal().cwiseSqrt();
+  const Eigen::MatrixXd correlation =
+      sigma.cwiseInverse().asDiagonal() * covariance.matrix * sigma.cwiseInverse().asDiagonal();
+  // Positive definite: the smallest eigenvalue of the correlation matrix (scale-free) positive;
+  // an undetermined direction would give ~1e-16 (the guard holds such entries instead); these
+  // recordings give 0.013 (the reference's 14 entries) and 0.0042 (the further IMU's 25), printed.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(correlation);
+  std::printf("correlation matrix of %d entries: eigenvalues %.3g to %.3g\n",
+              n,
+              eigen.eigenvalues().minCoeff(),
+              eigen.eigenvalues().maxCoeff());
+  EXPECT_GT(eigen.eigenvalues().minCoeff(), 1e-6);
+  // The reported stds, bit for bit, each found by its entry's name; an entry without a row
+  // (held, or no parameter: M's upper triangle) has a NaN std.
+  auto expect_std = [&](const std::string& name, double reported, double scale) {
+    const auto at = std::find(got.begin(), got.end(), name);
+    if (at == got.end()) {
+      EXPECT_TRUE(std::isnan(reported)) << name;
+      return;
+    }
+    const int k = static_cast<int>(at - got.begin());
+    EXPECT_EQ(std::sqrt(covariance.matrix(k, k)) * scale, reported) << name;
+  };
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      expect_std(StringPrintf("M_a(%d,%d)", r, c), model.M_a(r, c), 1.0);
+      expect_std(StringPrintf("M_g(%d,%d)", r, c), model.M_g(r, c), 1.0);
+      expect_std(StringPrintf("A(%d,%d)", r, c), model.A(r, c), 1.0);
+    }
+    expect_std(StringPrintf("C_gyro_i.phi(%d)", r), model.C_gyro_i_deg[r], kRadToDeg);
+    expect_std(StringPrintf("ry_i(%d)", r), model.ry_i[r], 1.0);
+    expect_std(StringPrintf("rz_i(%d)", r), model.rz_i[r], 1.0);
+    if (further == nullptr) continue;
+    expect_std(StringPrintf("C_i_b.phi(%d)", r), further->rotation_std_deg[r], kRadToDeg);
+    expect_std(StringPrintf("r_b(%d)", r), further->r_b_std_m[r], 1.0);
+  }
+  if (further != nullptr) expect_std("time_offset", further->time_offset_std_s, 1.0);
+}
+
+// The names of the model's entries in ImuCovariance's order, without `held`
+// (ImuCovarianceEntryName).
+std::vector<std::string> ModelEntryNames(const std::set<std::string>& held) {
+  std::vector<std::string> names;
+  auto add = [&](const std::string& name) {
+    if (held.count(name) == 0) names.push_back(name);
+  };
+  for (const char* m : {"M_a", "M_g"}) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c <= r; ++c) add(StringPrintf("%s(%d,%d)", m, r, c));
+    }
+  }
+  for (int k = 0; k < 9; ++k) add(StringPrintf("A(%d,%d)", k / 3, k % 3));
+  for (int a = 0; a < 3; ++a) add(StringPrintf("C_gyro_i.phi(%d)", a));
+  return names;
+}
 
 testing::CalibrationScenario ShortScenario() {
   testing::ScenarioOptions o;
@@ -50,6 +130,10 @@ TEST(CalibrateImuModelHeld, HeldEntriesStayNominalWithoutStd) {
   EXPECT_GT(d.C_gyro_i_deg.y(), 0.0);
   EXPECT_GT(d.M_g(0, 0), 0.0);
   EXPECT_NE(p.M_g(0, 0), 1.0);
+  // The model's covariance: the 14 estimated entries (24 less A's 9 and C_gyro_i's z).
+  std::set<std::string> held = {"C_gyro_i.phi(2)"};
+  for (int k = 0; k < 9; ++k) held.insert(StringPrintf("A(%d,%d)", k / 3, k % 3));
+  ExpectCovarianceGivesTheStds(r.imu_model_covariance, ModelEntryNames(held), d);
 }
 
 TEST(CalibrateImuModelHeld, ANameTheModelDoesNotHaveIsRefused) {
@@ -235,6 +319,16 @@ TEST(CalibrateImuModelHeld, FurtherImuGuardHoldsWhatARotationAboutOneAxisLeaves)
   }
   testing::ExpectEntry(
       "time offset", e.calibration.time_offset_s, mounted.time_offset_s, e.time_offset_std_s);
+  // Its covariance: C_i_b, r_b, the time offset, then the 18 estimated entries of the model.
+  std::vector<std::string> names = {
+      "C_i_b.phi(0)", "C_i_b.phi(1)", "C_i_b.phi(2)", "r_b(0)", "r_b(1)", "r_b(2)", "time_offset"};
+  for (const std::string& name : ModelEntryNames(
+           {"C_gyro_i.phi(2)", "M_g(0,0)", "M_g(1,0)", "M_g(2,0)", "M_g(1,1)", "M_g(2,1)"})) {
+    names.push_back(name);
+  }
+  ExpectCovarianceGivesTheStds(e.covariance, names, d, &e);
+  // The reference's `calibrated` model has none.
+  EXPECT_TRUE(r.imu_model_covariance.empty());
 }
 
 }  // namespace

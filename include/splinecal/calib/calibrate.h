@@ -56,6 +56,7 @@
 #include <string>
 #include <vector>
 
+#include "splinecal/calib/imu_covariance.h"
 #include "splinecal/camera/camchain.h"
 #include "splinecal/camera/observations.h"
 #include "splinecal/camera/reprojection_sample.h"
@@ -273,6 +274,9 @@ struct FurtherImuEstimate {
   // time_offset_s (imu/imu_intrinsics.h).
   ImuCalibration calibration;
   ImuModelStd model_std;  // the model's entries' stds (NaN for `calibrated`)
+  // The joint covariance of C_i_b's phi [rad], r_b [m] (unless held), the time offset [s] and the
+  // model's estimated entries, in that order (calib/imu_covariance.h); empty when not computed.
+  ImuCovariance covariance;
   // Standard deviations: C_i_b's rotation in its right tangent C_i_b Exp(phi) (b axes) [deg],
   // r_b per axis [m] (NaN when held), the time offset [s]; NaN when not computed.
   Eigen::Vector3d rotation_std_deg = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
@@ -345,6 +349,10 @@ struct CalibrationResult {
   // C_i_b = I, r_b = 0, time_offset 0) and its standard deviations (NaN for kCalibrated).
   ImuCalibration imu_model;
   ImuModelStd imu_model_std;
+  // The joint covariance of the model's estimated entries (calib/imu_covariance.h: M_a, M_g, A,
+  // C_gyro_i's phi [rad], ry_i, rz_i; held entries have no row); empty for kCalibrated or when
+  // the covariance was not computed.
+  ImuCovariance imu_model_covariance;
   // The further IMUs (CalibrateOptions::further_imus; empty with one IMU).
   std::vector<FurtherImuEstimate> further_imus;
 
