@@ -25,6 +25,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "splinecal/allan/edf.h"
+
 namespace splinecal {
 namespace testing {
 
@@ -44,6 +46,16 @@ struct ChiSquareInterval {
 
 inline ChiSquareInterval ChiSquareInterval95(double k) {
   return {ChiSquareQuantile(k, -kNormalQuantile975), ChiSquareQuantile(k, kNormalQuantile975)};
+}
+
+// The two-sided interval of chi-square(k) that `groups` sums, each checked against its own, all
+// hold at once with probability 95% or more when every covariance is honest (Bonferroni: each at
+// level 1 - 0.05 / groups). A test asserting 8 groups against their 95% intervals would fail one
+// by chance about a third of the time. The library's exact quantile (allan/edf.h): the
+// Wilson-Hilferty form above loses accuracy in the far tails this reaches.
+inline ChiSquareInterval ChiSquareFamilyInterval95(double k, int groups) {
+  const double tail = 0.025 / static_cast<double>(groups);
+  return {::splinecal::ChiSquareQuantile(tail, k), ::splinecal::ChiSquareQuantile(1.0 - tail, k)};
 }
 
 // A group of components of an estimate whose NEES is summed over the Monte-Carlo runs.
