@@ -176,6 +176,7 @@
 #include "splinecal/calib/camera_selection.h"
 #include "splinecal/calib/consider_covariance.h"
 #include "splinecal/calib/fit.h"
+#include "splinecal/calib/imu_covariance.h"
 
 // intrinsics/
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
@@ -187,6 +188,7 @@
 #include "splinecal/intrinsics/local_corner_fit.h"
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
 #include "splinecal/intrinsics/robust_mean_pose.h"
+#include "splinecal/intrinsics/target_deformation.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/intrinsics/time_blocks.h"
 
