@@ -15,4 +15,10 @@ void KeepFreedMemoryForReuse() {
 #endif
 }
 
+void ReturnFreedMemoryToSystem() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 }  // namespace splinecal

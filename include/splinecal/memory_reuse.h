@@ -19,6 +19,10 @@ namespace splinecal {
 // first thing in main, before any thread starts. A no-op without glibc.
 void KeepFreedMemoryForReuse();
 
+// Returns the heap's free pages to the system now (glibc malloc_trim), where a program is about
+// to reach its peak memory with less already freed. A no-op without glibc.
+void ReturnFreedMemoryToSystem();
+
 }  // namespace splinecal
 
 #endif  // SPLINECAL_MEMORY_REUSE_H_

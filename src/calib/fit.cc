@@ -1,9 +1,5 @@
 #include "splinecal/calib/fit.h"
 
-#include <algorithm>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 #include <ceres/ceres.h>
 #include <ceres/covariance.h>
 #include <glog/logging.h>
@@ -11,6 +7,7 @@
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -35,6 +32,7 @@
 #include "fit_uncertainty.h"
 #include "splinecal/error.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "splinecal/memory_reuse.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 #include "splinecal/estimation/knot_spacing.h"
@@ -44,7 +42,6 @@
 namespace splinecal {
 
 namespace {
-
 
 // The data must span at least this many knot intervals, and hold at least this many poses.
 constexpr int kMinKnotIntervals = 4;
@@ -65,9 +62,10 @@ constexpr double kEdgeFraction = 0.01;
 constexpr double kNoiseChangeForNewRound = 0.1;
 // Jacobian entries (8 bytes each) above which fit returns freed memory to the system between its
 // phases: 2e6 (16 MB of Jacobian values, about 45 s of 200 Hz IMU at 0.1 s knots), a quarter of
-// where calibrate and fit switch to SPARSE_SCHUR for memory (SolverOptions).
+// where calibrate and fit switch to SPARSE_SCHUR for memory (SolverOptions). Below it the next
+// allocations reuse the few tens of MB anyway, and faulting them back in cost more than the trim
+// saved (120 fits of 20 s in a Monte-Carlo test: docs/performance.md, "The slow tests' CPU time").
 constexpr double kTrimAboveJacobianEntries = 2e6;
-
 
 SE3d PoseOf(const StampedPose& pose) { return SE3d(SO3d::FromQuaternion(pose.q), pose.p); }
 
@@ -503,16 +501,10 @@ FitResult FitProblem::Impl::Solve() {
       6.0 * static_cast<double>(used_poses.size()) * 31.0;
   const SolverOptions solver = spline_problem->ResolvedSolverOptions(options.solver);
   SolveRounds rounds(solver, jacobian_entries);
-  // Freed memory is returned to the system (malloc_trim) only where it is the peak memory of a
-  // long recording: below kTrimAboveJacobianEntries the next allocations reuse the few tens of MB
-  // anyway, and faulting them back in cost more than the trim saved (a 20 s fit, 120 of them in
-  // a Monte-Carlo test: docs/performance.md, "The slow tests' CPU time").
-  [[maybe_unused]] const bool trim_memory = jacobian_entries > kTrimAboveJacobianEntries;
-#ifdef __GLIBC__
+  const bool trim_memory = jacobian_entries > kTrimAboveJacobianEntries;
   // Return what the initialisation freed (the pose fit's solver) before the main solve, whose
   // Jacobian is the peak memory of long recordings (docs/performance.md).
-  if (trim_memory) malloc_trim(0);
-#endif
+  if (trim_memory) ReturnFreedMemoryToSystem();
   for (int round = 0; round < solver.max_rounds; ++round) {
     rounds.Solve(problem(), "fit: ");
     if (rounds.failed()) {
@@ -661,11 +653,9 @@ FitResult FitProblem::Impl::Solve() {
   warn_ratio(result.residual_rms.position_m / options.pose_sigma_m, "pose position");
   warn_ratio(result.residual_rms.rotation_rad / options.pose_sigma_rad, "pose rotation");
 
-#ifdef __GLIBC__
   // The solver's Jacobian is gone: give its pages back before the covariance allocates (the
   // peak memory of long recordings, docs/performance.md).
-  if (trim_memory) malloc_trim(0);
-#endif
+  if (trim_memory) ReturnFreedMemoryToSystem();
   if (options.covariance.compute) ComputeCovariance(&result);
   result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
   return result;
