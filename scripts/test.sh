@@ -32,7 +32,9 @@ for arg in "$@"; do
       cmake_args=(-DCMAKE_BUILD_TYPE=Sanitize "-DCMAKE_CXX_FLAGS_SANITIZE=-O2 -g0"
                   -DSPLINECAL_SANITIZE=ON -DSPLINECAL_SLOW_TESTS=OFF -DSPLINECAL_PYTHON=OFF
                   -DSPLINECAL_CONSUMER_TEST=OFF -DSPLINECAL_ARITHMETIC_TESTS=OFF)
-      ctest_args+=(-LE "slow|sanitize_skip")
+      # The short tests run in batches, many to a process (tests/sanitize_batches.cmake): each
+      # keeps its own entry, labelled in_batch, for `ctest -R`.
+      ctest_args+=(-LE "slow|sanitize_skip|in_batch")
       # ASan's allocator costs: each malloc and free records its call stack (30 frames by
       # default) and freed memory waits in a 256 MB quarantine before reuse, which faults in
       # fresh pages (system time). 10 frames still reach the caller in the library (a
@@ -62,15 +64,26 @@ for arg in "$@"; do
   esac
 done
 
+# Each phase's wall time, for docs/reliability.md's account of where CI's time goes.
+phase_start=$SECONDS
+phase_done() {
+  echo "scripts/test.sh ($build_dir): $1 in $((SECONDS - phase_start)) s"
+  phase_start=$SECONDS
+}
 scripts/install-deps.sh
+phase_done "dependencies checked"
 jobs=$(nproc)
 scripts/configure.sh . "$build_dir" "${cmake_args[@]}"
+phase_done "configured"
 cmake --build "$build_dir" -j "$jobs"
+phase_done "built"
 ctest --test-dir "$build_dir" --output-on-failure -j "$jobs" "${ctest_args[@]}"
+phase_done "tests run"
 
 if [[ -n "${release_labels:-}" ]]; then
   # Every test of the Release build ran here or in the sanitizer build (a label that went
-  # missing would otherwise drop tests silently).
+  # missing would otherwise drop tests silently). The sanitizer build's list holds its batched
+  # tests by name (label in_batch; their batch ran them).
   list_tests() { ctest --test-dir "$1" -N "${@:2}" | sed -n 's/^ *Test *#[0-9]*: //p' | sort -u; }
   missing=$(comm -23 <(list_tests build) \
     <(sort -u <(list_tests build -L "$release_labels") \
@@ -80,4 +93,5 @@ if [[ -n "${release_labels:-}" ]]; then
     echo "$missing" >&2
     exit 1
   fi
+  phase_done "coverage checked"
 fi

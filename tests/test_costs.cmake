@@ -6,6 +6,8 @@
 # (shorter than 1 s, or new) still runs, with cost 0. The sanitizer build has its own figures
 # (the rows "sanitize"), chosen by SPLINECAL_TESTS_SANITIZED (set by the generated
 # test_build_kind.cmake read just before this file); the others take the rows "release".
+# SPLINECAL_COSTED_TESTS lists the tests with a row: sanitize_batches.cmake runs the others in
+# batches.
 if(SPLINECAL_TESTS_SANITIZED)
   set(splinecal_cost_build sanitize)
 else()
@@ -16,5 +18,6 @@ file(STRINGS "${CMAKE_CURRENT_LIST_DIR}/test_costs.txt" splinecal_cost_rows
 foreach(row IN LISTS splinecal_cost_rows)
   if(row MATCHES "^${splinecal_cost_build} ([0-9.]+) (.+)$")
     set_tests_properties("${CMAKE_MATCH_2}" PROPERTIES COST ${CMAKE_MATCH_1})
+    list(APPEND SPLINECAL_COSTED_TESTS "${CMAKE_MATCH_2}")
   endif()
 endforeach()
