@@ -78,21 +78,20 @@ CalibrationResult CalibrateRecording(const RealRecording& r) {
   return CalibrateRecording(r, r.camchain);
 }
 
-// The camchain with each T_cam_imu moved by kStartAngleDeg about a tilted axis and about 1 cm,
-// and the time offset by 1 ms: beyond the two references' disagreement (0.3 deg, 7 mm) and the
-// rotation bounds. (From 5 deg, 3 cm and 5 ms the calibration does NOT come back: measured cam1
-// 1.6 deg and 12 mm from the run started at the dataset's camchain, the stereo baseline 99.98 mm
-// instead of 110.07; docs/reliability.md, "Still open".)
-constexpr double kStartAngleDeg = 1.0;
+// The camchain with each T_cam_imu moved by kStartAngleDeg about a tilted axis and by 3 cm, and
+// the time offset by 5 ms: far beyond the two references' disagreement (0.3 deg, 7 mm) and the
+// rotation bounds. Measured on 2026-11-29 (docs/calibrate.md, "Tests"): from here, and from
+// 10 deg, 4.9 cm and 10 ms, both runs end at the same calibration to 1.4e-5 deg and 8.4e-4 mm.
+constexpr double kStartAngleDeg = 5.0;
 Camchain PerturbedStart(const Camchain& camchain) {
   Camchain start = camchain;
   for (size_t cam = 0; cam < start.size(); ++cam) {
     const double sign = cam % 2 == 0 ? 1.0 : -1.0;
     const Eigen::Vector3d axis = Eigen::Vector3d(1.0, sign * 2.0, -1.5).normalized();
     const SE3d delta(SO3d::Exp(kStartAngleDeg * kDegToRad * axis),
-                     Eigen::Vector3d(0.008, -sign * 0.005, 0.003));
+                     Eigen::Vector3d(0.024, -sign * 0.015, 0.009));
     start[cam].T_cam_imu = delta * start[cam].T_cam_imu;
-    start[cam].time_offset_s += 0.001;
+    start[cam].time_offset_s += 0.005;
   }
   return start;
 }
@@ -181,7 +180,7 @@ TEST(CalibrateEuroc, WholeRecordingAgreesWithThePublishedCalibrationsFromAPertur
   ASSERT_EQ(from_kalibr.cameras.size(), 2u);
   // The same minimum from both starts. Tolerance: a tenth of the reported standard deviation
   // (the two runs differ only by where the solver stopped, which its convergence tolerance
-  // bounds far below the statistical uncertainty), and the start was 7 to 25 of them away.
+  // bounds far below the statistical uncertainty), and the start was tens of them away.
   for (int cam = 0; cam < 2; ++cam) {
     const CameraEstimate& a = r.cameras[cam];
     const CameraEstimate& b = from_kalibr.cameras[cam];
