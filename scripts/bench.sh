@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds the Google Benchmark programs (Release, -march=native like the issues' reference
-# figures) and runs them; results go to build-bench/results/<bench>.txt and the console.
+# Builds the Google Benchmark programs (Release, -march=native, the build docs/performance.md's
+# reference figures were measured with) and runs them; results go to build-bench/results/<bench>.txt
+# and the console.
 #   scripts/bench.sh [BENCH ...]                 default: every bench/*_bench.cc
 #   scripts/bench.sh --against REV [--rounds N] [--filter REGEX] BENCH ...
 #       side by side with commit REV, in one run: REV's benchmarks are built in a worktree

@@ -22,7 +22,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-// The bar: the O(N) per-tau implementation equals the definition to 1e-10 relative.
+// The bar (docs/allan.md, "Method", 1): the O(N) per-tau implementation equals the definition
+// to 1e-10 relative.
 // (Both sides are accurate to ~1e-13 here; see allan_deviation.h for the error budget.)
 constexpr double kDefinitionTolerance = 1e-10;
 

@@ -69,7 +69,8 @@ TEST(NoiseDecisions, GaussMarkovBiasIsNoRandomWalk) {
                 walk.upper_bound);
     const TermEstimate& white = axis.fit[NoiseTerm::kWhite];
     ASSERT_TRUE(white.identified) << white.reason;
-    EXPECT_NEAR(white.value / kN, 1.0, 0.03);  // the bar
+    // N within 3% (docs/allan.md, "How each term is decided").
+    EXPECT_NEAR(white.value / kN, 1.0, 0.03);
     EXPECT_LE(white.value, white.upper_bound);
   }
   EXPECT_TRUE(result.gyroscope_random_walk.upper_bound);
@@ -95,7 +96,8 @@ TEST(NoiseDecisions, RandomWalkOverADecadeIsIdentified) {
     SCOPED_TRACE(axis.name);
     const TermEstimate& walk = axis.fit[NoiseTerm::kRandomWalk];
     ASSERT_TRUE(walk.identified) << walk.reason;
-    EXPECT_NEAR(walk.value / kK, 1.0, 0.15);  // the bar
+    // K within 15% (docs/allan.md, "How each term is decided").
+    EXPECT_NEAR(walk.value / kK, 1.0, 0.15);
     EXPECT_GE(std::log10(walk.tau_max_s / walk.tau_min_s), 0.5);
     EXPECT_NEAR(walk.measured_slope, 0.5, 0.15);
     EXPECT_LE(walk.value, walk.upper_bound);
@@ -137,7 +139,8 @@ TEST(NoiseDecisions, FilteredSensorDipIsSkipped) {
     EXPECT_LT(axis.fit.adev_high[0], kN / std::sqrt(axis.curve.tau_s[0]));
     const TermEstimate& white = axis.fit[NoiseTerm::kWhite];
     ASSERT_TRUE(white.identified) << white.reason;
-    EXPECT_NEAR(white.value / kN, 1.0, 0.05);  // the bar
+    // N within 5% (docs/allan.md, "How each term is decided").
+    EXPECT_NEAR(white.value / kN, 1.0, 0.05);
     EXPECT_GT(white.tau_min_s, axis.fit.filter_dip_tau_s);
     // The bound is a bound: above the identified value, and not below the truth by more than the
     // value's own error.

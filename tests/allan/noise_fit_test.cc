@@ -25,7 +25,8 @@ constexpr double kAccelNoiseDensity = 2.0e-3;    // [m/s^2/sqrt(Hz)]
 constexpr double kAccelRandomWalk = 3.0e-3;      // [m/s^3/sqrt(Hz)]
 constexpr double kRateHz = 200.0;
 
-// The bars for one run of >= 4 h: N within 3%, K within 35%.
+// The bars for one run of >= 4 h (docs/allan.md, "How each term is decided"): N within 3%,
+// K within 35%.
 constexpr double kNoiseDensityTolerance = 0.03;
 constexpr double kRandomWalkTolerance = 0.35;
 // Scaling the signal scales every estimate; only rounding differs between scales.

@@ -1,8 +1,8 @@
-// The round trips at full length (label "slow"): 60 s of a simulated rolling-shutter
-// camera (20 Hz, 1200 frames, ~140 aprilgrid corners per frame, 0.5 px noise) and a 200 Hz IMU
-// with the ADIS16448 noise, lively motion over the target. Plus the shutter-model comparison of
-// docs/calibrate.md: global-shutter data calibrated with --rolling-shutter, and rolling-shutter
-// data calibrated without it.
+// The accuracy round trips at full length (label "slow"; the targets: docs/calibrate.md, "Tests"):
+// 60 s of a simulated rolling-shutter camera (20 Hz, 1200 frames, ~140 aprilgrid corners per frame,
+// 0.5 px noise) and a 200 Hz IMU with the ADIS16448 noise, lively motion over the target. Plus the
+// shutter-model comparison of docs/calibrate.md: global-shutter data calibrated with
+// --rolling-shutter, and rolling-shutter data calibrated without it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,7 +33,8 @@ Errors CalibrateAndCompare(const CalibrationScenario& s,
 }
 
 TEST(CalibrateSlow, NaturalLandmarksOnlyFromInitialPoses) {
-  // 6 s, 300 landmarks: twice the targets (calibrate_test.cc runs half of it).
+  // 6 s, 300 landmarks: twice the accuracy targets (docs/calibrate.md, "Tests";
+  // calibrate_test.cc runs half of it).
   ExpectLandmarksOnlyCalibration(6.0, 300, 2.0);
 }
 

@@ -191,7 +191,7 @@ TEST(Calibrate, WideAngleDoubleSphereRoundTrip) {
 TEST(Calibrate, NaturalLandmarksOnlyFromInitialPosesShortRecording) {
   // Half the data of CalibrateSlow.NaturalLandmarksOnlyFromInitialPoses (3 s, 150 landmarks), so
   // that the sanitizer build runs the landmark path too: its standard deviations are ~1.8x
-  // larger (measured), hence 4x the targets instead of 2x.
+  // larger (measured), hence 4x the accuracy targets (docs/calibrate.md, "Tests") instead of 2x.
   ExpectLandmarksOnlyCalibration(3.0, 150, 4.0);
 }
 

@@ -1,6 +1,6 @@
-// What the calibrate tests (fast and slow) check a result against: the accuracy targets,
-// the errors of an estimate against the simulated truth, one printed line per run, and the
-// landmark-only case that both suites run at different lengths.
+// What the calibrate tests (fast and slow) check a result against: the accuracy targets
+// (docs/calibrate.md, "Tests"), the errors of an estimate against the simulated truth, one printed
+// line per run, and the landmark-only case that both suites run at different lengths.
 #ifndef SPLINECAL_TESTS_CALIB_CALIBRATE_TEST_CHECKS_H_
 #define SPLINECAL_TESTS_CALIB_CALIBRATE_TEST_CHECKS_H_
 
@@ -70,9 +70,10 @@ inline void Print(const char* name, const CalibrationResult& r, const Errors& e)
   for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
 }
 
-// The accuracy targets (for 60 s; the fast test runs 15 s, whose standard deviations are
-// ~1.4x larger but still far inside them): rotation 0.05 deg, translation 2 mm, time offset
-// 0.1 ms, line delay 1%; and every error within 3 reported standard deviations.
+// The accuracy targets for 60 s (docs/calibrate.md, "Tests"; the fast test runs 15 s, whose
+// standard deviations are ~1.4x larger but still far inside them): rotation 0.05 deg,
+// translation 2 mm, time offset 0.1 ms, line delay 1%; and every error within 3 reported
+// standard deviations.
 constexpr double kMaxRotationErrorDeg = 0.05;
 constexpr double kMaxTranslationErrorM = 0.002;
 constexpr double kMaxTimeOffsetErrorS = 1e-4;
@@ -125,7 +126,7 @@ inline CalibrateOptions FastOptions() {
 
 // Camera-IMU calibration without a target: num_landmarks natural landmarks 1-6 m away seen over
 // duration_s, started from noisy IMU poses. Every error within 6 reported standard deviations and
-// within target_factor times the targets.
+// within target_factor times the accuracy targets.
 inline void ExpectLandmarksOnlyCalibration(double duration_s,
                                            int num_landmarks,
                                            double target_factor) {
@@ -173,7 +174,7 @@ inline void ExpectLandmarksOnlyCalibration(double duration_s,
   }
   EXPECT_LT(std::abs(e.time_offset_s), kLandmarkStdFactor * c.time_offset_std_s);
   EXPECT_LT(std::abs(e.line_delay_s), kLandmarkStdFactor * c.line_delay_std_s);
-  // 6 s of landmarks rather than 60 s of target: twice the targets (target_factor).
+  // 6 s of landmarks rather than 60 s of target: twice the accuracy targets (target_factor).
   EXPECT_LT(e.rotation_deg.norm(), target_factor * kMaxRotationErrorDeg);
   EXPECT_LT(e.translation_m.norm(), target_factor * kMaxTranslationErrorM);
   EXPECT_LT(std::abs(e.time_offset_s), target_factor * kMaxTimeOffsetErrorS);

@@ -27,9 +27,9 @@ using ::testing::HasSubstr;
 using testing::MakeFitData;
 using testing::PerturbedControlPoses;
 
-// The noise-free recovery bounds. Noise-free data generated from a spline with the same
-// knots is fitted exactly: the minimum has zero cost, and the solver stops at cost ~1e-17 where
-// parameter errors are ~1e-11.
+// The noise-free recovery bounds (docs/fit.md, "Results"). Noise-free data generated from a spline
+// with the same knots is fitted exactly: the minimum has zero cost, and the solver stops at cost
+// ~1e-17 where parameter errors are ~1e-11.
 constexpr double kNoiseFreeControlPoseTolerance = 1e-6;  // |Log(T_true^-1 T)| [m, rad]
 constexpr double kNoiseFreeBiasTolerance = 1e-8;         // [rad/s, m/s^2]
 constexpr double kNoiseFreeGravityToleranceDeg = 1e-6;

@@ -62,7 +62,8 @@ TEST(SimulateCameraCommand, CameraFlagsWithoutCamchainAreRefused) {
 
 // The whole pipeline on a 10 s sequence: the calibration, started 2.9 degrees and 2.7 cm off
 // with no time offset and a global shutter, recovers the truth. Tolerances are looser than the
-// issue's 60 s targets (a sixth of the data): 0.2 ms, 5% of the line delay, 1 mm.
+// 60 s accuracy targets (docs/calibrate.md, "Tests"; a sixth of the data): 0.2 ms, 5% of the
+// line delay, 1 mm.
 TEST(SimulateCameraCommand, CalibrateRecoversTheSimulatedRig) {
   TempDir dir;
   ASSERT_EQ(RunTool(SimulateArgs(dir.File("sim"), "2")).exit_code, 0);

@@ -206,8 +206,8 @@ TEST(AprilGridRecall, SmallAndObliqueTagsOfRealFramesAreFoundWithTheRightIds) {
   int off = 0;
   // Measured: 100% of the corners of tags of 20 px and more (fast: 87.5%), 99.1% of those of
   // 15 px and more (fast: 52.3%), no wrong id at any size; none more than 1 px off from 15 px.
-  // The bounds are the (97% from 15 px, 0 wrong ids); 20 px and up keeps the margin it
-  // had before the grid prediction (97%).
+  // The bounds (docs/detect.md, "Small and oblique tags"): 97% from 15 px, 0 wrong ids; 20 px
+  // and up keeps the margin it had before the grid prediction (97%).
   const double recall_20 = table.Recall(20.0, &off);
   EXPECT_GE(recall_20, 0.97);
   EXPECT_EQ(off, 0);
@@ -282,7 +282,8 @@ TEST(AprilGridRecall, TwentyPixelTagsOfRenderedGridsGiveExactCorners) {
   // Measured: 779 of 864 corners (90%; the tags turned by 45 and 50 degrees are 13-15 px
   // across), median 0.034 px, 95th percentile 0.52 px, max 1.23 px: the saddle fit is exact on
   // most corners but has a tail on small, strongly turned tags (docs/detect.md, "Limits"). The
-  // issue's bound is on the median; the tail is held where it was measured.
+  // accuracy bound, 0.1 px, is on the median (docs/detect.md, "Small and oblique tags",
+  // rendered grids); the tail is held where it was measured.
   EXPECT_LE(median, 0.1);
   EXPECT_LT(p95, 0.6);
   EXPECT_EQ(wrong_ids, 0);

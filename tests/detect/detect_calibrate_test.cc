@@ -90,8 +90,8 @@ TEST(DetectThenCalibrate, ImagesOfASimulatedRecordingGiveTheRigBack) {
   const double offset_s = estimate[0].time_offset_s - s.truth[0].time_offset_s;
   std::printf("calibrate: rotation %.4f deg, translation %.3f mm, time offset %.4f ms\n",
               rotation_deg, 1e3 * translation_m, 1e3 * offset_s);
-  // Measured: 0.011 deg, 0.28 mm, 0.003 ms. The bounds are the calibrate issue's accuracy
-  // targets (tests/calib/calibrate_test_checks.h).
+  // Measured: 0.011 deg, 0.28 mm, 0.003 ms. The bounds are calibrate's accuracy targets, 0.05 deg,
+  // 2 mm, 0.1 ms (docs/calibrate.md, "Tests"; tests/calib/calibrate_test_checks.h).
   EXPECT_LT(rotation_deg, 0.05);
   EXPECT_LT(translation_m, 0.002);
   EXPECT_LT(std::abs(offset_s), 1e-4);

@@ -12,12 +12,14 @@
 namespace splinecal {
 namespace {
 
-// The bound for the white-noise sample std: 2% of sigma * sqrt(f). With 200k samples
-// the std's own sampling error is 1 / sqrt(2 n) = 0.16%, so 2% is > 10 standard errors.
+// The bound for the white-noise sample std (docs/simulate.md, "Checks"): 2% of sigma * sqrt(f).
+// With 200k samples the std's own sampling error is 1 / sqrt(2 n) = 0.16%, so 2% is > 10
+// standard errors.
 constexpr double kWhiteStdRelTolerance = 0.02;
-// The bound for the random-walk variance after T: 10% of sigma_rw^2 T. Pooling 3 axes
-// over kWalkSeeds seeds gives 3 * 1000 draws of b_T - b_0; the variance estimate's relative
-// standard error is sqrt(2 / 3000) = 2.6%, so 10% is ~4 standard errors.
+// The bound for the random-walk variance after T (docs/simulate.md, "Checks"): 10% of
+// sigma_rw^2 T. Pooling 3 axes over kWalkSeeds seeds gives 3 * 1000 draws of b_T - b_0; the
+// variance estimate's relative standard error is sqrt(2 / 3000) = 2.6%, so 10% is ~4 standard
+// errors.
 constexpr double kWalkVarRelTolerance = 0.10;
 constexpr int kWalkSeeds = 1000;
 

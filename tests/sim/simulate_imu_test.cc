@@ -19,7 +19,7 @@ namespace {
 // Ground-truth velocity against a central difference of the spline's positions, step h = 1 ms:
 // truncation h^2/6 |p'''| (~3e-6 for |p'''| <= 20 m/s^3) plus rounding eps |p| / h (~1e-11).
 constexpr double kVelocityDifferenceTolerance = 1e-5;
-// The white-noise bound.
+// The white-noise bound (docs/simulate.md, "Checks"): the per-sample std within 2%.
 constexpr double kWhiteStdRelTolerance = 0.02;
 
 const int64_t kKnotSpacingNs = 50'000'000;
