@@ -20,6 +20,7 @@
 #include "splinecal/io/imu_units.h"
 #include "splinecal/io/static_recording.h"
 #include "splinecal/report/command_outputs.h"
+#include "splinecal/report/option_names.h"
 
 namespace splinecal {
 namespace python {
@@ -115,12 +116,9 @@ py::dict Allan(py::handle imu,
   options.max_tau_fraction = max_tau_fraction;
   if (max_passes < 0) throw py::value_error("max_passes: expected 0 (no budget) or positive");
   options.max_passes = max_passes;
-  if (combine == "mean") {
-    options.combine = CombineAxes::kMean;
-  } else if (combine == "max") {
-    options.combine = CombineAxes::kMax;
-  } else {
-    throw py::value_error("combine: expected mean or max, got '" + combine + "'");
+  if (!ValueNamed(kCombineAxesNames, combine, &options.combine)) {
+    throw py::value_error("combine: expected " + JoinNames(kCombineAxesNames, " or ") +
+                          ", got '" + combine + "'");
   }
   options.start_s = start;
   if (end != 0.0) options.end_s = end;  // 0: the end, as --end

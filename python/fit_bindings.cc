@@ -14,6 +14,7 @@
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/report/command_outputs.h"
 #include "splinecal/report/fit_report.h"
+#include "splinecal/report/option_names.h"
 
 namespace splinecal {
 namespace python {
@@ -64,12 +65,9 @@ py::dict FitFunction(py::handle imu,
   }
   options.max_time_offset_s = max_time_offset;
   options.estimate_extrinsic = estimate_extrinsic;
-  if (bias_model == "constant") {
-    options.model.bias_model = BiasModel::kConstant;
-  } else if (bias_model == "spline") {
-    options.model.bias_model = BiasModel::kSpline;
-  } else {
-    throw py::value_error("bias_model: expected constant or spline, got '" + bias_model + "'");
+  if (!ValueNamed(kBiasModelNames, bias_model, &options.model.bias_model)) {
+    throw py::value_error("bias_model: expected " + JoinNames(kBiasModelNames, " or ") +
+                          ", got '" + bias_model + "'");
   }
   if (!(bias_knot_spacing > 0.0) || !(bias_knot_spacing <= 1e9)) {
     throw py::value_error("bias_knot_spacing: expected (0, 1e9] s, got " +

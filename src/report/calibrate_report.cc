@@ -14,6 +14,7 @@
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/html_page.h"
 #include "splinecal/report/imu_model_report.h"
+#include "splinecal/report/option_names.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
 #include "splinecal/spline/trajectory_model.h"
@@ -432,7 +433,7 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("knot_spacing_s", NanosecondsToSeconds(r.layout.dt_ns));
   yaml.Scalar("knot_spacing_rule", r.knot_spacing_rule);
   yaml.Scalar("trajectory", TrajectoryModelName(r.trajectory));
-  yaml.Scalar("bias_model", options.model.bias_model == BiasModel::kSpline ? "spline" : "constant");
+  yaml.Scalar("bias_model", NameOf(kBiasModelNames, options.model.bias_model));
   yaml.Scalar("rolling_shutter", options.rolling_shutter);
   yaml.Scalar("huber_px", options.huber_px);
   yaml.Scalar("iterations", r.solve.iterations);

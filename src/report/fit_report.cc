@@ -8,6 +8,7 @@
 #include "splinecal/plot/plot_decimation.h"
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/html_page.h"
+#include "splinecal/report/option_names.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/spline/trajectory_model.h"
 #include "splinecal/string_printf.h"
@@ -16,10 +17,6 @@
 namespace splinecal {
 
 namespace {
-
-std::string BiasModelName(BiasModel model) {
-  return model == BiasModel::kConstant ? "constant" : "spline";
-}
 
 void Append3(const Eigen::Vector3d& v, std::string* row) {
   for (int a = 0; a < 3; ++a) *row += "," + FormatDouble(v[a]);
@@ -63,7 +60,7 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   yaml.Scalar(
       "imu_yaml",
       inputs.imu_yaml_path.empty() ? std::string("(ADIS16448 defaults)") : inputs.imu_yaml_path);
-  yaml.Scalar("bias_model", BiasModelName(r.bias_model));
+  yaml.Scalar("bias_model", NameOf(kBiasModelNames, r.bias_model));
   if (r.bias_model == BiasModel::kSpline) {
     yaml.Comment("bias spline: gyro_bias / accel_bias are its time averages over the IMU samples");
   }
@@ -248,7 +245,7 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
 
   // Biases over time (with +-1 std bands for the constant model).
   plot::Figure biases;
-  biases.title = "Biases (" + BiasModelName(r.bias_model) + " model)";
+  biases.title = std::string("Biases (") + NameOf(kBiasModelNames, r.bias_model) + " model)";
   biases.columns = 2;
   biases.panel_width = 450.0;
   biases.panel_height = 260.0;
