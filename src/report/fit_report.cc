@@ -174,11 +174,11 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
     figure.panel_width = 900.0;
     figure.panel_height = 220.0;
     for (int a = 0; a < 3; ++a) {
-      plot::Panel& panel = figure.panels.emplace_back();
-      panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
-      panel.y = {
-          std::string(gyro ? "gyro " : "accel ") + AxisName(a) + (gyro ? " [rad/s]" : " [m/s^2]"),
-          plot::Scale::kLinear};
+      plot::Panel& panel = plot::AddPanel(
+          &figure,
+          "",
+          "time since the first IMU sample [s]",
+          std::string(gyro ? "gyro " : "accel ") + AxisName(a) + (gyro ? " [rad/s]" : " [m/s^2]"));
       plot::Series& measured = panel.series.emplace_back();
       measured.label = "measured";
       measured.color = "#999999";
@@ -206,10 +206,11 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   plot::Series thin_line;
   thin_line.line_width = 1.0;
   for (int sensor = 0; sensor < 2; ++sensor) {
-    plot::Panel& panel = residuals.panels.emplace_back();
-    panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
-    panel.y = {sensor == 0 ? "gyro residual [rad/s]" : "accel residual [m/s^2]",
-               plot::Scale::kLinear};
+    plot::Panel& panel =
+        plot::AddPanel(&residuals,
+                       "",
+                       "time since the first IMU sample [s]",
+                       sensor == 0 ? "gyro residual [rad/s]" : "accel residual [m/s^2]");
     AddAxisSeries(
         thin_line,
         imu,
@@ -228,10 +229,11 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   dots.marker = plot::Marker::kCircle;
   dots.marker_size = 1.5;
   for (int kind = 0; kind < 2; ++kind) {
-    plot::Panel& panel = residuals.panels.emplace_back();
-    panel.x = {"pose time, shifted like the IMU axis [s]", plot::Scale::kLinear};
-    panel.y = {kind == 0 ? "pose position error [m]" : "pose rotation error [deg]",
-               plot::Scale::kLinear};
+    plot::Panel& panel =
+        plot::AddPanel(&residuals,
+                       "",
+                       "pose time, shifted like the IMU axis [s]",
+                       kind == 0 ? "pose position error [m]" : "pose rotation error [deg]");
     AddAxisSeries(
         dots,
         r.pose_samples,
@@ -250,9 +252,10 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   biases.panel_width = 450.0;
   biases.panel_height = 260.0;
   for (int sensor = 0; sensor < 2; ++sensor) {
-    plot::Panel& panel = biases.panels.emplace_back();
-    panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
-    panel.y = {sensor == 0 ? "gyro bias [rad/s]" : "accel bias [m/s^2]", plot::Scale::kLinear};
+    plot::Panel& panel = plot::AddPanel(&biases,
+                                        "",
+                                        "time since the first IMU sample [s]",
+                                        sensor == 0 ? "gyro bias [rad/s]" : "accel bias [m/s^2]");
     AddAxisSeries(
         plot::Series(),
         imu,
