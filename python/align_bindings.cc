@@ -63,28 +63,30 @@ py::dict AlignFunction(py::handle imu,
 }  // namespace
 
 void BindAlign(py::module_& m) {
-  m.def("align",
-        &AlignFunction,
-        py::arg("imu"),
-        py::arg("camera_poses"),
-        py::kw_only(),
-        py::arg("camchain") = py::none(),
-        py::arg("imu_yaml") = py::none(),
-        py::arg("estimate_rotation_extrinsic") = false,
-        py::arg("gravity") = kDefaultGravity,
-        py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
-        py::arg("camera_position_std") = 0.005,
-        py::arg("camera_rotation_std") = 0.002,
-        py::arg("accel_unit") = "m/s^2",
-        py::arg("gyro_unit") = "rad/s",
-        py::arg("out") = py::none(),
-        R"(Visual-inertial alignment as `splinecal align`, with its flags as keywords. imu: a EuRoC
+  const AlignOptions defaults;
+  DefCommand(
+      m,
+      "align",
+      &AlignFunction,
+      R"(Visual-inertial alignment as `splinecal align`, with its flags as keywords. imu: a EuRoC
 imu0/data.csv path or {t_ns, gyro, accel}; camera_poses (T_c0_c up to scale): a TUM / EuRoC
 ground truth path or {t_ns, T_w_s (n, 4, 4)}; camchain: a Kalibr camchain.yaml path (cam0's
 T_cam_imu and timeshift_cam_imu). out: a folder to write result.yaml and aligned_poses.csv to.
 Returns result.yaml's keys plus aligned_poses {t_ns, T_w_s, v_w, gyro_bias, accel_bias}, the
 IMU poses in the gravity-aligned world (fit's poses, calibrate's initial_poses). A motion that
-does not determine scale and gravity raises splinecal.Error ("alignment refused: ...").)");
+does not determine scale and gravity raises splinecal.Error ("alignment refused: ...").)",
+      py::arg("imu"),
+      py::arg("camera_poses"),
+      py::kw_only(),
+      py::arg("camchain") = py::none(),
+      py::arg("imu_yaml") = py::none(),
+      py::arg("estimate_rotation_extrinsic") = defaults.estimate_rotation_extrinsic,
+      py::arg("gravity") = defaults.gravity_m_s2,
+      py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
+      py::arg("camera_position_std") = defaults.camera_noise.position_std_m,
+      py::arg("camera_rotation_std") = defaults.camera_noise.rotation_std_rad,
+      py::arg("accel_unit") = "m/s^2",
+      py::arg("gyro_unit") = "rad/s");
 }
 
 }  // namespace python

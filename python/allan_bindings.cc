@@ -20,6 +20,7 @@
 #include "splinecal/io/imu_units.h"
 #include "splinecal/io/static_recording.h"
 #include "splinecal/report/command_outputs.h"
+#include "splinecal/report/option_names.h"
 
 namespace splinecal {
 namespace python {
@@ -115,12 +116,9 @@ py::dict Allan(py::handle imu,
   options.max_tau_fraction = max_tau_fraction;
   if (max_passes < 0) throw py::value_error("max_passes: expected 0 (no budget) or positive");
   options.max_passes = max_passes;
-  if (combine == "mean") {
-    options.combine = CombineAxes::kMean;
-  } else if (combine == "max") {
-    options.combine = CombineAxes::kMax;
-  } else {
-    throw py::value_error("combine: expected mean or max, got '" + combine + "'");
+  if (!ValueNamed(kCombineAxesNames, combine, &options.combine)) {
+    throw py::value_error("combine: expected " + JoinNames(kCombineAxesNames, " or ") +
+                          ", got '" + combine + "'");
   }
   options.start_s = start;
   if (end != 0.0) options.end_s = end;  // 0: the end, as --end
@@ -186,36 +184,35 @@ void BindAllan(py::module_& m) {
 (or (n,) -> adev (m,)) sampled at rate_hz, at the log-spaced averaging times of
 `splinecal allan` (taus_per_decade per decade, up to max_tau_fraction of the record), fully
 overlapping at every one (no work budget).)");
-  m.def("allan",
-        &Allan,
-        py::arg("imu") = py::none(),
-        py::arg("rate") = py::none(),
-        py::kw_only(),
-        py::arg("columns") = py::none(),
-        py::arg("sensor") = py::none(),
-        py::arg("taus_per_decade") = 10,
-        py::arg("max_tau_fraction") = 0.1,
-        py::arg("max_passes") = kDefaultAllanMaxPasses,
-        py::arg("combine") = "mean",
-        py::arg("start") = 0.0,
-        py::arg("end") = 0.0,
-        py::arg("allow_motion") = false,
-        py::arg("gyro_scale") = 1.0,
-        py::arg("accel_scale") = 1.0,
-        py::arg("gyro_unit") = "rad/s",
-        py::arg("accel_unit") = "m/s^2",
-        py::arg("out") = py::none(),
-        py::arg("bag") = py::none(),
-        py::arg("imu_topic") = "/imu0",
-        py::arg("bag_time") = "header",
-        R"(IMU noise from a static recording, as `splinecal allan` with its flags as keywords.
+  const AllanOptions defaults;
+  DefImuCommand(
+      m,
+      "allan",
+      &Allan,
+      R"(IMU noise from a static recording, as `splinecal allan` with its flags as keywords.
 imu: the path of a EuRoC imu0/data.csv, or an array (n, 6) of gyro xyz [rad/s] and accel xyz
 [m/s^2] (or (n, 1..3) of one sensor, with sensor="gyro" or "accel") sampled at rate [Hz];
 columns: the path of a plain-columns file at rate (instead of imu). Arrays are checked as the
 command checks a file: an accelerometer in g is refused (accel_unit="g" or accel_scale=9.80665
 reads it). max_passes is the work budget (0: always fully overlapping); end 0: the end. out: a
 folder to write allan.csv, imu.yaml, result.yaml and allan.svg to. Returns result.yaml's content
-as a dict (Kalibr densities, every term per axis).)");
+as a dict (Kalibr densities, every term per axis).)",
+      py::arg("imu") = py::none(),
+      py::arg("rate") = py::none(),
+      py::kw_only(),
+      py::arg("columns") = py::none(),
+      py::arg("sensor") = py::none(),
+      py::arg("taus_per_decade") = defaults.taus_per_decade,
+      py::arg("max_tau_fraction") = defaults.max_tau_fraction,
+      py::arg("max_passes") = defaults.max_passes,
+      py::arg("combine") = "mean",
+      py::arg("start") = defaults.start_s,
+      py::arg("end") = 0.0,
+      py::arg("allow_motion") = false,
+      py::arg("gyro_scale") = 1.0,
+      py::arg("accel_scale") = 1.0,
+      py::arg("gyro_unit") = "rad/s",
+      py::arg("accel_unit") = "m/s^2");
 }
 
 }  // namespace python

@@ -187,39 +187,13 @@ py::dict CalibrateFunction(py::handle imu,
 }  // namespace
 
 void BindCalibrate(py::module_& m) {
-  m.def("calibrate",
-        &CalibrateFunction,
-        py::arg("imu") = py::none(),
-        py::arg("observations") = py::none(),
-        py::arg("camchain") = py::none(),
-        py::arg("target") = py::none(),
-        py::kw_only(),
-        py::arg("cameras") = "",
-        py::arg("initial_poses") = py::none(),
-        py::arg("imu_yaml") = py::none(),
-        py::arg("imu_noise") = "estimated",
-        py::arg("rolling_shutter") = false,
-        py::arg("imu_model") = "calibrated",
-        py::arg("intrinsics") = "",
-        py::arg("camera_chain") = "",
-        py::arg("target_scale") = "check",
-        py::arg("hold_camera_chain") = false,
-        py::arg("estimate_intrinsics") = false,
-        py::arg("no_time_offset") = false,
-        py::arg("knot_spacing") = 0.05,
-        py::arg("trajectory") = "se3",
-        py::arg("pixel_sigma") = 0.0,
-        py::arg("huber") = 2.0,
-        py::arg("min_corners") = 8,
-        py::arg("gravity") = kDefaultGravity,
-        py::arg("accel_unit") = "m/s^2",
-        py::arg("gyro_unit") = "rad/s",
-        py::arg("threads") = 1,
-        py::arg("out") = py::none(),
-        py::arg("bag") = py::none(),
-        py::arg("imu_topic") = "/imu0",
-        py::arg("bag_time") = "header",
-        R"(Camera-IMU calibration as `splinecal calibrate`, with its flags as keywords. imu: a
+  const CalibrateOptions defaults;
+  const EstimateArguments shared;  // the keywords fit and calibrate share
+  DefImuCommand(
+      m,
+      "calibrate",
+      &CalibrateFunction,
+      R"(Camera-IMU calibration as `splinecal calibrate`, with its flags as keywords. imu: a
 EuRoC imu0/data.csv path or {t_ns, gyro, accel}; observations: an observations.csv path or
 {t_ns, cam_id, point_id, uv}; camchain and target: Kalibr YAML paths (target None: natural
 landmarks only, which needs initial_poses: a EuRoC ground truth / TUM path or {t_ns, T_w_s});
@@ -231,7 +205,33 @@ sources or "a.csv,b.csv" (with bag: imu_topic "/imu0,/imu1"), the first the refe
 and imu_model one for all or one per IMU (a list or comma-separated). out: a folder to write the command's files to (camchain-imucam.yaml,
 result.yaml, reprojection_errors.csv, spline.csv, report.html; imu_models.yaml with a model).
 Returns result.yaml's keys plus se3_spline (SE3Spline). Ctrl-C stops the solve
-(KeyboardInterrupt).)");
+(KeyboardInterrupt).)",
+      py::arg("imu") = py::none(),
+      py::arg("observations") = py::none(),
+      py::arg("camchain") = py::none(),
+      py::arg("target") = py::none(),
+      py::kw_only(),
+      py::arg("cameras") = "",
+      py::arg("initial_poses") = py::none(),
+      py::arg("imu_yaml") = py::none(),
+      py::arg("imu_noise") = shared.imu_noise,
+      py::arg("rolling_shutter") = defaults.rolling_shutter,
+      py::arg("imu_model") = "calibrated",
+      py::arg("intrinsics") = "",
+      py::arg("camera_chain") = "",
+      py::arg("target_scale") = "check",
+      py::arg("hold_camera_chain") = false,
+      py::arg("estimate_intrinsics") = false,
+      py::arg("no_time_offset") = false,
+      py::arg("knot_spacing") = defaults.model.knot_spacing_s,
+      py::arg("trajectory") = shared.trajectory,
+      py::arg("pixel_sigma") = defaults.pixel_sigma_px,
+      py::arg("huber") = defaults.huber_px,
+      py::arg("min_corners") = defaults.min_corners_per_frame,
+      py::arg("gravity") = shared.gravity,
+      py::arg("accel_unit") = shared.accel_unit,
+      py::arg("gyro_unit") = shared.gyro_unit,
+      py::arg("threads") = shared.threads);
 }
 
 }  // namespace python

@@ -11,11 +11,14 @@ std::unique_ptr<OutputDir> OutputArgument(py::handle out) {
   return std::make_unique<OutputDir>(PathArgument(out, "out"));
 }
 
+void WriteOutputs(OutputDir* dir, const std::vector<OutputFile>& files) {
+  if (dir == nullptr) return;
+  dir->WriteFiles(files);
+  dir->Commit();
+}
+
 py::dict FinishOutputs(OutputDir* dir, const std::vector<OutputFile>& files) {
-  if (dir != nullptr) {
-    dir->WriteFiles(files);
-    dir->Commit();
-  }
+  WriteOutputs(dir, files);
   return YamlTextToDict(OutputFileContents(files, "result.yaml"));
 }
 

@@ -18,8 +18,20 @@ namespace python {
 // The output folder of `out` (None: none, nullptr), created now.
 std::unique_ptr<OutputDir> OutputArgument(pybind11::handle out);
 
-// Writes `files` to `dir` (when not null) and commits them; returns result.yaml's dict.
+// Writes `files` to `dir` (when not null) and commits them.
+void WriteOutputs(OutputDir* dir, const std::vector<OutputFile>& files);
+// WriteOutputs, then result.yaml's dict.
 pybind11::dict FinishOutputs(OutputDir* dir, const std::vector<OutputFile>& files);
+
+// The keyword `out` (None: nothing written), the last parameter of a command's function.
+inline pybind11::arg_v OutArgument() { return pybind11::arg("out") = pybind11::none(); }
+
+// m.def of a command: `definition` is its function, docstring and own arguments (as m.def takes
+// them), then comes `out`.
+template <typename... Definition>
+void DefCommand(pybind11::module_& m, const char* name, const Definition&... definition) {
+  m.def(name, definition..., OutArgument());
+}
 
 }  // namespace python
 }  // namespace splinecal

@@ -58,25 +58,26 @@ py::dict CorrectFunction(py::handle imu,
 }  // namespace
 
 void BindCorrect(py::module_& m) {
-  m.def("correct",
-        &CorrectFunction,
-        py::arg("imu"),
-        py::arg("imu_intrinsics"),
-        py::kw_only(),
-        py::arg("imu_index") = 0,
-        py::arg("gyro_bias") = std::vector<double>{0.0, 0.0, 0.0},
-        py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
-        py::arg("derivative_window") = 2,
-        py::arg("accel_unit") = "m/s^2",
-        py::arg("gyro_unit") = "rad/s",
-        py::arg("out") = py::none(),
-        R"(`splinecal correct` with its flags as keywords: the IMU model of imu_intrinsics (Kalibr's
+  DefCommand(
+      m,
+      "correct",
+      &CorrectFunction,
+      R"(`splinecal correct` with its flags as keywords: the IMU model of imu_intrinsics (Kalibr's
 imu-*.yaml path; imu_index picks imuN) inverted on every raw reading of imu (a EuRoC
 imu0/data.csv path or {t_ns, gyro, accel}); the constant gyro_bias, accel_bias subtracted; the
 size effect's angular acceleration the slope of the corrected gyro over 2 derivative_window + 1
 samples (docs/imu_models.md). out: a folder to write mav0/imu0/data.csv and result.yaml to.
 Returns result.yaml's keys plus imu {t_ns, gyro, accel}: the angular velocity and specific force
-of an ideal IMU at the IMU's origin, in its accelerometer frame.)");
+of an ideal IMU at the IMU's origin, in its accelerometer frame.)",
+      py::arg("imu"),
+      py::arg("imu_intrinsics"),
+      py::kw_only(),
+      py::arg("imu_index") = 0,
+      py::arg("gyro_bias") = std::vector<double>{0.0, 0.0, 0.0},
+      py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
+      py::arg("derivative_window") = ImuCorrectionOptions{}.derivative_half_window,
+      py::arg("accel_unit") = "m/s^2",
+      py::arg("gyro_unit") = "rad/s");
 }
 
 }  // namespace python

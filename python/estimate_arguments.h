@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "command_outputs.h"
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/imu/imu_model.h"
@@ -55,6 +56,19 @@ struct BagImuArguments {
   std::string imu_topic = "/imu0";
   std::string bag_time = "header";
 };
+
+// DefCommand of a command that reads IMU samples from a file or a bag: after `out`, the bag
+// keywords with BagImuArguments' defaults (its function's last four parameters).
+template <typename... Definition>
+void DefImuCommand(pybind11::module_& m, const char* name, const Definition&... definition) {
+  const BagImuArguments defaults;
+  m.def(name,
+        definition...,
+        OutArgument(),
+        pybind11::arg("bag") = pybind11::none(),
+        pybind11::arg("imu_topic") = defaults.imu_topic,
+        pybind11::arg("bag_time") = defaults.bag_time);
+}
 
 // The samples of `imu` (a path or arrays, as ImuInUnits) or of the bag's topic (ReadBagImu, the
 // same checks), in the units named; ValueError unless exactly one of imu and bag is given.

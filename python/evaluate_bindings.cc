@@ -63,21 +63,22 @@ py::dict EvaluateFunction(py::handle spline,
 }  // namespace
 
 void BindEvaluate(py::module_& m) {
-  m.def("evaluate",
-        &EvaluateFunction,
-        py::arg("spline"),
-        py::kw_only(),
-        py::arg("samples") = 5,
-        py::arg("every") = 0.0,
-        py::arg("gravity") = kDefaultGravity,
-        py::arg("gyro_bias") = std::vector<double>{0.0, 0.0, 0.0},
-        py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0},
-        py::arg("out") = py::none(),
-        R"(`splinecal evaluate` with its flags as keywords: spline (a spline.csv path or an
+  const EvaluateOptions defaults;
+  DefCommand(m,
+             "evaluate",
+             &EvaluateFunction,
+             R"(`splinecal evaluate` with its flags as keywords: spline (a spline.csv path or an
 SE3Spline) at `samples` evenly spaced times of its valid range, and with every > 0 [s] also at
 that step (evaluation.csv; SE3Spline.evaluate gives arrays at any times). out: a folder to write
 samples.csv, result.yaml and evaluation.csv to. Returns result.yaml's keys plus samples {t_ns,
-T_w_s, w_s, v_w, a_w, gyro, accel} at the evenly spaced times.)");
+T_w_s, w_s, v_w, a_w, gyro, accel} at the evenly spaced times.)",
+             py::arg("spline"),
+             py::kw_only(),
+             py::arg("samples") = defaults.samples,
+             py::arg("every") = defaults.every_s,
+             py::arg("gravity") = defaults.gravity_m_s2,
+             py::arg("gyro_bias") = std::vector<double>{0.0, 0.0, 0.0},
+             py::arg("accel_bias") = std::vector<double>{0.0, 0.0, 0.0});
 }
 
 }  // namespace python

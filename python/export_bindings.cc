@@ -34,10 +34,7 @@ py::dict ExportFunction(const std::string& from,
   calibration.imu_topic = imu_topic;
   const std::vector<OutputFile> files = ExportCalibration(calibration, parsed);
   const std::unique_ptr<OutputDir> output = OutputArgument(out);
-  if (output) {
-    output->WriteFiles(files);
-    output->Commit();
-  }
+  WriteOutputs(output.get(), files);
   py::dict dict;
   for (const OutputFile& file : files) dict[py::str(file.path)] = file.contents;
   return dict;
@@ -46,18 +43,19 @@ py::dict ExportFunction(const std::string& from,
 }  // namespace
 
 void BindExport(py::module_& m) {
-  m.def("export",
-        &ExportFunction,
-        py::arg("from_"),
-        py::kw_only(),
-        py::arg("format"),
-        py::arg("imu_yaml") = "",
-        py::arg("imu_topic") = "/imu0",
-        py::arg("out") = py::none(),
-        R"(`splinecal export` with its flags as keywords: the calibration folder from_ (calibrate's
+  DefCommand(
+      m,
+      "export",
+      &ExportFunction,
+      R"(`splinecal export` with its flags as keywords: the calibration folder from_ (calibrate's
 or intrinsics' output) in the files of format 'openvins', 'vins', 'basalt' or 'kalibr'. imu_yaml:
 the noise densities (default: the folder's imu.yaml, else result.yaml's). out: a folder to write
-them to. Returns {file name: contents}.)");
+them to. Returns {file name: contents}.)",
+      py::arg("from_"),
+      py::kw_only(),
+      py::arg("format"),
+      py::arg("imu_yaml") = "",
+      py::arg("imu_topic") = "/imu0");
 }
 
 }  // namespace python

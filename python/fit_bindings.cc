@@ -14,6 +14,7 @@
 #include "splinecal/imu/imu_model.h"
 #include "splinecal/report/command_outputs.h"
 #include "splinecal/report/fit_report.h"
+#include "splinecal/report/option_names.h"
 
 namespace splinecal {
 namespace python {
@@ -64,12 +65,9 @@ py::dict FitFunction(py::handle imu,
   }
   options.max_time_offset_s = max_time_offset;
   options.estimate_extrinsic = estimate_extrinsic;
-  if (bias_model == "constant") {
-    options.model.bias_model = BiasModel::kConstant;
-  } else if (bias_model == "spline") {
-    options.model.bias_model = BiasModel::kSpline;
-  } else {
-    throw py::value_error("bias_model: expected constant or spline, got '" + bias_model + "'");
+  if (!ValueNamed(kBiasModelNames, bias_model, &options.model.bias_model)) {
+    throw py::value_error("bias_model: expected " + JoinNames(kBiasModelNames, " or ") +
+                          ", got '" + bias_model + "'");
   }
   if (!(bias_knot_spacing > 0.0) || !(bias_knot_spacing <= 1e9)) {
     throw py::value_error("bias_knot_spacing: expected (0, 1e9] s, got " +
@@ -99,36 +97,36 @@ py::dict FitFunction(py::handle imu,
 }  // namespace
 
 void BindFit(py::module_& m) {
-  m.def("fit",
-        &FitFunction,
-        py::arg("imu") = py::none(),
-        py::arg("poses") = py::none(),
-        py::kw_only(),
-        py::arg("imu_yaml") = py::none(),
-        py::arg("imu_noise") = "estimated",
-        py::arg("knot_spacing") = 0.0,
-        py::arg("trajectory") = "se3",
-        py::arg("pose_sigma_m") = 1e-3,
-        py::arg("pose_sigma_rad") = 1e-3,
-        py::arg("estimate_time_offset") = false,
-        py::arg("max_time_offset") = 0.1,
-        py::arg("estimate_extrinsic") = false,
-        py::arg("bias_model") = "constant",
-        py::arg("bias_knot_spacing") = 1.0,
-        py::arg("gravity") = kDefaultGravity,
-        py::arg("accel_unit") = "m/s^2",
-        py::arg("gyro_unit") = "rad/s",
-        py::arg("threads") = 1,
-        py::arg("out") = py::none(),
-        py::arg("bag") = py::none(),
-        py::arg("imu_topic") = "/imu0",
-        py::arg("bag_time") = "header",
-        R"(The continuous-time fit of `splinecal fit`, with its flags as keywords. imu: a EuRoC
+  const FitOptions defaults;
+  const EstimateArguments shared;  // the keywords fit and calibrate share
+  DefImuCommand(
+      m,
+      "fit",
+      &FitFunction,
+      R"(The continuous-time fit of `splinecal fit`, with its flags as keywords. imu: a EuRoC
 imu0/data.csv path or {t_ns, gyro, accel}; poses: a EuRoC ground truth / TUM path or
 {t_ns, T_w_s (n, 4, 4)}. out: a folder to write the command's files to (result.yaml,
 spline.csv, residuals.csv, pose_residuals.csv, report.html). Returns result.yaml's keys plus
 se3_spline (SE3Spline) and imu_residuals {t_ns, gyro_measured, gyro_fitted, accel_measured,
-accel_fitted}. Ctrl-C stops the solve (KeyboardInterrupt).)");
+accel_fitted}. Ctrl-C stops the solve (KeyboardInterrupt).)",
+      py::arg("imu") = py::none(),
+      py::arg("poses") = py::none(),
+      py::kw_only(),
+      py::arg("imu_yaml") = py::none(),
+      py::arg("imu_noise") = shared.imu_noise,
+      py::arg("knot_spacing") = shared.knot_spacing,
+      py::arg("trajectory") = shared.trajectory,
+      py::arg("pose_sigma_m") = defaults.pose_sigma_m,
+      py::arg("pose_sigma_rad") = defaults.pose_sigma_rad,
+      py::arg("estimate_time_offset") = defaults.estimate_time_offset,
+      py::arg("max_time_offset") = defaults.max_time_offset_s,
+      py::arg("estimate_extrinsic") = defaults.estimate_extrinsic,
+      py::arg("bias_model") = "constant",
+      py::arg("bias_knot_spacing") = defaults.model.bias_knot_spacing_s,
+      py::arg("gravity") = shared.gravity,
+      py::arg("accel_unit") = shared.accel_unit,
+      py::arg("gyro_unit") = shared.gyro_unit,
+      py::arg("threads") = shared.threads);
 }
 
 }  // namespace python

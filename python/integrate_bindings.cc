@@ -63,27 +63,25 @@ py::dict IntegrateFunction(py::handle imu,
 }  // namespace
 
 void BindIntegrate(py::module_& m) {
-  m.def("integrate",
-        &IntegrateFunction,
-        py::arg("imu") = py::none(),
-        py::arg("groundtruth") = py::none(),
-        py::kw_only(),
-        py::arg("method") = "euler,midpoint,rk4",
-        py::arg("start") = 0.0,
-        py::arg("duration") = 0.0,
-        py::arg("gravity") = kDefaultGravity,
-        py::arg("accel_unit") = "m/s^2",
-        py::arg("gyro_unit") = "rad/s",
-        py::arg("out") = py::none(),
-        py::arg("bag") = py::none(),
-        py::arg("imu_topic") = "/imu0",
-        py::arg("bag_time") = "header",
-        R"(IMU dead reckoning as `splinecal integrate`, with its flags as keywords. imu: a EuRoC
+  DefImuCommand(
+      m,
+      "integrate",
+      &IntegrateFunction,
+      R"(IMU dead reckoning as `splinecal integrate`, with its flags as keywords. imu: a EuRoC
 imu0/data.csv path or {t_ns, gyro, accel}; groundtruth: a EuRoC state_groundtruth_estimate0
 path or {t_ns, T_w_s, v_w, gyro_bias, accel_bias} (simulate's ground_truth); method: "euler,rk4"
 or ["euler", "rk4"]; start, duration [s] (duration 0: to the end of the data). out: a folder to
 write result.yaml, trajectory_<method>.csv and trajectory.svg to. Returns result.yaml's keys:
-per method final_position_error_m, final_rotation_error_deg, ate_rmse_m.)");
+per method final_position_error_m, final_rotation_error_deg, ate_rmse_m.)",
+      py::arg("imu") = py::none(),
+      py::arg("groundtruth") = py::none(),
+      py::kw_only(),
+      py::arg("method") = "euler,midpoint,rk4",
+      py::arg("start") = 0.0,
+      py::arg("duration") = 0.0,
+      py::arg("gravity") = kDefaultGravity,
+      py::arg("accel_unit") = "m/s^2",
+      py::arg("gyro_unit") = "rad/s");
 }
 
 }  // namespace python

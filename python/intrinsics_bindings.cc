@@ -81,24 +81,12 @@ py::dict IntrinsicsFunction(py::handle observations,
 }  // namespace
 
 void BindIntrinsics(py::module_& m) {
-  m.def("intrinsics",
-        &IntrinsicsFunction,
-        py::arg("observations"),
-        py::arg("target"),
-        py::arg("models"),
-        py::kw_only(),
-        py::arg("resolution") = py::none(),
-        py::arg("camchain") = py::none(),
-        py::arg("cameras") = "",
-        py::arg("outlier_sigmas") = 5.0,
-        py::arg("keep_repeated_views") = false,
-        py::arg("compare_models") = false,
-        py::arg("max_views") = 0,
-        py::arg("min_corners") = 12,
-        py::arg("huber") = 2.0,
-        py::arg("threads") = 2,
-        py::arg("out") = py::none(),
-        R"(Camera intrinsics and camera-to-camera extrinsics as `splinecal intrinsics`, with its
+  const IntrinsicsOptions defaults;
+  DefCommand(
+      m,
+      "intrinsics",
+      &IntrinsicsFunction,
+      R"(Camera intrinsics and camera-to-camera extrinsics as `splinecal intrinsics`, with its
 flags as keywords. observations: an observations.csv path or {t_ns, cam_id, point_id, uv};
 target: a Kalibr target YAML path; models: "pinhole-radtan,pinhole-equi" or a list, one per
 camera (cam0 first); the image size from resolution ("752x480", one for all or one per camera,
@@ -107,7 +95,21 @@ input cameras (models then names those); outlier_sigmas 0 removes no corner; com
 fits pinhole-radtan, pinhole-equi and ds-none to the corners used (result's model_comparison).
 out: a folder to write
 camchain.yaml, result.yaml and report.html to. Returns result.yaml's keys plus camchain_yaml
-(the text of camchain.yaml, Kalibr's keys: calibrate's camchain).)");
+(the text of camchain.yaml, Kalibr's keys: calibrate's camchain).)",
+      py::arg("observations"),
+      py::arg("target"),
+      py::arg("models"),
+      py::kw_only(),
+      py::arg("resolution") = py::none(),
+      py::arg("camchain") = py::none(),
+      py::arg("cameras") = "",
+      py::arg("outlier_sigmas") = defaults.outlier_sigmas,
+      py::arg("keep_repeated_views") = defaults.keep_repeated_views,
+      py::arg("compare_models") = false,
+      py::arg("max_views") = defaults.max_views_per_camera,
+      py::arg("min_corners") = defaults.min_corners,
+      py::arg("huber") = defaults.huber_px,
+      py::arg("threads") = 2);
 }
 
 }  // namespace python

@@ -233,18 +233,35 @@ std::vector<ImuSample> ImuSamples(py::handle imu, const ImuReadOptions& read) {
   return samples;
 }
 
+namespace {
+
+// The increasing times t_ns and the poses T_w_s (one per time) of the dict `name`, whose keys
+// are `keys` (for the message when one is missing).
+struct TimedPoses {
+  std::vector<int64_t> t_ns;
+  std::vector<SE3d> T_w_s;
+};
+
+TimedPoses TimedPosesItems(py::handle dict, const std::string& name, const std::string& keys) {
+  TimedPoses poses;
+  poses.t_ns =
+      TimesNs(RequiredItem(dict, name, "t_ns", keys), name + "['t_ns']", /*increasing=*/true);
+  poses.T_w_s = PosesFromArray(RequiredItem(dict, name, "T_w_s", keys), name + "['T_w_s']");
+  if (poses.T_w_s.size() != poses.t_ns.size()) {
+    throw py::value_error(name + "['T_w_s']: expected shape (" + std::to_string(poses.t_ns.size()) +
+                          ", 4, 4) to match " + name + "['t_ns'], got " +
+                          std::to_string(poses.T_w_s.size()) + " poses");
+  }
+  return poses;
+}
+
+}  // namespace
+
 std::vector<StampedPose> StampedPoses(py::handle poses, const std::string& name) {
   if (const std::optional<std::string> path = AsPath(poses)) return ReadPoses(*path);
-  const std::string keys = "t_ns, T_w_s";
-  const std::vector<int64_t> t_ns =
-      TimesNs(RequiredItem(poses, name, "t_ns", keys), name + "['t_ns']", /*increasing=*/true);
-  const py::object matrices = RequiredItem(poses, name, "T_w_s", keys);
-  const std::vector<SE3d> T_w_s = PosesFromArray(matrices, name + "['T_w_s']");
-  if (T_w_s.size() != t_ns.size()) {
-    throw py::value_error(name + "['T_w_s']: expected shape (" + std::to_string(t_ns.size()) +
-                          ", 4, 4) to match " + name + "['t_ns'], got " +
-                          std::to_string(T_w_s.size()) + " poses");
-  }
+  const TimedPoses timed = TimedPosesItems(poses, name, "t_ns, T_w_s");
+  const std::vector<int64_t>& t_ns = timed.t_ns;
+  const std::vector<SE3d>& T_w_s = timed.T_w_s;
   std::vector<StampedPose> stamped(t_ns.size());
   for (size_t i = 0; i < t_ns.size(); ++i) {
     stamped[i].t_ns = t_ns[i];
@@ -347,16 +364,10 @@ py::dict GroundTruthDict(const std::vector<GroundTruthState>& truth) {
 std::vector<GroundTruthState> GroundTruthStates(py::handle truth, const std::string& name) {
   if (const std::optional<std::string> path = AsPath(truth)) return ReadEurocGroundTruth(*path);
   const std::string keys = "t_ns, T_w_s, v_w, gyro_bias, accel_bias";
-  const std::vector<int64_t> t_ns =
-      TimesNs(RequiredItem(truth, name, "t_ns", keys), name + "['t_ns']", /*increasing=*/true);
+  const TimedPoses timed = TimedPosesItems(truth, name, keys);
+  const std::vector<int64_t>& t_ns = timed.t_ns;
+  const std::vector<SE3d>& T_w_s = timed.T_w_s;
   const auto n = static_cast<py::ssize_t>(t_ns.size());
-  const std::vector<SE3d> T_w_s =
-      PosesFromArray(RequiredItem(truth, name, "T_w_s", keys), name + "['T_w_s']");
-  if (static_cast<py::ssize_t>(T_w_s.size()) != n) {
-    throw py::value_error(name + "['T_w_s']: expected " + std::to_string(n) +
-                          " poses to match " + name + "['t_ns'], got " +
-                          std::to_string(T_w_s.size()));
-  }
   std::vector<GroundTruthState> states(t_ns.size());
   const char* const columns[] = {"v_w", "gyro_bias", "accel_bias"};
   Eigen::Vector3d GroundTruthState::*fields[] = {

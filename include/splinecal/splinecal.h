@@ -205,6 +205,7 @@
 #include "splinecal/report/imu_model_report.h"
 #include "splinecal/report/integrate_report.h"
 #include "splinecal/report/intrinsics_report.h"
+#include "splinecal/report/option_names.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
 #include "splinecal/report/simulate_report.h"

@@ -16,6 +16,7 @@
 #include "splinecal/io/output_dir.h"
 #include "splinecal/io/static_recording.h"
 #include "splinecal/report/command_outputs.h"
+#include "splinecal/report/option_names.h"
 #include "splinecal/string_printf.h"
 
 DEFINE_int32(taus_per_decade, 10, "Averaging times per decade (before de-duplication)");
@@ -86,12 +87,9 @@ AllanInputs ReadAllanInputs() {
                      FLAGS_max_passes));
   }
   options.max_passes = FLAGS_max_passes;
-  if (FLAGS_combine == "mean") {
-    options.combine = CombineAxes::kMean;
-  } else if (FLAGS_combine == "max") {
-    options.combine = CombineAxes::kMax;
-  } else {
-    throw Error("--combine: expected mean or max, got '" + FLAGS_combine + "'");
+  if (!ValueNamed(kCombineAxesNames, FLAGS_combine, &options.combine)) {
+    throw Error("--combine: expected " + JoinNames(kCombineAxesNames, " or ") + ", got '" +
+                FLAGS_combine + "'");
   }
   options.progress = [](const std::string& line) { Progress(line); };
   options.start_s = FLAGS_start;

@@ -19,6 +19,7 @@
 #include "splinecal/io/poses.h"
 #include "splinecal/report/command_outputs.h"
 #include "splinecal/report/fit_report.h"
+#include "splinecal/report/option_names.h"
 #include "splinecal/units.h"
 
 DEFINE_double(pose_sigma_m, 1e-3, "Pose source position noise, std per axis [m]");
@@ -62,12 +63,9 @@ FitInputs ReadFitInputs() {
   SpanFlagNs("max-time-offset", FLAGS_max_time_offset);
   options.max_time_offset_s = FLAGS_max_time_offset;
   options.estimate_extrinsic = FLAGS_estimate_extrinsic;
-  if (FLAGS_bias_model == "constant") {
-    options.model.bias_model = BiasModel::kConstant;
-  } else if (FLAGS_bias_model == "spline") {
-    options.model.bias_model = BiasModel::kSpline;
-  } else {
-    throw Error("--bias-model: expected constant or spline, got '" + FLAGS_bias_model + "'");
+  if (!ValueNamed(kBiasModelNames, FLAGS_bias_model, &options.model.bias_model)) {
+    throw Error("--bias-model: expected " + JoinNames(kBiasModelNames, " or ") + ", got '" +
+                FLAGS_bias_model + "'");
   }
   SpanFlagNs("bias-knot-spacing", FLAGS_bias_knot_spacing);
   options.model.bias_knot_spacing_s = FLAGS_bias_knot_spacing;

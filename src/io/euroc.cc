@@ -1,7 +1,6 @@
 #include "splinecal/io/euroc.h"
 
 #include <algorithm>
-#include <cinttypes>
 #include <cmath>
 
 #include "row_checks.h"
@@ -18,12 +17,9 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
                                        "accel x",   "accel y", "accel z"};
   TextFileReader reader(path);
   reader.set_yaml_hint(options.yaml_hint);
-  std::vector<std::string_view> fields;
   std::vector<ImuSample> samples;
   internal::TimestampChecker timestamps(&reader);
-  while (reader.NextLine()) {
-    SplitFields(reader.line(), &fields);
-    if (internal::IsHeaderRow(reader, fields)) continue;
+  internal::ForEachDataRow(&reader, [&](const std::vector<std::string_view>& fields) {
     internal::CheckColumnCount(reader, fields, 7, "EuRoC IMU (t_ns, gyro xyz, accel xyz)");
     ImuSample sample;
     sample.t_ns = ParseTimestampNs(fields[0], reader, kNames[0]);
@@ -36,7 +32,7 @@ std::vector<ImuSample> ReadEurocImu(const std::string& path, const ImuReadOption
     }
     timestamps.Add(sample.t_ns, fields[0]);
     samples.push_back(sample);
-  }
+  });
   if (samples.size() < 2) {
     throw Error(path, 0, "needs at least 2 IMU samples, found " + std::to_string(samples.size()));
   }
@@ -65,14 +61,7 @@ void WriteEurocImu(const std::vector<ImuSample>& samples, std::ostream* out) {
   *out << "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
           "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n";
   for (const ImuSample& s : samples) {
-    *out << StringPrintf("%" PRId64 ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                         s.t_ns,
-                         s.gyro.x(),
-                         s.gyro.y(),
-                         s.gyro.z(),
-                         s.accel.x(),
-                         s.accel.y(),
-                         s.accel.z());
+    *out << internal::CsvRow(s.t_ns, {s.gyro, s.accel});
   }
 }
 
@@ -82,12 +71,9 @@ std::vector<GroundTruthState> ReadEurocGroundTruth(const std::string& path) {
       "v y", "v z", "gyro bias x", "gyro bias y", "gyro bias z", "accel bias x",
       "accel bias y", "accel bias z"};
   TextFileReader reader(path);
-  std::vector<std::string_view> fields;
   std::vector<GroundTruthState> states;
   internal::TimestampChecker timestamps(&reader);
-  while (reader.NextLine()) {
-    SplitFields(reader.line(), &fields);
-    if (internal::IsHeaderRow(reader, fields)) continue;
+  internal::ForEachDataRow(&reader, [&](const std::vector<std::string_view>& fields) {
     internal::CheckColumnCount(reader, fields, 17,
                                "EuRoC ground truth (t_ns, p xyz, q wxyz, v xyz, bg xyz, ba xyz)");
     double v[17];
@@ -107,7 +93,7 @@ std::vector<GroundTruthState> ReadEurocGroundTruth(const std::string& path) {
     state.accel_bias = Eigen::Vector3d(v[14], v[15], v[16]);
     timestamps.Add(state.t_ns, fields[0]);
     states.push_back(state);
-  }
+  });
   if (states.size() < 2) {
     throw Error(path, 0, "needs at least 2 ground-truth rows, found " + std::to_string(states.size()));
   }
@@ -120,27 +106,8 @@ void WriteEurocGroundTruth(const std::vector<GroundTruthState>& states, std::ost
           "b_w_RS_S_x [rad s^-1],b_w_RS_S_y [rad s^-1],b_w_RS_S_z [rad s^-1],"
           "b_a_RS_S_x [m s^-2],b_a_RS_S_y [m s^-2],b_a_RS_S_z [m s^-2]\n";
   for (const GroundTruthState& s : states) {
-    *out << StringPrintf(
-        "%" PRId64
-        ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-        "%.17g,%.17g,%.17g\n",
-        s.t_ns,
-        s.p_w_s.x(),
-        s.p_w_s.y(),
-        s.p_w_s.z(),
-        s.q_w_s.w(),
-        s.q_w_s.x(),
-        s.q_w_s.y(),
-        s.q_w_s.z(),
-        s.v_w.x(),
-        s.v_w.y(),
-        s.v_w.z(),
-        s.gyro_bias.x(),
-        s.gyro_bias.y(),
-        s.gyro_bias.z(),
-        s.accel_bias.x(),
-        s.accel_bias.y(),
-        s.accel_bias.z());
+    const Eigen::Vector4d q_wxyz(s.q_w_s.w(), s.q_w_s.x(), s.q_w_s.y(), s.q_w_s.z());
+    *out << internal::CsvRow(s.t_ns, {s.p_w_s, q_wxyz, s.v_w, s.gyro_bias, s.accel_bias});
   }
 }
 

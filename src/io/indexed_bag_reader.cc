@@ -83,67 +83,83 @@ void WrongSize(uint64_t got, uint64_t size, const BagFile& file, int64_t offset)
                                  static_cast<unsigned long long>(size)));
 }
 
+// A chunk of `size` announced bytes decompressed into *out: `decompress` writes into a buffer one
+// byte larger than announced (to tell a chunk that decompresses to more from an exact one) and
+// returns how many bytes it wrote, which must be `size`.
+template <typename Decompress>
+void DecompressChunk(uint64_t size,
+                     const BagFile& file,
+                     int64_t offset,
+                     std::string* out,
+                     const Decompress& decompress) {
+  CheckChunkSize(size, file, offset);
+  out->resize(size + 1);
+  const uint64_t got = decompress();
+  if (got != size) WrongSize(got, size, file, offset);
+  out->resize(size);
+}
+
 }  // namespace
 
-void DecompressBz2(std::string_view in, uint64_t size, const BagFile& file, int64_t offset,
-                   std::string* out) {
-  CheckChunkSize(size, file, offset);
-  // One byte more than announced, to tell a chunk that decompresses to more from an exact one.
-  out->resize(size + 1);
-  unsigned int got = static_cast<unsigned int>(out->size());
-  const int status = BZ2_bzBuffToBuffDecompress(out->data(), &got, const_cast<char*>(in.data()),
-                                                static_cast<unsigned int>(in.size()), 0, 0);
-  if (status == BZ_OUTBUFF_FULL) WrongSize(size + 1, size, file, offset);
-  if (status != BZ_OK) {
-    file.Fail(offset, StringPrintf("bz2 chunk does not decompress (libbz2 error %d)", status));
-  }
-  if (got != size) WrongSize(got, size, file, offset);
-  out->resize(size);
-}
-
-void DecompressLz4Frame(std::string_view in, uint64_t size, const BagFile& file, int64_t offset,
-                        std::string* out) {
-  CheckChunkSize(size, file, offset);
-  out->resize(size + 1);
-  LZ4F_dctx* context = nullptr;
-  if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) {
-    throw std::bad_alloc();
-  }
-  size_t in_done = 0;
-  size_t out_done = 0;
-  size_t status = 1;
-  while (status != 0 && in_done < in.size() && out_done < out->size()) {
-    size_t in_size = in.size() - in_done;
-    size_t out_size = out->size() - out_done;
-    status = LZ4F_decompress(context, out->data() + out_done, &out_size, in.data() + in_done,
-                             &in_size, nullptr);
-    if (LZ4F_isError(status)) {
-      const std::string name = LZ4F_getErrorName(status);
-      LZ4F_freeDecompressionContext(context);
-      file.Fail(offset, "lz4 chunk does not decompress (" + name + ")");
+void DecompressBz2(
+    std::string_view in, uint64_t size, const BagFile& file, int64_t offset, std::string* out) {
+  DecompressChunk(size, file, offset, out, [&]() -> uint64_t {
+    unsigned int got = static_cast<unsigned int>(out->size());
+    const int status = BZ2_bzBuffToBuffDecompress(out->data(),
+                                                  &got,
+                                                  const_cast<char*>(in.data()),
+                                                  static_cast<unsigned int>(in.size()),
+                                                  0,
+                                                  0);
+    if (status == BZ_OUTBUFF_FULL) return size + 1;
+    if (status != BZ_OK) {
+      file.Fail(offset, StringPrintf("bz2 chunk does not decompress (libbz2 error %d)", status));
     }
-    in_done += in_size;
-    out_done += out_size;
-  }
-  LZ4F_freeDecompressionContext(context);
-  if (status != 0 && out_done <= size) {
-    file.Fail(offset, "lz4 chunk ends inside its frame (truncated chunk)");
-  }
-  if (out_done != size) WrongSize(out_done, size, file, offset);
-  out->resize(size);
+    return got;
+  });
 }
 
-void DecompressZstd(std::string_view in, uint64_t size, const BagFile& file, int64_t offset,
-                    std::string* out) {
-  CheckChunkSize(size, file, offset);
-  out->resize(size + 1);
-  const size_t got = ZSTD_decompress(out->data(), out->size(), in.data(), in.size());
-  if (ZSTD_isError(got)) {
-    file.Fail(offset,
-              std::string("zstd chunk does not decompress (") + ZSTD_getErrorName(got) + ")");
-  }
-  if (got != size) WrongSize(got, size, file, offset);
-  out->resize(size);
+void DecompressLz4Frame(
+    std::string_view in, uint64_t size, const BagFile& file, int64_t offset, std::string* out) {
+  DecompressChunk(size, file, offset, out, [&]() -> uint64_t {
+    LZ4F_dctx* context = nullptr;
+    if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) {
+      throw std::bad_alloc();
+    }
+    size_t in_done = 0;
+    size_t out_done = 0;
+    size_t status = 1;
+    while (status != 0 && in_done < in.size() && out_done < out->size()) {
+      size_t in_size = in.size() - in_done;
+      size_t out_size = out->size() - out_done;
+      status = LZ4F_decompress(
+          context, out->data() + out_done, &out_size, in.data() + in_done, &in_size, nullptr);
+      if (LZ4F_isError(status)) {
+        const std::string name = LZ4F_getErrorName(status);
+        LZ4F_freeDecompressionContext(context);
+        file.Fail(offset, "lz4 chunk does not decompress (" + name + ")");
+      }
+      in_done += in_size;
+      out_done += out_size;
+    }
+    LZ4F_freeDecompressionContext(context);
+    if (status != 0 && out_done <= size) {
+      file.Fail(offset, "lz4 chunk ends inside its frame (truncated chunk)");
+    }
+    return out_done;
+  });
+}
+
+void DecompressZstd(
+    std::string_view in, uint64_t size, const BagFile& file, int64_t offset, std::string* out) {
+  DecompressChunk(size, file, offset, out, [&]() -> uint64_t {
+    const size_t got = ZSTD_decompress(out->data(), out->size(), in.data(), in.size());
+    if (ZSTD_isError(got)) {
+      file.Fail(offset,
+                std::string("zstd chunk does not decompress (") + ZSTD_getErrorName(got) + ")");
+    }
+    return got;
+  });
 }
 
 uint32_t Crc32(std::string_view bytes, uint32_t crc) {

@@ -45,16 +45,13 @@ StampedPose ParseRow(const TextFileReader& reader,
 
 std::vector<StampedPose> Read(const std::string& path, const PoseFormat* forced_format) {
   TextFileReader reader(path);
-  std::vector<std::string_view> fields;
   std::vector<StampedPose> poses;
   internal::TimestampChecker timestamps(&reader);
   bool have_format = forced_format != nullptr;
   PoseFormat format = have_format ? *forced_format : PoseFormat::kTum;
   // EuRoC ground truth may carry 8 columns (t, p, q) or more (v, biases); every row as the first.
   size_t first_row_columns = 0;
-  while (reader.NextLine()) {
-    SplitFields(reader.line(), &fields);
-    if (internal::IsHeaderRow(reader, fields)) continue;
+  internal::ForEachDataRow(&reader, [&](const std::vector<std::string_view>& fields) {
     if (!have_format) {
       format = reader.line().find(',') != std::string_view::npos ? PoseFormat::kEurocGroundTruth
                                                                   : PoseFormat::kTum;
@@ -68,7 +65,7 @@ std::vector<StampedPose> Read(const std::string& path, const PoseFormat* forced_
     if (poses.empty()) first_row_columns = fields.size();
     timestamps.Add(pose.t_ns, fields[0]);
     poses.push_back(pose);
-  }
+  });
   if (poses.size() < 2) {
     throw Error(path, 0, "needs at least 2 poses, found " + std::to_string(poses.size()));
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "splinecal/error.h"
@@ -10,6 +11,19 @@
 
 namespace splinecal {
 namespace internal {
+
+std::string CsvRow(int64_t t_ns, std::initializer_list<Eigen::Ref<const Eigen::VectorXd>> blocks) {
+  std::string row = std::to_string(t_ns);
+  char number[32];  // ",%.17g" takes at most 25 characters
+  for (const Eigen::Ref<const Eigen::VectorXd>& block : blocks) {
+    for (Eigen::Index i = 0; i < block.size(); ++i) {
+      std::snprintf(number, sizeof(number), ",%.17g", block[i]);
+      row += number;
+    }
+  }
+  row += '\n';
+  return row;
+}
 
 bool IsHeaderRow(const TextFileReader& reader, const std::vector<std::string_view>& fields) {
   return reader.data_lines() == 1 && !fields.empty() && !LooksNumeric(fields[0]);

@@ -1,6 +1,5 @@
 #include "splinecal/io/spline_csv.h"
 
-#include <cinttypes>
 #include <cstdlib>
 #include <string>
 #include <string_view>
@@ -9,7 +8,6 @@
 #include "splinecal/error.h"
 #include "splinecal/io/text_file.h"
 #include "splinecal/spline/trajectory_model.h"
-#include "splinecal/string_printf.h"
 
 namespace splinecal {
 
@@ -97,15 +95,8 @@ void WriteSplineCsv(const SE3Splined& spline, std::ostream* out) {
     const SE3d& T = spline.control_pose(i);
     const Eigen::Quaterniond& q = T.so3().quaternion();
     const Eigen::Vector3d& p = T.translation();
-    *out << StringPrintf("%" PRId64 ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                         spline.knot_time_ns(i),
-                         p.x(),
-                         p.y(),
-                         p.z(),
-                         q.w(),
-                         q.x(),
-                         q.y(),
-                         q.z());
+    const Eigen::Vector4d q_wxyz(q.w(), q.x(), q.y(), q.z());
+    *out << internal::CsvRow(spline.knot_time_ns(i), {p, q_wxyz});
   }
 }
 

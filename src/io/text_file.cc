@@ -39,6 +39,20 @@ void CheckIsReadableFile(const std::string& path) {
   if (S_ISDIR(info.st_mode)) throw Error(path, 0, "is a directory, expected a file");
 }
 
+// std::from_chars over the whole field, after one leading '+' (which from_chars does not take):
+// its error code, and whether it read every character of a non-empty field.
+struct FieldParse {
+  std::errc ec;
+  bool whole;
+};
+
+template <typename T>
+FieldParse FromCharsWhole(std::string_view field, T* value) {
+  if (!field.empty() && field.front() == '+') field.remove_prefix(1);
+  const auto result = std::from_chars(field.data(), field.data() + field.size(), *value);
+  return {result.ec, !field.empty() && result.ptr == field.data() + field.size()};
+}
+
 }  // namespace
 
 TextFileReader::TextFileReader(const std::string& path) : path_(path) {
@@ -169,21 +183,17 @@ bool LooksLikeYamlLine(std::string_view line) {
 }
 
 bool LooksNumeric(std::string_view field) {
-  if (!field.empty() && field.front() == '+') field.remove_prefix(1);
   double value = 0.0;
-  const auto result = std::from_chars(field.data(), field.data() + field.size(), value);
-  return result.ec == std::errc() && result.ptr == field.data() + field.size() && !field.empty();
+  const FieldParse parse = FromCharsWhole(field, &value);
+  return parse.ec == std::errc() && parse.whole;
 }
 
 double ParseFiniteDouble(std::string_view field, const TextFileReader& at, const std::string& what) {
   double value = 0.0;
   if (TryParseFiniteDouble(field, &value)) return value;
   // Tell a field that is no number from one that is not finite.
-  std::string_view digits = field;
-  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (digits.empty() || result.ptr != digits.data() + digits.size() ||
-      (result.ec != std::errc() && result.ec != std::errc::result_out_of_range)) {
+  const FieldParse parse = FromCharsWhole(field, &value);
+  if (!parse.whole || (parse.ec != std::errc() && parse.ec != std::errc::result_out_of_range)) {
     at.Fail(what + ": expected a number, got " + Quote(field), field);
   }
   at.Fail(what + ": value " + Quote(field) + " is not a finite number", field);
@@ -206,10 +216,7 @@ int64_t ParseInt64(std::string_view field, const TextFileReader& at, const std::
   int64_t value = 0;
   if (TryParseInt64(field, &value)) return value;
   // Tell an integer out of range from a field that is no integer.
-  std::string_view digits = field;
-  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  const auto result = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (result.ec == std::errc::result_out_of_range) {
+  if (FromCharsWhole(field, &value).ec == std::errc::result_out_of_range) {
     at.Fail(what + ": integer " + Quote(field) + " is out of range", field);
   }
   at.Fail(what + ": expected an integer, got " + Quote(field), field);

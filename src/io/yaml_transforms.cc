@@ -16,18 +16,28 @@ bool IsRotation(const Eigen::Matrix3d& R) {
          R.determinant() > 0.0;
 }
 
+// The N x N matrix at `key`: N rows of N numbers.
+template <int N>
+Eigen::Matrix<double, N, N> ReadSquareMatrix(const YamlDocument& yaml, const std::string& key) {
+  const std::vector<std::vector<double>> rows = yaml.Rows(key);
+  if (rows.size() != static_cast<size_t>(N) || rows[0].size() != static_cast<size_t>(N)) {
+    const std::string n = std::to_string(N);
+    throw Error(
+        yaml.path(),
+        yaml.Line(key),
+        key + ": expected a " + n + "x" + n + " matrix (" + n + " rows of " + n + " numbers)");
+  }
+  Eigen::Matrix<double, N, N> M;
+  for (int r = 0; r < N; ++r) {
+    for (int c = 0; c < N; ++c) M(r, c) = rows[r][c];
+  }
+  return M;
+}
+
 }  // namespace
 
 Eigen::Matrix3d ReadMatrix3(const YamlDocument& yaml, const std::string& key) {
-  const std::vector<std::vector<double>> rows = yaml.Rows(key);
-  if (rows.size() != 3 || rows[0].size() != 3) {
-    throw Error(yaml.path(), yaml.Line(key), key + ": expected a 3x3 matrix (3 rows of 3 numbers)");
-  }
-  Eigen::Matrix3d M;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) M(r, c) = rows[r][c];
-  }
-  return M;
+  return ReadSquareMatrix<3>(yaml, key);
 }
 
 SO3d ReadRotation(const YamlDocument& yaml, const std::string& key) {
@@ -41,14 +51,7 @@ SO3d ReadRotation(const YamlDocument& yaml, const std::string& key) {
 }
 
 SE3d ReadRigidTransform(const YamlDocument& yaml, const std::string& key) {
-  const std::vector<std::vector<double>> rows = yaml.Rows(key);
-  if (rows.size() != 4 || rows[0].size() != 4) {
-    throw Error(yaml.path(), yaml.Line(key), key + ": expected a 4x4 matrix (4 rows of 4 numbers)");
-  }
-  Eigen::Matrix4d T;
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) T(r, c) = rows[r][c];
-  }
+  const Eigen::Matrix4d T = ReadSquareMatrix<4>(yaml, key);
   const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
   const double bottom =
       std::abs(T(3, 0)) + std::abs(T(3, 1)) + std::abs(T(3, 2)) + std::abs(T(3, 3) - 1.0);

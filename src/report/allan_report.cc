@@ -13,6 +13,7 @@
 #include "splinecal/imu/noise.h"
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/yaml_writer.h"
+#include "splinecal/report/option_names.h"
 #include "splinecal/string_printf.h"
 
 namespace splinecal {
@@ -68,7 +69,7 @@ std::string KeyComment(const char* name, const KalibrKey& key, CombineAxes combi
         "UPPER BOUND, no axis shows the slope of this term (the largest of the axes' bounds; "
         "see result.yaml for why)";
   } else {
-    text += std::string(combine == CombineAxes::kMax ? "max" : "mean") + " over the identified " +
+    text += std::string(NameOf(kCombineAxesNames, combine)) + " over the identified " +
             (key.num_axes == 1 ? "axis " : "axes ") + key.axes;
   }
   if (key.unreliable) text += "; UNRELIABLE: the recording moves";
@@ -145,7 +146,7 @@ std::string AllanResultYamlText(const AllanResult& result) {
   yaml.Scalar("taus_per_decade", result.taus_per_decade);
   yaml.Scalar("max_tau_fraction", result.max_tau_fraction);
   WriteWorkBudget(result, &yaml);
-  yaml.Scalar("combine", std::string(result.combine == CombineAxes::kMax ? "max" : "mean"));
+  yaml.Scalar("combine", std::string(NameOf(kCombineAxesNames, result.combine)));
   yaml.Scalar("motion_detected", result.motion.moving);
   if (result.motion.moving) {
     yaml.Scalar("motion", result.motion.Summary());

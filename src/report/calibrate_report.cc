@@ -14,6 +14,7 @@
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/html_page.h"
 #include "splinecal/report/imu_model_report.h"
+#include "splinecal/report/option_names.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
 #include "splinecal/spline/trajectory_model.h"
@@ -26,6 +27,15 @@ namespace splinecal {
 
 namespace {
 
+// A standard deviation; a quantity that was held fixed has none: "fixed", not NaN.
+void WriteStdOrFixed(const std::string& key, bool estimated, double std_value, YamlWriter* yaml) {
+  if (estimated) {
+    yaml->Scalar(key, std_value);
+  } else {
+    yaml->Scalar(key, "fixed");
+  }
+}
+
 void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
   yaml->Matrix("T_cam_imu", c.calibration.T_cam_imu.matrix());
   yaml->Vector("rotation_std_deg", c.rotation_std_deg);
@@ -34,19 +44,10 @@ void WriteCameraYaml(const CameraEstimate& c, YamlWriter* yaml) {
   if (std::isfinite(c.baseline_std_m)) yaml->Scalar("baseline_std_m", c.baseline_std_m);
   yaml->Scalar("timeshift_cam_imu", c.calibration.time_offset_s);
   yaml->Scalar("timeshift_estimated", c.time_offset_estimated);
-  // A quantity that was held fixed has no standard deviation: "fixed", not NaN.
-  if (c.time_offset_estimated) {
-    yaml->Scalar("timeshift_std_s", c.time_offset_std_s);
-  } else {
-    yaml->Scalar("timeshift_std_s", "fixed");
-  }
+  WriteStdOrFixed("timeshift_std_s", c.time_offset_estimated, c.time_offset_std_s, yaml);
   yaml->Scalar("line_delay", c.calibration.line_delay_s);
   yaml->Scalar("line_delay_estimated", c.line_delay_estimated);
-  if (c.line_delay_estimated) {
-    yaml->Scalar("line_delay_std", c.line_delay_std_s);
-  } else {
-    yaml->Scalar("line_delay_std", "fixed");
-  }
+  WriteStdOrFixed("line_delay_std", c.line_delay_estimated, c.line_delay_std_s, yaml);
   // The intrinsics used: how (held / prior / free), before (the camchain's) and after, the
   // prior's std and the estimate's, in Kalibr's order as camchain-imucam.yaml and `splinecal
   // intrinsics` write them.
@@ -432,7 +433,7 @@ std::string CalibrateResultYaml(const CalibrationResult& r, const CalibrateOptio
   yaml.Scalar("knot_spacing_s", NanosecondsToSeconds(r.layout.dt_ns));
   yaml.Scalar("knot_spacing_rule", r.knot_spacing_rule);
   yaml.Scalar("trajectory", TrajectoryModelName(r.trajectory));
-  yaml.Scalar("bias_model", options.model.bias_model == BiasModel::kSpline ? "spline" : "constant");
+  yaml.Scalar("bias_model", NameOf(kBiasModelNames, options.model.bias_model));
   yaml.Scalar("rolling_shutter", options.rolling_shutter);
   yaml.Scalar("huber_px", options.huber_px);
   yaml.Scalar("iterations", r.solve.iterations);
@@ -480,9 +481,7 @@ std::string CalibrateReportHtml(const CalibrationResult& r,
                                 const CalibrateOptions& options,
                                 const CalibrateReportInputs& inputs,
                                 int max_points) {
-  HtmlPage page("splinecal calibrate",
-                "body{margin:2em;max-width:1000px}td,th{padding:3px 8px;text-align:right}"
-                "th{text-align:left}caption{text-align:left;padding:4px 0}");
+  HtmlPage page("splinecal calibrate", kCalibrationReportCss);
   page.Append(InputFilesHtml({{"IMU", inputs.imu_path},
                               {"observations", inputs.observations_path},
                               {"camchain", inputs.camchain_path},

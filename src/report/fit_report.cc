@@ -8,6 +8,7 @@
 #include "splinecal/plot/plot_decimation.h"
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/html_page.h"
+#include "splinecal/report/option_names.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/spline/trajectory_model.h"
 #include "splinecal/string_printf.h"
@@ -16,10 +17,6 @@
 namespace splinecal {
 
 namespace {
-
-std::string BiasModelName(BiasModel model) {
-  return model == BiasModel::kConstant ? "constant" : "spline";
-}
 
 void Append3(const Eigen::Vector3d& v, std::string* row) {
   for (int a = 0; a < 3; ++a) *row += "," + FormatDouble(v[a]);
@@ -63,7 +60,7 @@ std::string FitResultYaml(const FitResult& r, const FitReportInputs& inputs) {
   yaml.Scalar(
       "imu_yaml",
       inputs.imu_yaml_path.empty() ? std::string("(ADIS16448 defaults)") : inputs.imu_yaml_path);
-  yaml.Scalar("bias_model", BiasModelName(r.bias_model));
+  yaml.Scalar("bias_model", NameOf(kBiasModelNames, r.bias_model));
   if (r.bias_model == BiasModel::kSpline) {
     yaml.Comment("bias spline: gyro_bias / accel_bias are its time averages over the IMU samples");
   }
@@ -177,11 +174,11 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
     figure.panel_width = 900.0;
     figure.panel_height = 220.0;
     for (int a = 0; a < 3; ++a) {
-      plot::Panel& panel = figure.panels.emplace_back();
-      panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
-      panel.y = {
-          std::string(gyro ? "gyro " : "accel ") + AxisName(a) + (gyro ? " [rad/s]" : " [m/s^2]"),
-          plot::Scale::kLinear};
+      plot::Panel& panel = plot::AddPanel(
+          &figure,
+          "",
+          "time since the first IMU sample [s]",
+          std::string(gyro ? "gyro " : "accel ") + AxisName(a) + (gyro ? " [rad/s]" : " [m/s^2]"));
       plot::Series& measured = panel.series.emplace_back();
       measured.label = "measured";
       measured.color = "#999999";
@@ -209,10 +206,11 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   plot::Series thin_line;
   thin_line.line_width = 1.0;
   for (int sensor = 0; sensor < 2; ++sensor) {
-    plot::Panel& panel = residuals.panels.emplace_back();
-    panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
-    panel.y = {sensor == 0 ? "gyro residual [rad/s]" : "accel residual [m/s^2]",
-               plot::Scale::kLinear};
+    plot::Panel& panel =
+        plot::AddPanel(&residuals,
+                       "",
+                       "time since the first IMU sample [s]",
+                       sensor == 0 ? "gyro residual [rad/s]" : "accel residual [m/s^2]");
     AddAxisSeries(
         thin_line,
         imu,
@@ -231,10 +229,11 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
   dots.marker = plot::Marker::kCircle;
   dots.marker_size = 1.5;
   for (int kind = 0; kind < 2; ++kind) {
-    plot::Panel& panel = residuals.panels.emplace_back();
-    panel.x = {"pose time, shifted like the IMU axis [s]", plot::Scale::kLinear};
-    panel.y = {kind == 0 ? "pose position error [m]" : "pose rotation error [deg]",
-               plot::Scale::kLinear};
+    plot::Panel& panel =
+        plot::AddPanel(&residuals,
+                       "",
+                       "pose time, shifted like the IMU axis [s]",
+                       kind == 0 ? "pose position error [m]" : "pose rotation error [deg]");
     AddAxisSeries(
         dots,
         r.pose_samples,
@@ -248,14 +247,15 @@ std::string FitReportHtml(const FitResult& r, const FitReportInputs& inputs, int
 
   // Biases over time (with +-1 std bands for the constant model).
   plot::Figure biases;
-  biases.title = "Biases (" + BiasModelName(r.bias_model) + " model)";
+  biases.title = std::string("Biases (") + NameOf(kBiasModelNames, r.bias_model) + " model)";
   biases.columns = 2;
   biases.panel_width = 450.0;
   biases.panel_height = 260.0;
   for (int sensor = 0; sensor < 2; ++sensor) {
-    plot::Panel& panel = biases.panels.emplace_back();
-    panel.x = {"time since the first IMU sample [s]", plot::Scale::kLinear};
-    panel.y = {sensor == 0 ? "gyro bias [rad/s]" : "accel bias [m/s^2]", plot::Scale::kLinear};
+    plot::Panel& panel = plot::AddPanel(&biases,
+                                        "",
+                                        "time since the first IMU sample [s]",
+                                        sensor == 0 ? "gyro bias [rad/s]" : "accel bias [m/s^2]");
     AddAxisSeries(
         plot::Series(),
         imu,

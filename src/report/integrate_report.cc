@@ -88,9 +88,7 @@ IntegrationRun RunIntegration(const std::vector<ImuSample>& imu,
   figure.title = "IMU dead reckoning, top view";
   figure.panel_width = 560.0;
   figure.panel_height = 480.0;
-  plot::Panel& panel = figure.panels.emplace_back();
-  panel.x = {"x [m]", plot::Scale::kLinear};
-  panel.y = {"y [m]", plot::Scale::kLinear};
+  plot::Panel& panel = plot::AddPanel(&figure, "", "x [m]", "y [m]");
   panel.equal_aspect = true;
   plot::Series& truth_series = panel.series.emplace_back();
   truth_series.label = "ground truth";

@@ -314,9 +314,7 @@ std::string IntrinsicsResultYaml(const IntrinsicsResult& result,
 std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
                                  const IntrinsicsReportInputs& inputs,
                                  int max_points) {
-  HtmlPage page("splinecal intrinsics",
-                "body{margin:2em;max-width:1000px}td,th{padding:3px 8px;text-align:right}"
-                "th{text-align:left}caption{text-align:left;padding:4px 0}");
+  HtmlPage page("splinecal intrinsics", kCalibrationReportCss);
   page.Append(InputFilesHtml({{"observations", inputs.observations_path},
                               {"target", inputs.target_path},
                               {"camchain", inputs.camchain_path}}));

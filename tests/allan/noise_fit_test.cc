@@ -211,33 +211,28 @@ TEST(FitNoise, RoundTripAdis16448AtFourScales) {
   for (const double scale : {1.0, 10.0, 100.0, 1000.0}) {
     SCOPED_TRACE("scale " + std::to_string(scale));
     const RoundTrip run = scale == 1.0 ? base : RunRoundTrip(gyro_draws, accel_draws, scale);
-    ASSERT_TRUE(run.gyro[NoiseTerm::kWhite].identified) << run.gyro[NoiseTerm::kWhite].reason;
-    ASSERT_TRUE(run.gyro[NoiseTerm::kRandomWalk].identified)
-        << run.gyro[NoiseTerm::kRandomWalk].reason;
-    ASSERT_TRUE(run.accel[NoiseTerm::kWhite].identified) << run.accel[NoiseTerm::kWhite].reason;
-    ASSERT_TRUE(run.accel[NoiseTerm::kRandomWalk].identified)
-        << run.accel[NoiseTerm::kRandomWalk].reason;
-    const double gyro_n = run.gyro[NoiseTerm::kWhite].value / (scale * kGyroNoiseDensity);
-    const double gyro_k = run.gyro[NoiseTerm::kRandomWalk].value / (scale * kGyroRandomWalk);
-    const double accel_n = run.accel[NoiseTerm::kWhite].value / (scale * kAccelNoiseDensity);
-    const double accel_k = run.accel[NoiseTerm::kRandomWalk].value / (scale * kAccelRandomWalk);
-    EXPECT_NEAR(gyro_n, 1.0, kNoiseDensityTolerance);
-    EXPECT_NEAR(gyro_k, 1.0, kRandomWalkTolerance);
-    EXPECT_NEAR(accel_n, 1.0, kNoiseDensityTolerance);
-    EXPECT_NEAR(accel_k, 1.0, kRandomWalkTolerance);
-    // Scale invariance: the same ratios at every scale.
-    EXPECT_NEAR(gyro_n,
-                base.gyro[NoiseTerm::kWhite].value / kGyroNoiseDensity,
-                kScaleInvarianceTolerance * gyro_n);
-    EXPECT_NEAR(gyro_k,
-                base.gyro[NoiseTerm::kRandomWalk].value / kGyroRandomWalk,
-                kScaleInvarianceTolerance * gyro_k);
-    EXPECT_NEAR(accel_n,
-                base.accel[NoiseTerm::kWhite].value / kAccelNoiseDensity,
-                kScaleInvarianceTolerance * accel_n);
-    EXPECT_NEAR(accel_k,
-                base.accel[NoiseTerm::kRandomWalk].value / kAccelRandomWalk,
-                kScaleInvarianceTolerance * accel_k);
+    // Each slope-line estimate over its true value: 1 within the tolerance, and the same ratio
+    // at every scale (scale invariance).
+    struct Term {
+      AxisNoiseFit RoundTrip::*axis;
+      NoiseTerm term;
+      double truth;
+      double tolerance;
+    };
+    const Term terms[] = {
+        {&RoundTrip::gyro, NoiseTerm::kWhite, kGyroNoiseDensity, kNoiseDensityTolerance},
+        {&RoundTrip::gyro, NoiseTerm::kRandomWalk, kGyroRandomWalk, kRandomWalkTolerance},
+        {&RoundTrip::accel, NoiseTerm::kWhite, kAccelNoiseDensity, kNoiseDensityTolerance},
+        {&RoundTrip::accel, NoiseTerm::kRandomWalk, kAccelRandomWalk, kRandomWalkTolerance}};
+    for (const Term& t : terms) {
+      SCOPED_TRACE(std::string(t.axis == &RoundTrip::gyro ? "gyro " : "accel ") +
+                   NoiseTermKey(t.term));
+      const TermEstimate& estimate = (run.*t.axis)[t.term];
+      ASSERT_TRUE(estimate.identified) << estimate.reason;
+      const double ratio = estimate.value / (scale * t.truth);
+      EXPECT_NEAR(ratio, 1.0, t.tolerance);
+      EXPECT_NEAR(ratio, (base.*t.axis)[t.term].value / t.truth, kScaleInvarianceTolerance * ratio);
+    }
     for (int j = 0; j < kNumNoiseTerms; ++j) {
       EXPECT_NEAR(run.gyro.model.value[j] / scale,
                   base.gyro.model.value[j],

@@ -51,10 +51,7 @@ TEST(CalibrateSlow, RollingShutterSixtySeconds) {
   EXPECT_LT(e.translation_m.norm(), kMaxTranslationErrorM);
   EXPECT_LT(std::abs(e.time_offset_s), kMaxTimeOffsetErrorS);
   EXPECT_LT(std::abs(e.line_delay_s), kMaxLineDelayRelativeError * kTrueLineDelay);
-  for (int a = 0; a < 3; ++a) {
-    EXPECT_LT(std::abs(e.rotation_deg[a]), kStdFactor * c.rotation_std_deg[a]) << a;
-    EXPECT_LT(std::abs(e.translation_m[a]), kStdFactor * c.translation_std_m[a]) << a;
-  }
+  ExpectExtrinsicWithinStds(c, e, kStdFactor);
   EXPECT_LT(std::abs(e.time_offset_s), kStdFactor * c.time_offset_std_s);
   EXPECT_LT(std::abs(e.line_delay_s), kStdFactor * c.line_delay_std_s);
   EXPECT_TRUE(r.warnings.size() <= 1u);  // at most "frames outside the IMU's time range"
@@ -104,10 +101,7 @@ TEST(CalibrateSlow, RollingShutterDataWithoutTheModelIsBiased) {
     warned = warned || w.find("the data scatter more than the noise model explains") == 0;
   }
   EXPECT_TRUE(warned);
-  for (int a = 0; a < 3; ++a) {
-    EXPECT_LT(std::abs(e.rotation_deg[a]), 3.0 * c.rotation_std_deg[a]) << a;
-    EXPECT_LT(std::abs(e.translation_m[a]), 3.0 * c.translation_std_m[a]) << a;
-  }
+  ExpectExtrinsicWithinStds(c, e, 3.0);
   EXPECT_GT(r.reprojection_rms_px, 1.2 * 0.5 * std::sqrt(2.0));
 }
 

@@ -81,6 +81,14 @@ constexpr double kMaxLineDelayRelativeError = 0.01;
 constexpr double kStdFactor = 3.0;
 constexpr double kTrueLineDelay = 3e-5;  // testing::ScenarioOptions' default [s/row]
 
+// cam0's T_cam_imu within `sigmas` of its reported standard deviations, axis by axis.
+inline void ExpectExtrinsicWithinStds(const CameraEstimate& c, const Errors& e, double sigmas) {
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(std::abs(e.rotation_deg[a]), sigmas * c.rotation_std_deg[a]) << a;
+    EXPECT_LT(std::abs(e.translation_m[a]), sigmas * c.translation_std_m[a]) << a;
+  }
+}
+
 inline void ExpectWithinTargetsAndStds(const CalibrationResult& r,
                                        const Errors& e,
                                        bool line_delay) {
@@ -89,10 +97,7 @@ inline void ExpectWithinTargetsAndStds(const CalibrationResult& r,
   EXPECT_LT(e.rotation_deg.norm(), kMaxRotationErrorDeg);
   EXPECT_LT(e.translation_m.norm(), kMaxTranslationErrorM);
   EXPECT_LT(std::abs(e.time_offset_s), kMaxTimeOffsetErrorS);
-  for (int a = 0; a < 3; ++a) {
-    EXPECT_LT(std::abs(e.rotation_deg[a]), kStdFactor * c.rotation_std_deg[a]) << a;
-    EXPECT_LT(std::abs(e.translation_m[a]), kStdFactor * c.translation_std_m[a]) << a;
-  }
+  ExpectExtrinsicWithinStds(c, e, kStdFactor);
   EXPECT_LT(std::abs(e.time_offset_s), kStdFactor * c.time_offset_std_s);
   if (line_delay) {
     EXPECT_LT(std::abs(e.line_delay_s), kMaxLineDelayRelativeError * kTrueLineDelay);
@@ -168,10 +173,7 @@ inline void ExpectLandmarksOnlyCalibration(double duration_s,
   // asks for 6 reported standard deviations.
   constexpr double kLandmarkStdFactor = 6.0;
   const CameraEstimate& c = r.cameras[0];
-  for (int a = 0; a < 3; ++a) {
-    EXPECT_LT(std::abs(e.rotation_deg[a]), kLandmarkStdFactor * c.rotation_std_deg[a]) << a;
-    EXPECT_LT(std::abs(e.translation_m[a]), kLandmarkStdFactor * c.translation_std_m[a]) << a;
-  }
+  ExpectExtrinsicWithinStds(c, e, kLandmarkStdFactor);
   EXPECT_LT(std::abs(e.time_offset_s), kLandmarkStdFactor * c.time_offset_std_s);
   EXPECT_LT(std::abs(e.line_delay_s), kLandmarkStdFactor * c.line_delay_std_s);
   // 6 s of landmarks rather than 60 s of target: twice the accuracy targets (target_factor).

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "splinecal/lie/se3_manifold.h"
+#include "testing/cost_evaluation.h"
 #include "testing/numeric_diff.h"
 
 namespace splinecal {
@@ -76,13 +77,8 @@ TEST_P(CamchainPriorTest, ResidualIsTheMahalanobisDistanceAndJacobiansMatch) {
   for (int j = 0; j < m; ++j) d(j) = theta(c.intrinsics[j]) - reference(c.intrinsics[j]);
   if (c.chain) d.tail<6>() = xi;
   Eigen::VectorXd r(n);
-  std::vector<std::vector<double>> J(blocks.size());
-  std::vector<double*> jacobians;
-  for (size_t b = 0; b < blocks.size(); ++b) {
-    J[b].resize(n * cost.parameter_block_sizes()[b]);
-    jacobians.push_back(J[b].data());
-  }
-  ASSERT_TRUE(cost.Evaluate(blocks.data(), r.data(), jacobians.data()));
+  testing::FreeBlockJacobians J(cost);
+  ASSERT_TRUE(cost.Evaluate(blocks.data(), r.data(), J.pointers.data()));
   EXPECT_NEAR(r.squaredNorm(), d.dot(covariance.ldlt().solve(d)), 1e-9 * r.squaredNorm());
 
   SE3Manifold manifold;
@@ -90,26 +86,14 @@ TEST_P(CamchainPriorTest, ResidualIsTheMahalanobisDistanceAndJacobiansMatch) {
     const int size = cost.parameter_block_sizes()[b];
     const bool pose = size == 7;
     const int tangent = pose ? 6 : size;
-    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    Eigen::MatrixXd analytic = Eigen::Map<const RowMajor>(J[b].data(), n, size);
+    Eigen::MatrixXd analytic = J.Ambient(b);
     if (pose) {
-      RowMajor P(7, 6);
+      testing::FreeBlockJacobians::RowMajor P(7, 6);
       manifold.PlusJacobian(blocks[b], P.data());
       analytic = analytic * P;
     }
-    const std::vector<double> x0(blocks[b], blocks[b] + size);
-    auto f = [&](const Eigen::VectorXd& delta) -> Eigen::VectorXd {
-      std::vector<double> x(size);
-      if (pose) {
-        manifold.Plus(x0.data(), delta.data(), x.data());
-      } else {
-        for (int k = 0; k < size; ++k) x[k] = x0[k] + delta[k];
-      }
-      std::vector<double*> p = blocks;
-      p[b] = x.data();
-      Eigen::VectorXd out(n);
-      CHECK(cost.Evaluate(p.data(), out.data(), nullptr));
-      return out;
+    auto f = [&](const Eigen::VectorXd& delta) {
+      return testing::ResidualsWithBlockMoved(cost, blocks, b, delta);
     };
     testing::RiddersOptions options;
     options.initial_step = 1e-3;

@@ -171,10 +171,7 @@ inline void ExpectRoundTrip(const std::vector<MountedImu>& mounted) {
   const testing::Errors e = testing::ErrorsOf(r.cameras[0].calibration, s.truth[0]);
   testing::Print("several IMUs", r, e);
   const CameraEstimate& c = r.cameras[0];
-  for (int a = 0; a < 3; ++a) {
-    EXPECT_LT(std::abs(e.rotation_deg[a]), kRoundTripSigmas * c.rotation_std_deg[a]) << a;
-    EXPECT_LT(std::abs(e.translation_m[a]), kRoundTripSigmas * c.translation_std_m[a]) << a;
-  }
+  ExpectExtrinsicWithinStds(c, e, kRoundTripSigmas);
 }
 
 // A second IMU turned by ~75 deg, 11 cm from the reference, 2 ms late.

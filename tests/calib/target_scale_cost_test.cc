@@ -6,10 +6,12 @@
 #include <memory>
 #include <vector>
 
+#include "calib/camera_cost_test.h"
 #include "calib/camera_test_scene.h"
 #include "splinecal/estimation/detail/compact_frame_cost.h"
 #include "splinecal/estimation/reprojection_cost.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "testing/cost_evaluation.h"
 #include "testing/numeric_diff.h"
 
 namespace splinecal {
@@ -23,15 +25,8 @@ constexpr double kEquivalencePx = 1e-9;
 constexpr double kRelativeJacobianTolerance = 1e-6;
 constexpr double kScale = 1.3;
 
-class TargetScaleCostTest : public ::testing::Test {
+class TargetScaleCostTest : public testing::CameraCostTest {
  protected:
-  TargetScaleCostTest() {
-    settings_.camera = &scene_.camera;
-    settings_.layout.dt_ns = std::llround(scene_.dt_s * 1e9);
-    settings_.layout.num_control_poses = static_cast<int>(scene_.poses.size());
-    settings_.sigma_px = 0.7;
-  }
-
   // Every target corner (scaled by `scale`), observed at a pixel near the image centre (the
   // residuals need not be small; no robust loss).
   std::vector<TargetCornerObservation> Corners(double scale) const {
@@ -54,24 +49,16 @@ class TargetScaleCostTest : public ::testing::Test {
   // J (tangent coordinates of the blocks marked free) and r at `blocks`.
   void Linearize(const ceres::CostFunction& cost, const std::vector<double*>& blocks,
                  const std::vector<bool>& free, Eigen::MatrixXd* J, Eigen::VectorXd* r) {
-    const std::vector<int32_t>& sizes = cost.parameter_block_sizes();
-    const int rows = cost.num_residuals();
-    std::vector<std::vector<double>> ambient(sizes.size());
-    std::vector<double*> jacobians(sizes.size(), nullptr);
-    for (size_t i = 0; i < sizes.size(); ++i) {
-      if (!free[i]) continue;
-      ambient[i].assign(rows * sizes[i], 0.0);
-      jacobians[i] = ambient[i].data();
-    }
+    testing::FreeBlockJacobians ambient(cost, free);
+    const int rows = ambient.rows;
     r->resize(rows);
-    ASSERT_TRUE(cost.Evaluate(blocks.data(), r->data(), jacobians.data()));
+    ASSERT_TRUE(cost.Evaluate(blocks.data(), r->data(), ambient.pointers.data()));
     J->resize(rows, 0);
-    for (size_t i = 0; i < sizes.size(); ++i) {
+    for (size_t i = 0; i < ambient.sizes.size(); ++i) {
       if (!free[i]) continue;
-      using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-      Eigen::MatrixXd block = Eigen::Map<const RowMajor>(ambient[i].data(), rows, sizes[i]);
-      if (sizes[i] == 7) {
-        RowMajor P(7, 6);
+      Eigen::MatrixXd block = ambient.Ambient(i);
+      if (ambient.sizes[i] == 7) {
+        testing::FreeBlockJacobians::RowMajor P(7, 6);
         manifold_.PlusJacobian(blocks[i], P.data());
         block = block * P;
       }
@@ -80,8 +67,6 @@ class TargetScaleCostTest : public ::testing::Test {
     }
   }
 
-  testing::CameraTestScene scene_;
-  ReprojectionOptions settings_;
   SE3Manifold manifold_;
 };
 
@@ -115,22 +100,11 @@ TEST_F(TargetScaleCostTest, ScaledTranslationsSeeTheScaledTargetAndJacobiansMatc
     const int size = cost.parameter_block_sizes()[b];
     const bool pose = size == 7;
     const int tangent = pose ? 6 : size;
-    const std::vector<double> x0(blocks[b], blocks[b] + size);
-    auto f = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
-      std::vector<double> x(size);
-      if (pose) {
-        manifold_.Plus(x0.data(), d.data(), x.data());
-      } else {
-        x[0] = x0[0] + d[0];
-      }
-      std::vector<double*> p = blocks;
-      p[b] = x.data();
-      Eigen::VectorXd out(rows);
-      CHECK(cost.Evaluate(p.data(), out.data(), nullptr));
-      return out;
+    auto f = [&](const Eigen::VectorXd& d) {
+      return testing::ResidualsWithBlockMoved(cost, blocks, b, d);
     };
     testing::RiddersOptions options;
-    options.initial_step = pose ? 1e-3 : 1e-3 * std::max(1e-6, std::abs(x0[0]));
+    options.initial_step = pose ? 1e-3 : 1e-3 * std::max(1e-6, std::abs(blocks[b][0]));
     const Eigen::MatrixXd numeric =
         testing::RiddersJacobian(f, Eigen::VectorXd::Zero(tangent), options);
     const Eigen::MatrixXd analytic = J.middleCols(column, tangent);

@@ -166,61 +166,63 @@ TEST(FurtherImuCost, AtTheReferencePoseEqualsTheReferenceCosts) {
 constexpr ImuModelKind kKinds[] = {ImuModelKind::kCalibrated, ImuModelKind::kScaleMisalignment,
                                    ImuModelKind::kScaleMisalignmentSizeEffect};
 
-// Mounted away from the reference with a distorted model: the analytic residuals and every
-// block's Jacobian (ambient coordinates, as Ceres asks) equal the automatic differentiation's.
-TEST(FurtherImuCost, AnalyticMatchesAutoDiff) {
+// check(f, kind, nb) for every model kind and 1 and 4 bias points, each on a fixture of `seed`
+// mounted away from the reference with a distorted model.
+template <typename Check>
+void ForEachMountedModel(uint64_t seed, const Check& check) {
   for (ImuModelKind kind : kKinds) {
     for (int nb : {1, 4}) {
-      Fixture f(5);
+      Fixture f(seed);
       f.Mount();
       f.Distort();
-      const FurtherImuSegment segment = MakeSegment(nb, kind);
-      const std::unique_ptr<ceres::CostFunction> cost(NewFurtherImuCost(segment));
-      const std::unique_ptr<ceres::CostFunction> oracle(
-          testing::NewAutoDiffFurtherImuCost(segment));
-      const std::vector<double*> blocks = f.Blocks(nb, kind);
-      ASSERT_EQ(cost->parameter_block_sizes().size(), blocks.size());
-      const Evaluation e = Evaluate(*cost, blocks);
-      const Evaluation o = Evaluate(*oracle, blocks);
-      EXPECT_LE(RelativeError(e.residuals, o.residuals), kExactTolerance) << ImuModelName(kind);
-      for (size_t b = 0; b < blocks.size(); ++b) {
-        EXPECT_LE(RelativeError(e.jacobians[b], o.jacobians[b]), kExactTolerance)
-            << ImuModelName(kind) << ", block " << b << ", " << nb << " bias point(s)";
-      }
+      check(f, kind, nb);
     }
   }
 }
 
+// Mounted away from the reference with a distorted model: the analytic residuals and every
+// block's Jacobian (ambient coordinates, as Ceres asks) equal the automatic differentiation's.
+TEST(FurtherImuCost, AnalyticMatchesAutoDiff) {
+  ForEachMountedModel(5, [](Fixture& f, ImuModelKind kind, int nb) {
+    const FurtherImuSegment segment = MakeSegment(nb, kind);
+    const std::unique_ptr<ceres::CostFunction> cost(NewFurtherImuCost(segment));
+    const std::unique_ptr<ceres::CostFunction> oracle(testing::NewAutoDiffFurtherImuCost(segment));
+    const std::vector<double*> blocks = f.Blocks(nb, kind);
+    ASSERT_EQ(cost->parameter_block_sizes().size(), blocks.size());
+    const Evaluation e = Evaluate(*cost, blocks);
+    const Evaluation o = Evaluate(*oracle, blocks);
+    EXPECT_LE(RelativeError(e.residuals, o.residuals), kExactTolerance) << ImuModelName(kind);
+    for (size_t b = 0; b < blocks.size(); ++b) {
+      EXPECT_LE(RelativeError(e.jacobians[b], o.jacobians[b]), kExactTolerance)
+          << ImuModelName(kind) << ", block " << b << ", " << nb << " bias point(s)";
+    }
+  });
+}
+
 // The same against central differences of the residuals; every block moves them.
 TEST(FurtherImuCost, JacobiansMatchCentralDifferences) {
-  for (ImuModelKind kind : kKinds) {
-    for (int nb : {1, 4}) {
-      Fixture f(4);
-      f.Mount();
-      f.Distort();
-      const std::unique_ptr<ceres::CostFunction> cost(NewFurtherImuCost(MakeSegment(nb, kind)));
-      const std::vector<double*> blocks = f.Blocks(nb, kind);
-      const Evaluation e = Evaluate(*cost, blocks);
-      const std::vector<int32_t>& sizes = cost->parameter_block_sizes();
-      for (size_t b = 0; b < blocks.size(); ++b) {
-        Eigen::MatrixXd numeric(cost->num_residuals(), sizes[b]);
-        for (int j = 0; j < sizes[b]; ++j) {
-          const double x = blocks[b][j];
-          blocks[b][j] = x + kStep;
-          const Eigen::VectorXd plus = Residuals(*cost, blocks);
-          blocks[b][j] = x - kStep;
-          const Eigen::VectorXd minus = Residuals(*cost, blocks);
-          blocks[b][j] = x;
-          numeric.col(j) = (plus - minus) / (2.0 * kStep);
-        }
-        EXPECT_LE(RelativeError(e.jacobians[b], numeric), kNumericTolerance)
-            << ImuModelName(kind) << ", block " << b << " of " << blocks.size() << ", " << nb
-            << " bias point(s)";
-        EXPECT_GT(e.jacobians[b].cwiseAbs().maxCoeff(), 0.0)
-            << ImuModelName(kind) << ", block " << b;
+  ForEachMountedModel(4, [](Fixture& f, ImuModelKind kind, int nb) {
+    const std::unique_ptr<ceres::CostFunction> cost(NewFurtherImuCost(MakeSegment(nb, kind)));
+    const std::vector<double*> blocks = f.Blocks(nb, kind);
+    const Evaluation e = Evaluate(*cost, blocks);
+    const std::vector<int32_t>& sizes = cost->parameter_block_sizes();
+    for (size_t b = 0; b < blocks.size(); ++b) {
+      Eigen::MatrixXd numeric(cost->num_residuals(), sizes[b]);
+      for (int j = 0; j < sizes[b]; ++j) {
+        const double x = blocks[b][j];
+        blocks[b][j] = x + kStep;
+        const Eigen::VectorXd plus = Residuals(*cost, blocks);
+        blocks[b][j] = x - kStep;
+        const Eigen::VectorXd minus = Residuals(*cost, blocks);
+        blocks[b][j] = x;
+        numeric.col(j) = (plus - minus) / (2.0 * kStep);
       }
+      EXPECT_LE(RelativeError(e.jacobians[b], numeric), kNumericTolerance)
+          << ImuModelName(kind) << ", block " << b << " of " << blocks.size() << ", " << nb
+          << " bias point(s)";
+      EXPECT_GT(e.jacobians[b].cwiseAbs().maxCoeff(), 0.0) << ImuModelName(kind) << ", block " << b;
     }
-  }
+  });
 }
 
 // At the model's nominal values (M = I, A = 0, C_gyro_i = I, ry_i = rz_i = 0) every model

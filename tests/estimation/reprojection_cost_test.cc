@@ -10,10 +10,12 @@
 #include <random>
 #include <vector>
 
+#include "calib/camera_cost_test.h"
 #include "calib/camera_test_scene.h"
 #include "splinecal/estimation/detail/compact_frame_cost.h"
 #include "splinecal/estimation/variance_components.h"
 #include "splinecal/lie/se3_manifold.h"
+#include "testing/cost_evaluation.h"
 #include "testing/numeric_diff.h"
 
 namespace splinecal {
@@ -66,30 +68,18 @@ struct Blocks {
   std::vector<const ceres::Manifold*> manifolds;
 };
 
-class ReprojectionCostTest : public ::testing::Test {
+class ReprojectionCostTest : public testing::CameraCostTest {
  protected:
-  ReprojectionCostTest() {
-    settings_.camera = &scene_.camera;
-    settings_.layout.dt_ns = std::llround(scene_.dt_s * 1e9);
-    settings_.layout.num_control_poses = static_cast<int>(scene_.poses.size());
-    settings_.sigma_px = 0.7;
-  }
-
   // Checks every Jacobian block of `cost` at `blocks` against Ridders' numeric Jacobians in the
   // block's tangent space (x (+) d through its manifold, d = 0 .. step). A block whose value is
   // 0 and must stay >= 0 (a line delay of 0) is differentiated one-sided (forward differences
   // extrapolated by Ridders on h > 0).
   void ExpectJacobiansMatch(const ceres::CostFunction& cost, const Blocks& blocks) {
-    const std::vector<int32_t>& sizes = cost.parameter_block_sizes();
-    const int rows = cost.num_residuals();
-    std::vector<std::vector<double>> J_ambient(sizes.size());
-    std::vector<double*> jacobians(sizes.size());
-    for (size_t i = 0; i < sizes.size(); ++i) {
-      J_ambient[i].assign(rows * sizes[i], 0.0);
-      jacobians[i] = J_ambient[i].data();
-    }
+    testing::FreeBlockJacobians J_ambient(cost);
+    const std::vector<int32_t>& sizes = J_ambient.sizes;
+    const int rows = J_ambient.rows;
     std::vector<double> r0(rows);
-    ASSERT_TRUE(cost.Evaluate(blocks.parameters.data(), r0.data(), jacobians.data()));
+    ASSERT_TRUE(cost.Evaluate(blocks.parameters.data(), r0.data(), J_ambient.pointers.data()));
     for (size_t i = 0; i < sizes.size(); ++i) {
       const ceres::Manifold* manifold = blocks.manifolds[i];
       const int tangent = manifold != nullptr ? manifold->TangentSize() : sizes[i];
@@ -101,10 +91,7 @@ class ReprojectionCostTest : public ::testing::Test {
       } else {
         plus.setIdentity();
       }
-      const Eigen::MatrixXd analytic =
-          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-              J_ambient[i].data(), rows, sizes[i]) *
-          plus;
+      const Eigen::MatrixXd analytic = J_ambient.Ambient(i) * plus;
       const std::vector<double> x0(blocks.parameters[i], blocks.parameters[i] + sizes[i]);
       const bool one_sided = manifold == nullptr && sizes[i] == 1 && x0[0] == 0.0;
       auto f = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
@@ -219,8 +206,6 @@ class ReprojectionCostTest : public ::testing::Test {
     return corners;
   }
 
-  testing::CameraTestScene scene_;
-  ReprojectionOptions settings_;
   SE3Manifold pose_manifold_;
 };
 
@@ -308,17 +293,11 @@ struct NormalEquations {
 NormalEquations NormalEquationsOf(const ceres::CostFunction& cost,
                                   const Blocks& blocks,
                                   const std::vector<bool>& free) {
-  const std::vector<int32_t>& sizes = cost.parameter_block_sizes();
-  const int rows = cost.num_residuals();
-  std::vector<std::vector<double>> storage(sizes.size());
-  std::vector<double*> jacobians(sizes.size(), nullptr);
-  for (size_t i = 0; i < sizes.size(); ++i) {
-    if (!free[i]) continue;
-    storage[i].assign(rows * sizes[i], 0.0);
-    jacobians[i] = storage[i].data();
-  }
+  testing::FreeBlockJacobians ambient(cost, free);
+  const std::vector<int32_t>& sizes = ambient.sizes;
+  const int rows = ambient.rows;
   Eigen::VectorXd r(rows);
-  EXPECT_TRUE(cost.Evaluate(blocks.parameters.data(), r.data(), jacobians.data()));
+  EXPECT_TRUE(cost.Evaluate(blocks.parameters.data(), r.data(), ambient.pointers.data()));
   std::vector<Eigen::MatrixXd> parts;
   int columns = 0;
   for (size_t i = 0; i < sizes.size(); ++i) {
@@ -330,10 +309,7 @@ NormalEquations NormalEquationsOf(const ceres::CostFunction& cost,
       blocks.manifolds[i]->PlusJacobian(blocks.parameters[i], P.data());
       plus = P;
     }
-    parts.push_back(
-        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-            storage[i].data(), rows, sizes[i]) *
-        plus);
+    parts.push_back(ambient.Ambient(i) * plus);
     columns += static_cast<int>(parts.back().cols());
   }
   Eigen::MatrixXd J(rows, columns);

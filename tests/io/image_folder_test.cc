@@ -18,6 +18,11 @@ using ::testing::HasSubstr;
 
 using testing::ErrorOf;
 
+// The message with which ListImageFolder refuses the folder `name` of `dir`.
+std::string ListingError(const testing::TempDir& dir, const std::string& name) {
+  return ErrorOf([&] { ListImageFolder(dir.File(name)); });
+}
+
 TEST(ListImageFolder, ReadsAnEurocCameraFolderInTimeOrder) {
   testing::TempDir dir;
   dir.Write("cam0/data.csv",
@@ -67,30 +72,26 @@ TEST(ListImageFolder, ReadsAPlainFolderOfTimestampNamedImages) {
 
 TEST(ListImageFolder, RefusesWhatNamesNoFrames) {
   testing::TempDir dir;
-  EXPECT_THAT(ErrorOf([&] { ListImageFolder(dir.File("absent")); }), HasSubstr("no such folder"));
+  EXPECT_THAT(ListingError(dir, "absent"), HasSubstr("no such folder"));
   dir.Write("file", "x");
-  EXPECT_THAT(ErrorOf([&] { ListImageFolder(dir.File("file")); }), HasSubstr("not a folder"));
+  EXPECT_THAT(ListingError(dir, "file"), HasSubstr("not a folder"));
   dir.Write("empty/readme.txt", "x");
-  EXPECT_THAT(ErrorOf([&] { ListImageFolder(dir.File("empty")); }),
-              HasSubstr("no images named <t_ns>.png"));
+  EXPECT_THAT(ListingError(dir, "empty"), HasSubstr("no images named <t_ns>.png"));
   dir.Write("allmissing/data.csv", "1,1.png\n");
-  EXPECT_THAT(ErrorOf([&] { ListImageFolder(dir.File("allmissing")); }),
+  EXPECT_THAT(ListingError(dir, "allmissing"),
               HasSubstr("data.csv: no image of data.csv exists under data/"));
 }
 
 TEST(ListImageFolder, RefusesMalformedDataCsvRowsWithFileAndLine) {
   testing::TempDir dir;
   dir.Write("a/data.csv", "#timestamp [ns],filename\n100,100.png,extra\n");
-  EXPECT_THAT(ErrorOf([&] { ListImageFolder(dir.File("a")); }),
-              HasSubstr("a/data.csv:2: expected 2 columns"));
+  EXPECT_THAT(ListingError(dir, "a"), HasSubstr("a/data.csv:2: expected 2 columns"));
   dir.Write("b/data.csv", "1.5e9,x.png\n");
-  EXPECT_THAT(ErrorOf([&] { ListImageFolder(dir.File("b")); }),
-              HasSubstr("b/data.csv:1:1: timestamp [ns]"));
+  EXPECT_THAT(ListingError(dir, "b"), HasSubstr("b/data.csv:1:1: timestamp [ns]"));
   dir.Write("c/data.csv", "100,100.png\n100,other.png\n");
   dir.Write("c/data/100.png", "x");
   dir.Write("c/data/other.png", "x");
-  EXPECT_THAT(ErrorOf([&] { ListImageFolder(dir.File("c")); }),
-              HasSubstr("c/data.csv:2: timestamp 100 also names"));
+  EXPECT_THAT(ListingError(dir, "c"), HasSubstr("c/data.csv:2: timestamp 100 also names"));
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
-// One evaluation of a ceres::CostFunction with every Jacobian, for the cost tests that compare
-// two costs or a cost against differences (tests/estimation/imu_model_costs_test.cc,
-// further_imu_cost_test.cc).
+// Evaluations of a ceres::CostFunction for the cost tests that compare two costs or a cost
+// against differences (tests/estimation/imu_model_costs_test.cc, further_imu_cost_test.cc,
+// reprojection_cost_test.cc, tests/calib/target_scale_cost_test.cc, camchain_prior_test.cc):
+// with every Jacobian, with the Jacobians of some blocks, or with one block moved.
 #ifndef SPLINECAL_TESTS_TESTING_COST_EVALUATION_H_
 #define SPLINECAL_TESTS_TESTING_COST_EVALUATION_H_
 
 #include <ceres/cost_function.h>
+#include <glog/logging.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -35,6 +37,56 @@ inline Evaluation Evaluate(const ceres::CostFunction& cost, const std::vector<do
   EXPECT_TRUE(cost.Evaluate(blocks.data(), e.residuals.data(), pointers.data()));
   for (auto& j : J) e.jacobians.emplace_back(j);
   return e;
+}
+
+// The ambient Jacobians of the blocks of `cost` marked free, as Evaluate writes them: `pointers`
+// is its jacobians argument, nullptr for a block not free (a constant block in Ceres).
+struct FreeBlockJacobians {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+  FreeBlockJacobians(const ceres::CostFunction& cost, const std::vector<bool>& free)
+      : rows(cost.num_residuals()),
+        sizes(cost.parameter_block_sizes()),
+        storage(sizes.size()),
+        pointers(sizes.size(), nullptr) {
+    for (size_t i = 0; i < sizes.size(); ++i) {
+      if (!free[i]) continue;
+      storage[i].assign(rows * sizes[i], 0.0);
+      pointers[i] = storage[i].data();
+    }
+  }
+  // Every block free.
+  explicit FreeBlockJacobians(const ceres::CostFunction& cost)
+      : FreeBlockJacobians(cost, std::vector<bool>(cost.parameter_block_sizes().size(), true)) {}
+
+  // Block i's Jacobian, rows x its ambient size.
+  Eigen::Map<const RowMajor> Ambient(size_t i) const {
+    return Eigen::Map<const RowMajor>(storage[i].data(), rows, sizes[i]);
+  }
+
+  int rows;
+  std::vector<int32_t> sizes;
+  std::vector<std::vector<double>> storage;
+  std::vector<double*> pointers;
+};
+
+// The residuals of `cost` at `blocks` with block b moved by `delta` in its tangent space: on
+// SE(3) (SE3Manifold::Plus) for a pose block (7 parameters), by addition for any other.
+inline Eigen::VectorXd ResidualsWithBlockMoved(const ceres::CostFunction& cost,
+                                               std::vector<double*> blocks,
+                                               size_t b,
+                                               const Eigen::VectorXd& delta) {
+  const int size = cost.parameter_block_sizes()[b];
+  std::vector<double> x(size);
+  if (size == 7) {
+    SE3Manifold().Plus(blocks[b], delta.data(), x.data());
+  } else {
+    for (int k = 0; k < size; ++k) x[k] = blocks[b][k] + delta[k];
+  }
+  blocks[b] = x.data();
+  Eigen::VectorXd residuals(cost.num_residuals());
+  CHECK(cost.Evaluate(blocks.data(), residuals.data(), nullptr));
+  return residuals;
 }
 
 // The largest absolute difference relative to max(1, the largest entry of b).

@@ -43,26 +43,6 @@ namespace testing {
 // absolute error on O(1) functions. Tests comparing against it should allow ~1e-8.
 inline constexpr double kDefaultCentralDifferenceStep = 1e-5;
 
-// Central differences: column j = (f(x + h e_j) - f(x - h e_j)) / (2h). Error O(h^2).
-template <typename F>
-Eigen::MatrixXd CentralDifferenceJacobian(const F& f,
-                                          const Eigen::VectorXd& x,
-                                          double step = kDefaultCentralDifferenceStep) {
-  CHECK_GT(step, 0.0);
-  Eigen::MatrixXd jacobian;
-  for (int j = 0; j < x.size(); ++j) {
-    Eigen::VectorXd x_plus = x;
-    Eigen::VectorXd x_minus = x;
-    x_plus(j) += step;
-    x_minus(j) -= step;
-    const Eigen::VectorXd f_plus = f(x_plus);
-    const Eigen::VectorXd f_minus = f(x_minus);
-    if (j == 0) jacobian.resize(f_plus.size(), x.size());
-    jacobian.col(j) = (f_plus - f_minus) / (2.0 * step);
-  }
-  return jacobian;
-}
-
 // Central differences with a custom difference of outputs: column j =
 // minus(f(x + h e_j), f(x - h e_j)) / (2h), for outputs that are not vectors (a pose: pass
 // minus = [](const SE3d& a, const SE3d& b) { return RightMinus(a, b); }).
@@ -83,6 +63,17 @@ Eigen::MatrixXd CentralDifferenceJacobianWithMinus(const F& f,
     jacobian.col(j) = difference / (2.0 * step);
   }
   return jacobian;
+}
+
+// Central differences: column j = (f(x + h e_j) - f(x - h e_j)) / (2h). Error O(h^2).
+template <typename F>
+Eigen::MatrixXd CentralDifferenceJacobian(const F& f,
+                                          const Eigen::VectorXd& x,
+                                          double step = kDefaultCentralDifferenceStep) {
+  const auto minus = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) -> Eigen::VectorXd {
+    return a - b;
+  };
+  return CentralDifferenceJacobianWithMinus(f, minus, x, step);
 }
 
 // a (-) b = Log(b^-1 a) for group elements (SO3d, SE3d): the right-tangent difference that

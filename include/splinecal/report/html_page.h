@@ -21,6 +21,12 @@
 
 namespace splinecal {
 
+// The layout_css of the calibration reports (calibrate, intrinsics): a 1000 px column of tables
+// of numbers, right-aligned, with captions.
+inline constexpr char kCalibrationReportCss[] =
+    "body{margin:2em;max-width:1000px}td,th{padding:3px 8px;text-align:right}"
+    "th{text-align:left}caption{text-align:left;padding:4px 0}";
+
 class HtmlPage {
  public:
   // `title` becomes the page's <title> and <h1> (escaped here). `layout_css` follows the shared
