@@ -101,12 +101,11 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
       internal::LiftPoseJacobian(J_tangent, extrinsic_lift, J_extrinsic + 7 * row);
     }
     if (J_shape != nullptr) {
-      // h moves the point along the target's z axis: d x_c / d c_k = R_cn_t e_z b_k.
-      const Eigen::Vector2d along_normal = FJ * R_cn_t.col(2);
-      const Eigen::VectorXd b = settings_.shape.Basis(corners_[i].p_t.x(), corners_[i].p_t.y())
-                                    .head(shape_size);
+      // The shape moves the point by D c in the target frame (D = e_z b^T out of plane):
+      // d x_c / d c = R_cn_t D.
+      const TargetDisplacement D = settings_.shape.Displacement(corners_[i].p_t);
       Eigen::Map<Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor>>(
-          J_shape + shape_size * row, 2, shape_size) = along_normal * b.transpose();
+          J_shape + shape_size * row, 2, shape_size) = (FJ * R_cn_t) * D.leftCols(shape_size);
     }
   }
   return true;

@@ -1,7 +1,7 @@
 // Simulated target views for the intrinsics tests: a rig of cameras with known intrinsics and
 // T_cn_c0 looks at an AprilGrid from random poses; every corner that projects inside an image
-// becomes an observation with Gaussian pixel noise. The target may be bowed
-// (IntrinsicsScene::shape).
+// becomes an observation with Gaussian pixel noise. The target may be bowed, or printed off its
+// file's layout in its plane (IntrinsicsScene::shape).
 #ifndef SPLINECAL_TESTS_INTRINSICS_INTRINSICS_SIMULATION_H_
 #define SPLINECAL_TESTS_INTRINSICS_INTRINSICS_SIMULATION_H_
 
@@ -32,7 +32,8 @@ struct IntrinsicsScene {
   double max_distance_m = 1.2;
   double spread = 0.4;
   double max_tilt_deg = 45.0;
-  // The target's true out-of-plane shape (target_deformation.h): flat by default.
+  // The target's true geometry (target_deformation.h): out of plane or in plane; as the file
+  // says by default.
   TargetDeformationKind shape_kind = TargetDeformationKind::kNone;
   std::array<double, kMaxTargetDeformationSize> shape{};
 };

@@ -5,7 +5,8 @@
 // Model. The target's pose in camera 0 at the view's timestamp, T_c0_t, is one unknown per
 // timestamp (every camera of the rig sees the target at the same instant); camera n sits at the
 // fixed T_cn_c0 (identity for n = 0, no block); with a target shape (target_deformation.h) the
-// corner's point p_t = (x, y, 0) is first moved to (x, y, h(x, y)), h = c^T b(x, y):
+// corner's point p_t = (x, y, 0) is first moved to p_t + D(x, y) c: out of plane to
+// (x, y, h(x, y)), h = c^T b(x, y) (D = e_z b^T), or in plane by the AprilGrid's layout map:
 //
 //   x_c = R_cn_c0 (R_c0_t p_t + t_c0_t) + t_cn_c0,     uv = pi(x_c; intrinsics)
 //   r   = f(|e|) e / sigma_px,   e = uv - uv_observed              (2 rows per corner)
@@ -17,7 +18,7 @@
 // Jacobians (RIGHT perturbations, lie/se3.h, tangent [rho; phi]):
 //   T_c0_t -> T_c0_t Exp(d):   d x_c / d d = R_cn_c0 R_c0_t [I, -[p_t]x]
 //   T_cn_c0 -> T_cn_c0 Exp(d): d x_c / d d = R_cn_c0 [I, -[x_c0]x],   x_c0 = T_c0_t p_t
-//   target shape c (optional):  d x_c / d c   = R_cn_t e_z b(x, y)^T
+//   target shape c (optional):  d x_c / d c   = R_cn_t D(x, y)
 //   intrinsics:                d uv / d intrinsics from the camera model, analytic
 // chained through J_pi = d uv / d x_c and Huber's 2x2 factor; pose blocks are lifted to their
 // ambient {px, py, pz, qx, qy, qz, qw} blocks exactly (estimation/detail/pose_block_jacobian.h).
