@@ -36,6 +36,8 @@ struct IntrinsicsScene {
   // says by default.
   TargetDeformationKind shape_kind = TargetDeformationKind::kNone;
   std::array<double, kMaxTargetDeformationSize> shape{};
+  // In-plane-per-view: each view's inset d_v (empty: 0; else one per view).
+  std::vector<double> view_inset;
 };
 
 // The observations of `scene` drawn with `seed`, in (t_ns, cam_id, point_id) order. Views are
@@ -68,12 +70,13 @@ inline std::vector<Observation> SimulateIntrinsicsViews(const IntrinsicsScene& s
     const SE3d T = SE3d(R, position - (R * centre));
     if (T_c0_t != nullptr) T_c0_t->push_back(T);
     const int64_t t_ns = 1'000'000'000 + 50'000'000LL * v;
+    const double inset = scene.view_inset.empty() ? 0.0 : scene.view_inset[v];
     for (size_t n = 0; n < scene.cameras.size(); ++n) {
       const Camera& camera = scene.cameras[n];
       const SE3d T_cn_t = scene.T_cn_c0[n] * T;
       for (const auto& [id, p_t] : scene.target.points) {
         Eigen::Vector2d uv;
-        if (!camera.Project(T_cn_t * shape.Deform(p_t, scene.shape.data()), &uv)) continue;
+        if (!camera.Project(T_cn_t * shape.Deform(p_t, scene.shape.data(), inset), &uv)) continue;
         if (uv.x() < 2 || uv.y() < 2 || uv.x() > camera.width - 3 || uv.y() > camera.height - 3) {
           continue;
         }

@@ -65,6 +65,13 @@ void CheckGradients(bool has_extrinsic,
     parameters.push_back(shape.data());
     manifolds.push_back(nullptr);
   }
+  // The view's own inset (in-plane-per-view): a blurred view's corners 1.2% nearer their tags'
+  // centres.
+  double inset = -1.2e-2;
+  if (settings.shape.per_view_inset()) {
+    parameters.push_back(&inset);
+    manifolds.push_back(nullptr);
+  }
   // Analytic Jacobians in the blocks' tangent coordinates (ambient J times the manifold's
   // PlusJacobian; intrinsics as they are) against central differences of the residuals along
   // each tangent direction (Plus for the poses).
@@ -132,6 +139,11 @@ TEST(RigViewCostFunction, JacobiansWithACubicTargetAndTheExtrinsicMatchNumericDi
 
 TEST(RigViewCostFunction, JacobiansInPlaneWithTheExtrinsicMatchNumericDifferentiation) {
   CheckGradients(true, TargetDeformationKind::kInPlane);
+}
+
+TEST(RigViewCostFunction, JacobiansWithAPerViewInsetMatchNumericDifferentiation) {
+  CheckGradients(false, TargetDeformationKind::kInPlanePerView);
+  CheckGradients(true, TargetDeformationKind::kInPlanePerView);
 }
 
 TEST(RigViewErrors, AreThePixelDifferences) {

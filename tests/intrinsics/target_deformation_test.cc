@@ -20,6 +20,26 @@ TEST(TargetDeformation, NamesAndSizes) {
   EXPECT_EQ(TargetDeformationSize(TargetDeformationKind::kQuadratic), 3);
   EXPECT_EQ(TargetDeformationSize(TargetDeformationKind::kCubic), 7);
   EXPECT_EQ(TargetDeformationSize(TargetDeformationKind::kInPlane), 3);
+  EXPECT_STREQ(TargetDeformationName(TargetDeformationKind::kInPlanePerView), "in-plane-per-view");
+  EXPECT_EQ(TargetDeformationSize(TargetDeformationKind::kInPlanePerView), 2);
+}
+
+TEST(TargetDeformation, APerViewInsetIsTheInPlaneTagSizeOfOneView) {
+  // (e1, e2) shared, d_v the view's own: the same point as the shared layout with d = d_v.
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
+  const TargetShape shared = MakeTargetShape(target, TargetDeformationKind::kInPlane);
+  const TargetShape per_view = MakeTargetShape(target, TargetDeformationKind::kInPlanePerView);
+  EXPECT_TRUE(per_view.in_plane());
+  EXPECT_TRUE(per_view.per_view_inset());
+  EXPECT_FALSE(shared.per_view_inset());
+  const double c[3] = {0.003, -0.002, -0.012};
+  for (const auto& [id, p] : target.points) {
+    EXPECT_NEAR((per_view.Deform(p, c, c[2]) - shared.Deform(p, c)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((per_view.Displacement(p) - shared.Displacement(p)).norm(), 0.0, 1e-15);
+  }
+  // The shared layout ignores an inset.
+  const Eigen::Vector3d p = *target.Find(13);
+  EXPECT_EQ(shared.Deform(p, c, 0.5), shared.Deform(p, c));
 }
 
 TEST(TargetDeformation, NormalisesToTheTargetsBoundingBox) {

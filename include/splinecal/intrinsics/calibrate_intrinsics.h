@@ -58,6 +58,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -97,7 +98,8 @@ struct IntrinsicsOptions {
   std::vector<SE3d> T_cn_c0_given;  // with estimate_extrinsics = false: one per camera
   // The target's geometry, shared by every view (target_deformation.h): none (as the file
   // says), a quadratic or cubic surface out of its plane, or in-plane (an AprilGrid's x/y
-  // anisotropy, shear and tag-size ratio) estimated with the intrinsics.
+  // anisotropy, shear and tag-size ratio) estimated with the intrinsics, or in-plane-per-view
+  // (the tag-size ratio each view's own: the corner detector's blur bias).
   TargetDeformationKind target_deformation = TargetDeformationKind::kNone;
   SolverOptions solver;
   CovarianceOptions covariance;
@@ -160,6 +162,8 @@ struct TargetDeformationResult {
   TargetDeformationHeights heights;
   Eigen::VectorXd heights_m;
   Eigen::VectorXd heights_std_m;
+  // In-plane-per-view: each timestamp's inset d_v (target_deformation.h), without stds.
+  std::map<int64_t, double> view_inset;
 };
 
 struct IntrinsicsResult {

@@ -44,6 +44,18 @@
 // with the pitch held (d) is not an affine map of the plane, so no pose absorbs it either; a pitch
 // changed with the tag side held is the same as d up to the uniform scale. The map is the
 // linearisation (second-order terms such as e1 d dropped): exact enough for ratios of 1e-2.
+//
+// In plane, with a per-view inset ("in-plane-per-view"). On EuRoC d is not one number: views
+// turning at 18 deg/s give d = -0.83 +- 0.10 %, at 82 deg/s -1.56 +- 0.13 % (docs/intrinsics.md,
+// "In-plane layout"): motion blur pulls each detected corner toward its tag's centre, a property
+// of the detection in each image, not of the print. This kind keeps (e1, e2) shared by every view
+// (the print; c has 2 coefficients) and gives each timestamp its own inset d_v, the d column of D
+// above (kInsetColumn) in a 1-coefficient block per timestamp (the cameras of a rig see the same
+// motion). A d_v is not absorbed by its view's pose: a pose scales the target about the board's
+// origin (the uniform scale of the gauge above, at the view's own distance), d_v every tag about
+// its own centre, and the tags' centres stay where the pose puts them; so each view's tags, 4
+// corners apiece, determine it, and the intrinsics lose only the information d_v and the pose
+// share (docs/intrinsics.md, "A per-view corner inset", measures how little).
 #ifndef SPLINECAL_INTRINSICS_TARGET_DEFORMATION_H_
 #define SPLINECAL_INTRINSICS_TARGET_DEFORMATION_H_
 
@@ -56,17 +68,18 @@
 
 namespace splinecal {
 
-enum class TargetDeformationKind { kNone, kQuadratic, kCubic, kInPlane };
+enum class TargetDeformationKind { kNone, kQuadratic, kCubic, kInPlane, kInPlanePerView };
 
 inline constexpr int kMaxTargetDeformationSize = 7;
 
 // A target point's displacement per coefficient (TargetShape::Displacement).
 using TargetDisplacement = Eigen::Matrix<double, 3, kMaxTargetDeformationSize>;
 
-// "none", "quadratic", "cubic", "in-plane".
+// "none", "quadratic", "cubic", "in-plane", "in-plane-per-view".
 const char* TargetDeformationName(TargetDeformationKind kind);
 
-// The number of coefficients c_k: 0, 3, 7 or 3 (in-plane).
+// The number of shared coefficients c_k: 0, 3, 7, 3 (in-plane) or 2 (in-plane-per-view: e1, e2;
+// each view's d_v is its own).
 int TargetDeformationSize(TargetDeformationKind kind);
 
 // The geometry's basis on one target: its kind, the normalisation (x0, y0, a) and, in plane, the
@@ -83,13 +96,22 @@ struct TargetShape {
   bool out_of_plane() const {
     return kind == TargetDeformationKind::kQuadratic || kind == TargetDeformationKind::kCubic;
   }
+  // In plane, the layout's map (header comment) with d shared or per view.
+  bool in_plane() const {
+    return kind == TargetDeformationKind::kInPlane ||
+           kind == TargetDeformationKind::kInPlanePerView;
+  }
+  // In-plane-per-view: each view has its own inset d_v, column kInsetColumn of Displacement.
+  bool per_view_inset() const { return kind == TargetDeformationKind::kInPlanePerView; }
+  static constexpr int kInsetColumn = 2;
   // The out-of-plane basis values b_k at target point (x, y), the first size() entries used.
   Eigen::Matrix<double, kMaxTargetDeformationSize, 1> Basis(double x, double y) const;
   // The point's displacement per coefficient, D with Deform(p_t, c) = p_t + D c (the first
   // size() columns used): e_z b^T out of plane, the columns of the header's map in plane.
   TargetDisplacement Displacement(const Eigen::Vector3d& p_t) const;
-  // The point p_t + D c for coefficients c (size() of them).
-  Eigen::Vector3d Deform(const Eigen::Vector3d& p_t, const double* c) const;
+  // The point p_t + D c for coefficients c (size() of them), plus inset D_d d_v with a per-view
+  // inset (ignored otherwise).
+  Eigen::Vector3d Deform(const Eigen::Vector3d& p_t, const double* c, double inset = 0.0) const;
 };
 
 // The normalisation of `target`'s points (the centre and half the larger side of their bounding
@@ -98,10 +120,13 @@ struct TargetShape {
 // (tagSpacing > 0, so that each corner has one tag).
 TargetShape MakeTargetShape(const CalibrationTarget& target, TargetDeformationKind kind);
 
-// The corners with their target points moved onto the surface c (a copy; the pixels unchanged).
+// The corners with their target points moved onto the surface c (a copy; the pixels unchanged),
+// with a per-view inset by the view's `inset`.
 std::vector<TargetCornerObservation> DeformedCorners(
-    const std::vector<TargetCornerObservation>& corners, const TargetShape& shape,
-    const double* c);
+    const std::vector<TargetCornerObservation>& corners,
+    const TargetShape& shape,
+    const double* c,
+    double inset = 0.0);
 
 // The surface relative to the least-squares plane through the target's points, at its centre
 // and its four corners (the bounding box's: (-a, -a), (a, -a), (a, a), (-a, a) from the
