@@ -75,12 +75,19 @@ struct RigState {
   std::map<int64_t, PoseBlock> T_c0_t;  // per timestamp with a used view
   TargetShape shape;                    // kind none: a flat target
   std::array<double, kMaxTargetDeformationSize> deformation{};  // its block (shape.size() used)
+  std::map<int64_t, double> inset;  // with a per-view inset: d_v per timestamp (1-blocks)
 };
+
+// The view's inset d_v (0 before its block exists or without a per-view inset).
+double InsetOf(const RigState& state, const TargetView& view) {
+  const auto it = state.inset.find(view.t_ns);
+  return it != state.inset.end() ? it->second : 0.0;
+}
 
 // The view's corners on the target as the state shapes it (flat: as they are).
 std::vector<TargetCornerObservation> ShapedCorners(const RigState& state,
                                                    const TargetView& view) {
-  return DeformedCorners(view.corners, state.shape, state.deformation.data());
+  return DeformedCorners(view.corners, state.shape, state.deformation.data(), InsetOf(state, view));
 }
 
 class IntrinsicsSolver {
@@ -136,6 +143,12 @@ class IntrinsicsSolver {
       std::vector<double*> blocks = {pose, state_.intrinsics[n].data()};
       if (n > 0) blocks.push_back(state_.T_cn_c0[n].data());
       if (state_.shape.size() > 0) blocks.push_back(state_.deformation.data());
+      if (state_.shape.per_view_inset()) {
+        // std::map keeps the element's address: the block stays valid between rounds.
+        double* inset = &state_.inset[view.t_ns];
+        if (!problem_->HasParameterBlock(inset)) problem_->AddParameterBlock(inset, 1);
+        blocks.push_back(inset);
+      }
       const ceres::ResidualBlockId id = problem_->AddResidualBlock(cost, nullptr, blocks);
       view_of_[id] = &view;
     }
@@ -491,6 +504,7 @@ void FillDeformationResult(const RigState& state,
   TargetDeformationResult& out = result->target_deformation;
   out.coefficients = Eigen::Map<const Eigen::VectorXd>(state.deformation.data(), k);
   out.heights_m = out.heights.M * out.coefficients;
+  out.view_inset = state.inset;
   if (covariance.size() == 0) return;
   out.covariance = covariance.block(offset, offset, k, k);
   out.heights_std_m =

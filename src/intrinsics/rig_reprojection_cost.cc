@@ -21,6 +21,7 @@ RigViewCostFunction::RigViewCostFunction(const RigViewOptions& settings,
   if (settings_.shape.size() > 0) {
     mutable_parameter_block_sizes()->push_back(settings_.shape.size());
   }
+  if (settings_.shape.per_view_inset()) mutable_parameter_block_sizes()->push_back(1);
 }
 
 bool RigViewCostFunction::Evaluate(double const* const* parameters,
@@ -40,8 +41,11 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
   const int shape_index = settings_.has_extrinsic ? 3 : 2;
   const double* c = shape_size > 0 ? parameters[shape_index] : nullptr;
   double* J_shape = jacobians != nullptr && shape_size > 0 ? jacobians[shape_index] : nullptr;
+  const bool has_inset = settings_.shape.per_view_inset();
+  const double inset = has_inset ? parameters[shape_index + 1][0] : 0.0;
+  double* J_inset = jacobians != nullptr && has_inset ? jacobians[shape_index + 1] : nullptr;
   const bool any_jacobian = J_intrinsics != nullptr || J_target != nullptr ||
-                            J_extrinsic != nullptr || J_shape != nullptr;
+                            J_extrinsic != nullptr || J_shape != nullptr || J_inset != nullptr;
   internal::PoseBlockLift target_lift, extrinsic_lift;
   if (J_target != nullptr) target_lift = internal::MakePoseBlockLift(parameters[0]);
   if (J_extrinsic != nullptr) extrinsic_lift = internal::MakePoseBlockLift(parameters[2]);
@@ -50,7 +54,7 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
   const double k = settings_.huber_px / settings_.sigma_px;
   for (size_t i = 0; i < corners_.size(); ++i) {
     const int row = 2 * static_cast<int>(i);
-    const Eigen::Vector3d p_t = settings_.shape.Deform(corners_[i].p_t, c);
+    const Eigen::Vector3d p_t = settings_.shape.Deform(corners_[i].p_t, c, inset);
     const Eigen::Vector3d x_c0 = T_c0_t * p_t;
     const Eigen::Vector3d x_c = T_cn_c0 * x_c0;
     Eigen::Vector2d uv;
@@ -74,6 +78,7 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
       if (J_shape != nullptr) {
         std::fill(J_shape + shape_size * row, J_shape + shape_size * (row + 2), 0.0);
       }
+      if (J_inset != nullptr) J_inset[row] = J_inset[row + 1] = 0.0;
       continue;
     }
     Eigen::Vector2d r = (uv - corners_[i].uv) * inv_sigma;
@@ -100,13 +105,18 @@ bool RigViewCostFunction::Evaluate(double const* const* parameters,
       J_tangent.rightCols<3>() = -FJ * R_cn_c0 * Hat(x_c0);
       internal::LiftPoseJacobian(J_tangent, extrinsic_lift, J_extrinsic + 7 * row);
     }
-    if (J_shape != nullptr) {
-      // h moves the point along the target's z axis: d x_c / d c_k = R_cn_t e_z b_k.
-      const Eigen::Vector2d along_normal = FJ * R_cn_t.col(2);
-      const Eigen::VectorXd b = settings_.shape.Basis(corners_[i].p_t.x(), corners_[i].p_t.y())
-                                    .head(shape_size);
-      Eigen::Map<Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor>>(
-          J_shape + shape_size * row, 2, shape_size) = along_normal * b.transpose();
+    if (J_shape != nullptr || J_inset != nullptr) {
+      // The shape moves the point by D c in the target frame (D = e_z b^T out of plane), the
+      // per-view inset by its column D_d d_v: d x_c / d c = R_cn_t D, d x_c / d d_v = R_cn_t D_d.
+      const TargetDisplacement D = settings_.shape.Displacement(corners_[i].p_t);
+      const Eigen::Matrix<double, 2, 3> FJR = FJ * R_cn_t;
+      if (J_shape != nullptr) {
+        Eigen::Map<Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::RowMajor>>(
+            J_shape + shape_size * row, 2, shape_size) = FJR * D.leftCols(shape_size);
+      }
+      if (J_inset != nullptr) {
+        Eigen::Map<Eigen::Vector2d>(J_inset + row) = FJR * D.col(TargetShape::kInsetColumn);
+      }
     }
   }
   return true;

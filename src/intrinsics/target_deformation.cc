@@ -17,7 +17,9 @@ struct KindRow {
 };
 constexpr KindRow kKinds[] = {{TargetDeformationKind::kNone, "none", 0},
                               {TargetDeformationKind::kQuadratic, "quadratic", 3},
-                              {TargetDeformationKind::kCubic, "cubic", 7}};
+                              {TargetDeformationKind::kCubic, "cubic", 7},
+                              {TargetDeformationKind::kInPlane, "in-plane", 3},
+                              {TargetDeformationKind::kInPlanePerView, "in-plane-per-view", 2}};
 
 const KindRow& RowOf(TargetDeformationKind kind) {
   for (const KindRow& row : kKinds) {
@@ -40,13 +42,35 @@ Eigen::Matrix<double, kMaxTargetDeformationSize, 1> TargetShape::Basis(double x,
   return b;
 }
 
-Eigen::Vector3d TargetShape::Deform(const Eigen::Vector3d& p_t, const double* c) const {
+TargetDisplacement TargetShape::Displacement(const Eigen::Vector3d& p_t) const {
+  TargetDisplacement D = TargetDisplacement::Zero();
+  if (out_of_plane()) {
+    D.row(2) = Basis(p_t.x(), p_t.y()).transpose();
+  } else if (in_plane()) {
+    const Eigen::Vector2d u = p_t.head<2>() - centre;
+    // The tag's centre: corners sit at k pitch + (0 or tag side) from the grid's origin
+    // (camera/target.h), so (x - side / 2) / pitch is k +- side / (2 pitch), nearest k.
+    const Eigen::Vector2d tag_centre =
+        ((p_t.head<2>().array() - 0.5 * tag_size_m) / tag_pitch_m).round() * tag_pitch_m +
+        0.5 * tag_size_m;
+    const Eigen::Vector2d o = p_t.head<2>() - tag_centre;
+    D.col(0).head<2>() << u.x(), -u.y();
+    D.col(1).head<2>() << u.y(), u.x();
+    D.col(kInsetColumn).head<2>() = o;
+  }
+  return D;
+}
+
+Eigen::Vector3d TargetShape::Deform(const Eigen::Vector3d& p_t,
+                                    const double* c,
+                                    double inset) const {
   const int k = size();
   if (k == 0) return p_t;
-  const Eigen::Matrix<double, kMaxTargetDeformationSize, 1> b = Basis(p_t.x(), p_t.y());
-  double h = 0.0;
-  for (int i = 0; i < k; ++i) h += c[i] * b(i);
-  return Eigen::Vector3d(p_t.x(), p_t.y(), p_t.z() + h);
+  const TargetDisplacement D = Displacement(p_t);
+  Eigen::Vector3d moved = p_t;
+  for (int i = 0; i < k; ++i) moved += c[i] * D.col(i);
+  if (per_view_inset()) moved += inset * D.col(kInsetColumn);
+  return moved;
 }
 
 TargetShape MakeTargetShape(const CalibrationTarget& target, TargetDeformationKind kind) {
@@ -65,15 +89,36 @@ TargetShape MakeTargetShape(const CalibrationTarget& target, TargetDeformationKi
   }
   shape.centre = 0.5 * (low + high);
   shape.half_extent = std::max(0.5 * (high - low).maxCoeff(), 1e-9);
+  if (shape.in_plane()) {
+    if (target.type != "aprilgrid" || !(target.tag_spacing_ratio > 0.0)) {
+      throw Error(
+          "target deformation in-plane: needs an aprilgrid with tags apart (tagSpacing > 0), so "
+          "that each corner belongs to one tag; got target type '" + target.type +
+          "', tagSpacing " + std::to_string(target.tag_spacing_ratio));
+    }
+    shape.tag_size_m = target.tag_size_m;
+    shape.tag_pitch_m = (1.0 + target.tag_spacing_ratio) * target.tag_size_m;
+    // Every point a corner of its tag, half a side from its centre in x and y (the layout
+    // Displacement assumes).
+    for (const auto& [id, p] : target.points) {
+      const Eigen::Vector3d o = shape.Displacement(p).col(TargetShape::kInsetColumn);
+      if (((o.head<2>().cwiseAbs().array() - 0.5 * shape.tag_size_m).abs() > 1e-9).any()) {
+        throw Error("target deformation in-plane: point " + std::to_string(id) +
+                    " is not a tag corner of the aprilgrid's layout (camera/target.h)");
+      }
+    }
+  }
   return shape;
 }
 
 std::vector<TargetCornerObservation> DeformedCorners(
-    const std::vector<TargetCornerObservation>& corners, const TargetShape& shape,
-    const double* c) {
+    const std::vector<TargetCornerObservation>& corners,
+    const TargetShape& shape,
+    const double* c,
+    double inset) {
   std::vector<TargetCornerObservation> moved = corners;
   if (shape.size() == 0) return moved;
-  for (TargetCornerObservation& corner : moved) corner.p_t = shape.Deform(corner.p_t, c);
+  for (TargetCornerObservation& corner : moved) corner.p_t = shape.Deform(corner.p_t, c, inset);
   return moved;
 }
 
@@ -81,6 +126,10 @@ TargetDeformationHeights MakeTargetDeformationHeights(const CalibrationTarget& t
                                                       const TargetShape& shape) {
   const int k = shape.size();
   TargetDeformationHeights heights;
+  if (!shape.out_of_plane()) {
+    heights.M.resize(0, k);
+    return heights;
+  }
   const double a = shape.half_extent;
   heights.names = {"centre", "corner_-x-y", "corner_+x-y", "corner_+x+y", "corner_-x+y"};
   heights.xy = {shape.centre,

@@ -1,7 +1,7 @@
 // Simulated target views for the intrinsics tests: a rig of cameras with known intrinsics and
 // T_cn_c0 looks at an AprilGrid from random poses; every corner that projects inside an image
-// becomes an observation with Gaussian pixel noise. The target may be bowed
-// (IntrinsicsScene::shape).
+// becomes an observation with Gaussian pixel noise. The target may be bowed, or printed off its
+// file's layout in its plane (IntrinsicsScene::shape).
 #ifndef SPLINECAL_TESTS_INTRINSICS_INTRINSICS_SIMULATION_H_
 #define SPLINECAL_TESTS_INTRINSICS_INTRINSICS_SIMULATION_H_
 
@@ -32,9 +32,12 @@ struct IntrinsicsScene {
   double max_distance_m = 1.2;
   double spread = 0.4;
   double max_tilt_deg = 45.0;
-  // The target's true out-of-plane shape (target_deformation.h): flat by default.
+  // The target's true geometry (target_deformation.h): out of plane or in plane; as the file
+  // says by default.
   TargetDeformationKind shape_kind = TargetDeformationKind::kNone;
   std::array<double, kMaxTargetDeformationSize> shape{};
+  // In-plane-per-view: each view's inset d_v (empty: 0; else one per view).
+  std::vector<double> view_inset;
 };
 
 // The observations of `scene` drawn with `seed`, in (t_ns, cam_id, point_id) order. Views are
@@ -67,12 +70,13 @@ inline std::vector<Observation> SimulateIntrinsicsViews(const IntrinsicsScene& s
     const SE3d T = SE3d(R, position - (R * centre));
     if (T_c0_t != nullptr) T_c0_t->push_back(T);
     const int64_t t_ns = 1'000'000'000 + 50'000'000LL * v;
+    const double inset = scene.view_inset.empty() ? 0.0 : scene.view_inset[v];
     for (size_t n = 0; n < scene.cameras.size(); ++n) {
       const Camera& camera = scene.cameras[n];
       const SE3d T_cn_t = scene.T_cn_c0[n] * T;
       for (const auto& [id, p_t] : scene.target.points) {
         Eigen::Vector2d uv;
-        if (!camera.Project(T_cn_t * shape.Deform(p_t, scene.shape.data()), &uv)) continue;
+        if (!camera.Project(T_cn_t * shape.Deform(p_t, scene.shape.data(), inset), &uv)) continue;
         if (uv.x() < 2 || uv.y() < 2 || uv.x() > camera.width - 3 || uv.y() > camera.height - 3) {
           continue;
         }

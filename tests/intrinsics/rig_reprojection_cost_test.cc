@@ -1,6 +1,7 @@
 // The rig reprojection residual's analytic Jacobians against Ceres' numeric differentiation
 // (ceres::GradientChecker through the blocks' manifolds), with and without the extrinsic and
-// with Huber's loss active on some corners, flat and with a target shape (target_deformation.h).
+// with Huber's loss active on some corners, flat and with a target shape or in-plane layout
+// (target_deformation.h).
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
 
 #include <ceres/manifold.h>
@@ -58,10 +59,17 @@ void CheckGradients(bool has_extrinsic,
     parameters.push_back(extrinsic.data());
     manifolds.push_back(&se3);
   }
-  // A bow of a few millimetres with every coefficient non-zero.
+  // A bow of a few millimetres with every coefficient non-zero (in plane: ratios of 1e-3).
   std::vector<double> shape = {2e-3, -1e-3, 1.5e-3, 0.7e-3, -0.4e-3, 0.3e-3, -0.8e-3};
   if (settings.shape.size() > 0) {
     parameters.push_back(shape.data());
+    manifolds.push_back(nullptr);
+  }
+  // The view's own inset (in-plane-per-view): a blurred view's corners 1.2% nearer their tags'
+  // centres.
+  double inset = -1.2e-2;
+  if (settings.shape.per_view_inset()) {
+    parameters.push_back(&inset);
     manifolds.push_back(nullptr);
   }
   // Analytic Jacobians in the blocks' tangent coordinates (ambient J times the manifold's
@@ -127,6 +135,15 @@ TEST(RigViewCostFunction, JacobiansWithAQuadraticTargetMatchNumericDifferentiati
 
 TEST(RigViewCostFunction, JacobiansWithACubicTargetAndTheExtrinsicMatchNumericDifferentiation) {
   CheckGradients(true, TargetDeformationKind::kCubic);
+}
+
+TEST(RigViewCostFunction, JacobiansInPlaneWithTheExtrinsicMatchNumericDifferentiation) {
+  CheckGradients(true, TargetDeformationKind::kInPlane);
+}
+
+TEST(RigViewCostFunction, JacobiansWithAPerViewInsetMatchNumericDifferentiation) {
+  CheckGradients(false, TargetDeformationKind::kInPlanePerView);
+  CheckGradients(true, TargetDeformationKind::kInPlanePerView);
 }
 
 TEST(RigViewErrors, AreThePixelDifferences) {

@@ -7,8 +7,8 @@
 //
 //   minimise  sum_views sum_corners |r|^2          r: intrinsics/rig_reprojection_cost.h
 //
-// and, with IntrinsicsOptions::target_deformation, the target's shape shared by every view
-// (intrinsics/target_deformation.h; its gauge is said there).
+// and, with IntrinsicsOptions::target_deformation, the target's shape or in-plane layout shared by
+// every view (intrinsics/target_deformation.h; its gauge is said there).
 //
 // Gauge: camera 0 is the rig's frame; nothing else is free.
 //
@@ -58,6 +58,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -95,8 +96,10 @@ struct IntrinsicsOptions {
   // Camera-to-camera extrinsics: estimated (true) or held at the given T_cn_c0 (false).
   bool estimate_extrinsics = true;
   std::vector<SE3d> T_cn_c0_given;  // with estimate_extrinsics = false: one per camera
-  // The target's out-of-plane shape, shared by every view (target_deformation.h): none (flat),
-  // or a quadratic or cubic surface estimated with the intrinsics.
+  // The target's geometry, shared by every view (target_deformation.h): none (as the file
+  // says), a quadratic or cubic surface out of its plane, or in-plane (an AprilGrid's x/y
+  // anisotropy, shear and tag-size ratio) estimated with the intrinsics, or in-plane-per-view
+  // (the tag-size ratio each view's own: the corner detector's blur bias).
   TargetDeformationKind target_deformation = TargetDeformationKind::kNone;
   SolverOptions solver;
   CovarianceOptions covariance;
@@ -151,13 +154,16 @@ struct IntrinsicsCameraResult {
 // The estimated target shape (IntrinsicsOptions::target_deformation).
 struct TargetDeformationResult {
   TargetShape shape;             // kind none: flat, nothing below is filled
-  Eigen::VectorXd coefficients;  // c [m], target_deformation.h's basis order
+  Eigen::VectorXd coefficients;  // c (target_deformation.h): heights [m] or in-plane ratios
   Eigen::MatrixXd covariance;    // of c (with the intrinsics' inflation), empty without stds
   // The surface relative to the least-squares plane through the target's points, at its centre
-  // and corners (target_deformation.h): heights_m = heights.M c, with their stds.
+  // and corners (target_deformation.h): heights_m = heights.M c, with their stds (empty in
+  // plane).
   TargetDeformationHeights heights;
   Eigen::VectorXd heights_m;
   Eigen::VectorXd heights_std_m;
+  // In-plane-per-view: each timestamp's inset d_v (target_deformation.h), without stds.
+  std::map<int64_t, double> view_inset;
 };
 
 struct IntrinsicsResult {
