@@ -46,7 +46,10 @@ AlignmentProblem::AlignmentProblem(const std::vector<ImuSample>& imu,
                                    const Eigen::Vector3d& accel_bias,
                                    const ImuNoise& noise,
                                    const CameraNoise& camera_noise)
-    : frames_(std::move(frames)), T_cam_imu_(T_cam_imu) {
+    : frames_(std::move(frames)),
+      T_cam_imu_(T_cam_imu),
+      camera_position_variance_(camera_noise.position_std_m * camera_noise.position_std_m),
+      accel_walk_variance_(noise.accelerometer_random_walk * noise.accelerometer_random_walk) {
   if (frames_.size() < 3) {
     throw Error("alignment needs at least 3 camera frames, got " + std::to_string(frames_.size()));
   }
@@ -60,7 +63,7 @@ AlignmentProblem::AlignmentProblem(const std::vector<ImuSample>& imu,
     Eigen::Matrix<double, 6, 6> covariance = pre.covariance.topLeftCorner<6, 6>();
     // Camera noise: positions n_k (metric) enter r_p as R^T (n_k+1 - n_k); a rotation error
     // R_c0_sk Exp(e) turns R^T x into R^T x + [R^T x]x e with R^T x = dp (p rows), dv (v rows).
-    const double var_p = camera_noise.position_std_m * camera_noise.position_std_m;
+    const double var_p = camera_position_variance_;
     const double var_r = camera_noise.rotation_std_rad * camera_noise.rotation_std_rad;
     Eigen::Matrix<double, 6, 3> E;
     E << Hat(pre.delta_p), Hat(pre.delta_v);
@@ -94,6 +97,9 @@ NormalEquations AlignmentProblem::Build(
   eq.H_yy = NormalEquations::MatrixY::Zero(m, m);
   eq.b_v.assign(n, Eigen::Vector3d::Zero());
   eq.b_y = NormalEquations::VectorY::Zero(m);
+  eq.pairs.resize(n - 1);
+  eq.camera_position_variance = camera_position_variance_;
+  eq.accel_walk_variance = accel_walk_variance_;
 
   const SO3d& R_c_s = T_cam_imu_.so3();
   const Eigen::Vector3d& t_c_s = T_cam_imu_.translation();
@@ -137,6 +143,11 @@ NormalEquations AlignmentProblem::Build(
     const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCols, kMaxCols> H = JtW * J;
     const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCols, 1> g = JtW * b;
     eq.rhs_weighted_sq += b.dot(information_[k] * b);
+    NormalEquations::Pair& pair = eq.pairs[k];
+    pair.JtW = JtW;
+    pair.Rt = Rt;
+    pair.d_rows_d_accel_bias << pre.J_dp_ba, -pre.J_dv_ba;
+    pair.duration_s = T;
     eq.D[k] += H.block<3, 3>(0, 0);
     eq.D[k + 1] += H.block<3, 3>(3, 3);
     eq.C[k] += H.block<3, 3>(0, 3);
@@ -149,6 +160,51 @@ NormalEquations AlignmentProblem::Build(
   }
   return eq;
 }
+
+namespace {
+
+// The part of Cov(y) that the pairs' weights leave out, at unit variance factor (docs/align.md,
+// "Uncertainty"). y = A r for the weighted least-squares solution, with A's block for pair k
+// G_k = S^-1 (JtW_k,y - Y_k^T JtW_k,v_k - Y_k+1^T JtW_k,v_k+1) (the rows of H^-1 for y are
+// S^-1 [-Y^T, I], Y = H_vv^-1 H_vy). S^-1 = A W^-1 A^T counts each pair's noise alone; added:
+//  * a camera position n_j (frame j, variance sigma_p^2 per axis) enters pair j-1 as +R^T n_j and
+//    pair j as -R^T n_j: the cross terms -sigma_p^2 (X_a X_b^T + X_b X_a^T), X = G^p R^T;
+//  * the accelerometer bias walk: the increment during pair i (variance density^2 T_i per axis)
+//    offsets the bias of every later pair k > i, whose rows move by B_k = [J_dp_ba; -J_dv_ba]:
+//    density^2 T_i F_i F_i^T with F_i = sum_{k>i} G_k B_k. (The walk inside a pair is in its
+//    preintegration covariance; the gyro bias walk is left out: 2e-6 of the scale against 7e-4
+//    for the accelerometer's, docs/align.md.)
+NormalEquations::MatrixY SharedNoiseCovariance(const NormalEquations& eq,
+                                               const std::vector<NormalEquations::Matrix3Y>& Y,
+                                               const NormalEquations::MatrixY& S_inverse) {
+  const int m = eq.m;
+  const int num_pairs = static_cast<int>(eq.pairs.size());
+  CHECK_EQ(num_pairs + 1, static_cast<int>(Y.size()))
+      << "the shared-noise covariance needs the rows of one Build (not after AccumulateScaled)";
+  using MatrixY6 = Eigen::Matrix<double, Eigen::Dynamic, 6, 0, NormalEquations::kMaxM, 6>;
+  using MatrixY3 = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, NormalEquations::kMaxM, 3>;
+  std::vector<MatrixY6> G(num_pairs);
+  for (int k = 0; k < num_pairs; ++k) {
+    const auto& JtW = eq.pairs[k].JtW;
+    G[k] = S_inverse * (JtW.bottomRows(m) - Y[k].transpose() * JtW.topRows<3>() -
+                        Y[k + 1].transpose() * JtW.middleRows<3>(3));
+  }
+  NormalEquations::MatrixY extra = NormalEquations::MatrixY::Zero(m, m);
+  for (int j = 1; j < num_pairs; ++j) {
+    const MatrixY3 X_a = G[j - 1].leftCols<3>() * eq.pairs[j - 1].Rt;
+    const MatrixY3 X_b = G[j].leftCols<3>() * eq.pairs[j].Rt;
+    extra.noalias() -= eq.camera_position_variance * (X_a * X_b.transpose());
+    extra.noalias() -= eq.camera_position_variance * (X_b * X_a.transpose());
+  }
+  MatrixY3 F = MatrixY3::Zero(m, 3);
+  for (int i = num_pairs - 2; i >= 0; --i) {
+    F.noalias() += G[i + 1] * eq.pairs[i + 1].d_rows_d_accel_bias;
+    extra.noalias() += (eq.accel_walk_variance * eq.pairs[i].duration_s) * (F * F.transpose());
+  }
+  return extra;
+}
+
+}  // namespace
 
 void NormalEquations::AccumulateScaled(const NormalEquations& other, double factor) {
   CHECK_EQ(m, other.m);
@@ -163,12 +219,16 @@ void NormalEquations::AccumulateScaled(const NormalEquations& other, double fact
   b_y = factor * (b_y + other.b_y);
   rhs_weighted_sq = factor * (rhs_weighted_sq + other.rhs_weighted_sq);
   num_rows += other.num_rows;
+  // The accumulated system has no single set of rows: Solve's shared_noise_covariance does not
+  // apply to it.
+  pairs.clear();
 }
 
 double NormalEquations::Solve(std::vector<Eigen::Vector3d>* v,
                               VectorY* y,
                               MatrixY* inverse_schur,
-                              double* chi2) const {
+                              double* chi2,
+                              MatrixY* shared_noise_covariance) const {
   const int n = static_cast<int>(D.size());
   using Matrix3Yb = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxM + 1>;  // [H_vy | b_v]
   // Block Thomas algorithm on H_vv (block tridiagonal, symmetric positive definite):
@@ -217,12 +277,17 @@ double NormalEquations::Solve(std::vector<Eigen::Vector3d>* v,
   *y = scaling.asDiagonal() * y_hat;
   v->resize(n);
   for (int k = 0; k < n; ++k) (*v)[k] = Y[k].col(m) - Y[k].leftCols(m) * (*y);
-  if (inverse_schur != nullptr) {
-    // S^-1 = D^-1/2 S_hat^-1 D^-1/2, from the eigen-decomposition already at hand.
-    const MatrixY S_hat_inverse = eigen.eigenvectors() *
-                                  eigen.eigenvalues().cwiseInverse().asDiagonal() *
-                                  eigen.eigenvectors().transpose();
-    *inverse_schur = scaling.asDiagonal() * S_hat_inverse * scaling.asDiagonal();
+  // S^-1 = D^-1/2 S_hat^-1 D^-1/2, from the eigen-decomposition already at hand.
+  const MatrixY S_inverse =
+      scaling.asDiagonal() *
+      (eigen.eigenvectors() * eigen.eigenvalues().cwiseInverse().asDiagonal() *
+       eigen.eigenvectors().transpose()) *
+      scaling.asDiagonal();
+  if (inverse_schur != nullptr) *inverse_schur = S_inverse;
+  if (shared_noise_covariance != nullptr) {
+    std::vector<Matrix3Y> coupling(n);  // H_vv^-1 H_vy
+    for (int k = 0; k < n; ++k) coupling[k] = Y[k].leftCols(m);
+    *shared_noise_covariance = S_inverse + SharedNoiseCovariance(*this, coupling, S_inverse);
   }
   if (chi2 != nullptr) {
     // r^T W r = b^T W b - 2 x^T g + x^T H x = b^T W b - x^T g at H x = g. Cancellation leaves
@@ -244,9 +309,9 @@ NormalEquations::VectorY SolveWithUncertainty(const NormalEquations& eq,
                                               NormalEquations::MatrixY* covariance_y) {
   std::vector<Eigen::Vector3d> v_prime;
   NormalEquations::VectorY y;
-  NormalEquations::MatrixY inverse_schur;
+  NormalEquations::MatrixY unit_covariance;
   double chi2 = 0.0;
-  solution->condition_number = eq.Solve(&v_prime, &y, &inverse_schur, &chi2);
+  solution->condition_number = eq.Solve(&v_prime, &y, nullptr, &chi2, &unit_covariance);
   const int m = eq.m;
   if (!std::isfinite(solution->condition_number) || !(y(m - 1) != 0.0)) {
     solution->condition_number = kInfinity;
@@ -257,9 +322,10 @@ NormalEquations::VectorY SolveWithUncertainty(const NormalEquations& eq,
   solution->scale = 1.0 / u;
   for (size_t k = 0; k < v_prime.size(); ++k) solution->v_c0[k] = v_prime[k] / u;
   // Equation (2): the residuals are in camera units, r = r_metric / s, weighted with the metric
-  // information W: chi2 = chi2_metric / s^2. The variance factor chi2 / dof then scales S^-1
-  // to the covariance of y, and sqrt(chi2_metric / dof) compares the residuals with the
-  // assumed noise. s = 1/u: sigma_s = sigma_u / u^2 (first order).
+  // information W: chi2 = chi2_metric / s^2. The variance factor chi2 / dof then scales the
+  // unit covariance (S^-1 plus the noise shared between pairs) to the covariance of y, and
+  // sqrt(chi2_metric / dof) compares the residuals with the assumed noise. s = 1/u:
+  // sigma_s = sigma_u / u^2 (first order).
   const int dof = eq.num_rows - eq.num_unknowns();
   if (dof <= 0) {
     solution->scale_std = kInfinity;
@@ -268,7 +334,7 @@ NormalEquations::VectorY SolveWithUncertainty(const NormalEquations& eq,
     return y;
   }
   const double variance_factor = chi2 / dof;
-  *covariance_y = variance_factor * inverse_schur;
+  *covariance_y = variance_factor * unit_covariance;
   solution->scale_std = std::sqrt(std::max(0.0, (*covariance_y)(m - 1, m - 1))) / (u * u);
   solution->residual_noise_ratio = std::sqrt(variance_factor) * std::abs(solution->scale);
   return y;
@@ -508,17 +574,8 @@ bool CheckUncertainty(const AlignmentSolution& free,
                          with_bias.scale,
                          with_bias.scale_std)
           : std::string();
-  if (!(relative_std <= options.max_scale_relative_std)) {
-    result->message = StringPrintf(
-        "the scale is not determined: %.4g with a standard deviation of %.3g (%.3g%%, allowed "
-        "%.3g%%); the motion does not excite it enough (longer windows with changes of "
-        "acceleration help)",
-        s,
-        refined.scale_std,
-        100.0 * relative_std,
-        100.0 * options.max_scale_relative_std);
-    return false;
-  }
+  // First: residuals larger than the assumed noise scale the standard deviation up (2), and the
+  // scale is then "not determined" for a reason the message below names.
   if (!(refined.residual_noise_ratio <= options.max_residual_noise_ratio)) {
     result->message =
         StringPrintf(
@@ -529,6 +586,17 @@ bool CheckUncertainty(const AlignmentSolution& free,
             options.max_residual_noise_ratio,
             s) +
         bias_hint;
+    return false;
+  }
+  if (!(relative_std <= options.max_scale_relative_std)) {
+    result->message = StringPrintf(
+        "the scale is not determined: %.4g with a standard deviation of %.3g (%.3g%%, allowed "
+        "%.3g%%); the motion does not excite it enough (longer windows with changes of "
+        "acceleration help)",
+        s,
+        refined.scale_std,
+        100.0 * relative_std,
+        100.0 * options.max_scale_relative_std);
     return false;
   }
   // The bias check: imposing the known norm moves an unmodelled accelerometer bias along

@@ -38,10 +38,15 @@
 //   5. Acceptance checks that gate: the free system's condition number (excitation), s > 0,
 //      | |g_free| - G | small, the refinement converged with s > 0, and three checks of the
 //      refined scale's uncertainty (docs/align.md, "Uncertainty"): its standard deviation from
-//      the normal equations' covariance scaled by the residual-estimated noise,
-//          Cov(y) = chi2 / dof * S^-1,   sigma_s = s^2 sigma_u                           (2)
-//      (S the Schur complement of the camera-unit system; the u^2 between camera and metric
-//      units cancels in (2)), must be a small fraction of s; the residuals must be of the size
+//      the covariance of the weighted least-squares solution scaled by the residual-estimated
+//      noise,
+//          Cov(y) = chi2 / dof * (S^-1 + A Sigma_shared A^T),   sigma_s = s^2 sigma_u      (2)
+//      (S the Schur complement of the camera-unit system, A = dy/dr the solution's rows for y;
+//      the u^2 between camera and metric units cancels in (2)). Sigma_shared is the residual
+//      covariance the per-pair weights leave out: a camera position enters two consecutive
+//      pairs with opposite signs, and the accelerometer bias walk accumulated before a pair
+//      enters every later pair (docs/align.md, "Uncertainty"). The result must be a small
+//      fraction of s; the residuals must be of the size
 //      of the assumed noise; and imposing the known norm must not move the scale away from the
 //      free solution's by more than the uncertainties allow (an unmodelled accelerometer bias
 //      along gravity does that). The accelerometer bias is also estimated, b'_a = u b_a as 3 more
@@ -205,6 +210,8 @@ class AlignmentProblem {
   SE3d T_cam_imu_;
   std::vector<ImuPreintegration> preintegrations_;        // pair k = frames k, k+1
   std::vector<Eigen::Matrix<double, 6, 6>> information_;  // inverse covariance of (dp, dv)
+  double camera_position_variance_ = 0.0;                 // [m^2] per axis
+  double accel_walk_variance_ = 0.0;                      // [m^2/s^5]
 };
 
 // Block-tridiagonal normal equations H x = b in x = (v'_0..v'_n-1, y), y = (y_g, [b'_a,] u),
@@ -231,13 +238,31 @@ struct AlignmentProblem::NormalEquations {
   // then the m x m Schur complement S, scaled to a unit diagonal by H_yy's diagonal. Returns
   // the condition number sqrt(lambda_max / lambda_min) of the scaled S (infinity when singular;
   // then v and y are not meaningful). Optional outputs (nullptr: not wanted): S^-1, the
-  // covariance of y for the weights as given; chi2 = r^T W r at the solution
-  // (= b^T W b - x^T H x, as H x = b).
+  // covariance of y if the pairs' residuals were independent with the weights' covariance;
+  // chi2 = r^T W r at the solution (= b^T W b - x^T H x, as H x = b); the covariance of y
+  // with the noise shared between pairs added (needs `pairs`, i.e. not after AccumulateScaled):
+  //   S^-1 + sum_j A_y J^T W Sigma_shared W J A_y^T      (docs/align.md, "Uncertainty").
   double Solve(std::vector<Eigen::Vector3d>* v,
                VectorY* y,
                MatrixY* inverse_schur = nullptr,
-               double* chi2 = nullptr) const;
+               double* chi2 = nullptr,
+               MatrixY* shared_noise_covariance = nullptr) const;
   int num_unknowns() const { return 3 * static_cast<int>(D.size()) + m; }
+
+  // What the noise shared between pairs needs (Solve's shared_noise_covariance): per pair k,
+  // J_k^T W_k ((6 + m) x 6: the rows of v'_k, v'_k+1, then y), R_c0_sk^T (a camera position
+  // noise n enters r_p of pair k as +R^T n for frame k+1 and -R^T n for frame k, metric) and
+  // the metric rows' derivative [J_dp_ba; -J_dv_ba] with respect to an accelerometer bias
+  // offset, and the pair's duration [s]. Empty after AccumulateScaled.
+  struct Pair {
+    Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 6 + kMaxM, 6> JtW;
+    Eigen::Matrix3d Rt;
+    Eigen::Matrix<double, 6, 3> d_rows_d_accel_bias;
+    double duration_s = 0.0;
+  };
+  std::vector<Pair> pairs;
+  double camera_position_variance = 0.0;  // [m^2] per axis
+  double accel_walk_variance = 0.0;       // accelerometer random walk density^2 [m^2/s^5]
 };
 
 struct GyroBiasEstimate {
