@@ -588,6 +588,14 @@ bool CheckUncertainty(const AlignmentSolution& free,
         bias_hint;
     return false;
   }
+  if (refined.residual_noise_ratio < options.min_residual_noise_ratio) {
+    result->warnings.push_back(StringPrintf(
+        "the residuals are %.3g times the assumed noise: the camera poses (or the IMU) are more "
+        "accurate than --camera-position-std and --camera-rotation-std (or the IMU densities) "
+        "say, so the IMU is under-weighted and the scale's standard deviation does not describe "
+        "its error: pass the poses' own noise",
+        refined.residual_noise_ratio));
+  }
   if (!(relative_std <= options.max_scale_relative_std)) {
     result->message = StringPrintf(
         "the scale is not determined: %.4g with a standard deviation of %.3g (%.3g%%, allowed "

@@ -377,6 +377,39 @@ TEST(Align, NoisyWellConditionedScaleNeesInsideItsBand) {
   EXPECT_LE(nees, honest.high) << "scale_std overconfident";
 }
 
+// Exact camera poses weighted as if they had the default noise (5 mm, 0.002 rad): the residuals
+// are a fraction of the assumed noise and the result warns; told the poses' own (tiny) noise, it
+// does not. (Whether the scale is then closer depends on the motion: here 5.6e-5 -> 1.2e-3
+// relative, on the demo's random trajectory 1.3% -> 0.03%, docs/align.md, "Uncertainty".)
+TEST(Align, PosesMoreAccurateThanAssumedWarn) {
+  testing::ScenarioOptions options = DefaultOptions();
+  options.imu_noise = true;  // camera poses exact
+  options.seed = 3;
+  const testing::Scenario scenario = testing::MakeScenario(Figure8Trajectory(), options);
+  const auto warns = [](const AlignResult& result) {
+    for (const std::string& warning : result.warnings) {
+      if (warning.find("times the assumed noise") != std::string::npos) return true;
+    }
+    return false;
+  };
+  AlignOptions align_options = AlignOptionsFor(options);
+  const AlignResult assumed = Align(scenario.imu, scenario.camera_poses, align_options);
+  ASSERT_TRUE(assumed.success) << assumed.message;
+  EXPECT_LT(assumed.residual_noise_ratio, align_options.min_residual_noise_ratio);
+  EXPECT_TRUE(warns(assumed));
+  align_options.camera_noise.position_std_m = 1e-4;
+  align_options.camera_noise.rotation_std_rad = 5e-5;
+  const AlignResult told = Align(scenario.imu, scenario.camera_poses, align_options);
+  ASSERT_TRUE(told.success) << told.message;
+  EXPECT_GE(told.residual_noise_ratio, align_options.min_residual_noise_ratio);
+  EXPECT_FALSE(warns(told));
+  std::printf("residual/noise %.3f -> %.3f, scale error %.2e -> %.2e (%.2f -> %.2f std)\n",
+              assumed.residual_noise_ratio, told.residual_noise_ratio,
+              assumed.scale / scenario.scale - 1.0, told.scale / scenario.scale - 1.0,
+              (assumed.scale - scenario.scale) / assumed.scale_std,
+              (told.scale - scenario.scale) / told.scale_std);
+}
+
 // Real data: EuRoC imu_april (72 s), cam0's poses T_t_c from PnP on the AprilGrid with their
 // positions halved, so that the true scale is 2. The accelerometer bias (~0.15 m/s^2, REFERENCE.md)
 // is not given: the alignment used to report scale 6.42 as a success (condition number 332).
