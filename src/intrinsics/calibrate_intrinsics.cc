@@ -24,6 +24,7 @@
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/intrinsics/time_blocks.h"
+#include "splinecal/estimation/model_noise_cluster.h"
 #include "splinecal/estimation/view_clusters.h"
 #include "splinecal/lie/se3_manifold.h"
 #include "splinecal/median.h"
@@ -377,13 +378,14 @@ void TimestampScores(IntrinsicsSolver* solver,
     RowMajor J(rows, kNumIntrinsics);
     std::vector<double*> jacobians(blocks.size(), nullptr);
     jacobians[1] = J.data();  // (target pose, intrinsics[, extrinsic])
+    const TargetView* view = solver->ViewOf(id);
+    if (view == nullptr) continue;  // the free points' gauge: no intrinsics
     if (!cost->Evaluate(blocks.data(), r.data(), jacobians.data())) continue;
-    const TargetView& view = solver->ViewOf(id);
     Eigen::VectorXd& score =
-        by_time.try_emplace(view.t_ns, Eigen::VectorXd::Zero(size)).first->second;
-    const std::vector<int>& active = state.active[view.cam_id];
+        by_time.try_emplace(view->t_ns, Eigen::VectorXd::Zero(size)).first->second;
+    const std::vector<int>& active = state.active[view->cam_id];
     for (size_t j = 0; j < active.size(); ++j) {
-      score(offset[view.cam_id] + static_cast<int>(j)) += J.col(active[j]).dot(r);
+      score(offset[view->cam_id] + static_cast<int>(j)) += J.col(active[j]).dot(r);
     }
   }
   for (const auto& [t, score] : by_time) {
@@ -392,7 +394,8 @@ void TimestampScores(IntrinsicsSolver* solver,
   }
 }
 
-// The target's shape and, with a covariance, its std (its block at `offset` in `covariance`).
+// The target's shape and, with a covariance, its std (its block at `offset` in `covariance`;
+// every point free: the free points' offsets there, in id order).
 void FillDeformationResult(const RigState& state,
                            const Eigen::MatrixXd& covariance,
                            int offset,
@@ -400,6 +403,21 @@ void FillDeformationResult(const RigState& state,
   const int k = state.shape.size();
   if (k == 0) return;
   TargetDeformationResult& out = result->target_deformation;
+  if (state.shape.per_point()) {
+    out.refined_target.type = "points";
+    out.refined_target.points = state.file_points;
+    int row = offset;
+    for (const auto& [id, block] : state.point_offset) {
+      const Eigen::Vector3d c(block.data());
+      out.point_offsets_m[id] = c;
+      out.refined_target.points[id] += c;
+      if (covariance.size() > 0) {
+        out.point_offsets_std_m[id] = covariance.block<3, 3>(row, row).diagonal().cwiseSqrt();
+      }
+      row += 3;
+    }
+    return;
+  }
   out.coefficients = Eigen::Map<const Eigen::VectorXd>(state.deformation.data(), k);
   out.heights_m = out.heights.M * out.coefficients;
   out.view_inset = state.inset;
@@ -432,7 +450,12 @@ void FillCameraResults(IntrinsicsSolver* solver,
   // The time blocks are chosen from the cameras' intrinsics alone, with or without a shape.
   const int scores_size = size;
   const int offset_shape = size;
-  if (state->shape.size() > 0) {
+  if (state->shape.per_point()) {
+    for (const double* offset : solver->PointOffsetBlocks()) {
+      blocks.push_back(offset);
+      size += 3;
+    }
+  } else if (state->shape.size() > 0) {
     blocks.push_back(state->deformation.data());
     size += state->shape.size();
   }
@@ -454,8 +477,10 @@ void FillCameraResults(IntrinsicsSolver* solver,
       const double block_s = result->time_blocks.block_s;
       if (block_s > 0.0) {
         cov_options.cluster_of = [solver, t0_ns, block_s](ceres::ResidualBlockId id) {
-          return static_cast<int>(NanosecondsToSeconds(solver->ViewOf(id).t_ns - t0_ns) /
-                                  block_s);
+          const TargetView* view = solver->ViewOf(id);
+          // The free points' gauge holds what no data determines: a constraint, not data.
+          if (view == nullptr) return kModelNoiseCluster;
+          return static_cast<int>(NanosecondsToSeconds(view->t_ns - t0_ns) / block_s);
         };
       }
     }
@@ -473,9 +498,10 @@ void FillCameraResults(IntrinsicsSolver* solver,
         MarginalCovarianceOptions view_options = cov_options;
         const RigState* rig = state;
         view_options.cluster_of = [solver, rig](ceres::ResidualBlockId id) {
-          const TargetView& view = solver->ViewOf(id);
+          const TargetView* view = solver->ViewOf(id);
+          if (view == nullptr) return kModelNoiseCluster;
           return ViewCluster(
-              rig->cameras[view.cam_id], view.corners, TargetInCamera(*rig, view));
+              rig->cameras[view->cam_id], view->corners, TargetInCamera(*rig, *view));
         };
         const MarginalCovariance by_view_kind =
             ComputeMarginalCovariance(solver->problem(), blocks, view_options);

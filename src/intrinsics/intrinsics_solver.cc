@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
+#include "splinecal/intrinsics/target_points_gauge.h"
 
 namespace splinecal {
 namespace internal {
@@ -22,7 +23,47 @@ double InsetOf(const RigState& state, const TargetView& view) {
 
 std::vector<TargetCornerObservation> ShapedCorners(const RigState& state,
                                                    const TargetView& view) {
-  return DeformedCorners(view.corners, state.shape, state.deformation.data(), InsetOf(state, view));
+  if (!state.shape.per_point()) {
+    return DeformedCorners(
+        view.corners, state.shape, state.deformation.data(), InsetOf(state, view));
+  }
+  std::vector<TargetCornerObservation> moved = view.corners;
+  for (size_t i = 0; i < moved.size(); ++i) {
+    const auto it = state.point_offset.find(view.point_ids[i]);
+    if (it != state.point_offset.end()) moved[i].p_t += Eigen::Vector3d(it->second.data());
+  }
+  return moved;
+}
+
+std::vector<const double*> IntrinsicsSolver::PointOffsetBlocks() const {
+  std::vector<const double*> blocks;
+  for (const auto& [id, offset] : state_.point_offset) blocks.push_back(offset.data());
+  return blocks;
+}
+
+void IntrinsicsSolver::ChooseFreePoints() {
+  std::map<int64_t, int> views_of;
+  for (size_t v = 0; v < views_.size(); ++v) {
+    if (records_[v].status != ViewStatus::kUsed) continue;
+    for (size_t i = 0; i < views_[v].point_ids.size(); ++i) {
+      state_.file_points[views_[v].point_ids[i]] = views_[v].corners[i].p_t;
+      ++views_of[views_[v].point_ids[i]];
+    }
+  }
+  for (const auto& [id, count] : views_of) {
+    if (count >= kMinViewsPerFreePoint) state_.point_offset[id] = {0.0, 0.0, 0.0};
+  }
+}
+
+void IntrinsicsSolver::AddGauge() {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double*> blocks;
+  for (auto& [id, offset] : state_.point_offset) {
+    points.push_back(state_.file_points.at(id));
+    blocks.push_back(offset.data());
+  }
+  if (blocks.empty()) return;
+  problem_->AddResidualBlock(new TargetPointsGaugeCost(points), nullptr, blocks);
 }
 
 void IntrinsicsSolver::Build(double huber_px) {
@@ -48,8 +89,13 @@ void IntrinsicsSolver::Build(double huber_px) {
         problem_->SetParameterBlockConstant(state_.T_cn_c0[n].data());
     }
   }
-  if (state_.shape.size() > 0) {
+  const bool per_point = state_.shape.per_point();
+  if (per_point && state_.file_points.empty()) ChooseFreePoints();
+  if (state_.shape.size() > 0 && !per_point) {
     problem_->AddParameterBlock(state_.deformation.data(), state_.shape.size());
+  }
+  for (auto& [id, offset] : state_.point_offset) {
+    problem_->AddParameterBlock(offset.data(), 3);
   }
   for (size_t v = 0; v < views_.size(); ++v) {
     if (records_[v].status != ViewStatus::kUsed) continue;
@@ -64,10 +110,34 @@ void IntrinsicsSolver::Build(double huber_px) {
     settings.has_extrinsic = n > 0;
     settings.sigma_px = state_.sigma_px[n];
     settings.huber_px = huber_px;
-    settings.shape = state_.shape;
-    auto* cost = new RigViewCostFunction(settings, view.corners);
     std::vector<double*> blocks = {pose, state_.intrinsics[n].data()};
     if (n > 0) blocks.push_back(state_.T_cn_c0[n].data());
+    if (per_point) {
+      // Each free point's corner alone with its offset block; the others in one block.
+      std::vector<TargetCornerObservation> held;
+      RigViewOptions free_settings = settings;
+      free_settings.shape = state_.shape;
+      for (size_t i = 0; i < view.corners.size(); ++i) {
+        const auto it = state_.point_offset.find(view.point_ids[i]);
+        if (it == state_.point_offset.end()) {
+          held.push_back(view.corners[i]);
+          continue;
+        }
+        std::vector<double*> corner_blocks = blocks;
+        corner_blocks.push_back(it->second.data());
+        const ceres::ResidualBlockId id = problem_->AddResidualBlock(
+            new RigViewCostFunction(free_settings, {view.corners[i]}), nullptr, corner_blocks);
+        view_of_[id] = &view;
+      }
+      if (!held.empty()) {
+        const ceres::ResidualBlockId id = problem_->AddResidualBlock(
+            new RigViewCostFunction(settings, std::move(held)), nullptr, blocks);
+        view_of_[id] = &view;
+      }
+      continue;
+    }
+    settings.shape = state_.shape;
+    auto* cost = new RigViewCostFunction(settings, view.corners);
     if (state_.shape.size() > 0) blocks.push_back(state_.deformation.data());
     if (state_.shape.per_view_inset()) {
       // std::map keeps the element's address: the block stays valid between rounds.
@@ -78,6 +148,7 @@ void IntrinsicsSolver::Build(double huber_px) {
     const ceres::ResidualBlockId id = problem_->AddResidualBlock(cost, nullptr, blocks);
     view_of_[id] = &view;
   }
+  if (per_point) AddGauge();
 }
 
 }  // namespace internal

@@ -6,6 +6,7 @@
 
 #include <ceres/problem.h>
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <map>
@@ -37,18 +38,25 @@ struct RigState {
   TargetShape shape;                    // kind none: a flat target
   std::array<double, kMaxTargetDeformationSize> deformation{};  // its block (shape.size() used)
   std::map<int64_t, double> inset;  // with a per-view inset: d_v per timestamp (1-blocks)
+  // With every point free: the file's points and the free ones' offsets (3-blocks; a point seen
+  // in fewer than kMinViewsPerFreePoint used views has none and keeps the file's position).
+  std::map<int64_t, Eigen::Vector3d> file_points;
+  std::map<int64_t, std::array<double, 3>> point_offset;
 };
 
 
 // The view's inset d_v (0 before its block exists or without a per-view inset).
 double InsetOf(const RigState& state, const TargetView& view);
-// The view's corners on the target as the state shapes it (flat: as they are).
+// The view's corners on the target as the state shapes it (flat: as they are; every point free:
+// each moved by its offset).
 std::vector<TargetCornerObservation> ShapedCorners(const RigState& state,
                                                    const TargetView& view);
 
 // The Ceres problem over the used views: each view one RigViewCostFunction on the state's
 // blocks (its target pose, its camera's intrinsics, its camera's extrinsic, the target's shape
-// and per-view inset when estimated).
+// and per-view inset when estimated). With every point free, each corner of a free point is a
+// residual block of its own with the point's offset block (the view's other corners share one),
+// and the offsets' gauge (intrinsics/target_points_gauge.h) is one more residual block.
 class IntrinsicsSolver {
  public:
   IntrinsicsSolver(std::vector<TargetView>* views,
@@ -57,12 +65,18 @@ class IntrinsicsSolver {
                    const IntrinsicsOptions& options)
       : views_(*views), records_(*records), state_(*state), options_(options) {}
 
-  // Builds the problem over the used views with Huber at huber_px (0: none).
+  // Builds the problem over the used views with Huber at huber_px (0: none). With every point
+  // free, the first call chooses the free points (those in kMinViewsPerFreePoint used views).
   void Build(double huber_px);
 
   ceres::Problem* problem() { return problem_.get(); }
-  // The view a residual block holds.
-  const TargetView& ViewOf(ceres::ResidualBlockId id) const { return *view_of_.at(id); }
+  // The view a residual block holds; nullptr for the free points' gauge.
+  const TargetView* ViewOf(ceres::ResidualBlockId id) const {
+    const auto it = view_of_.find(id);
+    return it == view_of_.end() ? nullptr : it->second;
+  }
+  // The free points' offset blocks, in id order (empty unless every point is free).
+  std::vector<const double*> PointOffsetBlocks() const;
 
  private:
   std::vector<TargetView>& views_;
@@ -71,6 +85,9 @@ class IntrinsicsSolver {
   const IntrinsicsOptions& options_;
   std::unique_ptr<ceres::Problem> problem_;
   std::map<ceres::ResidualBlockId, const TargetView*> view_of_;
+
+  void ChooseFreePoints();
+  void AddGauge();
 };
 
 }  // namespace internal

@@ -19,7 +19,8 @@ constexpr KindRow kKinds[] = {{TargetDeformationKind::kNone, "none", 0},
                               {TargetDeformationKind::kQuadratic, "quadratic", 3},
                               {TargetDeformationKind::kCubic, "cubic", 7},
                               {TargetDeformationKind::kInPlane, "in-plane", 3},
-                              {TargetDeformationKind::kInPlanePerView, "in-plane-per-view", 2}};
+                              {TargetDeformationKind::kInPlanePerView, "in-plane-per-view", 2},
+                              {TargetDeformationKind::kPoints, "points", 3}};
 
 const KindRow& RowOf(TargetDeformationKind kind) {
   for (const KindRow& row : kKinds) {
@@ -44,7 +45,9 @@ Eigen::Matrix<double, kMaxTargetDeformationSize, 1> TargetShape::Basis(double x,
 
 TargetDisplacement TargetShape::Displacement(const Eigen::Vector3d& p_t) const {
   TargetDisplacement D = TargetDisplacement::Zero();
-  if (out_of_plane()) {
+  if (per_point()) {
+    D.leftCols<3>().setIdentity();
+  } else if (out_of_plane()) {
     D.row(2) = Basis(p_t.x(), p_t.y()).transpose();
   } else if (in_plane()) {
     const Eigen::Vector2d u = p_t.head<2>() - centre;
@@ -79,7 +82,10 @@ TargetShape MakeTargetShape(const CalibrationTarget& target, TargetDeformationKi
   if (target.points.empty()) return shape;
   Eigen::Vector2d low = Eigen::Vector2d::Constant(1e300), high = -low;
   for (const auto& [id, p] : target.points) {
-    if (kind != TargetDeformationKind::kNone && std::abs(p.z()) > 1e-12) {
+    // Points may start from any geometry (a target refined before); the smooth kinds need the
+    // plane their basis is defined in.
+    if (kind != TargetDeformationKind::kNone && kind != TargetDeformationKind::kPoints &&
+        std::abs(p.z()) > 1e-12) {
       throw Error(
           "target deformation: the target's points must lie in its plane z = 0 (point " +
           std::to_string(id) + " does not)");

@@ -164,6 +164,12 @@ struct TargetDeformationResult {
   Eigen::VectorXd heights_std_m;
   // In-plane-per-view: each timestamp's inset d_v (target_deformation.h), without stds.
   std::map<int64_t, double> view_inset;
+  // Every point free: each free point's offset from the file's position [m] and its std (in the
+  // gauge of intrinsics/target_points_gauge.h), and the refined target: every point of the file,
+  // the free ones moved (a "points" target, camera/target.h, for the next step's --target).
+  std::map<int64_t, Eigen::Vector3d> point_offsets_m;
+  std::map<int64_t, Eigen::Vector3d> point_offsets_std_m;
+  CalibrationTarget refined_target;
 };
 
 struct IntrinsicsResult {

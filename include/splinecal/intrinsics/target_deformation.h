@@ -56,6 +56,17 @@
 // its own centre, and the tags' centres stay where the pose puts them; so each view's tags, 4
 // corners apiece, determine it, and the intrinsics lose only the information d_v and the pose
 // share (docs/intrinsics.md, "A per-view corner inset", measures how little).
+//
+// Every point free ("points"). Each target point gets its own offset c_i (3 coefficients, its own
+// parameter block): p_i -> p_i + c_i, D = I. This is the free target of photogrammetry (OpenCV's
+// calibrateCameraRO, Strobl & Hirzinger 2011): it takes whatever the print, the board and the
+// detector do to each corner's mean position, where the kinds above take only a smooth surface or
+// an affine layout. On EuRoC's imu_april it is what brings the recording's halves together
+// (docs/intrinsics.md, "Every point free"). The offsets share 7 directions with the views' poses
+// (a rigid motion and a scale of the whole target); the inner constraints of
+// intrinsics/target_points_gauge.h fix them: the offsets have no component of a similarity
+// transform, so the refined target keeps the file's centroid, orientation and size (least
+// squares). Points seen in fewer than kMinViewsPerFreePoint views keep the file's position.
 #ifndef SPLINECAL_INTRINSICS_TARGET_DEFORMATION_H_
 #define SPLINECAL_INTRINSICS_TARGET_DEFORMATION_H_
 
@@ -68,18 +79,28 @@
 
 namespace splinecal {
 
-enum class TargetDeformationKind { kNone, kQuadratic, kCubic, kInPlane, kInPlanePerView };
+enum class TargetDeformationKind {
+  kNone,
+  kQuadratic,
+  kCubic,
+  kInPlane,
+  kInPlanePerView,
+  kPoints
+};
+
+// A point seen in fewer views keeps the file's position (its offset would rest on too little).
+inline constexpr int kMinViewsPerFreePoint = 10;
 
 inline constexpr int kMaxTargetDeformationSize = 7;
 
 // A target point's displacement per coefficient (TargetShape::Displacement).
 using TargetDisplacement = Eigen::Matrix<double, 3, kMaxTargetDeformationSize>;
 
-// "none", "quadratic", "cubic", "in-plane", "in-plane-per-view".
+// "none", "quadratic", "cubic", "in-plane", "in-plane-per-view", "points".
 const char* TargetDeformationName(TargetDeformationKind kind);
 
 // The number of shared coefficients c_k: 0, 3, 7, 3 (in-plane) or 2 (in-plane-per-view: e1, e2;
-// each view's d_v is its own).
+// each view's d_v is its own); points: 3, the size of each point's own block.
 int TargetDeformationSize(TargetDeformationKind kind);
 
 // The geometry's basis on one target: its kind, the normalisation (x0, y0, a) and, in plane, the
@@ -103,6 +124,8 @@ struct TargetShape {
   }
   // In-plane-per-view: each view has its own inset d_v, column kInsetColumn of Displacement.
   bool per_view_inset() const { return kind == TargetDeformationKind::kInPlanePerView; }
+  // Points: every point its own offset block (D = I).
+  bool per_point() const { return kind == TargetDeformationKind::kPoints; }
   static constexpr int kInsetColumn = 2;
   // The out-of-plane basis values b_k at target point (x, y), the first size() entries used.
   Eigen::Matrix<double, kMaxTargetDeformationSize, 1> Basis(double x, double y) const;
