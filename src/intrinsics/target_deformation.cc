@@ -8,31 +8,20 @@
 
 namespace splinecal {
 
-namespace {
-
-struct KindRow {
-  TargetDeformationKind kind;
-  const char* name;
-  int size;  // the basis functions the kind uses (header comment)
-};
-constexpr KindRow kKinds[] = {{TargetDeformationKind::kNone, "none", 0},
-                              {TargetDeformationKind::kQuadratic, "quadratic", 3},
-                              {TargetDeformationKind::kCubic, "cubic", 7},
-                              {TargetDeformationKind::kInPlane, "in-plane", 3},
-                              {TargetDeformationKind::kInPlanePerView, "in-plane-per-view", 2}};
-
-const KindRow& RowOf(TargetDeformationKind kind) {
-  for (const KindRow& row : kKinds) {
-    if (row.kind == kind) return row;
-  }
-  return kKinds[0];
+const char* TargetDeformationName(TargetDeformationKind kind) {
+  return NameOf(kTargetDeformationKinds, kind);
 }
 
-}  // namespace
+int TargetDeformationSize(TargetDeformationKind kind) {
+  return RowOf(kTargetDeformationKinds, kind).size;
+}
 
-const char* TargetDeformationName(TargetDeformationKind kind) { return RowOf(kind).name; }
-
-int TargetDeformationSize(TargetDeformationKind kind) { return RowOf(kind).size; }
+std::vector<std::string> TargetDeformationCoefficientNames(TargetDeformationKind kind) {
+  if (kind == TargetDeformationKind::kInPlane) return {"e1", "e2", "d"};
+  if (kind == TargetDeformationKind::kInPlanePerView) return {"e1", "e2"};
+  const std::vector<std::string> basis = {"ss", "st", "tt", "sss", "sst", "stt", "ttt"};
+  return {basis.begin(), basis.begin() + TargetDeformationSize(kind)};
+}
 
 Eigen::Matrix<double, kMaxTargetDeformationSize, 1> TargetShape::Basis(double x, double y) const {
   const double s = (x - centre.x()) / half_extent;

@@ -110,10 +110,14 @@ std::vector<OutputFile> IntrinsicsOutputFiles(const IntrinsicsResult& result,
   for (const IntrinsicsCameraResult& camera : result.cameras) {
     covariances.push_back(camera.covariance);
   }
-  return {{"camchain.yaml",
-           CamchainYamlText(camchain, CamchainKeys::kCamerasOnly, covariances)},
-          {"result.yaml", IntrinsicsResultYaml(result, inputs.model_comparison)},
-          {"report.html", IntrinsicsReportHtml(result, inputs, kIntrinsicsReportMaxPoints)}};
+  std::vector<OutputFile> files = {
+      {"camchain.yaml", CamchainYamlText(camchain, CamchainKeys::kCamerasOnly, covariances)},
+      {"result.yaml", IntrinsicsResultYaml(result, inputs.model_comparison)},
+      {"report.html", IntrinsicsReportHtml(result, inputs, kIntrinsicsReportMaxPoints)}};
+  if (result.target_deformation.shape.per_view_inset()) {
+    files.push_back({"view_inset.csv", IntrinsicsViewInsetCsv(result)});
+  }
+  return files;
 }
 
 }  // namespace splinecal

@@ -60,10 +60,12 @@
 #define SPLINECAL_INTRINSICS_TARGET_DEFORMATION_H_
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
 #include "splinecal/camera/target.h"
+#include "splinecal/enum_names.h"
 #include "splinecal/estimation/reprojection_cost.h"
 
 namespace splinecal {
@@ -71,6 +73,21 @@ namespace splinecal {
 enum class TargetDeformationKind { kNone, kQuadratic, kCubic, kInPlane, kInPlanePerView };
 
 inline constexpr int kMaxTargetDeformationSize = 7;
+
+// The kinds by name (`splinecal intrinsics --target-deformation`, result.yaml), the default
+// first, with the number of shared coefficients c_k each has.
+struct TargetDeformationRow {
+  TargetDeformationKind value;
+  const char* name;
+  int size;
+};
+inline constexpr std::array<TargetDeformationRow, 5> kTargetDeformationKinds = {{
+    {TargetDeformationKind::kNone, "none", 0},
+    {TargetDeformationKind::kQuadratic, "quadratic", 3},
+    {TargetDeformationKind::kCubic, "cubic", 7},
+    {TargetDeformationKind::kInPlane, "in-plane", 3},
+    {TargetDeformationKind::kInPlanePerView, "in-plane-per-view", 2},
+}};
 
 // A target point's displacement per coefficient (TargetShape::Displacement).
 using TargetDisplacement = Eigen::Matrix<double, 3, kMaxTargetDeformationSize>;
@@ -81,6 +98,10 @@ const char* TargetDeformationName(TargetDeformationKind kind);
 // The number of shared coefficients c_k: 0, 3, 7, 3 (in-plane) or 2 (in-plane-per-view: e1, e2;
 // each view's d_v is its own).
 int TargetDeformationSize(TargetDeformationKind kind);
+
+// The shared coefficients' names in c's order: out of plane the basis functions' (ss, st, tt;
+// cubic + sss, sst, stt, ttt), in plane e1, e2, d (per view e1, e2).
+std::vector<std::string> TargetDeformationCoefficientNames(TargetDeformationKind kind);
 
 // The geometry's basis on one target: its kind, the normalisation (x0, y0, a) and, in plane, the
 // AprilGrid's layout.

@@ -6,12 +6,17 @@
 //                 (offered, used, and why the others were not), the corners used and rejected
 //                 as outliers, and for every camera after the first T_cn_cnm1 with the std of
 //                 its rotation [deg] and translation [m] and the baseline |t_cn_cnm1|; then the
-//                 solver's figures and the warnings.
+//                 solver's figures and the warnings. With --target-deformation other than none,
+//                 a `target_deformation:` block (its kind, the coefficients with their stds; out
+//                 of plane the heights [mm] at the centre and corners; in plane the x/y scale
+//                 ratio, the axes' angle and the tag side and Kalibr's tagSpacing the data say;
+//                 per view the insets' count, mean, std, min and max).
+//   view_inset.csv  in-plane-per-view only: each timestamp's inset d_v (#t_ns,d).
 //   report.html   the same in tables, and figures: the errors (u/v scatter, norm over time),
 //                 the errors against the image position with every corner drawn (where the
 //                 image has corners: the coverage; where the model misses: aligned vectors),
 //                 and every view's RMS over time, used and set aside. One panel per camera,
-//                 parameters by Kalibr's names.
+//                 parameters by Kalibr's names; the target's deformation in a table.
 //   With --compare-models, result.yaml's `model_comparison:` list (per model and camera: RMS,
 //   sum of squares, corners, intrinsics and distortion) and report.html's table and error map
 //   per model, the arrows of every model at one magnification.
@@ -41,6 +46,8 @@ std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
                                  const IntrinsicsReportInputs& inputs,
                                  int max_points);
 std::string IntrinsicsSummaryText(const IntrinsicsResult& result);
+// view_inset.csv: "#t_ns,d" and one row per timestamp of TargetDeformationResult::view_inset.
+std::string IntrinsicsViewInsetCsv(const IntrinsicsResult& result);
 
 }  // namespace splinecal
 
