@@ -9,9 +9,11 @@
 #include "command_outputs.h"
 #include "interruptible.h"
 #include "numpy_io.h"
+#include "splinecal/enum_names.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/intrinsics/camera_specs.h"
 #include "splinecal/intrinsics/compare_models.h"
+#include "splinecal/intrinsics/target_deformation.h"
 #include "splinecal/io/target_yaml.h"
 #include "splinecal/report/command_outputs.h"
 
@@ -29,6 +31,7 @@ py::dict IntrinsicsFunction(py::handle observations,
                             double outlier_sigmas,
                             bool keep_repeated_views,
                             bool compare_models,
+                            const std::string& target_deformation,
                             int max_views,
                             int min_corners,
                             double huber,
@@ -42,6 +45,11 @@ py::dict IntrinsicsFunction(py::handle observations,
   options.max_views_per_camera = max_views;
   options.outlier_sigmas = NonNegativeArgument(outlier_sigmas, "outlier_sigmas");
   options.keep_repeated_views = keep_repeated_views;
+  if (!ValueNamed(kTargetDeformationKinds, target_deformation, &options.target_deformation)) {
+    throw py::value_error("target_deformation: expected " +
+                          JoinNames(kTargetDeformationKinds, ", ") + ", got '" +
+                          target_deformation + "'");
+  }
   if (threads < 1 || threads > 256) {
     throw py::value_error("threads: expected 1 to 256, got " + std::to_string(threads));
   }
@@ -92,10 +100,12 @@ target: a Kalibr target YAML path; models: "pinhole-radtan,pinhole-equi" or a li
 camera (cam0 first); the image size from resolution ("752x480", one for all or one per camera,
 or a list) or from camchain (a camchain.yaml path), one of the two; cameras: "0,2" or [0, 2] selects
 input cameras (models then names those); outlier_sigmas 0 removes no corner; compare_models also
-fits pinhole-radtan, pinhole-equi and ds-none to the corners used (result's model_comparison).
-out: a folder to write
-camchain.yaml, result.yaml and report.html to. Returns result.yaml's keys plus camchain_yaml
-(the text of camchain.yaml, Kalibr's keys: calibrate's camchain).)",
+fits pinhole-radtan, pinhole-equi and ds-none to the corners used (result's model_comparison);
+target_deformation: "none", "quadratic", "cubic", "in-plane" or "in-plane-per-view", the target's
+geometry estimated with the intrinsics (result's target_deformation). out: a folder to write
+camchain.yaml, result.yaml and report.html (and view_inset.csv with in-plane-per-view) to.
+Returns result.yaml's keys plus camchain_yaml (the text of camchain.yaml, Kalibr's keys:
+calibrate's camchain).)",
       py::arg("observations"),
       py::arg("target"),
       py::arg("models"),
@@ -106,6 +116,7 @@ camchain.yaml, result.yaml and report.html to. Returns result.yaml's keys plus c
       py::arg("outlier_sigmas") = defaults.outlier_sigmas,
       py::arg("keep_repeated_views") = defaults.keep_repeated_views,
       py::arg("compare_models") = false,
+      py::arg("target_deformation") = TargetDeformationName(defaults.target_deformation),
       py::arg("max_views") = defaults.max_views_per_camera,
       py::arg("min_corners") = defaults.min_corners,
       py::arg("huber") = defaults.huber_px,

@@ -70,3 +70,25 @@ def test_intrinsics_compare_models_equals_the_command_line(tmp_path):
     models = [row["model"] for row in result["model_comparison"]]
     assert models == ["pinhole-radtan", "pinhole-equi", "ds-none"]
     assert_same(without_wall_times(result, expected), expected, tol=1e-9)
+
+
+def test_intrinsics_target_deformation_equals_the_command_line(tmp_path):
+    observations, _ = simulated_observations(tmp_path)
+    flags = dict(target=CALIBRATION / "aprilgrid.yaml", models="pinhole-radtan",
+                 camchain=CALIBRATION / "camchain_guess.yaml", threads=1,
+                 target_deformation="in-plane")
+    run_tool("intrinsics", "--observations", observations,
+             *[f"--{k.replace('_', '-')}={v}" for k, v in flags.items()], "--out", tmp_path / "cli")
+    expected = load_yaml(tmp_path / "cli" / "result.yaml")
+    result = splinecal.intrinsics(observations, **flags)
+    result.pop("camchain_yaml")
+    block = result["target_deformation"]
+    assert block["kind"] == "in-plane"
+    assert [c["name"] for c in block["coefficients"]] == ["e1", "e2", "d"]
+    assert_same(without_wall_times(result, expected), expected, tol=1e-9)
+    # An unknown kind is refused with the names the command accepts.
+    with pytest.raises(ValueError, match="target_deformation: expected none, quadratic, cubic, "
+                                         "in-plane, in-plane-per-view, points, points-in-plane, "
+                                         "got 'flat'"):
+        splinecal.intrinsics(observations, flags["target"], flags["models"],
+                             camchain=flags["camchain"], target_deformation="flat")

@@ -11,10 +11,12 @@
 #include "splinecal/cli/commands.h"
 #include "splinecal/cli/common_flags.h"
 #include "splinecal/camera/observation_gates.h"
+#include "splinecal/enum_names.h"
 #include "splinecal/error.h"
 #include "splinecal/intrinsics/calibrate_intrinsics.h"
 #include "splinecal/intrinsics/camera_specs.h"
 #include "splinecal/intrinsics/compare_models.h"
+#include "splinecal/intrinsics/target_deformation.h"
 #include "splinecal/io/camchain_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/output_dir.h"
@@ -46,6 +48,12 @@ DEFINE_bool(compare_models,
             "Also fit pinhole-radtan, pinhole-equi and ds-none to the corners used (exact least "
             "squares) and print their RMS and sums of squares; report.html shows each model's "
             "errors by image position");
+DEFINE_string(target_deformation,
+              "none",
+              "The target's geometry estimated with the intrinsics, shared by every view: none "
+              "(as the target file says), quadratic or cubic (a surface out of the plane), "
+              "in-plane (an aprilgrid's x/y anisotropy e1, shear e2 and tag side to pitch d) or "
+              "in-plane-per-view (e1, e2 shared, each timestamp its own d)");
 DECLARE_string(cameras);
 
 DEFINE_int32(max_views,
@@ -79,6 +87,11 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
 
   in.options.outlier_sigmas = NonNegativeFlag("outlier_sigmas", FLAGS_outlier_sigmas);
   in.options.keep_repeated_views = FLAGS_keep_repeated_views;
+  if (!ValueNamed(
+          kTargetDeformationKinds, FLAGS_target_deformation, &in.options.target_deformation)) {
+    throw Error("--target-deformation: expected " + JoinNames(kTargetDeformationKinds, ", ") +
+                ", got '" + FLAGS_target_deformation + "'");
+  }
 
   in.target = ReadTargetYaml(FLAGS_target);
   in.observations = ReadObservationsCsv(observations_path);
@@ -95,6 +108,13 @@ IntrinsicsInputs ReadIntrinsicsInputs() {
       {observations_path,
        FLAGS_target,
        FLAGS_resolution.empty() ? FLAGS_camchain : "--resolution " + FLAGS_resolution});
+  // The library checks again (CalibrateIntrinsics); here before the solve, naming the file: in
+  // plane needs an aprilgrid, every kind a target in its plane.
+  try {
+    MakeTargetShape(in.target, in.options.target_deformation);
+  } catch (const Error& e) {
+    throw Error("--target-deformation: " + FLAGS_target + ": " + e.what());
+  }
   return in;
 }
 
@@ -132,7 +152,7 @@ Command IntrinsicsCommand() {
       "splinecal intrinsics --observations FILE --target FILE --models M0[,M1...] "
       "(--resolution WxH[,WxH...] | --camchain FILE) [--max-views N] [--min-corners N] "
       "[--cameras I,J] [--huber PX] [--outlier-sigmas N] [--keep-repeated-views] "
-      "[--compare-models] [--threads N] --out DIR";
+      "[--compare-models] [--target-deformation KIND] [--threads N] --out DIR";
   command.description =
       "Calibrates every camera of observations.csv (from `splinecal detect`) with its model of "
       "--models (Kalibr's names), all cameras in one problem with the rig's camera-to-camera "
@@ -141,8 +161,9 @@ Command IntrinsicsCommand() {
       "reports what it used; --compare-models fits pinhole-radtan, pinhole-equi and ds-none to "
       "the same corners. Writes camchain.yaml (Kalibr's keys, T_cn_cnm1 from cam1 on), "
       "result.yaml (per camera: intrinsics and distortion with stds, RMS, views) and "
-      "report.html. With --camchain a camera of the same model starts from its values. See "
-      "docs/intrinsics.md.";
+      "report.html. With --camchain a camera of the same model starts from its values. "
+      "--target-deformation estimates the target's geometry with the intrinsics (result.yaml's "
+      "target_deformation; calibrate still reads the target file). See docs/intrinsics.md.";
   command.flags = {{"observations", ""},
                    {"target",
                     "Calibration target: Kalibr aprilgrid, checkerboard or points YAML "
@@ -164,6 +185,7 @@ Command IntrinsicsCommand() {
                    {"outlier_sigmas", ""},
                    {"keep_repeated_views", ""},
                    {"compare_models", ""},
+                   {"target_deformation", ""},
                    {"threads", "", "2"},
                    {"out", ""},
                    {"quiet", ""}};

@@ -394,6 +394,11 @@ void TimestampScores(IntrinsicsSolver* solver,
   }
 }
 
+// A free point's offset block's tangent: x, y, z, or x, y with z held.
+int PointOffsetTangentSize(const TargetShape& shape) {
+  return shape.kind == TargetDeformationKind::kPointsInPlane ? 2 : 3;
+}
+
 // The target's shape and, with a covariance, its std (its block at `offset` in `covariance`;
 // every point free: the free points' offsets there, in id order).
 void FillDeformationResult(const RigState& state,
@@ -406,15 +411,23 @@ void FillDeformationResult(const RigState& state,
   if (state.shape.per_point()) {
     out.refined_target.type = "points";
     out.refined_target.points = state.file_points;
+    const int tangent = PointOffsetTangentSize(state.shape);
+    if (covariance.size() > 0) {
+      // Every offset's coordinates in id order (x, y, z; z absent when held).
+      const int rows = tangent * static_cast<int>(state.point_offset.size());
+      out.covariance = covariance.block(offset, offset, rows, rows);
+    }
     int row = offset;
     for (const auto& [id, block] : state.point_offset) {
       const Eigen::Vector3d c(block.data());
       out.point_offsets_m[id] = c;
       out.refined_target.points[id] += c;
       if (covariance.size() > 0) {
-        out.point_offsets_std_m[id] = covariance.block<3, 3>(row, row).diagonal().cwiseSqrt();
+        Eigen::Vector3d std = Eigen::Vector3d::Zero();  // a held z: 0
+        std.head(tangent) = covariance.block(row, row, tangent, tangent).diagonal().cwiseSqrt();
+        out.point_offsets_std_m[id] = std;
       }
-      row += 3;
+      row += tangent;
     }
     return;
   }
@@ -453,7 +466,7 @@ void FillCameraResults(IntrinsicsSolver* solver,
   if (state->shape.per_point()) {
     for (const double* offset : solver->PointOffsetBlocks()) {
       blocks.push_back(offset);
-      size += 3;
+      size += PointOffsetTangentSize(state->shape);
     }
   } else if (state->shape.size() > 0) {
     blocks.push_back(state->deformation.data());

@@ -94,8 +94,12 @@ void IntrinsicsSolver::Build(double huber_px) {
   if (state_.shape.size() > 0 && !per_point) {
     problem_->AddParameterBlock(state_.deformation.data(), state_.shape.size());
   }
+  const bool in_plane_points = state_.shape.kind == TargetDeformationKind::kPointsInPlane;
   for (auto& [id, offset] : state_.point_offset) {
     problem_->AddParameterBlock(offset.data(), 3);
+    if (in_plane_points) {
+      problem_->SetManifold(offset.data(), new ceres::SubsetManifold(3, std::vector<int>{2}));
+    }
   }
   for (size_t v = 0; v < views_.size(); ++v) {
     if (records_[v].status != ViewStatus::kUsed) continue;

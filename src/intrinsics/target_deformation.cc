@@ -8,32 +8,23 @@
 
 namespace splinecal {
 
-namespace {
-
-struct KindRow {
-  TargetDeformationKind kind;
-  const char* name;
-  int size;  // the basis functions the kind uses (header comment)
-};
-constexpr KindRow kKinds[] = {{TargetDeformationKind::kNone, "none", 0},
-                              {TargetDeformationKind::kQuadratic, "quadratic", 3},
-                              {TargetDeformationKind::kCubic, "cubic", 7},
-                              {TargetDeformationKind::kInPlane, "in-plane", 3},
-                              {TargetDeformationKind::kInPlanePerView, "in-plane-per-view", 2},
-                              {TargetDeformationKind::kPoints, "points", 3}};
-
-const KindRow& RowOf(TargetDeformationKind kind) {
-  for (const KindRow& row : kKinds) {
-    if (row.kind == kind) return row;
-  }
-  return kKinds[0];
+const char* TargetDeformationName(TargetDeformationKind kind) {
+  return NameOf(kTargetDeformationKinds, kind);
 }
 
-}  // namespace
+int TargetDeformationSize(TargetDeformationKind kind) {
+  return RowOf(kTargetDeformationKinds, kind).size;
+}
 
-const char* TargetDeformationName(TargetDeformationKind kind) { return RowOf(kind).name; }
-
-int TargetDeformationSize(TargetDeformationKind kind) { return RowOf(kind).size; }
+std::vector<std::string> TargetDeformationCoefficientNames(TargetDeformationKind kind) {
+  if (kind == TargetDeformationKind::kInPlane) return {"e1", "e2", "d"};
+  if (kind == TargetDeformationKind::kInPlanePerView) return {"e1", "e2"};
+  if (kind == TargetDeformationKind::kPoints || kind == TargetDeformationKind::kPointsInPlane) {
+    return {"x", "y", "z"};  // each point's offset
+  }
+  const std::vector<std::string> basis = {"ss", "st", "tt", "sss", "sst", "stt", "ttt"};
+  return {basis.begin(), basis.begin() + TargetDeformationSize(kind)};
+}
 
 Eigen::Matrix<double, kMaxTargetDeformationSize, 1> TargetShape::Basis(double x, double y) const {
   const double s = (x - centre.x()) / half_extent;
@@ -85,7 +76,7 @@ TargetShape MakeTargetShape(const CalibrationTarget& target, TargetDeformationKi
     // Points may start from any geometry (a target refined before); the smooth kinds need the
     // plane their basis is defined in.
     if (kind != TargetDeformationKind::kNone && kind != TargetDeformationKind::kPoints &&
-        std::abs(p.z()) > 1e-12) {
+        kind != TargetDeformationKind::kPointsInPlane && std::abs(p.z()) > 1e-12) {
       throw Error(
           "target deformation: the target's points must lie in its plane z = 0 (point " +
           std::to_string(id) + " does not)");

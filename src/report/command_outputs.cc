@@ -1,5 +1,7 @@
 #include "splinecal/report/command_outputs.h"
 
+#include "splinecal/io/target_yaml.h"
+
 #include <sstream>
 #include <string>
 
@@ -9,6 +11,7 @@
 #include "splinecal/io/kalibr_yaml.h"
 #include "splinecal/io/observations_csv.h"
 #include "splinecal/io/spline_csv.h"
+#include "splinecal/io/target_yaml.h"
 #include "splinecal/report/align_report.h"
 
 namespace splinecal {
@@ -110,10 +113,18 @@ std::vector<OutputFile> IntrinsicsOutputFiles(const IntrinsicsResult& result,
   for (const IntrinsicsCameraResult& camera : result.cameras) {
     covariances.push_back(camera.covariance);
   }
-  return {{"camchain.yaml",
-           CamchainYamlText(camchain, CamchainKeys::kCamerasOnly, covariances)},
-          {"result.yaml", IntrinsicsResultYaml(result, inputs.model_comparison)},
-          {"report.html", IntrinsicsReportHtml(result, inputs, kIntrinsicsReportMaxPoints)}};
+  std::vector<OutputFile> files = {
+      {"camchain.yaml", CamchainYamlText(camchain, CamchainKeys::kCamerasOnly, covariances)},
+      {"result.yaml", IntrinsicsResultYaml(result, inputs.model_comparison)},
+      {"report.html", IntrinsicsReportHtml(result, inputs, kIntrinsicsReportMaxPoints)}};
+  if (result.target_deformation.shape.per_view_inset()) {
+    files.push_back({"view_inset.csv", IntrinsicsViewInsetCsv(result)});
+  }
+  if (result.target_deformation.shape.per_point()) {
+    files.push_back({"target.yaml", TargetPointsYamlText(result.target_deformation.refined_target)});
+    files.push_back({"target_points.csv", IntrinsicsTargetPointsCsv(result)});
+  }
+  return files;
 }
 
 }  // namespace splinecal

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "splinecal/intrinsics/intrinsics_observability.h"
@@ -151,6 +152,304 @@ std::string ViewsTableHtml(const IntrinsicsResult& result) {
   return html + "</table>\n";
 }
 
+// The target's deformation (IntrinsicsResult::target_deformation) as quantities a user reads,
+// one list for result.yaml, report.html and the summary. The coefficients are c itself (out of
+// plane heights at the target's edge, in plane ratios); the derived quantities are, out of plane,
+// the surface's heights above the least-squares plane through the points, and in plane what the
+// ratios make of the printed grid, to first order as the model is (target_deformation.h).
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct DeformationQuantity {
+  std::string name;
+  double value = 0.0;
+  double std = kNaN;           // NaN: no covariance
+  const char* unit = "ratio";  // or "mm", "deg"
+  bool percent = false;        // a small ratio: shown in % (result.yaml writes it as is)
+  double file = kNaN;          // the target file's, NaN: none
+  std::string meaning;
+};
+
+struct DeformationSummary {
+  std::vector<DeformationQuantity> coefficients;
+  std::vector<DeformationQuantity> derived;
+  // In-plane-per-view: the insets d_v over the timestamps (std with n - 1).
+  int inset_count = 0;
+  double inset_mean = 0.0, inset_std = 0.0, inset_min = 0.0, inset_max = 0.0;
+};
+
+// Every point free: how far the points moved from the file's layout, in the plane and along its
+// normal (the target's z), and how well the offsets are determined.
+void SummarisePointOffsets(const TargetDeformationResult& d, DeformationSummary* out) {
+  double in_plane_sq = 0.0, normal_sq = 0.0, in_plane_max = 0.0, normal_max = 0.0;
+  std::vector<double> stds;
+  for (const auto& [id, c] : d.point_offsets_m) {
+    in_plane_sq += c.head<2>().squaredNorm();
+    normal_sq += c.z() * c.z();
+    in_plane_max = std::max(in_plane_max, c.head<2>().norm());
+    normal_max = std::max(normal_max, std::abs(c.z()));
+  }
+  for (const auto& [id, s] : d.point_offsets_std_m) stds.push_back(s.maxCoeff());
+  const double n = std::max<double>(1.0, static_cast<double>(d.point_offsets_m.size()));
+  const auto add = [out](const std::string& name, double value, const char* unit,
+                         const std::string& meaning) {
+    DeformationQuantity& q = out->derived.emplace_back();
+    q.name = name;
+    q.value = value;
+    q.unit = unit;
+    q.meaning = meaning;
+  };
+  add("free_points", static_cast<double>(d.point_offsets_m.size()), "count",
+      "points estimated (seen in at least 10 used views); the others keep the file's position");
+  add("offset_rms_in_plane_mm", 1e3 * std::sqrt(in_plane_sq / n), "mm",
+      "RMS of the points' offsets in the target's plane, against the file's layout");
+  add("offset_max_in_plane_mm", 1e3 * in_plane_max, "mm", "the largest of them");
+  add("offset_rms_normal_mm", 1e3 * std::sqrt(normal_sq / n), "mm",
+      "RMS of the offsets along the target's normal (z)");
+  add("offset_max_normal_mm", 1e3 * normal_max, "mm", "the largest of them");
+  if (!stds.empty()) {
+    std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());
+    add("offset_std_median_mm", 1e3 * stds[stds.size() / 2], "mm",
+        "the median over the points of an offset's largest std (x, y or z)");
+  }
+}
+
+DeformationSummary SummariseDeformation(const TargetDeformationResult& d) {
+  const TargetShape& shape = d.shape;
+  const int k = shape.size();
+  DeformationSummary out;
+  if (shape.per_point()) {
+    SummarisePointOffsets(d, &out);
+    return out;
+  }
+  if (k == 0 || d.coefficients.size() != k) return out;
+  const auto std_of = [&](int i) {
+    return d.covariance.rows() == k ? std::sqrt(d.covariance(i, i)) : kNaN;
+  };
+  const auto add = [](std::vector<DeformationQuantity>* list,
+                      const std::string& name,
+                      double value,
+                      double std,
+                      const char* unit,
+                      const std::string& meaning,
+                      double file = kNaN) {
+    DeformationQuantity& q = list->emplace_back();
+    q.name = name;
+    q.value = value;
+    q.std = std;
+    q.unit = unit;
+    q.meaning = meaning;
+    q.file = file;
+  };
+  const std::vector<std::string> names = TargetDeformationCoefficientNames(shape.kind);
+  if (shape.out_of_plane()) {
+    for (int i = 0; i < k; ++i) {
+      add(&out.coefficients,
+          names[i],
+          1e3 * d.coefficients(i),
+          1e3 * std_of(i),
+          "mm",
+          "height at the target's edge of the basis function " + names[i] +
+              " (s, t: the target's x, y scaled to [-1, 1])");
+    }
+    for (size_t r = 0; r < d.heights.names.size(); ++r) {
+      const int row = static_cast<int>(r);
+      add(&out.derived,
+          "height_" + d.heights.names[r],
+          1e3 * d.heights_m(row),
+          d.heights_std_m.size() > row ? 1e3 * d.heights_std_m(row) : kNaN,
+          "mm",
+          StringPrintf("above the least-squares plane through the target's points, at "
+                       "(%.4f, %.4f) m",
+                       d.heights.xy[r].x(),
+                       d.heights.xy[r].y()));
+    }
+    return out;
+  }
+  const char* meanings[] = {"x longer by 1 + e1, y by 1 - e1, about the target's centre",
+                            "the diagonals x = y and x = -y longer by 1 + e2 and 1 - e2",
+                            "each tag's side longer by 1 + d, the pitch held"};
+  for (int i = 0; i < k; ++i) {
+    add(&out.coefficients, names[i], d.coefficients(i), std_of(i), "ratio", meanings[i]);
+    out.coefficients.back().percent = true;
+  }
+  const double e1 = d.coefficients(0), e2 = d.coefficients(1);
+  add(&out.derived,
+      "x_over_y_scale",
+      1.0 + 2.0 * e1,
+      2.0 * std_of(0),
+      "ratio",
+      "x's scale over y's, 1 + 2 e1",
+      1.0);
+  add(&out.derived,
+      "axes_angle_deg",
+      90.0 - kRadToDeg * 2.0 * e2,
+      kRadToDeg * 2.0 * std_of(1),
+      "deg",
+      "the angle between the target's x and y axes, 90 deg - 2 e2 [rad]",
+      90.0);
+  double inset = 0.0, inset_std = kNaN;
+  std::string at;
+  if (shape.per_view_inset()) {
+    out.inset_count = static_cast<int>(d.view_inset.size());
+    double sum = 0.0, sum2 = 0.0;
+    out.inset_min = kNaN;
+    out.inset_max = kNaN;
+    for (const auto& [t_ns, d_v] : d.view_inset) {
+      sum += d_v;
+      out.inset_min = std::isnan(out.inset_min) ? d_v : std::min(out.inset_min, d_v);
+      out.inset_max = std::isnan(out.inset_max) ? d_v : std::max(out.inset_max, d_v);
+    }
+    out.inset_mean = out.inset_count > 0 ? sum / out.inset_count : kNaN;
+    for (const auto& [t_ns, d_v] : d.view_inset) {
+      sum2 += (d_v - out.inset_mean) * (d_v - out.inset_mean);
+    }
+    out.inset_std = out.inset_count > 1 ? std::sqrt(sum2 / (out.inset_count - 1)) : kNaN;
+    inset = out.inset_mean;
+    at = ", at the insets' mean";
+  } else {
+    inset = d.coefficients(TargetShape::kInsetColumn);
+    inset_std = std_of(TargetShape::kInsetColumn);
+  }
+  // Only tagSize / pitch is measured (each view's distance takes the uniform scale): the tag side
+  // with the file's pitch, and Kalibr's tagSpacing (pitch / tagSize - 1) of that ratio; the two
+  // as aprilgrid.yaml's tagSize and tagSpacing keep the file's pitch. The file's tagSpacing to
+  // 12 digits: pitch / side - 1 is 0.30000000000000004.
+  const double ratio = shape.tag_pitch_m / shape.tag_size_m;
+  const double spacing = std::stod(StringPrintf("%.12g", ratio - 1.0));
+  add(&out.derived,
+      "tag_size_mm",
+      1e3 * shape.tag_size_m * (1.0 + inset),
+      1e3 * shape.tag_size_m * inset_std,
+      "mm",
+      "a tag's side with the file's pitch, tagSize (1 + d)" + at,
+      1e3 * shape.tag_size_m);
+  add(&out.derived,
+      "tag_spacing",
+      ratio / (1.0 + inset) - 1.0,
+      ratio / ((1.0 + inset) * (1.0 + inset)) * inset_std,
+      "ratio",
+      "Kalibr's tagSpacing, (1 + tagSpacing) / (1 + d) - 1: with tag_size_mm as tagSize the "
+      "file's pitch" +
+          at,
+      spacing);
+  return out;
+}
+
+// A quantity's value (or std) in its unit, ratios in %.
+std::string DeformationNumber(const DeformationQuantity& q, double value) {
+  if (q.percent) return StringPrintf("%.3f%%", 100.0 * value);
+  if (std::string(q.unit) == "mm") return StringPrintf("%.3f mm", value);
+  if (std::string(q.unit) == "deg") return StringPrintf("%.4f deg", value);
+  if (std::string(q.unit) == "count") return StringPrintf("%.0f", value);
+  return StringPrintf("%.5f", value);
+}
+
+void WriteDeformationYaml(const TargetDeformationResult& d, YamlWriter* yaml) {
+  yaml->BeginMap("target_deformation");
+  yaml->Scalar("kind", TargetDeformationName(d.shape.kind));
+  if (d.shape.size() == 0) {
+    yaml->EndMap();
+    return;
+  }
+  yaml->Comment(
+      "--target-deformation (docs/intrinsics.md, \"Is the target flat?\"): coefficients c, "
+      "out of plane heights at the target's edge [mm], in plane ratios (e1 x/y anisotropy, e2 "
+      "shear, d tag side to pitch); derived: what they make of the target, `file` the target "
+      "file's value. calibrate still reads the target file");
+  yaml->Vector("centre_m", d.shape.centre);
+  yaml->Scalar("half_extent_m", d.shape.half_extent);
+  const DeformationSummary summary = SummariseDeformation(d);
+  for (const auto& [key, list] : {std::make_pair("coefficients", &summary.coefficients),
+                                  std::make_pair("derived", &summary.derived)}) {
+    yaml->BeginList(key);
+    for (const DeformationQuantity& q : *list) {
+      yaml->BeginListItem();
+      yaml->Scalar("name", q.name);
+      yaml->Scalar("value", q.value);
+      yaml->Scalar("std", q.std);
+      yaml->Scalar("unit", q.unit);
+      if (std::isfinite(q.file)) yaml->Scalar("file", q.file);
+      yaml->EndListItem();
+    }
+    yaml->EndList();
+  }
+  if (d.shape.per_point()) {
+    yaml->Comment(
+        "every point free: each point's offset and std in target_points.csv; target.yaml is the "
+        "refined target, for calibrate --target");
+    yaml->Scalar("refined_target", "target.yaml");
+    yaml->Scalar("points_file", "target_points.csv");
+  }
+  if (d.shape.per_view_inset()) {
+    yaml->BeginMap("view_inset");
+    yaml->Comment("each timestamp's d in view_inset.csv, without stds");
+    yaml->Scalar("count", summary.inset_count);
+    yaml->Scalar("mean", summary.inset_mean);
+    yaml->Scalar("std", summary.inset_std);
+    yaml->Scalar("min", summary.inset_min);
+    yaml->Scalar("max", summary.inset_max);
+    yaml->Scalar("file", "view_inset.csv");
+    yaml->EndMap();
+  }
+  yaml->EndMap();
+}
+
+std::string DeformationTableHtml(const TargetDeformationResult& d) {
+  if (d.shape.size() == 0) return "";
+  const DeformationSummary summary = SummariseDeformation(d);
+  std::string html = std::string("<table><caption>Target deformation: ") +
+                     TargetDeformationName(d.shape.kind) +
+                     " (value &plusmn; std)</caption><tr><th>quantity</th><th>value</th>"
+                     "<th>target file</th><th>meaning</th></tr>\n";
+  for (const std::vector<DeformationQuantity>* list : {&summary.coefficients, &summary.derived}) {
+    for (const DeformationQuantity& q : *list) {
+      std::string value = DeformationNumber(q, q.value);
+      if (std::isfinite(q.std)) value += " &plusmn; " + DeformationNumber(q, q.std);
+      html += "<tr><th>" + q.name + "</th><td>" + value + "</td><td>" +
+              (std::isfinite(q.file) ? DeformationNumber(q, q.file) : "") + "</td><td>" +
+              plot::EscapeXml(q.meaning) + "</td></tr>\n";
+    }
+  }
+  if (d.shape.per_view_inset()) {
+    html += StringPrintf(
+        "<tr><th>d per view</th><td>mean %.3f%%, std %.3f%%, min %.3f%%, max %.3f%%</td>"
+        "<td></td><td>%d timestamps (view_inset.csv)</td></tr>\n",
+        100.0 * summary.inset_mean,
+        100.0 * summary.inset_std,
+        100.0 * summary.inset_min,
+        100.0 * summary.inset_max,
+        summary.inset_count);
+  }
+  return html + "</table>\n";
+}
+
+std::string DeformationSummaryText(const TargetDeformationResult& d) {
+  if (d.shape.size() == 0) return "";
+  const DeformationSummary summary = SummariseDeformation(d);
+  const auto line = [](const std::vector<DeformationQuantity>& quantities) {
+    std::string text;
+    for (const DeformationQuantity& q : quantities) {
+      text += " " + q.name + " " + DeformationNumber(q, q.value);
+      if (std::isfinite(q.std)) text += " (" + DeformationNumber(q, q.std) + ")";
+      if (std::isfinite(q.file)) text += " [file " + DeformationNumber(q, q.file) + "]";
+    }
+    return text;
+  };
+  std::string text = std::string("target deformation ") + TargetDeformationName(d.shape.kind) +
+                     ":" + line(summary.coefficients) + "\n " + line(summary.derived) + "\n";
+  if (d.shape.per_view_inset()) {
+    text += StringPrintf(
+        "  d per view: %d timestamps, mean %.3f%%, std %.3f%%, min %.3f%%, "
+        "max %.3f%%\n",
+        summary.inset_count,
+        100.0 * summary.inset_mean,
+        100.0 * summary.inset_std,
+        100.0 * summary.inset_min,
+        100.0 * summary.inset_max);
+  }
+  return text;
+}
+
 // --compare-models: the table, then each model's error map, all at the magnification of the
 // model whose errors need the smallest (its arrows fit; the others' are then comparable).
 void AppendModelComparison(const std::vector<ModelFit>& fits, int max_points, HtmlPage* page) {
@@ -281,6 +580,7 @@ std::string IntrinsicsResultYaml(const IntrinsicsResult& result,
   yaml.Scalar("linear_solver", result.solve.linear_solver);
   yaml.Scalar("termination", result.solve.termination);
   yaml.EndMap();
+  WriteDeformationYaml(result.target_deformation, &yaml);
   yaml.StringList("warnings", result.warnings);
   if (model_comparison != nullptr) {
     yaml.Comment("--compare-models: each model fitted to the same corners, exact least squares");
@@ -320,6 +620,7 @@ std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
                               {"camchain", inputs.camchain_path}}));
   page.Append(CameraTableHtml(result));
   page.Append(RigTableHtml(result));
+  page.Append(DeformationTableHtml(result.target_deformation));
   page.ListSection("Warnings", result.warnings);
   page.Append(ViewsTableHtml(result));
   ReprojectionData data;
@@ -391,8 +692,36 @@ std::string IntrinsicsSummaryText(const IntrinsicsResult& result) {
                            t.norm());
     }
   }
+  text += DeformationSummaryText(result.target_deformation);
   for (const std::string& w : result.warnings) text += "warning: " + w + "\n";
   return text;
+}
+
+std::string IntrinsicsTargetPointsCsv(const IntrinsicsResult& result) {
+  const TargetDeformationResult& d = result.target_deformation;
+  std::string csv = "#point_id,x,y,z,dx_mm,dy_mm,dz_mm,std_x_mm,std_y_mm,std_z_mm\n";
+  for (const auto& [id, p] : d.refined_target.points) {
+    const auto offset = d.point_offsets_m.find(id);
+    const auto std = d.point_offsets_std_m.find(id);
+    const Eigen::Vector3d c = offset != d.point_offsets_m.end() ? offset->second : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d s = std != d.point_offsets_std_m.end()
+                                  ? std->second
+                                  : Eigen::Vector3d::Constant(kNaN);
+    csv += std::to_string(id) + "," + FormatDouble(p.x()) + "," + FormatDouble(p.y()) + "," +
+           FormatDouble(p.z());
+    for (int i = 0; i < 3; ++i) csv += "," + FormatDouble(1e3 * c(i));
+    for (int i = 0; i < 3; ++i) csv += "," + FormatDouble(1e3 * s(i));
+    csv += "\n";
+  }
+  return csv;
+}
+
+std::string IntrinsicsViewInsetCsv(const IntrinsicsResult& result) {
+  std::string csv = "#t_ns,d\n";
+  for (const auto& [t_ns, d_v] : result.target_deformation.view_inset) {
+    csv += std::to_string(t_ns) + "," + FormatDouble(d_v) + "\n";
+  }
+  return csv;
 }
 
 }  // namespace splinecal

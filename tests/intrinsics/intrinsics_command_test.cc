@@ -1,16 +1,27 @@
 // `splinecal intrinsics` end to end on the bundled stereo chessboards (data/opencv_chessboard):
 // detect, then intrinsics; the outputs read back (strict YAML, camchain.yaml through splinecal's
-// own reader, unique HTML ids); bad input exits 2 with one line and writes nothing.
+// own reader, unique HTML ids); bad input exits 2 with one line and writes nothing. And
+// --target-deformation on simulated views of an AprilGrid printed off its file: result.yaml's
+// target_deformation block (and view_inset.csv) holds what the library call gives on the same
+// files.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "intrinsics/intrinsics_simulation.h"
+#include "splinecal/intrinsics/calibrate_intrinsics.h"
+#include "splinecal/intrinsics/camera_specs.h"
 #include "splinecal/io/camchain_yaml.h"
+#include "splinecal/io/observations_csv.h"
+#include "splinecal/io/target_yaml.h"
 #include "testing/html_ids.h"
 #include "testing/run_tool.h"
 #include "testing/strict_yaml.h"
@@ -125,6 +136,12 @@ TEST(IntrinsicsCommand, BadInputExitsTwoWithOneLineAndWritesNothing) {
       {{"--resolution", "640x480,640x480,640x480"}, "3 sizes for 2 models"},
       {{"--min-corners", "3"}, "at least 6"},
       {{"--max-views", "-1"}, "--max-views"},
+      {{"--target-deformation", "bowed"},
+       "--target-deformation: expected none, quadratic, cubic, in-plane, in-plane-per-view, "
+       "points, points-in-plane, got 'bowed'"},
+      // The checkerboard has no tags: in plane is refused before the solve, naming the file.
+      {{"--target-deformation", "in-plane"},
+       "checkerboard.yaml: target deformation in-plane: needs an aprilgrid"},
   };
   for (const BadCase& c : cases) {
     SCOPED_TRACE(c.message);
@@ -156,6 +173,172 @@ TEST(IntrinsicsCommand, NeedsExactlyOneSourceOfTheImageSize) {
   const testing::ToolResult run = testing::RunTool(args);
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("give --resolution or --camchain"));
+}
+
+// The kind's block of result.yaml against the library's result on the same files: every
+// coefficient and its std, and the derived in-plane quantities (report/intrinsics_report.h).
+void ExpectDeformationBlock(const YAML::Node& block, const TargetDeformationResult& d) {
+  const auto near = [](double value, double expected) {
+    return std::abs(value - expected) <= 1e-9 * std::max(std::abs(expected), 1e-12);
+  };
+  ASSERT_TRUE(block.IsMap());
+  EXPECT_EQ(block["kind"].as<std::string>(), TargetDeformationName(d.shape.kind));
+  const YAML::Node coefficients = block["coefficients"];
+  ASSERT_EQ(coefficients.size(), static_cast<size_t>(d.coefficients.size()));
+  const std::vector<std::string> names = TargetDeformationCoefficientNames(d.shape.kind);
+  for (int k = 0; k < d.coefficients.size(); ++k) {
+    EXPECT_EQ(coefficients[k]["name"].as<std::string>(), names[k]);
+    EXPECT_EQ(coefficients[k]["unit"].as<std::string>(), "ratio");
+    EXPECT_PRED2(near, coefficients[k]["value"].as<double>(), d.coefficients(k));
+    EXPECT_PRED2(near, coefficients[k]["std"].as<double>(), std::sqrt(d.covariance(k, k)));
+  }
+  // The tag side with the file's 88 mm and its pitch held: 88 (1 + d), d at the insets' mean
+  // per view; Kalibr's tagSpacing for the file's tagSize: 1.3 / (1 + d) - 1.
+  double inset = 0.0;
+  if (d.shape.per_view_inset()) {
+    for (const auto& [t_ns, d_v] : d.view_inset) inset += d_v / d.view_inset.size();
+  } else {
+    inset = d.coefficients(TargetShape::kInsetColumn);
+  }
+  std::map<std::string, YAML::Node> derived;
+  for (const YAML::Node& q : block["derived"]) derived[q["name"].as<std::string>()] = q;
+  ASSERT_EQ(derived.size(), 4u);
+  EXPECT_PRED2(near, derived["x_over_y_scale"]["value"].as<double>(), 1 + 2 * d.coefficients(0));
+  EXPECT_PRED2(near, derived["tag_size_mm"]["value"].as<double>(), 88.0 * (1.0 + inset));
+  EXPECT_DOUBLE_EQ(derived["tag_size_mm"]["file"].as<double>(), 88.0);
+  EXPECT_PRED2(near, derived["tag_spacing"]["value"].as<double>(), 1.3 / (1.0 + inset) - 1.0);
+}
+
+TEST(IntrinsicsCommand, TargetDeformationWritesTheLibrarysEstimate) {
+  // 40 views of an AprilGrid printed off its file (e1 0.2%, e2 -0.15%, d 1%), EuRoC's cam0.
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
+  scene.T_cn_c0 = {SE3d()};
+  scene.views = 40;
+  scene.shape_kind = TargetDeformationKind::kInPlane;
+  scene.shape[0] = 2e-3;
+  scene.shape[1] = -1.5e-3;
+  scene.shape[2] = 1e-2;
+  testing::TempDir dir;
+  const std::string observations = dir.File("observations.csv");
+  {
+    std::ofstream csv(observations);
+    WriteObservationsCsv(testing::SimulateIntrinsicsViews(scene, 7), &csv);
+  }
+  const std::string target = std::string(SPLINECAL_SOURCE_DIR) + "/data/calibration/aprilgrid.yaml";
+  for (TargetDeformationKind kind :
+       {TargetDeformationKind::kInPlane, TargetDeformationKind::kInPlanePerView}) {
+    const std::string name = TargetDeformationName(kind);
+    SCOPED_TRACE(name);
+    const std::string out = dir.File(name);
+    const testing::ToolResult run = testing::RunTool({"intrinsics",
+                                                      "--observations",
+                                                      observations,
+                                                      "--target",
+                                                      target,
+                                                      "--models",
+                                                      "pinhole-radtan",
+                                                      "--resolution",
+                                                      "752x480",
+                                                      "--target-deformation",
+                                                      name,
+                                                      "--threads",
+                                                      "1",
+                                                      "--out",
+                                                      out});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_THAT(run.err, HasSubstr("target deformation " + name + ": e1 "));
+
+    // The library on the same files, as the command calls it.
+    std::vector<Observation> points = ReadObservationsCsv(observations);
+    const std::vector<IntrinsicsCameraSpec> specs =
+        IntrinsicsCameraSpecs("pinhole-radtan", "752x480", "", "", &points);
+    IntrinsicsOptions options;
+    options.solver.num_threads = 1;
+    options.target_deformation = kind;
+    const IntrinsicsResult expected =
+        CalibrateIntrinsics(points, ReadTargetYaml(target), specs, options);
+    const TargetDeformationResult& d = expected.target_deformation;
+
+    EXPECT_EQ(testing::ExpectStrictYamlFilesIn(out), 2);
+    const YAML::Node result = testing::LoadStrictYamlFile(out + "/result.yaml");
+    EXPECT_DOUBLE_EQ(result["cameras"][0]["reprojection_rms_px"].as<double>(),
+                     expected.cameras[0].reprojection_rms_px);
+    ExpectDeformationBlock(result["target_deformation"], d);
+    EXPECT_THAT(testing::ReadFileText(out + "/report.html"),
+                HasSubstr("Target deformation: " + name));
+    if (kind == TargetDeformationKind::kInPlane) {
+      EXPECT_FALSE(std::filesystem::exists(out + "/view_inset.csv"));
+      continue;
+    }
+    // Per view: the count in result.yaml, each timestamp's d_v in view_inset.csv.
+    EXPECT_EQ(result["target_deformation"]["view_inset"]["count"].as<size_t>(),
+              d.view_inset.size());
+    std::istringstream csv(testing::ReadFileText(out + "/view_inset.csv"));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "#t_ns,d");
+    size_t rows = 0;
+    for (const auto& [t_ns, d_v] : d.view_inset) {
+      ASSERT_TRUE(std::getline(csv, line));
+      const size_t comma = line.find(',');
+      EXPECT_EQ(std::stoll(line.substr(0, comma)), t_ns);
+      EXPECT_DOUBLE_EQ(std::stod(line.substr(comma + 1)), d_v);
+      ++rows;
+    }
+    EXPECT_EQ(rows, 40u);
+    EXPECT_FALSE(std::getline(csv, line));
+  }
+}
+
+// Every point free: target.yaml is the library's refined target, readable as a target file
+// (calibrate's --target), and target_points.csv has a row per point.
+TEST(IntrinsicsCommand, TargetPointsWritesTheRefinedTarget) {
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
+  scene.T_cn_c0 = {SE3d()};
+  scene.views = 40;
+  scene.shape_kind = TargetDeformationKind::kInPlane;
+  scene.shape[0] = 2e-3;
+  scene.shape[2] = 1e-2;
+  testing::TempDir dir;
+  const std::string observations = dir.File("observations.csv");
+  {
+    std::ofstream csv(observations);
+    WriteObservationsCsv(testing::SimulateIntrinsicsViews(scene, 8), &csv);
+  }
+  const std::string target = std::string(SPLINECAL_SOURCE_DIR) + "/data/calibration/aprilgrid.yaml";
+  const std::string out = dir.File("points");
+  const testing::ToolResult run = testing::RunTool(
+      {"intrinsics", "--observations", observations, "--target", target, "--models",
+       "pinhole-radtan", "--resolution", "752x480", "--target-deformation", "points",
+       "--threads", "1", "--out", out});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("target deformation points:"));
+  std::vector<Observation> points = ReadObservationsCsv(observations);
+  const std::vector<IntrinsicsCameraSpec> specs =
+      IntrinsicsCameraSpecs("pinhole-radtan", "752x480", "", "", &points);
+  IntrinsicsOptions options;
+  options.solver.num_threads = 1;
+  options.target_deformation = TargetDeformationKind::kPoints;
+  const IntrinsicsResult expected =
+      CalibrateIntrinsics(points, ReadTargetYaml(target), specs, options);
+  const CalibrationTarget& refined = expected.target_deformation.refined_target;
+  ASSERT_EQ(refined.points.size(), 144u);
+  const CalibrationTarget written = ReadTargetYaml(out + "/target.yaml");
+  EXPECT_EQ(written.type, "points");
+  ASSERT_EQ(written.points.size(), refined.points.size());
+  for (const auto& [id, p] : refined.points) {
+    EXPECT_LT((written.points.at(id) - p).norm(), 1e-12) << "point " << id;
+  }
+  const YAML::Node result = testing::LoadStrictYamlFile(out + "/result.yaml");
+  EXPECT_EQ(result["target_deformation"]["kind"].as<std::string>(), "points");
+  EXPECT_EQ(result["target_deformation"]["refined_target"].as<std::string>(), "target.yaml");
+  std::istringstream csv(testing::ReadFileText(out + "/target_points.csv"));
+  std::string line;
+  size_t rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 145u);  // the header and every point
 }
 
 }  // namespace

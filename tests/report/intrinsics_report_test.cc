@@ -1,16 +1,19 @@
 // report/intrinsics_report.h and the per-camera reprojection figures it draws: Kalibr's parameter
 // names for every model, one panel per camera (cam1 never drawn over cam0), the intrinsics' own
 // time axis, arrowheads and the image outline on the error map, and every drawn coordinate
-// inside its panel.
+// inside its panel; and the target's deformation out of plane in result.yaml (heights in mm) and
+// report.html.
 #include "splinecal/report/intrinsics_report.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "splinecal/camera/target.h"
 #include "splinecal/plot/svg_plot.h"
 #include "splinecal/report/reprojection_figures.h"
 
@@ -108,6 +111,48 @@ TEST(IntrinsicsReport, OnePanelPerCameraWithTheViewsTimeAxis) {
   ASSERT_EQ(map.figure.panels.size(), 2u);
   EXPECT_EQ(map.figure.panels[0].title, "cam0");
   EXPECT_EQ(map.figure.panels[1].title, "cam1");
+}
+
+TEST(IntrinsicsReport, QuadraticTargetDeformationInMillimetres) {
+  IntrinsicsResult result = TwoCameraResult();
+  // The flat default: the kind alone.
+  YAML::Node yaml = YAML::Load(IntrinsicsResultYaml(result));
+  EXPECT_EQ(yaml["target_deformation"]["kind"].as<std::string>(), "none");
+  EXPECT_FALSE(yaml["target_deformation"]["coefficients"]);
+
+  // A bowl h = 1 mm (s^2 + t^2) with stds 0.1, 0.2, 0.3 mm on EuRoC's grid.
+  const CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
+  TargetDeformationResult& d = result.target_deformation;
+  d.shape = MakeTargetShape(target, TargetDeformationKind::kQuadratic);
+  d.heights = MakeTargetDeformationHeights(target, d.shape);
+  d.coefficients = Eigen::Vector3d(1e-3, 0.0, 1e-3);
+  d.covariance = Eigen::Vector3d(1e-4, 2e-4, 3e-4).cwiseAbs2().asDiagonal();
+  d.heights_m = d.heights.M * d.coefficients;
+  d.heights_std_m = (d.heights.M * d.covariance * d.heights.M.transpose()).diagonal().cwiseSqrt();
+  yaml = YAML::Load(IntrinsicsResultYaml(result));
+  const YAML::Node block = yaml["target_deformation"];
+  EXPECT_EQ(block["kind"].as<std::string>(), "quadratic");
+  const std::vector<std::string> names = {"ss", "st", "tt"};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(block["coefficients"][k]["name"].as<std::string>(), names[k]);
+    EXPECT_EQ(block["coefficients"][k]["unit"].as<std::string>(), "mm");
+    EXPECT_DOUBLE_EQ(block["coefficients"][k]["value"].as<double>(), 1e3 * d.coefficients(k));
+    EXPECT_DOUBLE_EQ(block["coefficients"][k]["std"].as<double>(), 0.1 * (k + 1));
+  }
+  ASSERT_EQ(block["derived"].size(), 5u);
+  for (int r = 0; r < 5; ++r) {
+    EXPECT_EQ(block["derived"][r]["name"].as<std::string>(), "height_" + d.heights.names[r]);
+    EXPECT_DOUBLE_EQ(block["derived"][r]["value"].as<double>(), 1e3 * d.heights_m(r));
+    EXPECT_DOUBLE_EQ(block["derived"][r]["std"].as<double>(), 1e3 * d.heights_std_m(r));
+  }
+  // The bowl rises to the corners: each corner the same height above the centre.
+  EXPECT_LT(block["derived"][0]["value"].as<double>(), 0.0);
+  EXPECT_GT(block["derived"][1]["value"].as<double>(), 0.0);
+  const std::string html = IntrinsicsReportHtml(result, {"obs.csv", "target.yaml", ""}, 2000);
+  EXPECT_THAT(html, HasSubstr("Target deformation: quadratic"));
+  EXPECT_THAT(html, HasSubstr("<th>height_corner_+x+y</th>"));
+  EXPECT_THAT(IntrinsicsSummaryText(result),
+              HasSubstr("target deformation quadratic: ss 1.000 mm"));
 }
 
 TEST(MakeReprojectionImageFigure, ArrowheadsAndTheImageOutline) {

@@ -155,7 +155,9 @@ struct IntrinsicsCameraResult {
 struct TargetDeformationResult {
   TargetShape shape;             // kind none: flat, nothing below is filled
   Eigen::VectorXd coefficients;  // c (target_deformation.h): heights [m] or in-plane ratios
-  Eigen::MatrixXd covariance;    // of c (with the intrinsics' inflation), empty without stds
+  // Of c (with the intrinsics' inflation), empty without stds; every point free: of the free
+  // points' offsets stacked in id order (x, y, z each; x, y with z held).
+  Eigen::MatrixXd covariance;
   // The surface relative to the least-squares plane through the target's points, at its centre
   // and corners (target_deformation.h): heights_m = heights.M c, with their stds (empty in
   // plane).

@@ -67,14 +67,18 @@
 // intrinsics/target_points_gauge.h fix them: the offsets have no component of a similarity
 // transform, so the refined target keeps the file's centroid, orientation and size (least
 // squares). Points seen in fewer than kMinViewsPerFreePoint views keep the file's position.
+// "points-in-plane" holds every point's z at the file's: a free layout on a flat board (the
+// smooth out-of-plane kinds above trade with a lens model's radial terms; see the doc).
 #ifndef SPLINECAL_INTRINSICS_TARGET_DEFORMATION_H_
 #define SPLINECAL_INTRINSICS_TARGET_DEFORMATION_H_
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
 #include "splinecal/camera/target.h"
+#include "splinecal/enum_names.h"
 #include "splinecal/estimation/reprojection_cost.h"
 
 namespace splinecal {
@@ -85,13 +89,31 @@ enum class TargetDeformationKind {
   kCubic,
   kInPlane,
   kInPlanePerView,
-  kPoints
+  kPoints,
+  kPointsInPlane
 };
 
 // A point seen in fewer views keeps the file's position (its offset would rest on too little).
 inline constexpr int kMinViewsPerFreePoint = 10;
 
 inline constexpr int kMaxTargetDeformationSize = 7;
+
+// The kinds by name (`splinecal intrinsics --target-deformation`, result.yaml), the default
+// first, with the number of shared coefficients c_k each has.
+struct TargetDeformationRow {
+  TargetDeformationKind value;
+  const char* name;
+  int size;
+};
+inline constexpr std::array<TargetDeformationRow, 7> kTargetDeformationKinds = {{
+    {TargetDeformationKind::kNone, "none", 0},
+    {TargetDeformationKind::kQuadratic, "quadratic", 3},
+    {TargetDeformationKind::kCubic, "cubic", 7},
+    {TargetDeformationKind::kInPlane, "in-plane", 3},
+    {TargetDeformationKind::kInPlanePerView, "in-plane-per-view", 2},
+    {TargetDeformationKind::kPoints, "points", 3},
+    {TargetDeformationKind::kPointsInPlane, "points-in-plane", 3},
+}};
 
 // A target point's displacement per coefficient (TargetShape::Displacement).
 using TargetDisplacement = Eigen::Matrix<double, 3, kMaxTargetDeformationSize>;
@@ -102,6 +124,10 @@ const char* TargetDeformationName(TargetDeformationKind kind);
 // The number of shared coefficients c_k: 0, 3, 7, 3 (in-plane) or 2 (in-plane-per-view: e1, e2;
 // each view's d_v is its own); points: 3, the size of each point's own block.
 int TargetDeformationSize(TargetDeformationKind kind);
+
+// The shared coefficients' names in c's order: out of plane the basis functions' (ss, st, tt;
+// cubic + sss, sst, stt, ttt), in plane e1, e2, d (per view e1, e2).
+std::vector<std::string> TargetDeformationCoefficientNames(TargetDeformationKind kind);
 
 // The geometry's basis on one target: its kind, the normalisation (x0, y0, a) and, in plane, the
 // AprilGrid's layout.
@@ -124,8 +150,10 @@ struct TargetShape {
   }
   // In-plane-per-view: each view has its own inset d_v, column kInsetColumn of Displacement.
   bool per_view_inset() const { return kind == TargetDeformationKind::kInPlanePerView; }
-  // Points: every point its own offset block (D = I).
-  bool per_point() const { return kind == TargetDeformationKind::kPoints; }
+  // Points: every point its own offset block (D = I); in plane, its z held at the file's.
+  bool per_point() const {
+    return kind == TargetDeformationKind::kPoints || kind == TargetDeformationKind::kPointsInPlane;
+  }
   static constexpr int kInsetColumn = 2;
   // The out-of-plane basis values b_k at target point (x, y), the first size() entries used.
   Eigen::Matrix<double, kMaxTargetDeformationSize, 1> Basis(double x, double y) const;

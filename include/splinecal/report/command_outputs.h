@@ -41,7 +41,8 @@ std::vector<OutputFile> CalibrateOutputFiles(const CalibrationResult& result,
 // align: result.yaml, aligned_poses.csv (EuRoC ground-truth format).
 std::vector<OutputFile> AlignOutputFiles(const AlignResult& result, const AlignOptions& options);
 
-// intrinsics: camchain.yaml (cameras only, T_cn_cnm1 from cam1 on), result.yaml, report.html.
+// intrinsics: camchain.yaml (cameras only, T_cn_cnm1 from cam1 on), result.yaml, report.html,
+// and with a per-view inset (in-plane-per-view) view_inset.csv.
 std::vector<OutputFile> IntrinsicsOutputFiles(const IntrinsicsResult& result,
                                               const IntrinsicsReportInputs& inputs);
 
