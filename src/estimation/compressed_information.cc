@@ -65,12 +65,24 @@ int CompressedInformation::Group::Index(const double* block, int size) {
   return static_cast<int>(blocks.size()) - 1;
 }
 
+int CompressedInformation::Group::Size() const {
+  return offsets.empty() ? 0 : offsets.back() + sizes.back();
+}
+
 void CompressedInformation::Group::Resize() {
-  const int n = offsets.empty() ? 0 : offsets.back() + sizes.back();
-  if (H.rows() == n) return;
-  Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(n, n);
+  const int n = Size();
+  if (H.rows() >= n) return;
+  // Doubling: a group that grows by one small block per residual block (a free target's
+  // corners, each with its point's offset) would otherwise be copied once per block.
+  const int capacity = std::max(n, 2 * static_cast<int>(H.rows()));
+  Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(capacity, capacity);
   bigger.topLeftCorner(H.rows(), H.cols()) = H;
   H = std::move(bigger);
+}
+
+void CompressedInformation::Group::Trim() {
+  const int n = Size();
+  if (H.rows() != n) H = H.topLeftCorner(n, n).eval();
 }
 
 namespace {
@@ -219,6 +231,8 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
       AddInformation(item.JtJ, parts, &group);
     }
   }
+  for (auto& [key, group] : groups_) group.Trim();
+  for (auto& [key, group] : model_noise_groups_) group.Trim();
 }
 
 void CompressedInformation::AddInformation(const Eigen::MatrixXd& JtJ,

@@ -102,7 +102,11 @@ class CompressedInformation {
     std::vector<int> offsets;
     Eigen::MatrixXd H;
     int Index(const double* block, int size);
+    int Size() const;  // the blocks' total tangent size
+    // H covers Size() (with room to grow) while residual blocks are added; Trim makes it
+    // exactly Size() x Size(), as every reader after construction expects.
     void Resize();
+    void Trim();
   };
   // (label, ordinal of the first parameter block). Ordinals, not addresses: every sum over
   // groups or blocks then runs in an order fixed by the problem, so that the same problem built

@@ -374,14 +374,35 @@ TEST(CalibrateOwnChain, DISABLED_HalvesAgreeWithinTheirReportedStandardDeviation
   EXPECT_GE(Rms(normalised), 0.25) << "reported standard deviations too large";
 }
 
-TEST(CalibrateOwnChain, DISABLED_FreeTargetExperiment) {
+// Every target point estimated with the intrinsics (--target-deformation points; target.yaml
+// into calibrate's --target; docs/intrinsics.md, "Every point free"): the target of 0.35 deg and
+// 8 mm from basalt is met (measured 2026-11-29: 0.191 / 0.199 deg, 2.90 / 2.83 mm, cam0 / cam1;
+// the file's layout 0.438 / 0.422 deg), the baseline 110.197 +- 0.094 mm, and the halves agree
+// within 3 combined std but about the IMU's x axis on cam1 (2.86 / 3.87; translation z 1.32 /
+// 1.26, which the file's layout puts at 4.93 / 4.45), held below 4.5; RMS 1.78. Against the
+// published-camchain run (printed) the rotation about the IMU's x stays 0.27 / 0.19 deg apart at
+// 14.3 / 10.8 own std: the published intrinsics' principal point (Kalibr's pu 367.2 px, cam0)
+// against this chain's (364.6 px; basalt's 365.9).
+TEST(CalibrateOwnChain, FreeTargetMeetsTheReferenceTargetAndTheHalvesNearlyAgree) {
   SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april/observations.csv");
   ChainOptions chain;
-  chain.target_deformation = std::getenv("DEFORMATION") ? std::getenv("DEFORMATION") : "points";
+  chain.target_deformation = "points";
   const WholeRecording w = CompareWithThePublishedCamchainRun("ds-none", chain);
+  for (int cam = 0; cam < 2; ++cam) {
+    EXPECT_LE(RotationFromDeg(w.own.T_cam_imu[cam], Basalt(cam)), 0.35) << "cam" << cam;
+    EXPECT_LE(PositionFromM(w.own.T_cam_imu[cam], Basalt(cam)), 8e-3) << "cam" << cam;
+  }
+  EXPECT_NEAR(w.own.baseline_m, kPublishedBaselineM, 1e-3);
+  EXPECT_LE(std::abs(w.own.baseline_m - kPublishedBaselineM), 3.0 * w.own.baseline_std_m);
   const std::vector<double> normalised = HalvesNormalisedDifferences("ds-none", chain);
+  constexpr double kLimit[6] = {4.5, 3.0, 3.0, 3.0, 3.0, 3.0};
+  for (size_t i = 0; i < normalised.size(); ++i) {
+    EXPECT_LE(normalised[i], kLimit[i % 6]) << "cam" << i / 6 << " " << kComponentNames[i % 6];
+  }
   std::printf("whole vs published: largest %.2f RMS %.2f; halves largest %.2f RMS %.2f\n",
               Largest(w.ratios), Rms(w.ratios), Largest(normalised), Rms(normalised));
+  // As above: stds 4x too large would put the RMS below 0.25.
+  EXPECT_GE(Rms(normalised), 0.25) << "reported standard deviations too large";
 }
 
 }  // namespace
