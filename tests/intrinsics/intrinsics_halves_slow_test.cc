@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -34,10 +35,8 @@ double MaxNormalisedDifference(const std::string& model) {
   return model == "ds-none" ? 3.1 : 4.9;
 }
 
-TEST(IntrinsicsHalves, HalvesOfTheRecordingAgreeWithinTheirStds) {
-  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april");
-  const CalibrationTarget target =
-      ReadTargetYaml(testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"));
+// The two halves of the recording by the middle of its corners' time range.
+void Halves(std::vector<Observation> halves[2]) {
   const std::vector<Observation> all =
       ReadObservationsCsv(testing::SharedDataPath("euroc_imu_april/observations.csv"));
   int64_t t_min = all.front().t_ns, t_max = all.front().t_ns;
@@ -46,8 +45,50 @@ TEST(IntrinsicsHalves, HalvesOfTheRecordingAgreeWithinTheirStds) {
     t_max = std::max(t_max, o.t_ns);
   }
   const int64_t middle = t_min + (t_max - t_min) / 2;
-  std::vector<Observation> halves[2];
   for (const Observation& o : all) halves[o.t_ns < middle ? 0 : 1].push_back(o);
+}
+
+// Every target point estimated with the intrinsics (target_deformation.h, "points";
+// docs/intrinsics.md, "Every point free"): ds-none's halves then agree within 3 combined std
+// (measured 2026-11-29: largest 2.55, cam0 fu; RMS 1.67; the file's layout 3.00 on pu), and its
+// focal length near the axis, fu / (1 + xi), is 461.31 against 461.46 px (458.21 against 464.73).
+TEST(IntrinsicsHalves, WithEveryTargetPointFreeDsNoneHalvesAgree) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april");
+  const CalibrationTarget target =
+      ReadTargetYaml(testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"));
+  std::vector<Observation> halves[2];
+  Halves(halves);
+  IntrinsicsOptions options;
+  options.solver.num_threads = 2;
+  options.target_deformation = TargetDeformationKind::kPoints;
+  IntrinsicsCameraSpec spec;
+  ASSERT_TRUE(ParseCameraModelName("ds-none", &spec.camera.projection, &spec.camera.distortion));
+  spec.camera.width = 752;
+  spec.camera.height = 480;
+  const IntrinsicsResult a = CalibrateIntrinsics(halves[0], target, {spec, spec}, options);
+  const IntrinsicsResult b = CalibrateIntrinsics(halves[1], target, {spec, spec}, options);
+  double sum_sq = 0.0;
+  int count = 0;
+  for (int n = 0; n < 2; ++n) {
+    for (int j : a.cameras[n].active) {
+      const double z = (a.cameras[n].camera.intrinsics()(j) - b.cameras[n].camera.intrinsics()(j)) /
+                       std::hypot(a.cameras[n].intrinsics_std(j), b.cameras[n].intrinsics_std(j));
+      std::printf("cam%d entry %d: %.6g against %.6g, z %.2f\n", n, j,
+                  a.cameras[n].camera.intrinsics()(j), b.cameras[n].camera.intrinsics()(j), z);
+      EXPECT_LE(std::abs(z), 3.0) << "cam" << n << " entry " << j;
+      sum_sq += z * z;
+      ++count;
+    }
+  }
+  EXPECT_GE(std::sqrt(sum_sq / count), 0.25);
+}
+
+TEST(IntrinsicsHalves, HalvesOfTheRecordingAgreeWithinTheirStds) {
+  SPLINECAL_REQUIRE_SHARED_DATA("euroc_imu_april");
+  const CalibrationTarget target =
+      ReadTargetYaml(testing::SharedDataPath("euroc_imu_april/aprilgrid.yaml"));
+  std::vector<Observation> halves[2];
+  Halves(halves);
   IntrinsicsOptions options;
   options.solver.num_threads = 2;
   double sum_sq = 0.0;
