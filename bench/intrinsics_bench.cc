@@ -5,6 +5,7 @@
 // outside the timed region. Needs ../shared/data/euroc_imu_april (SPLINECAL_SHARED_DATA_DIR).
 //
 //   intrinsics_bench --benchmark_filter=EurocTwoCameras
+//   intrinsics_bench --benchmark_filter=free_target   (every target point free)
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -17,7 +18,8 @@
 namespace splinecal {
 namespace {
 
-void BM_EurocTwoCameras(benchmark::State& state, const std::string& model) {
+void BM_EurocTwoCameras(benchmark::State& state, const std::string& model,
+                        TargetDeformationKind target_deformation = TargetDeformationKind::kNone) {
   const std::string dir = std::string(SPLINECAL_SHARED_DATA_DIR) + "/euroc_imu_april/";
   const CalibrationTarget target = ReadTargetYaml(dir + "aprilgrid.yaml");
   const std::vector<Observation> observations = ReadObservationsCsv(dir + "observations.csv");
@@ -30,6 +32,7 @@ void BM_EurocTwoCameras(benchmark::State& state, const std::string& model) {
   spec.camera.height = 480;
   IntrinsicsOptions options;
   options.solver.num_threads = static_cast<int>(state.range(0));
+  options.target_deformation = target_deformation;
   IntrinsicsResult result;
   for (auto _ : state) {
     result = CalibrateIntrinsics(observations, target, {spec, spec}, options);
@@ -46,6 +49,14 @@ BENCHMARK_CAPTURE(BM_EurocTwoCameras, pinhole_radtan, std::string("pinhole-radta
     ->Iterations(1)
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_EurocTwoCameras, ds_none, std::string("ds-none"))
+    ->Arg(2)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
+// Every target point free (target_deformation.h, "points"): 432 more unknowns, a residual block
+// per corner, the covariance of every offset.
+BENCHMARK_CAPTURE(BM_EurocTwoCameras, ds_none_free_target, std::string("ds-none"),
+                  TargetDeformationKind::kPoints)
     ->Arg(2)
     ->Unit(benchmark::kSecond)
     ->Iterations(1)

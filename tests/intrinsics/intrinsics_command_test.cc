@@ -209,8 +209,9 @@ void ExpectDeformationBlock(const YAML::Node& block, const TargetDeformationResu
   EXPECT_PRED2(near, derived["tag_spacing"]["value"].as<double>(), 1.3 / (1.0 + inset) - 1.0);
 }
 
-TEST(IntrinsicsCommand, TargetDeformationWritesTheLibrarysEstimate) {
-  // 40 views of an AprilGrid printed off its file (e1 0.2%, e2 -0.15%, d 1%), EuRoC's cam0.
+// 40 views of an AprilGrid printed off its file (e1 0.2%, e2 -0.15%, d 1%) by EuRoC's cam0,
+// drawn with `seed` into dir/observations.csv; returns its path.
+std::string WriteOffLayoutViews(const testing::TempDir& dir, int seed) {
   testing::IntrinsicsScene scene;
   scene.cameras = {testing::EurocCam0()};
   scene.T_cn_c0 = {SE3d()};
@@ -219,12 +220,15 @@ TEST(IntrinsicsCommand, TargetDeformationWritesTheLibrarysEstimate) {
   scene.shape[0] = 2e-3;
   scene.shape[1] = -1.5e-3;
   scene.shape[2] = 1e-2;
-  testing::TempDir dir;
   const std::string observations = dir.File("observations.csv");
-  {
-    std::ofstream csv(observations);
-    WriteObservationsCsv(testing::SimulateIntrinsicsViews(scene, 7), &csv);
-  }
+  std::ofstream csv(observations);
+  WriteObservationsCsv(testing::SimulateIntrinsicsViews(scene, seed), &csv);
+  return observations;
+}
+
+TEST(IntrinsicsCommand, TargetDeformationWritesTheLibrarysEstimate) {
+  testing::TempDir dir;
+  const std::string observations = WriteOffLayoutViews(dir, 7);
   const std::string target = std::string(SPLINECAL_SOURCE_DIR) + "/data/calibration/aprilgrid.yaml";
   for (TargetDeformationKind kind :
        {TargetDeformationKind::kInPlane, TargetDeformationKind::kInPlanePerView}) {
@@ -294,19 +298,8 @@ TEST(IntrinsicsCommand, TargetDeformationWritesTheLibrarysEstimate) {
 // Every point free: target.yaml is the library's refined target, readable as a target file
 // (calibrate's --target), and target_points.csv has a row per point.
 TEST(IntrinsicsCommand, TargetPointsWritesTheRefinedTarget) {
-  testing::IntrinsicsScene scene;
-  scene.cameras = {testing::EurocCam0()};
-  scene.T_cn_c0 = {SE3d()};
-  scene.views = 40;
-  scene.shape_kind = TargetDeformationKind::kInPlane;
-  scene.shape[0] = 2e-3;
-  scene.shape[2] = 1e-2;
   testing::TempDir dir;
-  const std::string observations = dir.File("observations.csv");
-  {
-    std::ofstream csv(observations);
-    WriteObservationsCsv(testing::SimulateIntrinsicsViews(scene, 8), &csv);
-  }
+  const std::string observations = WriteOffLayoutViews(dir, 8);
   const std::string target = std::string(SPLINECAL_SOURCE_DIR) + "/data/calibration/aprilgrid.yaml";
   const std::string out = dir.File("points");
   const testing::ToolResult run = testing::RunTool(
