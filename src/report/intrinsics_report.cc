@@ -355,7 +355,7 @@ void WriteDeformationYaml(const TargetDeformationResult& d, YamlWriter* yaml) {
       "--target-deformation (docs/intrinsics.md, \"Is the target flat?\"): coefficients c, "
       "out of plane heights at the target's edge [mm], in plane ratios (e1 x/y anisotropy, e2 "
       "shear, d tag side to pitch); derived: what they make of the target, `file` the target "
-      "file's value. calibrate still reads the target file");
+      "file's value. calibrate reads the target file it is given (with points: target.yaml)");
   yaml->Vector("centre_m", d.shape.centre);
   yaml->Scalar("half_extent_m", d.shape.half_extent);
   const DeformationSummary summary = SummariseDeformation(d);
