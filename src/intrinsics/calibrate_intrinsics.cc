@@ -629,6 +629,7 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
 
   RigState state;
   state.shape = MakeTargetShape(target, options.target_deformation);
+  if (state.shape.per_point()) state.file_points = target.points;
   result.target_deformation.shape = state.shape;
   if (state.shape.size() > 0) {
     result.target_deformation.heights = MakeTargetDeformationHeights(target, state.shape);

@@ -45,10 +45,7 @@ void IntrinsicsSolver::ChooseFreePoints() {
   std::map<int64_t, int> views_of;
   for (size_t v = 0; v < views_.size(); ++v) {
     if (records_[v].status != ViewStatus::kUsed) continue;
-    for (size_t i = 0; i < views_[v].point_ids.size(); ++i) {
-      state_.file_points[views_[v].point_ids[i]] = views_[v].corners[i].p_t;
-      ++views_of[views_[v].point_ids[i]];
-    }
+    for (int64_t id : views_[v].point_ids) ++views_of[id];
   }
   for (const auto& [id, count] : views_of) {
     if (count >= kMinViewsPerFreePoint) state_.point_offset[id] = {0.0, 0.0, 0.0};
@@ -90,7 +87,7 @@ void IntrinsicsSolver::Build(double huber_px) {
     }
   }
   const bool per_point = state_.shape.per_point();
-  if (per_point && state_.file_points.empty()) ChooseFreePoints();
+  if (per_point && state_.point_offset.empty()) ChooseFreePoints();
   if (state_.shape.size() > 0 && !per_point) {
     problem_->AddParameterBlock(state_.deformation.data(), state_.shape.size());
   }

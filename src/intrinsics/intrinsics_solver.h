@@ -38,8 +38,9 @@ struct RigState {
   TargetShape shape;                    // kind none: a flat target
   std::array<double, kMaxTargetDeformationSize> deformation{};  // its block (shape.size() used)
   std::map<int64_t, double> inset;  // with a per-view inset: d_v per timestamp (1-blocks)
-  // With every point free: the file's points and the free ones' offsets (3-blocks; a point seen
-  // in fewer than kMinViewsPerFreePoint used views has none and keeps the file's position).
+  // With every point free: every point of the target file, and the free ones' offsets (3-blocks;
+  // a point seen in fewer than kMinViewsPerFreePoint used views has none and keeps the file's
+  // position).
   std::map<int64_t, Eigen::Vector3d> file_points;
   std::map<int64_t, std::array<double, 3>> point_offset;
 };
@@ -66,7 +67,8 @@ class IntrinsicsSolver {
       : views_(*views), records_(*records), state_(*state), options_(options) {}
 
   // Builds the problem over the used views with Huber at huber_px (0: none). With every point
-  // free, the first call chooses the free points (those in kMinViewsPerFreePoint used views).
+  // free, a call before any is chosen chooses the free points (those in kMinViewsPerFreePoint
+  // used views).
   void Build(double huber_px);
 
   ceres::Problem* problem() { return problem_.get(); }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -215,6 +216,36 @@ TEST(TargetPointsCalibration, RecoversEveryPointAndUnbiasedIntrinsics) {
   // The offsets' NEES in its two-sided 95% interval.
   EXPECT_GT(nees, testing::ChiSquareQuantile(dof, -testing::kNormalQuantile975));
   EXPECT_LT(nees, testing::ChiSquareQuantile(dof, testing::kNormalQuantile975));
+}
+
+// Points no used view sees keep the file's position and stay in the refined target, so that
+// calibrate, reading it, still knows them (an unknown id there is a natural landmark).
+TEST(TargetPointsCalibration, UnseenPointsKeepTheFilesPosition) {
+  testing::IntrinsicsScene scene;
+  scene.cameras = {testing::EurocCam0()};
+  scene.T_cn_c0 = {SE3d()};
+  scene.views = 40;
+  std::vector<Observation> observations = testing::SimulateIntrinsicsViews(scene, 301);
+  // Tag 0's four corners (ids 0, 1, 12, 13) never observed.
+  observations.erase(std::remove_if(observations.begin(), observations.end(),
+                                    [](const Observation& o) {
+                                      return o.point_id == 0 || o.point_id == 1 ||
+                                             o.point_id == 12 || o.point_id == 13;
+                                    }),
+                     observations.end());
+  IntrinsicsCameraSpec spec;
+  spec.camera = scene.cameras[0];
+  spec.initial_values = true;
+  IntrinsicsOptions options;
+  options.target_deformation = TargetDeformationKind::kPoints;
+  const IntrinsicsResult result = CalibrateIntrinsics(observations, scene.target, {spec}, options);
+  const TargetDeformationResult& d = result.target_deformation;
+  EXPECT_EQ(d.point_offsets_m.size(), 140u);
+  ASSERT_EQ(d.refined_target.points.size(), 144u);
+  for (int64_t id : {0, 1, 12, 13}) {
+    EXPECT_EQ(d.point_offsets_m.count(id), 0u) << id;
+    EXPECT_EQ(d.refined_target.points.at(id), scene.target.points.at(id)) << id;
+  }
 }
 
 // On the target exactly as its file says: the offsets are consistent with zero (NEES in its
