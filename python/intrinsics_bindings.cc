@@ -83,6 +83,9 @@ py::dict IntrinsicsFunction(py::handle observations,
   const std::vector<OutputFile> files = IntrinsicsOutputFiles(result, inputs);
   py::dict dict = FinishOutputs(output.get(), files);
   dict["camchain_yaml"] = OutputFileContents(files, "camchain.yaml");
+  if (result.target_deformation.shape.per_point()) {
+    dict["target_yaml"] = OutputFileContents(files, "target.yaml");
+  }
   return dict;
 }
 
@@ -101,11 +104,12 @@ camera (cam0 first); the image size from resolution ("752x480", one for all or o
 or a list) or from camchain (a camchain.yaml path), one of the two; cameras: "0,2" or [0, 2] selects
 input cameras (models then names those); outlier_sigmas 0 removes no corner; compare_models also
 fits pinhole-radtan, pinhole-equi and ds-none to the corners used (result's model_comparison);
-target_deformation: "none", "quadratic", "cubic", "in-plane" or "in-plane-per-view", the target's
-geometry estimated with the intrinsics (result's target_deformation). out: a folder to write
-camchain.yaml, result.yaml and report.html (and view_inset.csv with in-plane-per-view) to.
+target_deformation: "none", "quadratic", "cubic", "in-plane", "in-plane-per-view", "points" or
+"points-in-plane", the target's geometry estimated with the intrinsics (result's
+target_deformation). out: a folder to write camchain.yaml, result.yaml and report.html (and
+view_inset.csv with in-plane-per-view; target.yaml and target_points.csv with points) to.
 Returns result.yaml's keys plus camchain_yaml (the text of camchain.yaml, Kalibr's keys:
-calibrate's camchain).)",
+calibrate's camchain) and, with points, target_yaml (the refined target: calibrate's target).)",
       py::arg("observations"),
       py::arg("target"),
       py::arg("models"),

@@ -92,3 +92,17 @@ def test_intrinsics_target_deformation_equals_the_command_line(tmp_path):
                                          "got 'flat'"):
         splinecal.intrinsics(observations, flags["target"], flags["models"],
                              camchain=flags["camchain"], target_deformation="flat")
+
+
+def test_intrinsics_free_target_returns_the_refined_target(tmp_path):
+    observations, _ = simulated_observations(tmp_path)
+    flags = dict(target=CALIBRATION / "aprilgrid.yaml", models="pinhole-radtan",
+                 camchain=CALIBRATION / "camchain_guess.yaml", threads=1,
+                 target_deformation="points")
+    run_tool("intrinsics", "--observations", observations,
+             *[f"--{k.replace('_', '-')}={v}" for k, v in flags.items()], "--out", tmp_path / "cli")
+    result = splinecal.intrinsics(observations, **flags)
+    # The same refined target as the command writes, and a points target file.
+    assert result["target_yaml"] == (tmp_path / "cli" / "target.yaml").read_text()
+    assert result["target_yaml"].startswith("target_type: points\n")
+    assert result["target_deformation"]["kind"] == "points"
