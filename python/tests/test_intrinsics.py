@@ -72,15 +72,21 @@ def test_intrinsics_compare_models_equals_the_command_line(tmp_path):
     assert_same(without_wall_times(result, expected), expected, tol=1e-9)
 
 
-def test_intrinsics_target_deformation_equals_the_command_line(tmp_path):
-    observations, _ = simulated_observations(tmp_path)
+def command_and_module(tmp_path, observations, target_deformation):
+    """intrinsics with target_deformation through the command (into tmp_path/cli) and the
+    module; returns the flags and the module's result."""
     flags = dict(target=CALIBRATION / "aprilgrid.yaml", models="pinhole-radtan",
                  camchain=CALIBRATION / "camchain_guess.yaml", threads=1,
-                 target_deformation="in-plane")
+                 target_deformation=target_deformation)
     run_tool("intrinsics", "--observations", observations,
              *[f"--{k.replace('_', '-')}={v}" for k, v in flags.items()], "--out", tmp_path / "cli")
+    return flags, splinecal.intrinsics(observations, **flags)
+
+
+def test_intrinsics_target_deformation_equals_the_command_line(tmp_path):
+    observations, _ = simulated_observations(tmp_path)
+    flags, result = command_and_module(tmp_path, observations, "in-plane")
     expected = load_yaml(tmp_path / "cli" / "result.yaml")
-    result = splinecal.intrinsics(observations, **flags)
     result.pop("camchain_yaml")
     block = result["target_deformation"]
     assert block["kind"] == "in-plane"
@@ -96,12 +102,7 @@ def test_intrinsics_target_deformation_equals_the_command_line(tmp_path):
 
 def test_intrinsics_free_target_returns_the_refined_target(tmp_path):
     observations, _ = simulated_observations(tmp_path)
-    flags = dict(target=CALIBRATION / "aprilgrid.yaml", models="pinhole-radtan",
-                 camchain=CALIBRATION / "camchain_guess.yaml", threads=1,
-                 target_deformation="points")
-    run_tool("intrinsics", "--observations", observations,
-             *[f"--{k.replace('_', '-')}={v}" for k, v in flags.items()], "--out", tmp_path / "cli")
-    result = splinecal.intrinsics(observations, **flags)
+    _, result = command_and_module(tmp_path, observations, "points")
     # The same refined target as the command writes, and a points target file.
     assert result["target_yaml"] == (tmp_path / "cli" / "target.yaml").read_text()
     assert result["target_yaml"].startswith("target_type: points\n")
