@@ -210,5 +210,6 @@
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
 #include "splinecal/report/simulate_report.h"
+#include "splinecal/report/target_points_figure.h"
 
 #endif  // SPLINECAL_SPLINECAL_H_

@@ -13,6 +13,7 @@
 #include "splinecal/report/html_page.h"
 #include "splinecal/report/report_inputs.h"
 #include "splinecal/report/reprojection_figures.h"
+#include "splinecal/report/target_points_figure.h"
 #include "splinecal/string_printf.h"
 #include "splinecal/units.h"
 
@@ -621,6 +622,9 @@ std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
   page.Append(CameraTableHtml(result));
   page.Append(RigTableHtml(result));
   page.Append(DeformationTableHtml(result.target_deformation));
+  if (result.target_deformation.shape.per_point()) {
+    page.FigureSection("Target points", TargetPointsFigure(result.target_deformation));
+  }
   page.ListSection("Warnings", result.warnings);
   page.Append(ViewsTableHtml(result));
   ReprojectionData data;

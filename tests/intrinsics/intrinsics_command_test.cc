@@ -327,6 +327,7 @@ TEST(IntrinsicsCommand, TargetPointsWritesTheRefinedTarget) {
   const YAML::Node result = testing::LoadStrictYamlFile(out + "/result.yaml");
   EXPECT_EQ(result["target_deformation"]["kind"].as<std::string>(), "points");
   EXPECT_EQ(result["target_deformation"]["refined_target"].as<std::string>(), "target.yaml");
+  EXPECT_THAT(testing::ReadFileText(out + "/report.html"), HasSubstr("Target points"));
   std::istringstream csv(testing::ReadFileText(out + "/target_points.csv"));
   std::string line;
   size_t rows = 0;
