@@ -61,6 +61,7 @@ namespace {
 
 using internal::InsetOf;
 using internal::IntrinsicsSolver;
+using internal::PointOffsetTangentSize;
 using internal::PoseBlock;
 using internal::RigState;
 using internal::ShapedCorners;
@@ -392,11 +393,6 @@ void TimestampScores(IntrinsicsSolver* solver,
     t_s->push_back(NanosecondsToSeconds(t - by_time.begin()->first));
     scores->push_back(score);
   }
-}
-
-// A free point's offset block's tangent: x, y, z, or x, y with z held.
-int PointOffsetTangentSize(const TargetShape& shape) {
-  return shape.kind == TargetDeformationKind::kPointsInPlane ? 2 : 3;
 }
 
 // The target's shape and, with a covariance, its std (its block at `offset` in `covariance`;

@@ -16,6 +16,10 @@ PoseBlock ToBlock(const SE3d& pose) {
   return block;
 }
 
+int PointOffsetTangentSize(const TargetShape& shape) {
+  return shape.kind == TargetDeformationKind::kPointsInPlane ? 2 : 3;
+}
+
 double InsetOf(const RigState& state, const TargetView& view) {
   const auto it = state.inset.find(view.t_ns);
   return it != state.inset.end() ? it->second : 0.0;
@@ -91,10 +95,10 @@ void IntrinsicsSolver::Build(double huber_px) {
   if (state_.shape.size() > 0 && !per_point) {
     problem_->AddParameterBlock(state_.deformation.data(), state_.shape.size());
   }
-  const bool in_plane_points = state_.shape.kind == TargetDeformationKind::kPointsInPlane;
+  const bool z_held = PointOffsetTangentSize(state_.shape) == 2;
   for (auto& [id, offset] : state_.point_offset) {
     problem_->AddParameterBlock(offset.data(), 3);
-    if (in_plane_points) {
+    if (z_held) {
       problem_->SetManifold(offset.data(), new ceres::SubsetManifold(3, std::vector<int>{2}));
     }
   }

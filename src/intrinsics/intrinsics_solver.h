@@ -46,6 +46,9 @@ struct RigState {
 };
 
 
+// A free point's offset block's tangent: x, y, z, or x, y with z held (points-in-plane).
+int PointOffsetTangentSize(const TargetShape& shape);
+
 // The view's inset d_v (0 before its block exists or without a per-view inset).
 double InsetOf(const RigState& state, const TargetView& view);
 // The view's corners on the target as the state shapes it (flat: as they are; every point free:

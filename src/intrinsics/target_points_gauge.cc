@@ -4,18 +4,25 @@
 
 namespace splinecal {
 
-TargetPointsGaugeCost::TargetPointsGaugeCost(const std::vector<Eigen::Vector3d>& points) {
+Eigen::MatrixXd TargetSimilarityGenerators(const std::vector<Eigen::Vector3d>& points) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : points) mean += p;
   if (!points.empty()) mean /= static_cast<double>(points.size());
+  Eigen::MatrixXd G(3 * points.size(), 7);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d q = points[i] - mean;
+    G.block<3, 3>(3 * i, 0).setIdentity();
+    G.block<3, 3>(3 * i, 3) = -Hat(q);
+    G.block<3, 1>(3 * i, 6) = q;
+  }
+  return G;
+}
+
+TargetPointsGaugeCost::TargetPointsGaugeCost(const std::vector<Eigen::Vector3d>& points) {
   set_num_residuals(7);
-  for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d q = p - mean;
-    Eigen::Matrix<double, 3, 7> G;
-    G.leftCols<3>().setIdentity();
-    G.middleCols<3>(3) = -Hat(q);
-    G.col(6) = q;
-    generators_t_.push_back(G.transpose() / kTargetGaugeStdM);
+  const Eigen::MatrixXd G = TargetSimilarityGenerators(points);
+  for (size_t i = 0; i < points.size(); ++i) {
+    generators_t_.push_back(G.middleRows<3>(3 * i).transpose() / kTargetGaugeStdM);
     mutable_parameter_block_sizes()->push_back(3);
   }
 }

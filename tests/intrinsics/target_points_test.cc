@@ -73,13 +73,7 @@ TEST(TargetPointsGauge, ZeroForAShapeChangeAndNotForASimilarity) {
     EXPECT_GT(GaugeResiduals(cost, x).norm(), 1.0) << "direction " << k;
   }
   // Offsets with the similarity part projected out (least squares) satisfy it.
-  Eigen::MatrixXd G(3 * points.size(), 7);
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3d q = points[i] - mean;
-    G.block<3, 3>(3 * i, 0).setIdentity();
-    G.block<3, 3>(3 * i, 3) = -Hat(q);
-    G.block<3, 1>(3 * i, 6) = q;
-  }
+  const Eigen::MatrixXd G = TargetSimilarityGenerators(points);
   Eigen::VectorXd x = Eigen::VectorXd::Random(3 * points.size()) * 1e-3;
   x -= G * (G.transpose() * G).ldlt().solve(G.transpose() * x);
   EXPECT_LT(GaugeResiduals(cost, x).norm(), 1e-8);
@@ -91,22 +85,16 @@ CalibrationTarget Perturbed(const CalibrationTarget& file, int seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> in_plane(0.0, 0.8e-3), normal(0.0, 0.4e-3);
   const int n = static_cast<int>(file.points.size());
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& [id, p] : file.points) mean += p / n;
-  Eigen::MatrixXd G(3 * n, 7);
+  std::vector<Eigen::Vector3d> points;
   Eigen::VectorXd x(3 * n);
-  int i = 0;
   for (const auto& [id, p] : file.points) {
-    const Eigen::Vector3d q = p - mean;
-    G.block<3, 3>(3 * i, 0).setIdentity();
-    G.block<3, 3>(3 * i, 3) = -Hat(q);
-    G.block<3, 1>(3 * i, 6) = q;
-    x.segment<3>(3 * i) << in_plane(rng), in_plane(rng), normal(rng);
-    ++i;
+    x.segment<3>(3 * points.size()) << in_plane(rng), in_plane(rng), normal(rng);
+    points.push_back(p);
   }
+  const Eigen::MatrixXd G = TargetSimilarityGenerators(points);
   x -= G * (G.transpose() * G).ldlt().solve(G.transpose() * x);
   CalibrationTarget truth = file;
-  i = 0;
+  int i = 0;
   for (auto& [id, p] : truth.points) p += x.segment<3>(3 * i++);
   return truth;
 }
@@ -145,21 +133,14 @@ double LargestIntrinsicZ(const IntrinsicsCameraResult& camera, const Camera& tru
 double OffsetNees(const TargetDeformationResult& d, const CalibrationTarget& file,
                   const CalibrationTarget& truth, int* dof) {
   const int n = static_cast<int>(d.point_offsets_m.size());
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& [id, c] : d.point_offsets_m) mean += file.points.at(id) / n;
-  Eigen::MatrixXd G(3 * n, 7);
+  std::vector<Eigen::Vector3d> points;
   Eigen::VectorXd error(3 * n);
-  int i = 0;
   for (const auto& [id, c] : d.point_offsets_m) {
-    const Eigen::Vector3d q = file.points.at(id) - mean;
-    G.block<3, 3>(3 * i, 0).setIdentity();
-    G.block<3, 3>(3 * i, 3) = -Hat(q);
-    G.block<3, 1>(3 * i, 6) = q;
-    error.segment<3>(3 * i) = c - (truth.points.at(id) - file.points.at(id));
-    ++i;
+    error.segment<3>(3 * points.size()) = c - (truth.points.at(id) - file.points.at(id));
+    points.push_back(file.points.at(id));
   }
-  // An orthonormal basis of the complement of G's columns.
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(G);
+  // An orthonormal basis of the complement of the similarity directions.
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(TargetSimilarityGenerators(points));
   const Eigen::MatrixXd Q = qr.householderQ();
   const Eigen::MatrixXd B = Q.rightCols(3 * n - 7);
   const Eigen::VectorXd e = B.transpose() * error;

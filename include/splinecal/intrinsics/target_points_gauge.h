@@ -33,6 +33,10 @@ namespace splinecal {
 
 inline constexpr double kTargetGaugeStdM = 1e-6;
 
+// The G_i of (1) stacked: a 3 n x 7 matrix, rows 3 i to 3 i + 2 point i's (its offset under a
+// small translation, rotation and scale of all the points about their mean).
+Eigen::MatrixXd TargetSimilarityGenerators(const std::vector<Eigen::Vector3d>& points);
+
 // Parameter blocks: the free points' offsets c_i (3 each), in the order of `points` (their file
 // positions p_i). Residuals: the 7 of (1) divided by kTargetGaugeStdM.
 class TargetPointsGaugeCost : public ceres::CostFunction {
