@@ -289,9 +289,9 @@ class CalibrationProblem {
   // Options for ComputeMarginalCovariance: the IMU noise's groups and time clusters, each
   // camchain prior as model noise (kModelNoiseCluster).
   MarginalCovarianceOptions CovarianceOptionsForProblem();
-  // Turns the time windows of `options` into the clusters of the second cluster-robust
-  // covariance, over kinds of view (calibration_results.cc); the number of occupied view
-  // clusters, 0 (options unchanged) when none or too few.
+  // Adds to `options` (further_cluster_of) the clusters of the second cluster-robust
+  // covariance, over kinds of view, built on its time windows (calibration_results.cc); the
+  // number of occupied view clusters, 0 (options unchanged) when none or too few.
   int ViewKindClusters(MarginalCovarianceOptions* options);
   void Collect(CalibrationResult* result);
 

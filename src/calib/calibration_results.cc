@@ -70,12 +70,13 @@ int CalibrationProblem::ViewKindClusters(MarginalCovarianceOptions* options) {
   if (static_cast<int>(occupied.size()) < kMinViewClusters) return 0;
   const int first_window = kViewClusterCells * kViewClusterCells * 4;
   const auto by_time = options->cluster_of;
-  options->cluster_of = [by_time, view_of, first_window](ceres::ResidualBlockId id) {
-    const auto found = view_of.find(id);
-    if (found != view_of.end()) return found->second;
-    const int window = by_time(id);
-    return window == kModelNoiseCluster ? window : first_window + window;
-  };
+  options->further_cluster_of.push_back(
+      [by_time, view_of, first_window](ceres::ResidualBlockId id) {
+        const auto found = view_of.find(id);
+        if (found != view_of.end()) return found->second;
+        const int window = by_time(id);
+        return window == kModelNoiseCluster ? window : first_window + window;
+      });
   return static_cast<int>(occupied.size());
 }
 
@@ -147,6 +148,9 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
   A.bottomRightCorner(6, 6 * num_bias_points) = spline_->MeanBiasMap(imu_);
   MarginalCovarianceOptions covariance_options = CovarianceOptionsForProblem();
   covariance_options.reported_map = A;
+  // The second sandwich, over kinds of view, from the same linearisation; each std is the
+  // larger of the two.
+  const int view_clusters = ViewKindClusters(&covariance_options);
   const MarginalCovariance marginal =
       ComputeMarginalCovariance(&problem(), wanted, covariance_options);
   if (!marginal.ok) {
@@ -156,12 +160,8 @@ void CalibrationProblem::ComputeCovariance(CalibrationResult* result) {
     return;
   }
   Eigen::VectorXd inflation = ReportedCovarianceOf(marginal).inflation;
-  // The second sandwich, over kinds of view; each std is the larger of the two.
-  MarginalCovarianceOptions view_options = covariance_options;
-  const int view_clusters = ViewKindClusters(&view_options);
-  if (view_clusters > 0) {
-    const MarginalCovariance by_view_kind =
-        ComputeMarginalCovariance(&problem(), wanted, view_options);
+  if (view_clusters > 0 && !marginal.further.empty()) {
+    const MarginalCovariance& by_view_kind = marginal.further.front();
     if (by_view_kind.ok) {
       inflation = inflation.cwiseMax(ReportedCovarianceOf(by_view_kind).inflation);
       result->view_clusters = view_clusters;

@@ -100,7 +100,7 @@ struct Linearization {
   std::vector<double*> blocks;
   std::vector<int> tangent;  // per block; 0 for a constant block (no columns)
   int label = 0;
-  int cluster = -1;
+  std::vector<int> clusters;  // one per clustering
   bool ok = false;
   double squared_sum = 0.0;
   Eigen::MatrixXd JtJ;
@@ -156,8 +156,9 @@ void Linearize(const ceres::Problem& problem, bool with_gradient, Linearization*
 
 CompressedInformation::CompressedInformation(ceres::Problem* problem,
                                              const ResidualLabel& label_of,
-                                             const ResidualLabel& cluster_of,
-                                             int num_threads) {
+                                             const std::vector<ResidualLabel>& clusterings,
+                                             int num_threads)
+    : cluster_gradients_(clusterings.size()), model_noise_groups_(clusterings.size()) {
   // Ordinals by first appearance in the residual blocks, which Problem::GetResidualBlocks lists
   // in the order they were added. Not Problem::GetParameterBlocks' order: Ceres 2.1 lists the
   // parameter blocks from a std::map keyed by their address, so that order moves with the heap
@@ -177,7 +178,7 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
       if (label < 0) continue;
       Linearization& item = chunk.emplace_back();
       item.label = label;
-      item.cluster = cluster_of ? cluster_of(id) : -1;
+      for (const ResidualLabel& cluster_of : clusterings) item.clusters.push_back(cluster_of(id));
       item.cost = problem->GetCostFunctionForResidualBlock(id);
       item.rows = CompactResidual::RowsOf(*item.cost).num_residuals();
       problem->GetParameterBlocksForResidualBlock(id, &item.blocks);
@@ -191,7 +192,7 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
       }
     }
     RunTasks(num_threads, static_cast<int64_t>(chunk.size()), [&](int64_t i) {
-      Linearize(*problem, static_cast<bool>(cluster_of), &chunk[i]);
+      Linearize(*problem, !clusterings.empty(), &chunk[i]);
     });
     // Merged in the residual blocks' order: the sums do not depend on the threads.
     for (const Linearization& item : chunk) {
@@ -211,28 +212,33 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
         column += item.tangent[k];
       }
       group.Resize();
-      if (cluster_of && item.cluster == kModelNoiseCluster) {
-        Group& model_noise =
-            model_noise_groups_[GroupKey(item.label, ordinal_.at(item.blocks[0]))];
-        std::vector<std::pair<int, int>> model_parts;
-        for (const auto& [a, column_a] : parts) {
-          model_parts.emplace_back(model_noise.Index(group.blocks[a], group.sizes[a]), column_a);
-        }
-        model_noise.Resize();
-        AddInformation(item.JtJ, model_parts, &model_noise);
-      } else if (cluster_of) {
-        std::map<int, Eigen::VectorXd>& gradient = cluster_gradients_[item.cluster];
-        for (const auto& [a, column_a] : parts) {
-          Eigen::VectorXd& g = gradient[ordinal_.at(group.blocks[a])];
-          if (g.size() == 0) g = Eigen::VectorXd::Zero(group.sizes[a]);
-          g += item.Jte.segment(column_a, group.sizes[a]);
+      for (size_t c = 0; c < clusterings.size(); ++c) {
+        if (item.clusters[c] == kModelNoiseCluster) {
+          Group& model_noise =
+              model_noise_groups_[c][GroupKey(item.label, ordinal_.at(item.blocks[0]))];
+          std::vector<std::pair<int, int>> model_parts;
+          for (const auto& [a, column_a] : parts) {
+            model_parts.emplace_back(model_noise.Index(group.blocks[a], group.sizes[a]),
+                                     column_a);
+          }
+          model_noise.Resize();
+          AddInformation(item.JtJ, model_parts, &model_noise);
+        } else {
+          std::map<int, Eigen::VectorXd>& gradient = cluster_gradients_[c][item.clusters[c]];
+          for (const auto& [a, column_a] : parts) {
+            Eigen::VectorXd& g = gradient[ordinal_.at(group.blocks[a])];
+            if (g.size() == 0) g = Eigen::VectorXd::Zero(group.sizes[a]);
+            g += item.Jte.segment(column_a, group.sizes[a]);
+          }
         }
       }
       AddInformation(item.JtJ, parts, &group);
     }
   }
   for (auto& [key, group] : groups_) group.Trim();
-  for (auto& [key, group] : model_noise_groups_) group.Trim();
+  for (auto& groups : model_noise_groups_) {
+    for (auto& [key, group] : groups) group.Trim();
+  }
 }
 
 void CompressedInformation::AddInformation(const Eigen::MatrixXd& JtJ,
@@ -447,12 +453,12 @@ bool CompressedInformation::MappedCovariance(const std::vector<const double*>& r
   if (!(lambda.minCoeff() > kMinScaledEigenvalue * lambda.maxCoeff())) return false;
   *covariance = Q;
   if (extras != nullptr) {
-    extras->robust.resize(0, 0);
-    extras->noise.resize(0, 0);
-    if (cluster_gradients_.size() >= 2) {
-      const double clusters = static_cast<double>(cluster_gradients_.size());
+    extras->robust.assign(cluster_gradients_.size(), Eigen::MatrixXd());
+    for (size_t c = 0; c < cluster_gradients_.size(); ++c) {
+      if (cluster_gradients_[c].size() < 2) continue;
+      const double clusters = static_cast<double>(cluster_gradients_[c].size());
       Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(A.rows(), A.rows());
-      for (const auto& [cluster, gradient] : cluster_gradients_) {
+      for (const auto& [cluster, gradient] : cluster_gradients_[c]) {
         Eigen::VectorXd x = Eigen::VectorXd::Zero(A.rows());  // Y^T g_k
         for (const auto& [ordinal, g_block] : gradient) {
           const auto offset = offsets.find(blocks_by_ordinal_[ordinal]);
@@ -463,12 +469,13 @@ bool CompressedInformation::MappedCovariance(const std::vector<const double*>& r
       }
       // Small-sample factor G / (G - 1) on the clusters' scatter; the model-noise residuals'
       // variance is stated, not estimated (kModelNoiseCluster).
-      extras->robust = clusters / (clusters - 1.0) * meat;
-      for (const auto& [key, group] : model_noise_groups_) {
+      extras->robust[c] = clusters / (clusters - 1.0) * meat;
+      for (const auto& [key, group] : model_noise_groups_[c]) {
         const Eigen::MatrixXd Y_g = GroupRows(group, Y, offsets);
-        extras->robust += Y_g.transpose() * group.H * Y_g;
+        extras->robust[c] += Y_g.transpose() * group.H * Y_g;
       }
     }
+    extras->noise.resize(0, 0);
     if (!extras->label_factors.empty()) {
       Eigen::MatrixXd noise = Q;
       for (const auto& [key, group] : groups_) {

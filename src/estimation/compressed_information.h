@@ -32,15 +32,17 @@ using ResidualLabel = std::function<int(ceres::ResidualBlockId)>;
 class CompressedInformation {
  public:
   // Evaluates every residual block of `problem` once at its current values. label_of may be
-  // empty (every block gets label 0). cluster_of (may be empty): the cluster of each residual
-  // block (>= 0) for the cluster-robust covariance; the gradient g_k = sum J^T e of each
-  // cluster's residuals is kept; a block of kModelNoiseCluster (estimation/model_noise_cluster.h)
-  // is in no cluster, its information J^T J is kept apart instead. The residual blocks are evaluated on up to num_threads threads
+  // empty (every block gets label 0). clusterings (may be empty): ways to cluster the residual
+  // blocks for the cluster-robust covariance, each giving every residual block its cluster
+  // (>= 0); per clustering the gradient g_k = sum J^T e of each cluster's residuals is kept; a
+  // block of kModelNoiseCluster (estimation/model_noise_cluster.h) is in no cluster of that
+  // clustering, its information J^T J is kept apart instead. One linearisation serves every
+  // clustering. The residual blocks are evaluated on up to num_threads threads
   // (their cost functions must allow it, as Ceres' do) and merged in order, so the result does
   // not depend on num_threads.
   explicit CompressedInformation(ceres::Problem* problem,
                                  const ResidualLabel& label_of = {},
-                                 const ResidualLabel& cluster_of = {},
+                                 const std::vector<ResidualLabel>& clusterings = {},
                                  int num_threads = 1);
 
   bool evaluation_failed() const { return evaluation_failed_; }
@@ -70,9 +72,10 @@ class CompressedInformation {
   // (its correlation matrix has an eigenvalue below 1e-12 of its largest: a combination of the
   // reported quantities the data does not determine). Consumes the groups.
   // Extras, with Y as above:
-  //   * with clusters, robust: the cluster-robust covariance A (H^-1 M H^-1)_cc A^T with
+  //   * robust, one per clustering: the cluster-robust covariance A (H^-1 M H^-1)_cc A^T with
   //     M = G / (G - 1) sum_k g_k g_k^T over the G clusters, plus the information H_m of the
-  //     kModelNoiseCluster residuals: sum_k (Y^T g_k)(Y^T g_k)^T G/(G-1) + Y_m^T H_m Y_m;
+  //     kModelNoiseCluster residuals: sum_k (Y^T g_k)(Y^T g_k)^T G/(G-1) + Y_m^T H_m Y_m
+  //     (empty for a clustering of fewer than 2 clusters);
   //   * with label_factors (label -> f_l), noise: the covariance when label l's residuals have
   //     f_l times the variance their weights assume, A (H^-1 (sum_l f_l H_l) H^-1)_cc A^T
   //     = B^T Y + sum_{groups of labels with f != 1} (f - 1) Y_g^T H_g Y_g (Y_g: the group's
@@ -80,13 +83,15 @@ class CompressedInformation {
   struct CovarianceExtras {
     Eigen::MatrixXd A;
     std::map<int, double> label_factors;
-    Eigen::MatrixXd robust;  // empty without clusters (or fewer than 2)
+    std::vector<Eigen::MatrixXd> robust;  // per clustering
     Eigen::MatrixXd noise;   // empty without label_factors
   };
   bool MappedCovariance(const std::vector<const double*>& requested,
                         Eigen::MatrixXd* covariance,
                         CovarianceExtras* extras = nullptr);
-  int num_clusters() const { return static_cast<int>(cluster_gradients_.size()); }
+  int num_clusters(int clustering) const {
+    return static_cast<int>(cluster_gradients_.at(clustering).size());
+  }
 
   // t_l = tr(H^-1 H_l) for every label l (H_l = the information of label l's residuals): the
   // number of parameters label l's residuals determine, sum_l t_l = dim H. Exact: each group's
@@ -135,15 +140,16 @@ class CompressedInformation {
   std::map<const double*, int> block_sizes_;  // tangent sizes
   std::map<int, int> num_residuals_;
   std::map<int, double> squared_sum_;
-  // Per cluster, per (free) parameter block by ordinal: the tangent gradient J^T e of its
-  // residuals.
-  std::map<int, std::map<int, Eigen::VectorXd>> cluster_gradients_;
+  // Per clustering, per cluster, per (free) parameter block by ordinal: the tangent gradient
+  // J^T e of its residuals.
+  std::vector<std::map<int, std::map<int, Eigen::VectorXd>>> cluster_gradients_;
   // The parameter blocks of the residual blocks in the order they first appear there (residual
   // blocks in the order they were added), and each block's place in it.
   std::vector<const double*> blocks_by_ordinal_;
   std::unordered_map<const double*, int> ordinal_;
-  // The information of the kModelNoiseCluster residuals (also in groups_), by the same key.
-  std::map<GroupKey, Group> model_noise_groups_;
+  // Per clustering, the information of its kModelNoiseCluster residuals (also in groups_), by
+  // the same key.
+  std::vector<std::map<GroupKey, Group>> model_noise_groups_;
   std::map<const double*, std::vector<double>> tangent_blocks_;
   std::unique_ptr<ceres::Problem> compressed_;
 };

@@ -39,8 +39,12 @@ MarginalCovariance ComputeMarginalCovariance(ceres::Problem* problem,
   } else {
     const bool extras = options.cluster_of || !options.noise_factors.empty() ||
                         options.reported_map.size() > 0;
-    CompressedInformation compressed(
-        problem, options.group_of, options.cluster_of, options.num_threads);
+    std::vector<internal::ResidualLabel> clusterings;
+    if (options.cluster_of) {
+      clusterings.push_back(options.cluster_of);
+      for (const auto& further : options.further_cluster_of) clusterings.push_back(further);
+    }
+    CompressedInformation compressed(problem, options.group_of, clusterings, options.num_threads);
     if (compressed.evaluation_failed()) {
       result.method = "none: a residual could not be evaluated at the solution";
       return result;
@@ -69,18 +73,29 @@ MarginalCovariance ComputeMarginalCovariance(ceres::Problem* problem,
       if (ok) {
         full.resize(mapped.rows(), mapped.cols());
         full = mapped;
-        if (covariance_extras.robust.allFinite() && covariance_extras.robust.size() > 0) {
-          result.robust_covariance = covariance_extras.robust;
-          result.num_clusters = compressed.num_clusters();
-        }
         if (covariance_extras.noise.allFinite() && covariance_extras.noise.size() > 0) {
           result.noise_covariance = covariance_extras.noise;
+        }
+        // The first clustering is cluster_of's, the others the further ones.
+        for (size_t c = 0; c < clusterings.size(); ++c) {
+          MarginalCovariance& target = c == 0 ? result : result.further.emplace_back();
+          const Eigen::MatrixXd& robust = covariance_extras.robust[c];
+          if (robust.allFinite() && robust.size() > 0) {
+            target.robust_covariance = robust;
+            target.num_clusters = compressed.num_clusters(static_cast<int>(c));
+          }
         }
       }
     }
   }
   result.ok = ok && full.allFinite();
   if (result.ok) result.covariance = full;
+  for (MarginalCovariance& further : result.further) {
+    further.ok = result.ok;
+    further.method = result.method;
+    if (further.ok) further.covariance = result.covariance;
+    further.noise_covariance = result.noise_covariance;
+  }
   return result;
 }
 

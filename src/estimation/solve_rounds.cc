@@ -31,12 +31,17 @@ ceres::Solver::Options ToCeresOptions(const SolverOptions& options,
   const bool schur = options.linear_solver == LinearSolver::kSparseSchur ||
                      (options.linear_solver == LinearSolver::kAuto &&
                       jacobian_entries > options.max_normal_cholesky_jacobian_entries);
-  ceres_options.linear_solver_type = schur ? ceres::SPARSE_SCHUR : ceres::SPARSE_NORMAL_CHOLESKY;
-  if (!schur && options.sparse_library == SparseLibrary::kEigen) {
+  if (options.linear_solver == LinearSolver::kDenseSchur) {
+    ceres_options.linear_solver_type = ceres::DENSE_SCHUR;
+  } else {
+    ceres_options.linear_solver_type = schur ? ceres::SPARSE_SCHUR : ceres::SPARSE_NORMAL_CHOLESKY;
+  }
+  if (ceres_options.linear_solver_type == ceres::SPARSE_NORMAL_CHOLESKY &&
+      options.sparse_library == SparseLibrary::kEigen) {
     ceres_options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
   }
   if (linear_solver_name != nullptr) {
-    *linear_solver_name = schur ? "SPARSE_SCHUR" : "SPARSE_NORMAL_CHOLESKY";
+    *linear_solver_name = ceres::LinearSolverTypeToString(ceres_options.linear_solver_type);
   }
   ceres_options.num_threads = options.num_threads;
   ceres_options.max_num_iterations = options.max_iterations;

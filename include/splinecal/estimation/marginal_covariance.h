@@ -49,6 +49,11 @@ struct MarginalCovarianceOptions {
   // Residual clusters for the cluster-robust covariance (below): the cluster (>= 0) of each
   // residual block, e.g. its time window. Empty: not computed. Uses the kSchur backend.
   std::function<int(ceres::ResidualBlockId)> cluster_of;
+  // Further clusterings of the same residual blocks (e.g. by kind of view beside cluster_of's
+  // time windows; each may put a residual in kModelNoiseCluster on its own), each giving its own
+  // cluster-robust covariance from the same linearisation and factorisation as cluster_of's:
+  // MarginalCovariance::further, in this order. Needs cluster_of.
+  std::vector<std::function<int(ceres::ResidualBlockId)>> further_cluster_of;
   // Noise levels the data shows (estimation/variance_components.h): residual group l's variance
   // is noise_factors[l] times what its weights assume (groups by group_of; groups not listed:
   // 1). Empty: not computed. Uses the kSchur backend.
@@ -77,6 +82,9 @@ struct MarginalCovariance {
   // the data shows, H^-1 (sum_l f_l H_l) H^-1 (the weights stay as they were: an estimate
   // weighted by assumed noise, whose covariance uses the measured noise). Empty otherwise.
   Eigen::MatrixXd noise_covariance;
+  // One per MarginalCovarianceOptions::further_cluster_of: ok, covariance, method and
+  // noise_covariance as above, robust_covariance and num_clusters of that clustering.
+  std::vector<MarginalCovariance> further;
 };
 
 // The covariance an estimate reports (docs/calibrate.md, "How much to trust the numbers"):
