@@ -69,20 +69,20 @@ int CompressedInformation::Group::Size() const {
   return offsets.empty() ? 0 : offsets.back() + sizes.back();
 }
 
-void CompressedInformation::Group::Resize() {
-  const int n = Size();
-  if (H.rows() >= n) return;
-  // Doubling: a group that grows by one small block per residual block (a free target's
-  // corners, each with its point's offset) would otherwise be copied once per block.
-  const int capacity = std::max(n, 2 * static_cast<int>(H.rows()));
-  Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(capacity, capacity);
-  bigger.topLeftCorner(H.rows(), H.cols()) = H;
-  H = std::move(bigger);
+Eigen::MatrixXd& CompressedInformation::Group::Pair(int a, int b) {
+  const auto [it, added] = H.try_emplace(std::make_pair(a, b));
+  if (added) it->second = Eigen::MatrixXd::Zero(sizes[a], sizes[b]);
+  return it->second;
 }
 
-void CompressedInformation::Group::Trim() {
-  const int n = Size();
-  if (H.rows() != n) H = H.topLeftCorner(n, n).eval();
+Eigen::MatrixXd CompressedInformation::Group::Dense() const {
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(Size(), Size());
+  for (const auto& [pair, H_ab] : H) {
+    const auto [a, b] = pair;
+    dense.block(offsets[a], offsets[b], sizes[a], sizes[b]) = H_ab;
+    if (a != b) dense.block(offsets[b], offsets[a], sizes[b], sizes[a]) = H_ab.transpose();
+  }
+  return dense;
 }
 
 namespace {
@@ -211,7 +211,6 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
         parts.emplace_back(group.Index(item.blocks[k], item.tangent[k]), column);
         column += item.tangent[k];
       }
-      group.Resize();
       for (size_t c = 0; c < clusterings.size(); ++c) {
         if (item.clusters[c] == kModelNoiseCluster) {
           Group& model_noise =
@@ -221,7 +220,6 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
             model_parts.emplace_back(model_noise.Index(group.blocks[a], group.sizes[a]),
                                      column_a);
           }
-          model_noise.Resize();
           AddInformation(item.JtJ, model_parts, &model_noise);
         } else {
           std::map<int, Eigen::VectorXd>& gradient = cluster_gradients_[c][item.clusters[c]];
@@ -235,26 +233,27 @@ CompressedInformation::CompressedInformation(ceres::Problem* problem,
       AddInformation(item.JtJ, parts, &group);
     }
   }
-  for (auto& [key, group] : groups_) group.Trim();
-  for (auto& groups : model_noise_groups_) {
-    for (auto& [key, group] : groups) group.Trim();
-  }
 }
 
 void CompressedInformation::AddInformation(const Eigen::MatrixXd& JtJ,
                                            const std::vector<std::pair<int, int>>& parts,
                                            Group* group) {
-  for (const auto& [a, column_a] : parts) {
-    for (const auto& [b, column_b] : parts) {
-      group->H.block(group->offsets[a], group->offsets[b], group->sizes[a], group->sizes[b]) +=
-          JtJ.block(column_a, column_b, group->sizes[a], group->sizes[b]);
+  for (size_t i = 0; i < parts.size(); ++i) {
+    for (size_t j = i; j < parts.size(); ++j) {
+      // H_ab with a <= b: J^T J's block of the pair in that order.
+      const bool in_order = parts[i].first <= parts[j].first;
+      const auto& [a, column_a] = in_order ? parts[i] : parts[j];
+      const auto& [b, column_b] = in_order ? parts[j] : parts[i];
+      group->Pair(a, b) += JtJ.block(column_a, column_b, group->sizes[a], group->sizes[b]);
     }
   }
 }
 
 double CompressedInformation::CompressedEntries() const {
   double entries = 0.0;
-  for (const auto& [key, group] : groups_) entries += static_cast<double>(group.H.size());
+  for (const auto& [key, group] : groups_) {
+    entries += static_cast<double>(group.Size()) * group.Size();
+  }
   return entries;
 }
 
@@ -270,13 +269,13 @@ void CompressedInformation::BuildCeresProblem() {
       storage.assign(group.sizes[k], 0.0);
       tangent_blocks.push_back(storage.data());
     }
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(group.H);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(group.Dense());
     const Eigen::VectorXd& lambda = eigen.eigenvalues();
     const double floor = 1e-14 * std::max(0.0, lambda.maxCoeff());
     int rank = 0;
     for (int k = 0; k < lambda.size(); ++k) rank += lambda[k] > floor ? 1 : 0;
     if (rank == 0) continue;
-    Eigen::MatrixXd R(rank, group.H.cols());
+    Eigen::MatrixXd R(rank, group.Size());
     int row = 0;
     for (int k = 0; k < lambda.size(); ++k) {
       if (lambda[k] <= floor) continue;
@@ -311,7 +310,8 @@ Eigen::SparseMatrix<double> CompressedInformation::Assemble(
     id[by_offset[b].second] = b;
     block_offset[b] = by_offset[b].first;
   }
-  // Per group its blocks' ids; per column block the row blocks at or above it.
+  // Per group its blocks' ids; per column block the row blocks at or above it that some
+  // group's pair couples with it.
   std::vector<std::vector<int>> group_ids;
   group_ids.reserve(groups_.size());
   std::vector<std::vector<int>> rows_of(num_blocks);
@@ -321,10 +321,10 @@ Eigen::SparseMatrix<double> CompressedInformation::Assemble(
       ids.push_back(id.at(group.blocks[k]));
       block_size[ids.back()] = group.sizes[k];
     }
-    for (int b : ids) {
-      for (int a : ids) {
-        if (a <= b) rows_of[b].push_back(a);
-      }
+    for (const auto& [pair, H_ab] : group.H) {
+      const int a = ids[pair.first];
+      const int b = ids[pair.second];
+      rows_of[std::max(a, b)].push_back(std::min(a, b));
     }
   }
   // Column c of block b holds every row of the row blocks a < b, then rows 0..c of block b.
@@ -361,20 +361,17 @@ Eigen::SparseMatrix<double> CompressedInformation::Assemble(
   size_t g = 0;
   for (const auto& [key, group] : groups_) {
     const std::vector<int>& ids = group_ids[g++];
-    for (size_t kb = 0; kb < ids.size(); ++kb) {
-      const int b = ids[kb];
-      for (size_t ka = 0; ka < ids.size(); ++ka) {
-        const int a = ids[ka];
-        if (a > b) continue;
-        const auto it = std::lower_bound(rows_of[b].begin(), rows_of[b].end(), a);
-        const int start = start_in_column[b][it - rows_of[b].begin()];
-        for (int c = 0; c < block_size[b]; ++c) {
-          double* column = values + outer[block_offset[b] + c] + start;
-          const int last = a == b ? c : block_size[a] - 1;
-          for (int r = 0; r <= last; ++r) {
-            column[r] += group.H(group.offsets[ka] + r, group.offsets[kb] + c);
-          }
-        }
+    for (const auto& [pair, H_pair] : group.H) {
+      // Row block a, column block b of H (ids a <= b): H_pair or its transpose.
+      const bool in_order = ids[pair.first] <= ids[pair.second];
+      const int a = in_order ? ids[pair.first] : ids[pair.second];
+      const int b = in_order ? ids[pair.second] : ids[pair.first];
+      const auto it = std::lower_bound(rows_of[b].begin(), rows_of[b].end(), a);
+      const int start = start_in_column[b][it - rows_of[b].begin()];
+      for (int c = 0; c < block_size[b]; ++c) {
+        double* column = values + outer[block_offset[b] + c] + start;
+        const int last = a == b ? c : block_size[a] - 1;
+        for (int r = 0; r <= last; ++r) column[r] += in_order ? H_pair(r, c) : H_pair(c, r);
       }
     }
   }
@@ -403,15 +400,26 @@ int CompressedInformation::EliminationOffsets(std::map<const double*, int>* offs
   return size;
 }
 
-Eigen::MatrixXd CompressedInformation::GroupRows(const Group& group,
-                                                 const Eigen::MatrixXd& Y,
-                                                 const std::map<const double*, int>& offsets) {
-  Eigen::MatrixXd Y_g(group.H.rows(), Y.cols());
+Eigen::MatrixXd CompressedInformation::QuadraticForm(const Group& group,
+                                                     const Eigen::MatrixXd& Y,
+                                                     const std::map<const double*, int>& offsets) {
+  // Y_g^T (H_g Y_g), H_g Y_g block by block over the pairs.
+  Eigen::MatrixXd Y_g(group.Size(), Y.cols());
   for (size_t k = 0; k < group.blocks.size(); ++k) {
     Y_g.middleRows(group.offsets[k], group.sizes[k]) =
         Y.middleRows(offsets.at(group.blocks[k]), group.sizes[k]);
   }
-  return Y_g;
+  Eigen::MatrixXd HY = Eigen::MatrixXd::Zero(group.Size(), Y.cols());
+  for (const auto& [pair, H_ab] : group.H) {
+    const auto [a, b] = pair;
+    HY.middleRows(group.offsets[a], group.sizes[a]).noalias() +=
+        H_ab * Y_g.middleRows(group.offsets[b], group.sizes[b]);
+    if (a != b) {
+      HY.middleRows(group.offsets[b], group.sizes[b]).noalias() +=
+          H_ab.transpose() * Y_g.middleRows(group.offsets[a], group.sizes[a]);
+    }
+  }
+  return Y_g.transpose() * HY;
 }
 
 bool CompressedInformation::MappedCovariance(const std::vector<const double*>& requested,
@@ -471,8 +479,7 @@ bool CompressedInformation::MappedCovariance(const std::vector<const double*>& r
       // variance is stated, not estimated (kModelNoiseCluster).
       extras->robust[c] = clusters / (clusters - 1.0) * meat;
       for (const auto& [key, group] : model_noise_groups_[c]) {
-        const Eigen::MatrixXd Y_g = GroupRows(group, Y, offsets);
-        extras->robust[c] += Y_g.transpose() * group.H * Y_g;
+        extras->robust[c] += QuadraticForm(group, Y, offsets);
       }
     }
     extras->noise.resize(0, 0);
@@ -483,8 +490,7 @@ bool CompressedInformation::MappedCovariance(const std::vector<const double*>& r
         if (factor_of_label == extras->label_factors.end() || factor_of_label->second == 1.0) {
           continue;
         }
-        const Eigen::MatrixXd Y_g = GroupRows(group, Y, offsets);
-        noise += (factor_of_label->second - 1.0) * Y_g.transpose() * group.H * Y_g;
+        noise += (factor_of_label->second - 1.0) * QuadraticForm(group, Y, offsets);
       }
       extras->noise = noise;
     }
@@ -503,14 +509,24 @@ bool CompressedInformation::LabelTraces(std::map<int, double>* traces) const {
   if (!factor.ComputeSelectedInverse()) return false;
   std::vector<int> indices;
   for (const auto& [key, group] : groups_) {
-    // The group's coordinates in H, in the order of group.H.
-    indices.clear();
-    for (size_t k = 0; k < group.blocks.size(); ++k) {
-      const int offset = offsets.at(group.blocks[k]);
-      for (int c = 0; c < group.sizes[k]; ++c) indices.push_back(offset + c);
+    // tr(H^-1 H_g) = sum_ij (H^-1)_ij (H_g)_ji, both symmetric: per pair (a, b) of the group's
+    // blocks the entries of H^-1 on the pair's rows and columns, twice when a != b.
+    for (const auto& [pair, H_ab] : group.H) {
+      const auto [a, b] = pair;
+      indices.clear();
+      for (int k = 0; k < (a == b ? 1 : 2); ++k) {
+        const int block = k == 0 ? a : b;
+        const int offset = offsets.at(group.blocks[block]);
+        for (int c = 0; c < group.sizes[block]; ++c) indices.push_back(offset + c);
+      }
+      const Eigen::MatrixXd inverse = factor.InverseOn(indices);
+      const double sum =
+          a == b ? inverse.cwiseProduct(H_ab).sum()
+                 : 2.0 * inverse.block(0, group.sizes[a], group.sizes[a], group.sizes[b])
+                             .cwiseProduct(H_ab)
+                             .sum();
+      (*traces)[key.first] += sum;
     }
-    // tr(H^-1 H_g) = sum_ij (H^-1)_ij (H_g)_ji, both symmetric.
-    (*traces)[key.first] += factor.InverseOn(indices).cwiseProduct(group.H).sum();
   }
   return true;
 }

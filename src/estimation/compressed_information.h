@@ -5,8 +5,10 @@
 // Residual blocks are grouped by (label, first parameter block): for the spline's residuals the
 // first block is the segment's first control pose, so a group is one residual kind over one
 // segment. Each group stores its information H_g = sum J^T J over the union of its blocks in
-// tangent coordinates (dense, at most the group's tangent size squared: ~4x fewer entries than
-// J at 200 Hz). The sum of the groups is the problem's H; the label keeps residual kinds apart
+// tangent coordinates, block by block: the pairs of blocks some residual block couples, each
+// dense (a spline segment's group is dense, ~4x fewer entries than J at 200 Hz; a target
+// view's group with every point free couples each point's offset with the pose and the
+// intrinsics, not with the other points: 5% of the dense square). The sum of the groups is the problem's H; the label keeps residual kinds apart
 // so that per-kind quantities -- tr(H^-1 H_label) for variance components -- can be formed.
 #ifndef SPLINECAL_SRC_ESTIMATION_COMPRESSED_INFORMATION_H_
 #define SPLINECAL_SRC_ESTIMATION_COMPRESSED_INFORMATION_H_
@@ -104,14 +106,16 @@ class CompressedInformation {
   struct Group {
     std::vector<const double*> blocks;
     std::vector<int> sizes;
-    std::vector<int> offsets;
-    Eigen::MatrixXd H;
+    std::vector<int> offsets;  // of each block in the group's stacked coordinates
+    // The non-zero blocks H_ab (a <= b, indices into blocks) of the group's information; the
+    // pairs absent are zero.
+    std::map<std::pair<int, int>, Eigen::MatrixXd> H;
     int Index(const double* block, int size);
     int Size() const;  // the blocks' total tangent size
-    // H covers Size() (with room to grow) while residual blocks are added; Trim makes it
-    // exactly Size() x Size(), as every reader after construction expects.
-    void Resize();
-    void Trim();
+    // H_ab (a <= b), zero when first asked for.
+    Eigen::MatrixXd& Pair(int a, int b);
+    // The whole symmetric Size() x Size() information.
+    Eigen::MatrixXd Dense() const;
   };
   // (label, ordinal of the first parameter block). Ordinals, not addresses: every sum over
   // groups or blocks then runs in an order fixed by the problem, so that the same problem built
@@ -122,10 +126,10 @@ class CompressedInformation {
   static void AddInformation(const Eigen::MatrixXd& JtJ,
                              const std::vector<std::pair<int, int>>& parts,
                              Group* group);
-  // The rows of Y (over H's coordinates, `offsets`) of the group's blocks, in the group's order.
-  static Eigen::MatrixXd GroupRows(const Group& group,
-                                   const Eigen::MatrixXd& Y,
-                                   const std::map<const double*, int>& offsets);
+  // Y_g^T H_g Y_g, Y_g the rows of Y (over H's coordinates, `offsets`) of the group's blocks.
+  static Eigen::MatrixXd QuadraticForm(const Group& group,
+                                       const Eigen::MatrixXd& Y,
+                                       const std::map<const double*, int>& offsets);
 
   // Every block's offset in H in the elimination order of estimation/information_factor.h
   // (minimum degree on the block graph); returns the size of H.

@@ -262,6 +262,138 @@ TEST(MarginalCovarianceExtras, APriorEntersTheRobustCovarianceByItsStatedVarianc
   }
 }
 
+// A hub block and its leaves: every row couples the hub x with one leaf y_i, so the group of
+// the rows (grouped by their first block, x) holds the pairs (x, x), (x, y_i), (y_i, y_i) and
+// none between two leaves: a block-sparse information, as a target view's with every point
+// free. Its covariances (the weights', the measured noise's, the robust one) and the variance
+// components' traces against the dense formulas.
+TEST(MarginalCovarianceExtras, ABlockSparseGroupMatchesTheDenseFormulas) {
+  constexpr int kLeaves = 6;
+  constexpr int kRowsPerLeaf = 5;
+  constexpr int kClusters = 4;
+  constexpr int kColumns = 3 + 2 * kLeaves;
+  std::mt19937 random(23);
+  std::normal_distribution<double> normal;
+  ceres::Problem problem;
+  double x[3] = {0, 0, 0};
+  double y[kLeaves][2] = {};
+  std::map<ceres::ResidualBlockId, int> label;
+  std::map<ceres::ResidualBlockId, int> cluster;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(kLeaves * kRowsPerLeaf, kColumns);
+  std::vector<const LinearRow*> rows;
+  std::vector<int> row_label, row_cluster, row_leaf;
+  for (int i = 0; i < kLeaves; ++i) {
+    for (int k = 0; k < kRowsPerLeaf; ++k) {
+      const Eigen::Vector3d a_x(normal(random), normal(random), normal(random));
+      const Eigen::Vector2d a_y(normal(random), normal(random));
+      const double sigma = i % 2 == 0 ? 1.0 : 2.0;
+      auto* cost = new LinearRow(a_x, a_y, 3.0 * normal(random), sigma);
+      const ceres::ResidualBlockId id = problem.AddResidualBlock(cost, nullptr, x, y[i]);
+      const int row = static_cast<int>(rows.size());
+      J.row(row).head<3>() = cost->row().head<3>();
+      J.row(row).segment<2>(3 + 2 * i) = cost->row().tail<2>();
+      label[id] = i % 2;
+      cluster[id] = row % kClusters;
+      rows.push_back(cost);
+      row_label.push_back(i % 2);
+      row_cluster.push_back(row % kClusters);
+      row_leaf.push_back(i);
+    }
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.function_tolerance = solver.gradient_tolerance = solver.parameter_tolerance = 1e-15;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  Eigen::VectorXd e(rows.size());
+  for (size_t r = 0; r < rows.size(); ++r) {
+    double const* params[2] = {x, y[row_leaf[r]]};
+    rows[r]->Evaluate(params, &e[r], nullptr);
+  }
+  // Dense references.
+  Eigen::MatrixXd H_label[2] = {Eigen::MatrixXd::Zero(kColumns, kColumns),
+                                Eigen::MatrixXd::Zero(kColumns, kColumns)};
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(kColumns, kClusters);
+  for (int r = 0; r < J.rows(); ++r) {
+    H_label[row_label[r]] += J.row(r).transpose() * J.row(r);
+    g.col(row_cluster[r]) += J.row(r).transpose() * e[r];
+  }
+  const Eigen::MatrixXd H_inv = (H_label[0] + H_label[1]).inverse();
+  const Eigen::MatrixXd meat = kClusters / (kClusters - 1.0) * g * g.transpose();
+  // The reported blocks x and y_2: columns 0-2 and 7-8.
+  const std::vector<int> wanted = {0, 1, 2, 7, 8};
+  auto on_wanted = [&wanted](const Eigen::MatrixXd& m) {
+    Eigen::MatrixXd out(wanted.size(), wanted.size());
+    for (size_t i = 0; i < wanted.size(); ++i) {
+      for (size_t j = 0; j < wanted.size(); ++j) out(i, j) = m(wanted[i], wanted[j]);
+    }
+    return out;
+  };
+  MarginalCovarianceOptions options;
+  options.group_of = [&label](ceres::ResidualBlockId id) { return label.at(id); };
+  options.noise_factors = {{0, 0.3}, {1, 5.0}};
+  options.cluster_of = [&cluster](ceres::ResidualBlockId id) { return cluster.at(id); };
+  const MarginalCovariance m = ComputeMarginalCovariance(&problem, {x, y[2]}, options);
+  ASSERT_TRUE(m.ok);
+  const Eigen::MatrixXd model = on_wanted(H_inv);
+  const Eigen::MatrixXd noise = on_wanted(H_inv * (0.3 * H_label[0] + 5.0 * H_label[1]) * H_inv);
+  const Eigen::MatrixXd robust = on_wanted(H_inv * meat * H_inv);
+  EXPECT_TRUE(m.covariance.isApprox(model, 1e-9)) << m.covariance << "\n" << model;
+  EXPECT_TRUE(m.noise_covariance.isApprox(noise, 1e-9)) << m.noise_covariance << "\n" << noise;
+  EXPECT_TRUE(m.robust_covariance.isApprox(robust, 1e-9)) << m.robust_covariance << "\n"
+                                                         << robust;
+  // Variance components: the redundancy n_l - tr(H^-1 H_l) of each label's rows.
+  const VarianceComponents vc = EstimateVarianceComponents(
+      &problem, [&label](ceres::ResidualBlockId id) { return label.at(id); });
+  ASSERT_TRUE(vc.ok);
+  for (int l = 0; l < 2; ++l) {
+    const double expected = kLeaves / 2 * kRowsPerLeaf - (H_inv * H_label[l]).trace();
+    EXPECT_NEAR(vc.groups.at(l).redundancy, expected, 1e-9 * kColumns) << l;
+  }
+}
+
+// A further clustering (MarginalCovarianceOptions::further_cluster_of) shares the first one's
+// linearisation and factorisation: its robust covariance is what a run with it as the only
+// clustering gives, a residual it puts in kModelNoiseCluster included, and the first one's
+// result does not change.
+TEST(MarginalCovarianceExtras, AFurtherClusteringGivesWhatItsOwnRunGives) {
+  const double true_sigma[2] = {0.5, 2.0};
+  const double assumed_sigma[2] = {1.0, 1.0};
+  const int clusters = 20;
+  LinearProblem p(200, true_sigma, assumed_sigma, clusters, 0.3, 17);
+  const auto by_cluster = [&p](ceres::ResidualBlockId id) { return p.cluster.at(id); };
+  const ceres::ResidualBlockId stated = p.cluster.begin()->first;
+  const auto coarser = [&p, stated](ceres::ResidualBlockId id) {
+    return id == stated ? kModelNoiseCluster : p.cluster.at(id) % 6;
+  };
+  MarginalCovarianceOptions options;
+  options.group_of = [&p](ceres::ResidualBlockId id) { return p.group.at(id); };
+  options.noise_factors = {{0, 0.3}, {1, 5.0}};
+  options.cluster_of = by_cluster;
+  const MarginalCovariance first = ComputeMarginalCovariance(p.problem.get(), {p.x, p.y}, options);
+  options.further_cluster_of = {coarser};
+  const MarginalCovariance both = ComputeMarginalCovariance(p.problem.get(), {p.x, p.y}, options);
+  options.cluster_of = coarser;
+  options.further_cluster_of.clear();
+  const MarginalCovariance alone = ComputeMarginalCovariance(p.problem.get(), {p.x, p.y}, options);
+  ASSERT_TRUE(first.ok && both.ok && alone.ok);
+  ASSERT_EQ(both.further.size(), 1u);
+  const MarginalCovariance& further = both.further.front();
+  // The same sums in the same order: equal to the last bit.
+  EXPECT_EQ(both.robust_covariance, first.robust_covariance);
+  EXPECT_EQ(both.num_clusters, clusters);
+  EXPECT_EQ(further.robust_covariance, alone.robust_covariance);
+  EXPECT_EQ(further.num_clusters, 6);
+  EXPECT_EQ(alone.num_clusters, 6);
+  EXPECT_TRUE(further.ok);
+  EXPECT_EQ(further.covariance, both.covariance);
+  EXPECT_EQ(further.noise_covariance, both.noise_covariance);
+  EXPECT_EQ(further.covariance, alone.covariance);
+  // The coarser clustering scatters otherwise than the first: not a copy of it.
+  EXPECT_GT((further.robust_covariance - both.robust_covariance).norm(),
+            1e-3 * both.robust_covariance.norm());
+}
+
 TEST(ReportedCovariance, TakesTheLargestAndTheRobustOnlyWhenSignificant) {
   MarginalCovariance m;
   m.ok = true;
