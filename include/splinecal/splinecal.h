@@ -189,6 +189,7 @@
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
 #include "splinecal/intrinsics/robust_mean_pose.h"
 #include "splinecal/intrinsics/target_deformation.h"
+#include "splinecal/intrinsics/target_points_check.h"
 #include "splinecal/intrinsics/target_points_gauge.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/intrinsics/time_blocks.h"

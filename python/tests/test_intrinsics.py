@@ -38,6 +38,10 @@ def test_intrinsics_equals_the_command_line(tmp_path):
     # The same C++ solve on the same files, one thread: only wall times may differ.
     assert_same(without_wall_times(result, expected), expected, tol=1e-9)
     assert yaml.safe_load(camchain)["cam0"]["camera_model"] == "pinhole"
+    # The simulated target is its file: the test of its points is there and does not warn.
+    check = result["target_points_check"]
+    assert check["points"] > 0 and check["dof"] == 3 * check["points"] - 7
+    assert check["chi_square"] < 4 * check["dof"]
 
     # The observations as arrays (simulate's) and the models as a list: the same calibration.
     from_arrays = splinecal.intrinsics(arrays, flags["target"], ["pinhole-radtan"],

@@ -23,6 +23,7 @@
 #include "splinecal/intrinsics/intrinsics_observability.h"
 #include "splinecal/intrinsics/rig_reprojection_cost.h"
 #include "splinecal/intrinsics/robust_mean_pose.h"
+#include "splinecal/intrinsics/target_points_check.h"
 #include "splinecal/intrinsics/target_view.h"
 #include "splinecal/intrinsics/time_blocks.h"
 #include "splinecal/estimation/model_noise_cluster.h"
@@ -710,6 +711,7 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
   // Residuals, per-view RMS, counts, observability.
   std::vector<std::vector<const TargetView*>> used(num_cameras);
   std::vector<double> sum_sq(num_cameras, 0.0);
+  std::vector<TargetPointsCheckView> check_views;  // with the file's layout only
   for (size_t v = 0; v < views.size(); ++v) {
     ViewRecord& record = records[v];
     IntrinsicsCameraResult& camera = result.cameras[record.cam_id];
@@ -735,6 +737,15 @@ IntrinsicsResult CalibrateIntrinsics(const std::vector<Observation>& observation
     TargetView& final_view = views[v];
     final_view.T_c_t = TargetInCamera(state, view);
     used[view.cam_id].push_back(&final_view);
+    if (options.target_deformation == TargetDeformationKind::kNone) {
+      check_views.push_back({camera.camera, final_view.T_c_t, &final_view,
+                             state.sigma_px[view.cam_id]});
+    }
+  }
+  if (!check_views.empty()) {
+    result.target_points_check = CheckTargetPoints(check_views, kMinViewsPerFreePoint);
+    const std::string warning = TargetPointsWarning(result.target_points_check);
+    if (!warning.empty()) result.warnings.push_back(warning);
   }
   for (int n = 0; n < num_cameras; ++n) {
     IntrinsicsCameraResult& camera = result.cameras[n];

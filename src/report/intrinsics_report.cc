@@ -582,6 +582,21 @@ std::string IntrinsicsResultYaml(const IntrinsicsResult& result,
   yaml.Scalar("termination", result.solve.termination);
   yaml.EndMap();
   WriteDeformationYaml(result.target_deformation, &yaml);
+  if (result.target_points_check.points > 0) {
+    const TargetPointsCheck& check = result.target_points_check;
+    yaml.BeginMap("target_points_check");
+    yaml.Comment(StringPrintf(
+        "every point seen in %d views against its file's position, the others held "
+        "(target_points_check.h): chi_square over dof is about 1 when the file is right; above "
+        "%.0f a warning names --target-deformation points",
+        kMinViewsPerFreePoint, kTargetPointsWarnRatio));
+    yaml.Scalar("points", check.points);
+    yaml.Scalar("chi_square", check.chi_square);
+    yaml.Scalar("dof", check.dof);
+    yaml.Scalar("rms_offset_m", check.rms_offset_m);
+    yaml.Scalar("max_offset_m", check.max_offset_m);
+    yaml.EndMap();
+  }
   yaml.StringList("warnings", result.warnings);
   if (model_comparison != nullptr) {
     yaml.Comment("--compare-models: each model fitted to the same corners, exact least squares");

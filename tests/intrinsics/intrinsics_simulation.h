@@ -106,6 +106,15 @@ inline Camera EurocCam0() {
   return camera;
 }
 
+// EuRoC's cam0 alone before the file's AprilGrid, 40 views (the scene of the target-shape tests).
+inline IntrinsicsScene EurocCam0Scene() {
+  IntrinsicsScene scene;
+  scene.cameras = {EurocCam0()};
+  scene.T_cn_c0 = {SE3d()};
+  scene.views = 40;
+  return scene;
+}
+
 }  // namespace testing
 }  // namespace splinecal
 

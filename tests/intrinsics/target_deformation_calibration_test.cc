@@ -22,10 +22,7 @@ namespace splinecal {
 namespace {
 
 testing::IntrinsicsScene Scene(double corner_height_m) {
-  testing::IntrinsicsScene scene;
-  scene.cameras = {testing::EurocCam0()};
-  scene.T_cn_c0 = {SE3d()};
-  scene.views = 40;
+  testing::IntrinsicsScene scene = testing::EurocCam0Scene();
   if (corner_height_m != 0.0) {
     // h = c (s^2 + t^2): the corners (s, t = +-1) 2 c above the centre.
     scene.shape_kind = TargetDeformationKind::kQuadratic;

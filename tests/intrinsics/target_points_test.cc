@@ -99,15 +99,6 @@ CalibrationTarget Perturbed(const CalibrationTarget& file, int seed) {
   return truth;
 }
 
-// EuRoC's cam0 (pinhole-radtan) alone, 40 views of the file's AprilGrid.
-testing::IntrinsicsScene Cam0Scene() {
-  testing::IntrinsicsScene scene;
-  scene.cameras = {testing::EurocCam0()};
-  scene.T_cn_c0 = {SE3d()};
-  scene.views = 40;
-  return scene;
-}
-
 IntrinsicsResult Calibrate(const testing::IntrinsicsScene& truth, const CalibrationTarget& file,
                            int seed, TargetDeformationKind kind) {
   IntrinsicsCameraSpec spec;
@@ -166,7 +157,7 @@ double MeanSquaredOffsetZ(const TargetDeformationResult& d, const CalibrationTar
 }
 
 TEST(TargetPointsCalibration, RecoversEveryPointAndUnbiasedIntrinsics) {
-  const testing::IntrinsicsScene scene = Cam0Scene();
+  const testing::IntrinsicsScene scene = testing::EurocCam0Scene();
   const CalibrationTarget file = scene.target;
   double nees = 0.0;
   int dof = 0;
@@ -208,7 +199,7 @@ TEST(TargetPointsCalibration, RecoversEveryPointAndUnbiasedIntrinsics) {
 // Points no used view sees keep the file's position and stay in the refined target, so that
 // calibrate, reading it, still knows them (an unknown id there is a natural landmark).
 TEST(TargetPointsCalibration, UnseenPointsKeepTheFilesPosition) {
-  const testing::IntrinsicsScene scene = Cam0Scene();
+  const testing::IntrinsicsScene scene = testing::EurocCam0Scene();
   std::vector<Observation> observations = testing::SimulateIntrinsicsViews(scene, 301);
   // Tag 0's four corners (ids 0, 1, 12, 13) never observed.
   observations.erase(std::remove_if(observations.begin(), observations.end(),
@@ -239,7 +230,7 @@ TEST(TargetPointsCalibration, UnseenPointsKeepTheFilesPosition) {
 // 1275).
 TEST(TargetPointsCalibration, AnExactTargetComesOutUnmovedAtAPriceInStd) {
   constexpr double kMaxStdGrowth = 3.5;
-  const testing::IntrinsicsScene scene = Cam0Scene();
+  const testing::IntrinsicsScene scene = testing::EurocCam0Scene();
   double nees = 0.0, largest_growth = 0.0;
   int dof = 0;
   for (int seed = 1; seed <= 3; ++seed) {

@@ -70,6 +70,7 @@
 #include "splinecal/estimation/options.h"
 #include "splinecal/estimation/solve_rounds.h"
 #include "splinecal/intrinsics/target_deformation.h"
+#include "splinecal/intrinsics/target_points_check.h"
 #include "splinecal/intrinsics/time_blocks.h"
 #include "splinecal/lie/se3.h"
 
@@ -177,6 +178,9 @@ struct TargetDeformationResult {
 struct IntrinsicsResult {
   std::vector<IntrinsicsCameraResult> cameras;
   TargetDeformationResult target_deformation;
+  // With the file's layout (target_deformation none): the test of every point's position against
+  // the file's (target_points_check.h); empty otherwise.
+  TargetPointsCheck target_points_check;
   std::vector<ViewRecord> views;              // every view offered, by (t_ns, cam_id)
   std::vector<ReprojectionSample> residuals;  // the used corners
   // The corners the outlier pass removed, with their errors when they were removed.
