@@ -12,11 +12,12 @@ namespace splinecal {
 
 namespace {
 
-// Per point: I_p, s_p and the number of views.
+// Per point: I_p, s_p, the number of views and the file's position.
 struct PointScore {
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   Eigen::Vector3d score = Eigen::Vector3d::Zero();
   int views = 0;
+  Eigen::Vector3d p_t = Eigen::Vector3d::Zero();
 };
 
 }  // namespace
@@ -37,6 +38,7 @@ TargetPointsCheck CheckTargetPoints(const std::vector<TargetPointsCheckView>& vi
       PointScore& p = by_point[v.view->point_ids[i]];
       p.information += J.transpose() * J;
       p.score += J.transpose() * r;
+      p.p_t = corner.p_t;
       ++p.views;
     }
   }
@@ -54,6 +56,10 @@ TargetPointsCheck CheckTargetPoints(const std::vector<TargetPointsCheckView>& vi
     sum_squared_offsets += delta.squaredNorm();
     check.max_offset_m = std::max(check.max_offset_m, delta.norm());
     ++check.points;
+    check.file_points_m[id] = p.p_t;
+    check.offsets_m[id] = delta;
+    check.offsets_std_m[id] =
+        ldlt.solve(Eigen::Matrix3d::Identity()).diagonal().cwiseMax(0.0).cwiseSqrt();
   }
   if (check.points > 0) check.rms_offset_m = std::sqrt(sum_squared_offsets / check.points);
   check.dof = check.points >= 3 ? 3 * check.points - 7 : 0;

@@ -639,6 +639,9 @@ std::string IntrinsicsReportHtml(const IntrinsicsResult& result,
   page.Append(DeformationTableHtml(result.target_deformation));
   if (result.target_deformation.shape.per_point()) {
     page.FigureSection("Target points", TargetPointsFigure(result.target_deformation));
+  } else if (!TargetPointsWarning(result.target_points_check).empty()) {
+    page.FigureSection("Target points against the file",
+                       TargetPointsFigure(result.target_points_check));
   }
   page.ListSection("Warnings", result.warnings);
   page.Append(ViewsTableHtml(result));

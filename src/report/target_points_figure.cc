@@ -78,4 +78,17 @@ plot::Figure TargetPointsFigure(const TargetDeformationResult& d) {
   return figure;
 }
 
+plot::Figure TargetPointsFigure(const TargetPointsCheck& check) {
+  TargetDeformationResult d;
+  d.shape.kind = TargetDeformationKind::kPoints;
+  for (const auto& [id, p] : check.file_points_m) {
+    d.refined_target.points[id] = p + check.offsets_m.at(id);
+  }
+  d.point_offsets_m = check.offsets_m;
+  d.point_offsets_std_m = check.offsets_std_m;
+  plot::Figure figure = TargetPointsFigure(d);
+  figure.title = "Target points: one step from the file's layout (poses and intrinsics held)";
+  return figure;
+}
+
 }  // namespace splinecal

@@ -46,5 +46,28 @@ TEST(TargetPointsFigure, EveryPointAnArrowPerFreePointAndTheHeights) {
   EXPECT_NEAR(heights.y_high[1] - heights.y_low[1], 0.1, 1e-12);
 }
 
+// From the test of the file's layout: the tested points, their one-step displacements as the
+// arrows and heights, their stds as the bars.
+TEST(TargetPointsFigure, TheFilesTestDrawsItsOneStepDisplacements) {
+  TargetPointsCheck check;
+  check.file_points_m = {{4, {0.0, 0.0, 0.0}}, {9, {0.5, 0.0, 0.0}}};
+  check.offsets_m = {{4, {0.0, 1e-3, 3e-4}}, {9, {-1e-3, 0.0, 0.0}}};
+  check.offsets_std_m = {{4, {1e-4, 1e-4, 2e-4}}, {9, {1e-4, 1e-4, 1e-4}}};
+  const plot::Figure figure = TargetPointsFigure(check);
+  ASSERT_EQ(figure.panels.size(), 2u);
+  EXPECT_NE(figure.title.find("one step"), std::string::npos);
+  const plot::Series& points = figure.panels[0].series[0];
+  ASSERT_EQ(points.x.size(), 2u);
+  EXPECT_DOUBLE_EQ(points.x[1], 0.5);  // the file's position, not the displaced one
+  // 0.05 * 0.5 m / 1 mm = 25 -> x 20: point 4's tip 20 mm up.
+  const plot::Series& arrows = figure.panels[0].series[1];
+  ASSERT_EQ(arrows.y.size(), 6u);
+  EXPECT_NEAR(arrows.y[1], 20.0 * 1e-3, 1e-12);
+  const plot::Series& heights = figure.panels[1].series[0];
+  ASSERT_EQ(heights.y.size(), 2u);
+  EXPECT_NEAR(heights.y[0], 0.3, 1e-12);
+  EXPECT_NEAR(heights.y_high[0] - heights.y_low[0], 0.4, 1e-12);
+}
+
 }  // namespace
 }  // namespace splinecal

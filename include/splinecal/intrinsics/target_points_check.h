@@ -20,6 +20,9 @@
 #ifndef SPLINECAL_INTRINSICS_TARGET_POINTS_CHECK_H_
 #define SPLINECAL_INTRINSICS_TARGET_POINTS_CHECK_H_
 
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,6 +43,11 @@ struct TargetPointsCheck {
   double chi_square = 0.0;    // sum_p T_p
   double rms_offset_m = 0.0;  // RMS over the points of |delta_p|
   double max_offset_m = 0.0;  // the largest |delta_p|
+  // Per tested point (by id): its position in the file, delta_p and the std of delta_p's
+  // coordinates (sqrt of I_p^-1's diagonal), for the report's figure.
+  std::map<int64_t, Eigen::Vector3d> file_points_m;
+  std::map<int64_t, Eigen::Vector3d> offsets_m;
+  std::map<int64_t, Eigen::Vector3d> offsets_std_m;
   double RatioToDof() const { return dof > 0 ? chi_square / dof : 0.0; }
 };
 

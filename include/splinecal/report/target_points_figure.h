@@ -7,6 +7,8 @@
 //          field; a detector bias tied to the tags as a pattern repeated tag by tag.
 //   right  each free point's offset along the target's normal [mm] against its x [m], with its
 //          std as an error bar.
+// The report shows it for a run with every point free, and for a run with the file's layout
+// whose test of the points warns (their one-step displacements instead).
 #ifndef SPLINECAL_REPORT_TARGET_POINTS_FIGURE_H_
 #define SPLINECAL_REPORT_TARGET_POINTS_FIGURE_H_
 
@@ -17,6 +19,10 @@ namespace splinecal {
 
 // d: a result with every point free (d.shape.per_point()); its refined target and offsets.
 plot::Figure TargetPointsFigure(const TargetDeformationResult& d);
+
+// The same figure from the test of the file's layout (intrinsics/target_points_check.h): each
+// tested point's one-step displacement delta_p and its std, the poses and intrinsics held.
+plot::Figure TargetPointsFigure(const TargetPointsCheck& check);
 
 }  // namespace splinecal
 
