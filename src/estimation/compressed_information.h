@@ -8,8 +8,10 @@
 // tangent coordinates, block by block: the pairs of blocks some residual block couples, each
 // dense (a spline segment's group is dense, ~4x fewer entries than J at 200 Hz; a target
 // view's group with every point free couples each point's offset with the pose and the
-// intrinsics, not with the other points: 5% of the dense square). The sum of the groups is the problem's H; the label keeps residual kinds apart
-// so that per-kind quantities -- tr(H^-1 H_label) for variance components -- can be formed.
+// intrinsics, not with the other points, so that most of its square is zero: the free-target
+// intrinsics on EuRoC's imu_april peaked at 2.5 GB with dense groups, 0.67 GB without). The sum
+// of the groups is the problem's H; the label keeps residual kinds apart so that per-kind
+// quantities -- tr(H^-1 H_label) for variance components -- can be formed.
 #ifndef SPLINECAL_SRC_ESTIMATION_COMPRESSED_INFORMATION_H_
 #define SPLINECAL_SRC_ESTIMATION_COMPRESSED_INFORMATION_H_
 
