@@ -1,8 +1,10 @@
 #include "splinecal/camera/pnp.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace splinecal {
@@ -12,6 +14,15 @@ namespace {
 // Smallest singular value of the DLT system relative to the largest below which the geometry is
 // degenerate (collinear points, all points on one ray): the solution is then not unique.
 constexpr double kMinSingularValueRatio = 1e-10;
+
+// Point sets thinner than this (the RMS distance from their least-squares plane over their RMS
+// spread along its shorter in-plane axis) also get the planar closed form on their plane. The
+// general DLT recovers the pose from the points' depth, and a nearly flat set gives it little:
+// on a 0.66 m board whose corners sit about 1 mm off the plane (a measured or refined target),
+// bearing noise of 1 mrad at 1 m is as large as the depth, and the DLT's poses were tens of
+// degrees off (EuRoC imu_april, docs/intrinsics.md). The planar closed form ignores the
+// thickness: its pose is off by about the ratio in radians, which the refinement removes.
+constexpr double kMaxPlanarThicknessRatio = 0.1;
 
 // The rotation closest to M in the Frobenius norm (det +1).
 Eigen::Matrix3d ClosestRotation(const Eigen::Matrix3d& M) {
@@ -157,6 +168,87 @@ bool Errors(const Camera& camera,
   return true;
 }
 
+// The least-squares plane of the target points: T_t_plane with its origin at their centroid and
+// its z axis along the direction of least spread, the points' coordinates in it, and the ratio
+// of the RMS distance from the plane to the RMS spread along the plane's shorter in-plane axis.
+struct FittedPlane {
+  SE3d T_t_plane;
+  std::vector<Eigen::Vector3d> p_plane;
+  double thickness_ratio = 0.0;
+};
+
+FittedPlane FitPlane(const std::vector<Eigen::Vector3d>& p_t) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : p_t) centroid += p;
+  centroid /= static_cast<double>(p_t.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : p_t) scatter += (p - centroid) * (p - centroid).transpose();
+  // Eigenvalues in increasing order: column 0 is the normal.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
+  Eigen::Matrix3d R_t_plane;
+  R_t_plane << eigen.eigenvectors().col(2), eigen.eigenvectors().col(1),
+      eigen.eigenvectors().col(0);
+  if (R_t_plane.determinant() < 0.0) R_t_plane.col(2) *= -1.0;
+  FittedPlane plane;
+  plane.T_t_plane = SE3d(SO3d::FromMatrix(R_t_plane), centroid);
+  const SE3d T_plane_t = plane.T_t_plane.inverse();
+  for (const Eigen::Vector3d& p : p_t) plane.p_plane.push_back(T_plane_t * p);
+  const Eigen::Vector3d spread = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  plane.thickness_ratio = spread(1) > 0.0 ? spread(0) / spread(1) : 0.0;
+  return plane;
+}
+
+// Levenberg-Marquardt on the pixel errors from T (right perturbation of T_c_t). False when T
+// puts a point outside the camera model's valid region.
+bool Refine(const Camera& camera,
+            const std::vector<Eigen::Vector3d>& p_t,
+            const std::vector<Eigen::Vector2d>& uv,
+            int max_iterations,
+            SE3d* T_c_t,
+            double* cost,
+            int* iterations) {
+  SE3d& T = *T_c_t;
+  if (!Errors(camera, T, p_t, uv, cost)) return false;
+  double lambda = 1e-3;
+  for (*iterations = 0; *iterations < max_iterations; ++*iterations) {
+    Eigen::Matrix<double, 6, 6> JtJ = Eigen::Matrix<double, 6, 6>::Zero();
+    Vector6d Jtr = Vector6d::Zero();
+    const Eigen::Matrix3d R = T.rotationMatrix();
+    for (size_t i = 0; i < p_t.size(); ++i) {
+      Eigen::Vector2d pred;
+      Eigen::Matrix<double, 2, 3> J_pi;
+      camera.Project(T * p_t[i], &pred, &J_pi);
+      Eigen::Matrix<double, 2, 6> J;
+      J.leftCols<3>() = J_pi * R;
+      J.rightCols<3>() = -J_pi * R * Hat(p_t[i]);
+      JtJ += J.transpose() * J;
+      Jtr += J.transpose() * (pred - uv[i]);
+    }
+    bool improved = false;
+    for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
+      Eigen::Matrix<double, 6, 6> A = JtJ;
+      A.diagonal() *= (1.0 + lambda);
+      const Vector6d step = -A.ldlt().solve(Jtr);
+      const SE3d candidate = T * SE3d::Exp(step);
+      double candidate_cost = 0.0;
+      if (step.allFinite() && Errors(camera, candidate, p_t, uv, &candidate_cost) &&
+          candidate_cost < *cost) {
+        const bool converged =
+            *cost - candidate_cost < 1e-12 * *cost + 1e-20 || step.norm() < 1e-12;
+        T = candidate;
+        *cost = candidate_cost;
+        lambda = std::max(lambda * 0.3, 1e-12);
+        improved = true;
+        if (converged) *iterations = max_iterations;
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!improved) break;
+  }
+  return true;
+}
+
 }  // namespace
 
 PnpResult SolvePnp(const Camera& camera,
@@ -188,56 +280,41 @@ PnpResult SolvePnp(const Camera& camera,
                      "; the others are outside the camera model's valid region)";
     return result;
   }
+  // Closed-form candidates (header comment, step 2), each refined; the lowest cost wins.
+  std::vector<SE3d> candidates;
+  std::string message;
   SE3d T;
-  if (!(planar ? PlanarPose(p_closed_form, bearings, &T, &result.message)
-               : GeneralPose(p_closed_form, bearings, &T, &result.message))) {
+  if (planar) {
+    if (PlanarPose(p_closed_form, bearings, &T, &message)) candidates.push_back(T);
+  } else {
+    const FittedPlane plane = FitPlane(p_closed_form);
+    if (plane.thickness_ratio < kMaxPlanarThicknessRatio &&
+        PlanarPose(plane.p_plane, bearings, &T, &message)) {
+      candidates.push_back(T * plane.T_t_plane.inverse());
+    }
+    if (GeneralPose(p_closed_form, bearings, &T, &message)) candidates.push_back(T);
+  }
+  if (candidates.empty()) {
+    result.message = message;
     return result;
   }
-  // Levenberg-Marquardt on the pixel errors, right perturbation of T_c_t.
-  double cost = 0.0;
-  if (!Errors(camera, T, p_t, uv, &cost)) {
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (SE3d candidate : candidates) {
+    double cost = 0.0;
+    int iterations = 0;
+    if (!Refine(camera, p_t, uv, options.max_iterations, &candidate, &cost, &iterations) ||
+        !(cost < best_cost)) {
+      continue;
+    }
+    best_cost = cost;
+    result.ok = true;
+    result.T_c_t = candidate;
+    result.iterations = iterations;
+    result.rms_px = std::sqrt(cost / n);
+  }
+  if (!result.ok) {
     result.message = "the closed-form pose puts points outside the camera's valid region";
-    return result;
   }
-  double lambda = 1e-3;
-  for (result.iterations = 0; result.iterations < options.max_iterations; ++result.iterations) {
-    Eigen::Matrix<double, 6, 6> JtJ = Eigen::Matrix<double, 6, 6>::Zero();
-    Vector6d Jtr = Vector6d::Zero();
-    const Eigen::Matrix3d R = T.rotationMatrix();
-    for (int i = 0; i < n; ++i) {
-      Eigen::Vector2d pred;
-      Eigen::Matrix<double, 2, 3> J_pi;
-      camera.Project(T * p_t[i], &pred, &J_pi);
-      Eigen::Matrix<double, 2, 6> J;
-      J.leftCols<3>() = J_pi * R;
-      J.rightCols<3>() = -J_pi * R * Hat(p_t[i]);
-      JtJ += J.transpose() * J;
-      Jtr += J.transpose() * (pred - uv[i]);
-    }
-    bool improved = false;
-    for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
-      Eigen::Matrix<double, 6, 6> A = JtJ;
-      A.diagonal() *= (1.0 + lambda);
-      const Vector6d step = -A.ldlt().solve(Jtr);
-      const SE3d candidate = T * SE3d::Exp(step);
-      double candidate_cost = 0.0;
-      if (step.allFinite() && Errors(camera, candidate, p_t, uv, &candidate_cost) &&
-          candidate_cost < cost) {
-        const bool converged = cost - candidate_cost < 1e-12 * cost + 1e-20 || step.norm() < 1e-12;
-        T = candidate;
-        cost = candidate_cost;
-        lambda = std::max(lambda * 0.3, 1e-12);
-        improved = true;
-        if (converged) result.iterations = options.max_iterations;
-      } else {
-        lambda *= 10.0;
-      }
-    }
-    if (!improved) break;
-  }
-  result.ok = true;
-  result.T_c_t = T;
-  result.rms_px = std::sqrt(cost / n);
   return result;
 }
 

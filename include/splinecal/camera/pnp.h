@@ -13,9 +13,12 @@
 //      so that the points lie along their bearings, sum_i b_i . (H a_i) > 0 [Zhang00].
 //      Non-planar targets: the 3x4 projection [R | t] by the same DLT on (X, Y, Z, 1), R the
 //      closest rotation to its left block, the scale from its singular values, the same sign
-//      rule.
+//      rule. A nearly flat one (a board whose points were measured or refined, up to a tenth of
+//      its extent off its least-squares plane) also gets the planar form on that plane, with the
+//      points' distances from it ignored: the DLT needs depth that such a target barely has.
 //   3. Levenberg-Marquardt on the pixel reprojection error (distortion included) over T_c_t with
-//      the RIGHT perturbation T_c_t Exp(d): d x_c / d d = R_c_t [I, -[p_t]x].
+//      the RIGHT perturbation T_c_t Exp(d): d x_c / d d = R_c_t [I, -[p_t]x], from each
+//      closed-form candidate; the lowest sum of squares wins.
 // Rolling shutter is ignored here (the calibration models it); the result is an initial guess.
 //
 // References: [Zhang00] Z. Zhang, "A flexible new technique for camera calibration", PAMI 2000;
