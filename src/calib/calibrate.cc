@@ -131,6 +131,16 @@ void CalibrationProblem::BuildProblem() {
   spline_->AddImuResiduals(imu_, imu_noise_->gyro_sigma(), imu_noise_->accel_sigma());
   spline_->AddBiasRandomWalkResiduals(imu_noise_->densities());
   if (further_) further_->AddToProblem(spline_.get());
+  // A residual that cannot be evaluated at the current values (a corner or landmark behind the
+  // camera or outside its model's valid region: the trajectory is far off at that time) would
+  // stop the solver at its first evaluation; it sits out this round and is counted.
+  spline_->evaluation_callback()->Update();
+  unprojectable_residuals_ = 0;
+  std::vector<double> values;
+  auto evaluates = [&values](const ceres::CostFunction& cost, const std::vector<double*>& blocks) {
+    values.resize(cost.num_residuals());
+    return cost.Evaluate(blocks.data(), values.data(), nullptr);
+  };
   frame_residuals_.clear();
   for (size_t f = 0; f < target_frames_.size(); ++f) {
     const TargetFrame& frame = target_frames_[f];
@@ -149,7 +159,12 @@ void CalibrationProblem::BuildProblem() {
       cost = std::move(rows);
     }
     cost = ScaledFrameCost(std::move(cost), residual);
-    residual.id = problem().AddResidualBlock(cost.release(), nullptr, Blocks(residual));
+    const std::vector<double*> blocks = Blocks(residual);
+    if (!evaluates(*cost, blocks)) {
+      ++unprojectable_residuals_;
+      continue;
+    }
+    residual.id = problem().AddResidualBlock(cost.release(), nullptr, blocks);
     frame_residuals_.push_back(residual);
   }
   landmark_residuals_.clear();
@@ -167,9 +182,14 @@ void CalibrationProblem::BuildProblem() {
         continue;
       }
       if (obs.cam_id != landmark.cam) continue;  // one camera per landmark (the reference's)
-      problem().AddResidualBlock(LandmarkCost(residual, sigma_px_, options_.huber_px).release(),
-                                 nullptr,
-                                 Blocks(residual));
+      std::unique_ptr<LandmarkCostFunction> cost =
+          LandmarkCost(residual, sigma_px_, options_.huber_px);
+      const std::vector<double*> blocks = Blocks(residual);
+      if (!evaluates(*cost, blocks)) {
+        ++unprojectable_residuals_;
+        continue;
+      }
+      problem().AddResidualBlock(cost.release(), nullptr, blocks);
       landmark_residuals_.push_back(residual);
       added_rho = true;
     }
@@ -384,6 +404,20 @@ CalibrationResult CalibrationProblem::Run() {
   for (CameraState& cam : cameras_) {
     if (cam.line_delay_held) problem().SetParameterBlockVariable(&cam.line_delay);
   }
+  if (most_unprojectable_ > 0) {
+    result.warnings.push_back(
+        unprojectable_in_last_round_ > 0
+            ? StringPrintf("%d target frame(s) or landmark observation(s) do not project from the "
+                           "trajectory (a point behind the camera or outside its model's valid "
+                           "region) and were left out of the final solve: the trajectory is far "
+                           "off at their times",
+                           unprojectable_in_last_round_)
+            : StringPrintf("%d target frame(s) or landmark observation(s) did not project from "
+                           "the initial trajectory (a point behind the camera or outside its "
+                           "model's valid region) and sat out the first round(s); all of them "
+                           "entered the final solve",
+                           most_unprojectable_));
+  }
   result.solve = rounds.Summary();
   if (!rounds.NoConvergenceWarning().empty()) {
     result.warnings.push_back(rounds.NoConvergenceWarning());
@@ -436,8 +470,14 @@ void CalibrationProblem::SolveUntilStable(SolveRounds* solve_rounds,
   for (int round = 1; round <= solver.max_rounds; ++round) {
     BuildProblem();
     if (frame_residuals_.empty() && landmark_residuals_.empty()) {
-      throw Error("calibrate: no frame lies inside the spline's time range");
+      throw Error(unprojectable_residuals_ > 0
+                      ? "calibrate: no frame projects from the initial trajectory (every one "
+                        "puts points behind the camera or outside its model's valid region); "
+                        "check the camchain's intrinsics and T_cam_imu"
+                      : "calibrate: no frame lies inside the spline's time range");
     }
+    unprojectable_in_last_round_ = unprojectable_residuals_;
+    most_unprojectable_ = std::max(most_unprojectable_, unprojectable_residuals_);
     StopWhen guard([this](const ceres::IterationSummary&) { return !TimesInsideWindows(); });
     StopWhen bound_guard([this](const ceres::IterationSummary& summary) {
       if (summary.iteration == 0 || !summary.step_is_successful) return false;

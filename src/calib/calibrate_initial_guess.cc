@@ -1,6 +1,7 @@
 // The initial guesses of `splinecal calibrate` (calib/calibrate.h): from the target by PnP and
 // `fit`, or from given IMU poses.
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,8 @@
 #include "splinecal/camera/pnp.h"
 #include "splinecal/error.h"
 #include "splinecal/estimation/pose_fit.h"
+#include "splinecal/string_printf.h"
+#include "splinecal/units.h"
 
 namespace splinecal {
 
@@ -24,6 +27,14 @@ namespace {
 constexpr double kMaxPnpRmsPx = 10.0;
 // Fewer usable PnP poses than this make no initial trajectory.
 constexpr int kMinPnpPoses = 10;
+// A PnP pose farther than this from the trajectory fitted to the IMU and the other poses is left
+// out of the initial fit: a flipped pose (the planar ambiguity of a small or distant target) or
+// one of a frame stamped wrongly is tens of degrees off, where blur and detector noise leave
+// tenths. Each pass fits the poses that agreed with the previous fit, so that the neighbours an
+// outlier pulled away come back once it is out.
+constexpr double kMaxPoseDisagreementRad = 5.0 * kPi / 180.0;
+constexpr double kMaxPoseDisagreementM = 0.05;
+constexpr int kMaxInitialFitPasses = 4;
 // The noise a pose source is assumed to have in the initial fit, per axis.
 struct PoseSigma {
   double m;    // position [m]
@@ -95,6 +106,25 @@ CalibrationInitialGuess GuessFromFit(const std::vector<ImuSample>& imu,
   return guess;
 }
 
+// Whether each pose (T_w_m of the pose source m at t_ns) lies within the disagreement bounds of
+// the fit's T_w_s(t_ns + time offset) T_m_s^-1 (calib/fit.h); poses outside the fitted time range
+// agree (nothing says otherwise).
+std::vector<bool> PosesAgreeingWithFit(const std::vector<StampedPose>& poses, const FitResult& fit) {
+  const SE3Splined spline = fit.MakeSpline();
+  const SE3d T_s_m = fit.T_m_s.inverse();
+  const int64_t offset_ns = std::llround(fit.time_offset_s * 1e9);
+  std::vector<bool> agree(poses.size(), true);
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const int64_t t_ns = poses[i].t_ns + offset_ns;
+    if (t_ns < spline.start_time_ns() || t_ns > spline.end_time_ns()) continue;
+    const SE3d measured(SO3d(poses[i].q), poses[i].p);
+    const SE3d difference = (spline.PoseNs(t_ns) * T_s_m).inverse() * measured;
+    agree[i] = difference.so3().Log().norm() <= kMaxPoseDisagreementRad &&
+               difference.translation().norm() <= kMaxPoseDisagreementM;
+  }
+  return agree;
+}
+
 }  // namespace
 
 CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu,
@@ -151,8 +181,37 @@ CalibrationInitialGuess InitialGuessFromTarget(const std::vector<ImuSample>& imu
   fit_options.T_m_s = camchain[0].T_cam_imu;
   fit_options.solver.progress = nullptr;
   FitResult fit;
-  CalibrationInitialGuess guess = GuessFromFit(
-      imu, poses, observations, camchain, options, fit_options, "target poses", warnings, &fit);
+  CalibrationInitialGuess guess;
+  std::vector<bool> used(poses.size(), true);
+  std::vector<std::string> fit_warnings;
+  for (int pass = 1;; ++pass) {
+    std::vector<StampedPose> fitted;
+    for (size_t i = 0; i < poses.size(); ++i) {
+      if (used[i]) fitted.push_back(poses[i]);
+    }
+    fit_warnings.clear();
+    guess = GuessFromFit(imu, fitted, observations, camchain, options, fit_options,
+                         "target poses", &fit_warnings, &fit);
+    const std::vector<bool> agree = PosesAgreeingWithFit(poses, fit);
+    if (agree == used || pass == kMaxInitialFitPasses ||
+        std::count(agree.begin(), agree.end(), true) < kMinPnpPoses) {
+      break;
+    }
+    used = agree;
+  }
+  if (warnings != nullptr) {
+    warnings->insert(warnings->end(), fit_warnings.begin(), fit_warnings.end());
+    const int left_out = static_cast<int>(std::count(used.begin(), used.end(), false));
+    if (left_out > 0) {
+      warnings->push_back(StringPrintf(
+          "initial guess: %d of %zu PnP poses lie more than %.0f deg or %.0f cm from the "
+          "trajectory the IMU and the other poses give (a flipped pose of a small or distant "
+          "target, or a frame stamped wrongly) and were left out of it (they still enter the "
+          "calibration)",
+          left_out, poses.size(), kMaxPoseDisagreementRad * kRadToDeg,
+          100.0 * kMaxPoseDisagreementM));
+    }
+  }
   guess.camchain[0].T_cam_imu = fit.T_m_s;
   guess.camchain[0].time_offset_s = fit.time_offset_s;
   // Camera n > 0 starts where the camchain's T_cn_cnm1 puts it from the fitted cam0: a camchain

@@ -323,6 +323,12 @@ class CalibrationProblem {
   std::vector<Landmark> landmarks_;
   std::vector<FrameResidual> frame_residuals_;
   std::vector<LandmarkResidual> landmark_residuals_;
+  // Frame and landmark residuals left out of the problem because they could not be evaluated at
+  // the values it was built at (BuildProblem): in the latest build, in the last solved round and
+  // at most in any round.
+  int unprojectable_residuals_ = 0;
+  int unprojectable_in_last_round_ = 0;
+  int most_unprojectable_ = 0;
 };
 
 }  // namespace internal
