@@ -13,6 +13,7 @@ extern "C" {
 #include <apriltag/tag36h11.h>
 }
 
+#include "division_model.h"
 #include "grid_prediction.h"
 #include "grid_tag.h"
 #include "splinecal/detect/saddle_point.h"
@@ -126,10 +127,11 @@ std::vector<GridTag> KeepConsistentTags(const CalibrationTarget& target, int nei
 }
 
 // True when `tags` is empty, or when a tag of the grid that was not found lies wholly inside the
-// image (2 px from its border) where the homography fitted to the found tags' corners places
-// it: tags that a search at a finer scale may find. A tag cut by the image border is not missed.
+// image (2 px from its border) where the homography fitted to the found tags' corners (through
+// the lens's division model, division_model.h) places it: tags that a search at a finer scale may
+// find. A tag cut by the image border is not missed.
 bool MissesTagsInView(const CalibrationTarget& target, const cv::Size& size,
-                      const std::vector<GridTag>& tags) {
+                      const DivisionModel& lens, const std::vector<GridTag>& tags) {
   if (tags.empty()) return true;
   const int tag_count = target.grid_cols * target.grid_rows;
   if (static_cast<int>(tags.size()) >= tag_count) return false;
@@ -143,20 +145,22 @@ bool MissesTagsInView(const CalibrationTarget& target, const cv::Size& size,
       image.push_back(tag.corners[k]);
     }
   }
-  const cv::Mat H = cv::findHomography(plane, image, 0);
-  if (H.empty()) return true;
   const cv::Rect2d inside(2.0, 2.0, size.width - 5.0, size.height - 5.0);
   for (int id = 0; id < tag_count; ++id) {
     if (found[id]) continue;
     std::vector<cv::Point2d> corners, predicted;
     for (int k = 0; k < 4; ++k) corners.push_back(TagCorner(target, id, k, pitch));
-    cv::perspectiveTransform(corners, predicted, H);
+    if (!lens.Predict(plane, image, corners, &predicted)) return true;
     bool in_view = true;
     for (const cv::Point2d& p : predicted) in_view &= inside.contains(p);
     if (in_view) return true;
   }
   return false;
 }
+
+// The smallest limit on a corner's move in the final refinement [px]: libapriltag's corners of a
+// blurred tag can be a pixel or so off the junction.
+constexpr double kMinCornerShiftLimitPx = 1.5;
 
 // libapriltag's decode_sharpening (its default) in the search of the frame as it is.
 constexpr double kSharpening = 0.25;
@@ -267,16 +271,23 @@ TargetDetection AprilGridDetector::Detect(const cv::Mat& image) {
   int dropped = 0;
   std::vector<GridTag> kept = KeepConsistentTags(target_, options_.neighbour_steps, found, &dropped);
   const bool predict = options_.effort != DetectEffort::kFast;
-  if (predict && MissesTagsInView(target_, image.size(), kept)) {
+  // The lens from the tags found so far (division_model.h), fitted again when more are found;
+  // only where a prediction needs it.
+  const int tag_count = target_.grid_cols * target_.grid_rows;
+  DivisionModel lens;
+  if (predict && static_cast<int>(kept.size()) < tag_count) {
+    lens = FitDivisionModel(target_, kept, image.size());
+  }
+  if (predict && MissesTagsInView(target_, image.size(), lens, kept)) {
     const size_t before = kept.size();
-    AddPredictedTags(target_, *family_, image, kPredictedSharpening, &kept);
+    AddPredictedTags(target_, *family_, image, kPredictedSharpening, lens, &kept);
     found.insert(found.end(), kept.begin() + before, kept.end());
   }
   const bool upsampled =
       options_.upsample > 1.0 &&
       (options_.effort == DetectEffort::kThorough ||
        (options_.effort == DetectEffort::kDefault &&
-        MissesTagsInView(target_, image.size(), kept)));
+        MissesTagsInView(target_, image.size(), lens, kept)));
   if (upsampled) {
     // The white grown by 2 x 2 and by 3 x 3 upsampled pixels (half a pixel and one pixel of the
     // frame): the first keeps the code bits of the smallest tags, the second separates larger
@@ -292,7 +303,10 @@ TargetDetection AprilGridDetector::Detect(const cv::Mat& image) {
     }
     dropped = 0;
     kept = KeepConsistentTags(target_, options_.neighbour_steps, found, &dropped);
-    if (predict) AddPredictedTags(target_, *family_, image, kPredictedSharpening, &kept);
+    if (predict && static_cast<int>(kept.size()) < tag_count) {
+      lens = FitDivisionModel(target_, kept, image.size());
+      AddPredictedTags(target_, *family_, image, kPredictedSharpening, lens, &kept);
+    }
   }
   result.tags_rejected += dropped;
   if (kept.empty() || static_cast<int>(kept.size()) < options_.min_tags) return result;
@@ -305,12 +319,19 @@ TargetDetection AprilGridDetector::Detect(const cv::Mat& image) {
 
   std::vector<Eigen::Vector2d> points;
   std::vector<int64_t> ids;
+  // How far each corner may move: half the small square beside it, at its own tag's size (the
+  // frame's saddle options are for its median tag; a smaller tag's junctions are closer, and a
+  // corner moved by more may sit on the square's far junction).
+  std::vector<double> max_shift;
   for (const GridTag& tag : kept) {
     for (int k = 0; k < 4; ++k) {
       points.emplace_back(tag.corners[k].x, tag.corners[k].y);
       ids.push_back(CornerId(target_, tag.id, k));
+      max_shift.push_back(
+          std::max(kMinCornerShiftLimitPx, 0.5 * target_.tag_spacing_ratio * ShortestSide(tag)));
     }
   }
+  const std::vector<Eigen::Vector2d> starts = points;
   const GrayImageView view{image.cols, image.rows, static_cast<std::ptrdiff_t>(image.step),
                            image.data};
   std::vector<bool> converged = RefineSaddlePoints(view, saddle, &points);
@@ -342,7 +363,7 @@ TargetDetection AprilGridDetector::Detect(const cv::Mat& image) {
     }
   }
   for (size_t i = 0; i < points.size(); ++i) {
-    if (converged[i]) {
+    if (converged[i] && (points[i] - starts[i]).norm() <= max_shift[i]) {
       result.corners.push_back({ids[i], points[i]});
     } else {
       ++result.corners_rejected;

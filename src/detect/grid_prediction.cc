@@ -42,7 +42,8 @@ SaddleOptions SaddleOptionsForTags(const CalibrationTarget& target, double side)
 }
 
 int AddPredictedTags(const CalibrationTarget& target, const apriltag_family& family,
-                     const cv::Mat& image, double sharpening, std::vector<GridTag>* tags) {
+                     const cv::Mat& image, double sharpening, const DivisionModel& lens,
+                     std::vector<GridTag>* tags) {
   const int tag_count = target.grid_cols * target.grid_rows;
   const double pitch = 1.0 + target.tag_spacing_ratio;
   const GrayImageView view{image.cols, image.rows, static_cast<std::ptrdiff_t>(image.step),
@@ -67,12 +68,9 @@ int AddPredictedTags(const CalibrationTarget& target, const apriltag_family& fam
           pixels.push_back(tag->corners[k]);
         }
       }
-      if (plane.empty()) continue;
-      const cv::Mat H = cv::findHomography(plane, pixels, 0);
-      if (H.empty()) continue;
       std::vector<cv::Point2d> corners, predicted;
       for (int k = 0; k < 4; ++k) corners.push_back(TagCorner(target, id, k, pitch));
-      cv::perspectiveTransform(corners, predicted, H);
+      if (!lens.Predict(plane, pixels, corners, &predicted)) continue;
       GridTag candidate;
       candidate.id = id;
       bool usable = cv::isContourConvex(std::vector<cv::Point2f>(predicted.begin(), predicted.end()));
@@ -101,10 +99,14 @@ int AddPredictedTags(const CalibrationTarget& target, const apriltag_family& fam
     int added_now = 0;
     for (size_t i = 0; i < candidates.size(); ++i) {
       GridTag tag = candidates[i];
+      // ... and by half of its own small square, along its shortest side (the median tag's
+      // squares may be larger).
+      const double own_shift = 0.5 * target.tag_spacing_ratio * ShortestSide(candidates[i]);
       bool refined = true;
       for (int k = 0; k < 4; ++k) {
-        refined &= converged[4 * i + k];
         tag.corners[k] = {points[4 * i + k].x(), points[4 * i + k].y()};
+        refined &= converged[4 * i + k] &&
+                   cv::norm(tag.corners[k] - candidates[i].corners[k]) <= own_shift;
       }
       if (!refined) continue;
       const int errors = TagCodeErrors(family, image, tag, sharpening);

@@ -4,8 +4,10 @@
 // ~20 px, or narrower than that when seen obliquely, the outline is what fails: the white grown
 // to cut the tags from their corner squares (aprilgrid_detector.cc) eats their black border, and
 // without it the border joins the corner squares. The grid knows where such a tag must be: the
-// homography of its found neighbours (a few tag sides away, barely bent by lens distortion)
-// places its 4 corners, the saddle fit (detect/saddle_point.h) moves them onto the X-junctions,
+// homography of its found neighbours (a few tag sides away), fitted through the frame's lens
+// model (division_model.h: a fisheye bends even that short way by pixels), places its 4 corners,
+// the saddle fit (detect/saddle_point.h) moves them onto the X-junctions by at most half the
+// small square beside them,
 // and the tag is kept only when the code read inside those corners is its own id's within a few
 // bits (detect/tag_code.h). The geometry names the id and the code confirms it, so the few bit
 // errors that libapriltag would refuse from a lone quad cannot give a wrong id: tag36h11's codes
@@ -17,6 +19,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "division_model.h"
 #include "grid_tag.h"
 #include "splinecal/camera/target.h"
 #include "splinecal/detect/saddle_point.h"
@@ -33,8 +36,10 @@ SaddleOptions SaddleOptionsForTags(const CalibrationTarget& target, double side)
 // tag within 2 grid steps places wholly inside `image` (CV_8UC1), whose 4 corners the saddle fit
 // confirms and whose code read there is its id's within kMaxPredictedCodeErrors bits. Repeats
 // from the tags it added until none is added. Returns how many it added.
+// `lens` is the frame's (division_model.h).
 int AddPredictedTags(const CalibrationTarget& target, const apriltag_family& family,
-                     const cv::Mat& image, double sharpening, std::vector<GridTag>* tags);
+                     const cv::Mat& image, double sharpening, const DivisionModel& lens,
+                     std::vector<GridTag>* tags);
 
 }  // namespace splinecal
 

@@ -2,6 +2,8 @@
 #ifndef SPLINECAL_SRC_DETECT_GRID_TAG_H_
 #define SPLINECAL_SRC_DETECT_GRID_TAG_H_
 
+#include <algorithm>
+
 #include <opencv2/core.hpp>
 
 #include "splinecal/camera/target.h"
@@ -25,6 +27,16 @@ inline double MeanSide(const GridTag& tag) {
   double sum = 0.0;
   for (int k = 0; k < 4; ++k) sum += cv::norm(tag.corners[k] - tag.corners[(k + 1) % 4]);
   return sum / 4.0;
+}
+
+// The tag's shortest side [px]: along it the small squares beside the tag are narrowest, and
+// their junctions nearest to each other.
+inline double ShortestSide(const GridTag& tag) {
+  double shortest = cv::norm(tag.corners[0] - tag.corners[1]);
+  for (int k = 1; k < 4; ++k) {
+    shortest = std::min(shortest, cv::norm(tag.corners[k] - tag.corners[(k + 1) % 4]));
+  }
+  return shortest;
 }
 
 // Corner k of tag `id` on the grid's plane, in tag sides (tag 0's corner 0 at the origin);
