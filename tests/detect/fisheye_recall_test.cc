@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "detect/render_aprilgrid.h"
+#include "detect/rendered_recording.h"
 #include "splinecal/detect/target_detector.h"
 
 namespace splinecal {
@@ -25,16 +26,7 @@ struct ViewCount {
 
 TEST(FisheyeRecall, TagsBentByTheLensArePlacedThroughItsDivisionModel) {
   const CalibrationTarget target = MakeAprilGrid(6, 6, 0.088, 0.3);
-  Camera camera;
-  camera.projection = ProjectionModel::kDoubleSphere;
-  camera.distortion = DistortionModel::kNone;
-  camera.fu = 158.3;
-  camera.fv = 158.3;
-  camera.pu = 254.9;
-  camera.pv = 256.9;
-  camera.projection_params << -0.18, 0.59;  // xi, alpha
-  camera.width = 512;
-  camera.height = 512;
+  const Camera camera = testing::TumViLikeFisheye();
   const testing::AprilGridTexture texture(target, 4);
   const testing::PlanarViewRenderer renderer(camera, texture);
   Eigen::Vector3d grid_centre = Eigen::Vector3d::Zero();
