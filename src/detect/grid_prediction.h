@@ -29,7 +29,8 @@ struct apriltag_family;
 namespace splinecal {
 
 // Saddle refinement at the scale of tags `side` px wide: a window of a twentieth of the side
-// (2 px for EuRoC's 40 px tags), inside half of the small square between tags.
+// (2 px for EuRoC's 40 px tags), inside half of the small square between tags, and a blur of
+// 0.75 of the window but at most an eighth of the small square's side.
 SaddleOptions SaddleOptionsForTags(const CalibrationTarget& target, double side);
 
 // Adds to `tags` (tags found and kept, each id once) every missing tag of the grid that a found

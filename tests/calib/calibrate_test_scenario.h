@@ -61,8 +61,6 @@ struct ScenarioOptions {
   double shake_amplitude_rad = 0.0;
   // The rig's camera (intrinsics, image size); none: EuRoC's cam0 (pinhole-radtan).
   std::optional<Camera> camera;
-  // The target; none: CalibrationScenario's (EuRoC's grid of 8.8 cm tags).
-  std::optional<CalibrationTarget> target_grid;
 };
 
 // A closed-form IMU trajectory T_w_s over a target whose centre is target_centre_w (the camera
@@ -109,7 +107,6 @@ inline AnalyticTrajectory ClosedFormCalibrationTrajectory(uint64_t seed,
 
 inline CalibrationScenario MakeCalibrationScenario(const ScenarioOptions& o) {
   CalibrationScenario s;
-  if (o.target_grid) s.target = *o.target_grid;
   CameraCalibration cam;
   cam.camera = o.camera ? *o.camera : EurocCamera();
   cam.T_cam_imu =
