@@ -133,8 +133,8 @@ void CalibrationProblem::BuildProblem() {
   if (further_) further_->AddToProblem(spline_.get());
   // A residual that cannot be evaluated at the current values (a corner or landmark behind the
   // camera or outside its model's valid region: the trajectory is far off at that time) would
-  // stop the solver at its first evaluation; it sits out this round and is counted.
-  spline_->evaluation_callback()->Update();
+  // stop the solver at its first evaluation; it sits out this round and is counted. (The
+  // spline's cache is current: Update() at the top of this function.)
   unprojectable_residuals_ = 0;
   std::vector<double> values;
   auto evaluates = [&values](const ceres::CostFunction& cost, const std::vector<double*>& blocks) {

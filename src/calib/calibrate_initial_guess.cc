@@ -32,7 +32,7 @@ constexpr int kMinPnpPoses = 10;
 // one of a frame stamped wrongly is tens of degrees off, where blur and detector noise leave
 // tenths. Each pass fits the poses that agreed with the previous fit, so that the neighbours an
 // outlier pulled away come back once it is out.
-constexpr double kMaxPoseDisagreementRad = 5.0 * kPi / 180.0;
+constexpr double kMaxPoseDisagreementRad = 5.0 * kDegToRad;
 constexpr double kMaxPoseDisagreementM = 0.05;
 constexpr int kMaxInitialFitPasses = 4;
 // The noise a pose source is assumed to have in the initial fit, per axis.

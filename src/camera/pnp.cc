@@ -20,7 +20,7 @@ constexpr double kMinSingularValueRatio = 1e-10;
 // general DLT recovers the pose from the points' depth, and a nearly flat set gives it little:
 // on a 0.66 m board whose corners sit about 1 mm off the plane (a measured or refined target),
 // bearing noise of 1 mrad at 1 m is as large as the depth, and the DLT's poses were tens of
-// degrees off (EuRoC imu_april, docs/intrinsics.md). The planar closed form ignores the
+// degrees off (EuRoC imu_april, docs/calibrate.md, "Initial guess"). The planar closed form ignores the
 // thickness: its pose is off by about the ratio in radians, which the refinement removes.
 constexpr double kMaxPlanarThicknessRatio = 0.1;
 
